@@ -1,0 +1,145 @@
+/* The atmosphere model of docs/model.md in GLSL: medium, phases, ray geometry in cancellation-free forms,
+ * LUT parameterisations. Included by every sky shader. A point is described by its altitude h (km above the
+ * ground, never the planet-scale radius minus the ground radius) and the cosine mu of a ray's zenith angle. */
+#include "shared.h"
+
+layout(std140, set = 0, binding = 0) uniform AtmosphereUbo { AtmosphereParams atmo; };
+
+const float PI = 3.14159265358979;
+const float TRANSMITTANCE_W = 256.0;
+const float TRANSMITTANCE_H = 64.0;
+const float MULTISCATTER_N = 32.0;
+/* The multi-scattering LUT clamps its altitude to 10 m (seed bug 1: no sphere-sampled ray may start exactly on
+ * the ground). */
+const float MULTISCATTER_MIN_ALTITUDE = 0.01;
+const float FP16_MAX = 65504.0;
+
+float ground_radius() { return atmo.radii.x; }
+float top_radius() { return atmo.radii.y; }
+float top_altitude() { return atmo.radii.z; }          /* Rt - Rb, computed in double on the CPU */
+
+/* r^2 - Rb^2 for r = Rb + h, without forming r^2 (~4e7 km^2, where float keeps only ~2.4 km^2). */
+float rho2_of(float h) { return h * (2.0 * ground_radius() + h); }
+/* Rt^2 - r^2 for r = Rb + h (negative above the top). */
+float top_gap2_of(float h) { return (top_altitude() - h) * (top_radius() + ground_radius() + h); }
+
+/* Does a ray from altitude h with zenith cosine mu hit the ground? Inclusive (seed bug 1): a ray that starts on
+ * the ground heading down hits it at t = 0. */
+bool ray_hits_ground(float h, float mu)
+{
+    float r = ground_radius() + h;
+    return mu < 0.0 && rho2_of(h) <= r * r * mu * mu;
+}
+
+/* Distance to the ground along a ray that hits it (the near root, in the form without cancellation). */
+float distance_to_ground(float h, float mu)
+{
+    float r = ground_radius() + h;
+    float rho2 = rho2_of(h);
+    return rho2 / max(-r * mu + sqrt(max(0.0, r * r * mu * mu - rho2)), 1e-30);
+}
+
+/* Distance to the top of the atmosphere from inside it (h <= top). */
+float distance_to_top(float h, float mu)
+{
+    float r = ground_radius() + h;
+    float gap2 = max(0.0, top_gap2_of(h));
+    float s = sqrt(max(0.0, r * r * mu * mu + gap2));
+    return mu >= 0.0 ? gap2 / max(r * mu + s, 1e-30) : s - r * mu;
+}
+
+/* Altitude and sun zenith cosine at distance t along a ray from (h, mu) whose cosine with the sun is nu and whose
+ * starting point has sun zenith cosine mu_s. */
+float altitude_along(float h, float mu, float t, out float r_t)
+{
+    float r = ground_radius() + h;
+    float num = rho2_of(h) + t * t + 2.0 * r * mu * t;     /* r_t^2 - Rb^2 */
+    r_t = sqrt(max(0.0, r * r + t * t + 2.0 * r * mu * t));
+    return max(0.0, num / (r_t + ground_radius()));
+}
+
+struct Medium {
+    vec3 scattering;        /* sigma_s total */
+    vec3 extinction;        /* sigma_t total */
+    vec3 rayleigh;          /* sigma_s Rayleigh */
+    vec3 mie;               /* sigma_s Mie */
+};
+
+Medium sample_medium(float h)
+{
+    h = max(h, 0.0);
+    float d_r = exp(-h / atmo.rayleigh_scattering.w);
+    float d_m = exp(-h / atmo.mie_scattering.w);
+    float d_o = max(0.0, 1.0 - abs(h - atmo.ozone_absorption.w) / atmo.ozone_shape.x);
+    Medium m;
+    m.rayleigh = atmo.rayleigh_scattering.rgb * d_r;
+    m.mie = atmo.mie_scattering.rgb * d_m;
+    m.scattering = m.rayleigh + m.mie;
+    m.extinction = m.scattering + atmo.mie_absorption.rgb * d_m + atmo.ozone_absorption.rgb * d_o;
+    return m;
+}
+
+float rayleigh_phase(float nu) { return 3.0 / (16.0 * PI) * (1.0 + nu * nu); }
+
+float henyey_greenstein_phase(float nu, float g)
+{
+    float g2 = g * g;
+    float denom = max(1.0 + g2 - 2.0 * g * nu, 1e-8);
+    return (1.0 - g2) / (4.0 * PI * denom * sqrt(denom));
+}
+
+/* (1 - exp(-sigma dt)) / sigma, the exact integral of exp(-sigma s) over one step; -> dt as sigma -> 0. */
+vec3 step_integral(vec3 sigma, float dt)
+{
+    vec3 x = sigma * dt;
+    vec3 exact = (1.0 - exp(-x)) / max(sigma, vec3(1e-30));
+    return mix(exact, vec3(dt) * (1.0 - 0.5 * x), lessThan(x, vec3(1e-4)));
+}
+
+/* Earth shadow with the horizon fade (seed bugs 5 and 9): 0 when the ground blocks the sun. */
+float earth_shadow(float h, float mu_s)
+{
+    float lit = ray_hits_ground(h, mu_s) ? 0.0 : 1.0;
+    return lit * clamp(mu_s * 10.0 + 0.5, 0.0, 1.0);
+}
+
+/* Texel-centre sub-UV: unit x in [0,1] <-> texture coordinate; exact inverses, texel k sits at x = k/(n-1). */
+float unit_to_sub_uv(float x, float n) { return 0.5 / n + x * (n - 1.0) / n; }
+float sub_uv_to_unit(float u, float n) { return (u - 0.5 / n) * n / (n - 1.0); }
+
+/* Bruneton's transmittance parameterisation, forward: (h, mu) -> uv. The distance d is always to the top of the
+ * atmosphere, never clipped to the ground (seed bug 6), so forward and inverse are exact inverses. */
+vec2 transmittance_uv(float h, float mu)
+{
+    float H = sqrt(top_altitude() * (top_radius() + ground_radius()));
+    float rho = sqrt(rho2_of(h));
+    float d = distance_to_top(h, mu);
+    float d_min = top_altitude() - h;
+    float d_max = rho + H;
+    float x_mu = (d - d_min) / max(d_max - d_min, 1e-30);
+    float x_r = rho / H;
+    return vec2(unit_to_sub_uv(clamp(x_mu, 0.0, 1.0), TRANSMITTANCE_W),
+                unit_to_sub_uv(clamp(x_r, 0.0, 1.0), TRANSMITTANCE_H));
+}
+
+/* Inverse: uv -> (h, mu). */
+void transmittance_params(vec2 uv, out float h, out float mu)
+{
+    float x_mu = sub_uv_to_unit(uv.x, TRANSMITTANCE_W);
+    float x_r = sub_uv_to_unit(uv.y, TRANSMITTANCE_H);
+    float H = sqrt(top_altitude() * (top_radius() + ground_radius()));
+    float rho = H * x_r;
+    h = rho * rho / (sqrt(rho * rho + ground_radius() * ground_radius()) + ground_radius());
+    float r = ground_radius() + h;
+    float d_min = top_altitude() - h;
+    float d_max = rho + H;
+    float d = d_min + x_mu * (d_max - d_min);
+    /* (H^2 - rho^2 - d^2) / (2 r d) with H^2 - rho^2 = Rt^2 - r^2 = d_min (Rt + r). */
+    mu = d <= 0.0 ? 1.0 : clamp((d_min * (top_radius() + r) - d * d) / (2.0 * r * d), -1.0, 1.0);
+}
+
+vec2 multiscatter_uv(float h, float mu_s)
+{
+    return vec2(unit_to_sub_uv(clamp(mu_s * 0.5 + 0.5, 0.0, 1.0), MULTISCATTER_N),
+                unit_to_sub_uv(clamp(h / top_altitude(), 0.0, 1.0), MULTISCATTER_N));
+}

@@ -1,0 +1,55 @@
+/* Layouts shared by C and GLSL: one definition, included by both languages.
+ * Every member is a vec4 so std140 (GLSL) and the C struct have the same layout with no padding rules to
+ * remember. glslang defines VULKAN when compiling for Vulkan; the C compiler does not. */
+#ifndef VKSKY_SHARED_H
+#define VKSKY_SHARED_H
+
+#ifdef VULKAN
+#define VKSKY_STRUCT(name) struct name
+#define VKSKY_END(name) ;
+#else
+typedef struct vksky_vec4 { float x, y, z, w; } vksky_vec4;
+#define vec4 vksky_vec4
+#define VKSKY_STRUCT(name) typedef struct name
+#define VKSKY_END(name) name;
+#endif
+
+/* The atmosphere: uniform buffer, set 0 binding 0 of every sky shader. Changes only when the scene does. */
+VKSKY_STRUCT(AtmosphereParams) {
+    vec4 radii;                /* x: bottom (ground) radius km, y: top radius km */
+    vec4 rayleigh_scattering;  /* rgb: sigma_s /km at density 1, w: scale height km */
+    vec4 mie_scattering;       /* rgb: sigma_s /km, w: scale height km */
+    vec4 mie_absorption;       /* rgb: sigma_a /km, w: Henyey-Greenstein g */
+    vec4 ozone_absorption;     /* rgb: sigma_a /km, w: tent centre altitude km */
+    vec4 ozone_shape;          /* x: tent half width km */
+    vec4 sun;                  /* rgb: illuminance, w: angular radius (rad) */
+    vec4 lut_steps;            /* x: transmittance steps, y: multiscatter steps, z: multiscatter sqrt(directions) */
+} VKSKY_END(AtmosphereParams)
+
+/* Sky pass push constants: the camera as altitude + directions (never an absolute planet-scale position). */
+VKSKY_STRUCT(SkyPush) {
+    vec4 forward;              /* xyz: view axis (unit),        w: camera altitude km (>= 0) */
+    vec4 right;                /* xyz: right * tan(fov/2)*aspect, w: view march steps */
+    vec4 up;                   /* xyz: up * tan(fov/2),          w: unused */
+    vec4 sun_dir;              /* xyz: unit direction toward the sun (camera up = +Y) */
+} VKSKY_END(SkyPush)
+
+/* Bloom push constants. */
+VKSKY_STRUCT(BloomPush) {
+    vec4 src_texel;            /* xy: 1/size of the source image, z: 1 = first downsample (threshold + Karis), w: threshold */
+} VKSKY_END(BloomPush)
+
+/* Tone map push constants. */
+VKSKY_STRUCT(TonemapPush) {
+    vec4 params;               /* x: exposure (linear multiplier), y: operator (0 clamp, 1 Reinhard, 2 ACES),
+                                  z: bloom strength (0 = no bloom), w: 1 = encode sRGB in the shader */
+} VKSKY_END(TonemapPush)
+
+#define VKSKY_TONEMAP_CLAMP 0
+#define VKSKY_TONEMAP_REINHARD 1
+#define VKSKY_TONEMAP_ACES 2
+
+#ifndef VULKAN
+#undef vec4
+#endif
+#endif

@@ -1,0 +1,142 @@
+#include "app/headless.h"
+#include "io/image_io.h"
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+static bool is_exr(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, compare_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static int write_outputs(const options *o, sky_renderer *r)
+{
+    int w = o->width, h = o->height;
+    char err[512];
+    for (int i = 0; i < o->output_count; ++i) {
+        int rc;
+        if (is_exr(o->outputs[i])) {
+            io_exr_layer layer = {.name = "", .rgba_half = r->readback_linear.mapped};
+            rc = io_write_exr(o->outputs[i], w, h, &layer, 1, err, sizeof err);
+        } else {
+            rc = io_write_png(o->outputs[i], w, h, r->readback_display.mapped, 1, err, sizeof err);
+        }
+        if (rc != 0) {
+            fprintf(stderr, "vksky: %s\n", err);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Per-pass GPU medians, then the frame: the benchmark's output format (one line per pass). */
+static void bench(const options *o, sky_renderer *r)
+{
+    enum { MAX_PASSES = GPU_TIMER_MAX };
+    int n = o->bench_frames;
+    double *wall = calloc((size_t)n, sizeof *wall), *gpu_total = calloc((size_t)n, sizeof *gpu_total);
+    double *per_pass[MAX_PASSES] = {0};
+    const char *names[MAX_PASSES] = {0};
+    int pass_count = 0;
+    double ms[MAX_PASSES];
+
+    /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. */
+    frame_desc f = {.view = &o->view};
+    for (int i = 0; i < 3; ++i) sky_renderer_render(r, &f);
+
+    /* LUT passes, measured on their own (a frame recomputes them only when the atmosphere changes). */
+    frame_desc with_luts = {.view = &o->view, .force_luts = true};
+    double *lut_ms[2] = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double))};
+    for (int i = 0; i < n; ++i) {
+        sky_renderer_render(r, &with_luts);
+        uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
+        for (uint32_t k = 0; k < c && k < 2; ++k) lut_ms[k][i] = ms[k];
+    }
+    /* Steady-state frames. */
+    for (int i = 0; i < n; ++i) {
+        wall[i] = sky_renderer_render(r, &f);
+        uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
+        double total = 0;
+        for (uint32_t k = 0; k < c; ++k) {
+            int slot = -1;
+            for (int p = 0; p < pass_count; ++p)
+                if (!strcmp(names[p], r->timer.names[k])) slot = p;
+            if (slot < 0 && pass_count < MAX_PASSES) {
+                slot = pass_count++;
+                names[slot] = r->timer.names[k];
+                per_pass[slot] = calloc((size_t)n, sizeof(double));
+            }
+            if (slot >= 0) per_pass[slot][i] += ms[k];    /* repeated passes (bloom) add up per frame */
+            total += ms[k];
+        }
+        gpu_total[i] = total;
+    }
+    if (r->timer.enabled) {
+        printf("pass transmittance_lut gpu_ms %.4f\n", median(lut_ms[0], n));
+        printf("pass multiscatter_lut gpu_ms %.4f\n", median(lut_ms[1], n));
+        for (int p = 0; p < pass_count; ++p) printf("pass %s gpu_ms %.4f\n", names[p], median(per_pass[p], n));
+    }
+    printf("frame gpu_ms %.4f wall_ms %.4f\n", r->timer.enabled ? median(gpu_total, n) : -1.0, median(wall, n));
+    for (int p = 0; p < pass_count; ++p) free(per_pass[p]);
+    free(lut_ms[0]);
+    free(lut_ms[1]);
+    free(wall);
+    free(gpu_total);
+}
+
+int headless_run(const options *o)
+{
+    char err[512];
+    /* Refuse unwritable outputs before any expensive work (exit 2, nothing written). */
+    for (int i = 0; i < o->output_count; ++i)
+        if (io_check_writable(o->outputs[i], err, sizeof err) != 0) {
+            fprintf(stderr, "vksky: --render: %s\n", err);
+            return 2;
+        }
+    gpu_context ctx;
+    gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
+    int rc = gpu_context_create(&ctx, &desc);
+    if (rc != 0) return rc == -2 ? 2 : 1;
+    if (o->trace_barriers) gpu_barrier_trace(stdout);
+    gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
+
+    sky_renderer r;
+    sky_renderer_desc rdesc = {.width = (uint32_t)o->width, .height = (uint32_t)o->height, .bloom = o->view.bloom,
+                               .readback = o->output_count > 0, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
+    sky_renderer_create(&r, &ctx, &rdesc);
+    ref_atmosphere atmosphere;
+    ref_atmosphere_earth(&atmosphere);
+    sky_renderer_set_atmosphere(&r, &atmosphere, 0.5 * 0.53 * 3.14159265358979323846 / 180.0,
+                                sky_lut_quality_default());
+
+    int status = 0;
+    if (o->bench_frames > 0) {
+        gpu_barrier_trace(NULL);
+        bench(o, &r);
+    } else {
+        frame_desc f = {.view = &o->view};
+        sky_renderer_render(&r, &f);
+        status = write_outputs(o, &r);
+    }
+    sky_renderer_destroy(&r);
+    gpu_context_destroy(&ctx);
+    unsigned messages = gpu_validation_message_count();
+    if (messages) {
+        fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
+        if (status == 0) status = 1;
+    }
+    return status;
+}

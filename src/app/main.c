@@ -1,0 +1,24 @@
+/* vksky: a physically based sky (Hillaire 2020) over raw Vulkan. */
+#include "app/headless.h"
+#include "app/options.h"
+#include <stdlib.h>
+
+int main(int argc, char **argv)
+{
+    options o;
+    if (options_parse(&o, argc, argv) != 0) return 2;
+    if (o.help) {
+        options_print_help(stdout);
+        return 0;
+    }
+    if (o.version) {
+        printf("vksky %s\n", VKSKY_VERSION);
+        return 0;
+    }
+    if (o.list_devices) return gpu_list_devices(stdout) == 0 ? 0 : 1;
+    if (o.output_count == 0 && o.bench_frames == 0) {
+        fprintf(stderr, "vksky: nothing to do; give --render FILE.exr|FILE.png or --bench N (see --help)\n");
+        return 2;
+    }
+    return headless_run(&o);
+}

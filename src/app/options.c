@@ -1,0 +1,148 @@
+#include "app/options.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+typedef enum { ARG_NONE, ARG_INT, ARG_DOUBLE, ARG_STRING } arg_kind;
+
+typedef struct flag {
+    const char *name;
+    arg_kind kind;
+    double min, max;           /* inclusive range for numbers */
+    const char *help;
+} flag;
+
+static const flag flags[] = {
+    {"--render", ARG_STRING, 0, 0, "FILE   write the frame: .exr (scene-linear half RGBA, ZIP) or .png (tone-mapped 8-bit sRGB); repeatable"},
+    {"--width", ARG_INT, 32, 16384, "N      image width in pixels (default 1280)"},
+    {"--height", ARG_INT, 32, 16384, "N      image height in pixels (default 720)"},
+    {"--sun-elevation", ARG_DOUBLE, -90, 90, "DEG   sun elevation above the horizon (default 20)"},
+    {"--sun-azimuth", ARG_DOUBLE, -360, 360, "DEG   sun azimuth (default 0)"},
+    {"--altitude", ARG_DOUBLE, 0, 1e6, "KM    camera altitude above the ground (default 0.001 = 1 m)"},
+    {"--yaw", ARG_DOUBLE, -360, 360, "DEG    view azimuth, same convention as --sun-azimuth (default 0)"},
+    {"--pitch", ARG_DOUBLE, -90, 90, "DEG    view elevation, same convention as --sun-elevation (default 10)"},
+    {"--fov", ARG_DOUBLE, 1, 170, "DEG    vertical field of view (default 75)"},
+    {"--exposure", ARG_DOUBLE, -20, 20, "EV  exposure in stops before tone mapping (default 0)"},
+    {"--tonemap", ARG_STRING, 0, 0, "OP   clamp | reinhard | aces (default aces)"},
+    {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
+    {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
+    {"--bench", ARG_INT, 1, 100000, "N      render N frames after warm-up, print per-pass GPU ms medians"},
+    {"--validate", ARG_NONE, 0, 0, "      Khronos validation + synchronization validation; any message fails the run (also VKSKY_VALIDATION=1)"},
+    {"--trace-barriers", ARG_NONE, 0, 0, "print one line per barrier as the frame is recorded"},
+    {"--list-devices", ARG_NONE, 0, 0, "  list Vulkan devices and exit"},
+    {"--device", ARG_INT, 0, 63, "N     use device N of --list-devices (default: discrete > integrated > CPU)"},
+    {"--help", ARG_NONE, 0, 0, "          this text"},
+    {"--version", ARG_NONE, 0, 0, "       print the version"},
+};
+
+void options_print_help(FILE *out)
+{
+    fprintf(out, "usage: vksky --render FILE.exr|FILE.png [options]    headless render\n"
+                 "       vksky --bench N [options]                       benchmark\n\noptions:\n");
+    for (size_t i = 0; i < sizeof flags / sizeof flags[0]; ++i) fprintf(out, "  %s %s\n", flags[i].name, flags[i].help);
+}
+
+static int bad(const char *flag_name, const char *what)
+{
+    fprintf(stderr, "vksky: %s: %s\n", flag_name, what);
+    return 2;
+}
+
+static int parse_number(const flag *f, const char *text, double *out)
+{
+    char msg[256];
+    const char *expect = f->kind == ARG_INT ? "an integer" : "a number";
+    errno = 0;
+    char *end = NULL;
+    double v = strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE || isnan(v) || isinf(v) ||
+        (f->kind == ARG_INT && v != floor(v))) {
+        snprintf(msg, sizeof msg, "'%s' is not %s; expected %s in [%g, %g]", text, expect, expect, f->min, f->max);
+        return bad(f->name, msg);
+    }
+    if (v < f->min || v > f->max) {
+        snprintf(msg, sizeof msg, "%s is out of range; expected %s in [%g, %g]", text, expect, f->min, f->max);
+        return bad(f->name, msg);
+    }
+    *out = v;
+    return 0;
+}
+
+static bool has_extension(const char *path, const char *ext)
+{
+    size_t n = strlen(path), e = strlen(ext);
+    return n > e && strcasecmp(path + n - e, ext) == 0;
+}
+
+static int apply(options *o, const flag *f, const char *value)
+{
+    const char *n = f->name;
+    double x = 0;
+    if ((f->kind == ARG_INT || f->kind == ARG_DOUBLE) && parse_number(f, value, &x) != 0) return 2;
+    if (!strcmp(n, "--render")) {
+        if (!has_extension(value, ".exr") && !has_extension(value, ".png"))
+            return bad(n, "unknown output type; expected a file name ending in .exr or .png");
+        if (o->output_count == OPTIONS_MAX_OUTPUTS) return bad(n, "given too often; at most 4 outputs");
+        o->outputs[o->output_count++] = value;
+    } else if (!strcmp(n, "--width")) o->width = (int)x;
+    else if (!strcmp(n, "--height")) o->height = (int)x;
+    else if (!strcmp(n, "--sun-elevation")) o->view.sun_elevation_deg = x;
+    else if (!strcmp(n, "--sun-azimuth")) o->view.sun_azimuth_deg = x;
+    else if (!strcmp(n, "--altitude")) o->view.altitude_km = x;
+    else if (!strcmp(n, "--yaw")) o->view.yaw_deg = x;
+    else if (!strcmp(n, "--pitch")) o->view.pitch_deg = x;
+    else if (!strcmp(n, "--fov")) o->view.fov_deg = x;
+    else if (!strcmp(n, "--exposure")) o->view.exposure_ev = x;
+    else if (!strcmp(n, "--tonemap")) {
+        if (!strcmp(value, "clamp")) o->view.tonemap = VKSKY_TONEMAP_CLAMP;
+        else if (!strcmp(value, "reinhard")) o->view.tonemap = VKSKY_TONEMAP_REINHARD;
+        else if (!strcmp(value, "aces")) o->view.tonemap = VKSKY_TONEMAP_ACES;
+        else {
+            char msg[200];
+            snprintf(msg, sizeof msg, "unknown operator '%s'; expected clamp, reinhard or aces", value);
+            return bad(n, msg);
+        }
+    } else if (!strcmp(n, "--no-bloom")) o->view.bloom = false;
+    else if (!strcmp(n, "--steps")) o->view.steps = (int)x;
+    else if (!strcmp(n, "--bench")) o->bench_frames = (int)x;
+    else if (!strcmp(n, "--validate")) o->validate = true;
+    else if (!strcmp(n, "--trace-barriers")) o->trace_barriers = true;
+    else if (!strcmp(n, "--list-devices")) o->list_devices = true;
+    else if (!strcmp(n, "--device")) o->device_index = (int)x;
+    else if (!strcmp(n, "--help")) o->help = true;
+    else if (!strcmp(n, "--version")) o->version = true;
+    return 0;
+}
+
+int options_parse(options *o, int argc, char **argv)
+{
+    *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1};
+    const char *env = getenv("VKSKY_VALIDATION");
+    if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
+    for (int i = 1; i < argc; ++i) {
+        const char *arg = argv[i];
+        const char *eq = strchr(arg, '=');
+        size_t name_len = eq && !strncmp(arg, "--", 2) ? (size_t)(eq - arg) : strlen(arg);
+        const flag *f = NULL;
+        for (size_t k = 0; k < sizeof flags / sizeof flags[0]; ++k)
+            if (strlen(flags[k].name) == name_len && !strncmp(flags[k].name, arg, name_len)) f = &flags[k];
+        if (!f) {
+            char msg[160];
+            snprintf(msg, sizeof msg, "unknown %s; see vksky --help for the accepted flags",
+                     arg[0] == '-' ? "flag" : "argument (flags start with --)");
+            return bad(arg, msg);
+        }
+        const char *value = NULL;
+        if (f->kind != ARG_NONE) {
+            if (eq && name_len < strlen(arg)) value = eq + 1;
+            else if (i + 1 < argc) value = argv[++i];
+            else return bad(f->name, "missing value; see vksky --help");
+        } else if (eq && name_len < strlen(arg)) {
+            return bad(f->name, "takes no value");
+        }
+        if (apply(o, f, value) != 0) return 2;
+    }
+    return 0;
+}

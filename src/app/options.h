@@ -1,0 +1,26 @@
+/* Command-line options: parsing and validation. Every bad input is one line on stderr naming the flag and the
+ * accepted values; the caller exits with status 2. */
+#ifndef VKSKY_APP_OPTIONS_H
+#define VKSKY_APP_OPTIONS_H
+#include "sky/renderer.h"
+#include <stdbool.h>
+
+#define OPTIONS_MAX_OUTPUTS 4
+
+typedef struct options {
+    sky_view view;
+    int width, height;
+    const char *outputs[OPTIONS_MAX_OUTPUTS];   /* --render, .exr or .png */
+    int output_count;
+    int bench_frames;                           /* --bench N (0: off) */
+    bool validate;
+    bool list_devices;
+    int device_index;                           /* -1: pick */
+    bool trace_barriers;
+    bool help, version;
+} options;
+
+/* 0: ok; 2: bad input (message printed). */
+int options_parse(options *o, int argc, char **argv);
+void options_print_help(FILE *out);
+#endif

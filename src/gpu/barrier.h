@@ -1,0 +1,75 @@
+/* Barriers from named usages (synchronization2).
+ *
+ * A usage says how a pass touches a resource: the pipeline stage, the access and, for images, the layout. A
+ * barrier is built from (resource, subresource range, from-usage, to-usage): the source side contributes only
+ * its *write* accesses (there is nothing to make available from a read), the destination side its reads and
+ * writes. Barriers meant for one point of the frame are collected in a batch and recorded by one
+ * vkCmdPipelineBarrier2.
+ *
+ * Every barrier has a stable name (e.g. "transmittance.write_to_sample"). `--trace-barriers` prints one line per
+ * barrier as it is recorded; env VKSKY_DROP_BARRIER=<name> leaves that one barrier out, so a test can show
+ * that synchronization validation reports the hazard it prevents. */
+#ifndef VKSKY_GPU_BARRIER_H
+#define VKSKY_GPU_BARRIER_H
+#include "gpu/context.h"
+
+typedef enum gpu_usage {
+    GPU_USAGE_NONE,                     /* not used yet / contents not needed */
+    GPU_USAGE_COMPUTE_STORAGE_WRITE,    /* imageStore from a compute shader (GENERAL) */
+    GPU_USAGE_COMPUTE_SAMPLED,          /* texture() in a compute shader */
+    GPU_USAGE_FRAGMENT_SAMPLED,         /* texture() in a fragment shader */
+    GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, /* sampled by compute and fragment shaders alike */
+    GPU_USAGE_COLOR_ATTACHMENT_WRITE,   /* colour attachment, load op CLEAR/DONT_CARE, no blending */
+    GPU_USAGE_COLOR_ATTACHMENT_BLEND,   /* colour attachment, load op LOAD and blending: reads and writes */
+    GPU_USAGE_TRANSFER_SRC,             /* copy source */
+    GPU_USAGE_TRANSFER_DST,             /* copy destination */
+    GPU_USAGE_HOST_READ,                /* read by the CPU after the fence (buffers) */
+    GPU_USAGE_PRESENT,                  /* handed to the presentation engine */
+    GPU_USAGE_COUNT
+} gpu_usage;
+
+typedef struct gpu_usage_info {
+    const char *name;
+    VkPipelineStageFlags2 stage;
+    VkAccessFlags2 access;
+    VkImageLayout layout;
+} gpu_usage_info;
+
+const gpu_usage_info *gpu_usage_get(gpu_usage usage);
+/* Write accesses among `access` (the only ones a barrier's source side needs). */
+VkAccessFlags2 gpu_write_accesses(VkAccessFlags2 access);
+
+/* Build one image barrier. `discard`: the old contents are not needed (old layout UNDEFINED), but the source
+ * stage still waits for the previous user (a write-after-read or write-after-write hazard). */
+VkImageMemoryBarrier2 gpu_image_barrier(VkImage image, VkImageSubresourceRange range, gpu_usage from, gpu_usage to,
+                                        bool discard);
+
+#define GPU_BATCH_MAX 16
+typedef struct gpu_barrier_batch {
+    const char *point;                  /* where in the frame, for the trace */
+    VkImageMemoryBarrier2 images[GPU_BATCH_MAX];
+    VkBufferMemoryBarrier2 buffers[4];
+    uint32_t image_count, buffer_count;
+} gpu_barrier_batch;
+
+gpu_barrier_batch gpu_barrier_batch_begin(const char *point);
+void gpu_barrier_add_image(gpu_barrier_batch *b, const char *name, const char *resource, VkImage image,
+                           VkImageSubresourceRange range, gpu_usage from, gpu_usage to, bool discard);
+void gpu_barrier_add_buffer(gpu_barrier_batch *b, const char *name, const char *resource, VkBuffer buffer,
+                            gpu_usage from, gpu_usage to);
+/* Records the batch (one vkCmdPipelineBarrier2); nothing if every barrier in it was dropped. */
+void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b);
+
+/* Trace / drop controls (process-wide; set once by the app before recording). */
+void gpu_barrier_trace(FILE *out);
+/* Name of the barrier to drop (NULL: none). Returns how many barriers were dropped so far. */
+void gpu_barrier_set_drop(const char *name);
+unsigned gpu_barrier_dropped_count(void);
+
+/* The hazard a from -> to barrier prevents: "RAW", "WAR", "WAW", with "+layout" for a transition. */
+const char *gpu_hazard_name(gpu_usage from, gpu_usage to, bool discard, char *buf, size_t size);
+/* Human-readable stage and access masks (for the trace and docs). */
+void gpu_stage_string(VkPipelineStageFlags2 stage, char *buf, size_t size);
+void gpu_access_string(VkAccessFlags2 access, char *buf, size_t size);
+const char *gpu_layout_name(VkImageLayout layout);
+#endif

@@ -1,0 +1,391 @@
+#include "gpu/context.h"
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+static atomic_uint validation_messages;
+
+unsigned gpu_validation_message_count(void) { return atomic_load(&validation_messages); }
+
+const char *gpu_result_name(VkResult r)
+{
+    switch (r) {
+#define R(x) case x: return #x;
+    R(VK_SUCCESS) R(VK_NOT_READY) R(VK_TIMEOUT) R(VK_INCOMPLETE) R(VK_ERROR_OUT_OF_HOST_MEMORY)
+    R(VK_ERROR_OUT_OF_DEVICE_MEMORY) R(VK_ERROR_INITIALIZATION_FAILED) R(VK_ERROR_DEVICE_LOST)
+    R(VK_ERROR_MEMORY_MAP_FAILED) R(VK_ERROR_LAYER_NOT_PRESENT) R(VK_ERROR_EXTENSION_NOT_PRESENT)
+    R(VK_ERROR_FEATURE_NOT_PRESENT) R(VK_ERROR_INCOMPATIBLE_DRIVER) R(VK_ERROR_TOO_MANY_OBJECTS)
+    R(VK_ERROR_FORMAT_NOT_SUPPORTED) R(VK_ERROR_SURFACE_LOST_KHR) R(VK_ERROR_NATIVE_WINDOW_IN_USE_KHR)
+    R(VK_SUBOPTIMAL_KHR) R(VK_ERROR_OUT_OF_DATE_KHR)
+#undef R
+    default: return "VK_RESULT_UNKNOWN";
+    }
+}
+
+void gpu_fail_vk(const char *file, int line, const char *call, VkResult r)
+{
+    fprintf(stderr, "vksky: %s:%d: %s failed: %s (%d)\n", file, line, call, gpu_result_name(r), (int)r);
+    exit(1);
+}
+
+/* Every message of the validation layer is printed and counted; a run with any message exits non-zero
+ * (the caller checks the count). Loader chatter comes through the loader, not this callback. */
+static VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                     VkDebugUtilsMessageTypeFlagsEXT types,
+                                                     const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
+{
+    (void)types;
+    (void)user;
+    atomic_fetch_add(&validation_messages, 1);
+    const char *level = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT     ? "error"
+                        : severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT ? "warning"
+                                                                                      : "info";
+    fprintf(stderr, "vksky: validation %s: %s\n", level, data->pMessage ? data->pMessage : "(no text)");
+    return VK_FALSE;
+}
+
+static bool has_layer(const char *name)
+{
+    uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, NULL);
+    VkLayerProperties *layers = calloc(n ? n : 1, sizeof *layers);
+    vkEnumerateInstanceLayerProperties(&n, layers);
+    bool found = false;
+    for (uint32_t i = 0; i < n; ++i) found |= strcmp(layers[i].layerName, name) == 0;
+    free(layers);
+    return found;
+}
+
+static bool has_instance_extension(const char *name)
+{
+    uint32_t n = 0;
+    vkEnumerateInstanceExtensionProperties(NULL, &n, NULL);
+    VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
+    vkEnumerateInstanceExtensionProperties(NULL, &n, ext);
+    bool found = false;
+    for (uint32_t i = 0; i < n; ++i) found |= strcmp(ext[i].extensionName, name) == 0;
+    free(ext);
+    return found;
+}
+
+static int device_rank(VkPhysicalDeviceType type)
+{
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+    default: return 0;
+    }
+}
+
+static const char *device_type_name(VkPhysicalDeviceType type)
+{
+    switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+    default: return "other";
+    }
+}
+
+/* A queue family that does graphics and compute (the spec guarantees one exists if either does). */
+static int find_queue_family(VkPhysicalDevice pd)
+{
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, NULL);
+    VkQueueFamilyProperties q[16];
+    if (n > 16) n = 16;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, q);
+    for (uint32_t i = 0; i < n; ++i)
+        if ((q[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
+            (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT))
+            return (int)i;
+    return -1;
+}
+
+static bool device_is_usable(VkPhysicalDevice pd)
+{
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(pd, &p);
+    return p.apiVersion >= VK_API_VERSION_1_3 && find_queue_family(pd) >= 0;
+}
+
+static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool quiet)
+{
+    if (volkInitialize() != VK_SUCCESS) {
+        if (!quiet) fprintf(stderr, "vksky: no Vulkan loader (libvulkan.so.1) found; install libvulkan1 and a driver (mesa-vulkan-drivers)\n");
+        return -1;
+    }
+    if (volkGetInstanceVersion() < VK_API_VERSION_1_3) {
+        if (!quiet) fprintf(stderr, "vksky: the Vulkan loader is older than 1.3\n");
+        return -1;
+    }
+    const char *extensions[16];
+    uint32_t ext_count = 0;
+    for (unsigned i = 0; i < desc->instance_extension_count && ext_count < 14; ++i)
+        extensions[ext_count++] = desc->instance_extensions[i];
+    ctx->debug_utils = has_instance_extension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    if (ctx->debug_utils) extensions[ext_count++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+
+    const char *layers[1] = {"VK_LAYER_KHRONOS_validation"};
+    if (desc->validation && !has_layer(layers[0])) {
+        fprintf(stderr, "vksky: --validate needs the Khronos validation layer (Debian package vulkan-validationlayers)\n");
+        return -1;
+    }
+    if (desc->validation && !ctx->debug_utils) {
+        fprintf(stderr, "vksky: --validate needs VK_EXT_debug_utils, which this loader lacks\n");
+        return -1;
+    }
+    /* Synchronization validation is off by default in the layer; it is the only thing that sees a missing
+     * barrier on an in-order implementation like lavapipe. Chained on the instance, never on the messenger's
+     * create info (VUID_Undefined pNext). */
+    VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeaturesEXT features = {
+        .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
+        .enabledValidationFeatureCount = 1,
+        .pEnabledValidationFeatures = enables,
+    };
+    VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+        .pfnUserCallback = debug_callback,
+    };
+    VkApplicationInfo app = {
+        .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
+        .pApplicationName = "vksky",
+        .applicationVersion = VK_MAKE_VERSION(0, 1, 0),
+        .pEngineName = "vksky",
+        .apiVersion = VK_API_VERSION_1_3,
+    };
+    VkInstanceCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+        .pNext = desc->validation ? &features : NULL,
+        .pApplicationInfo = &app,
+        .enabledLayerCount = desc->validation ? 1 : 0,
+        .ppEnabledLayerNames = layers,
+        .enabledExtensionCount = ext_count,
+        .ppEnabledExtensionNames = extensions,
+    };
+    VkResult r = vkCreateInstance(&info, NULL, &ctx->instance);
+    if (r != VK_SUCCESS) {
+        fprintf(stderr, "vksky: vkCreateInstance failed: %s\n", gpu_result_name(r));
+        return -1;
+    }
+    volkLoadInstanceOnly(ctx->instance);
+    if (desc->validation) {
+        VK_CHECK(vkCreateDebugUtilsMessengerEXT(ctx->instance, &messenger_info, NULL, &ctx->messenger));
+        ctx->validation = true;
+    }
+    return 0;
+}
+
+int gpu_list_devices(FILE *out)
+{
+    gpu_context ctx = {0};
+    gpu_context_desc desc = {.device_index = -1};
+    if (create_instance(&ctx, &desc, false) != 0) return -1;
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(ctx.instance, &n, NULL);
+    VkPhysicalDevice pds[16];
+    if (n > 16) n = 16;
+    vkEnumeratePhysicalDevices(ctx.instance, &n, pds);
+    for (uint32_t i = 0; i < n; ++i) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(pds[i], &p);
+        fprintf(out, "%u: %s (%s, Vulkan %u.%u.%u)%s\n", i, p.deviceName, device_type_name(p.deviceType),
+                VK_API_VERSION_MAJOR(p.apiVersion), VK_API_VERSION_MINOR(p.apiVersion),
+                VK_API_VERSION_PATCH(p.apiVersion), device_is_usable(pds[i]) ? "" : " [unusable: needs Vulkan 1.3]");
+    }
+    vkDestroyInstance(ctx.instance, NULL);
+    return n ? 0 : -1;
+}
+
+static int pick_device(gpu_context *ctx, int index)
+{
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(ctx->instance, &n, NULL);
+    VkPhysicalDevice pds[16];
+    if (n > 16) n = 16;
+    vkEnumeratePhysicalDevices(ctx->instance, &n, pds);
+    if (n == 0) {
+        fprintf(stderr, "vksky: no Vulkan device found; install a driver (mesa-vulkan-drivers provides lavapipe)\n");
+        return -1;
+    }
+    if (index >= 0) {
+        if ((uint32_t)index >= n) {
+            fprintf(stderr, "vksky: --device %d: there are %u devices (0..%u); see --list-devices\n", index, n, n - 1);
+            return -2;
+        }
+        if (!device_is_usable(pds[index])) {
+            fprintf(stderr, "vksky: --device %d does not support Vulkan 1.3 with a graphics+compute queue\n", index);
+            return -2;
+        }
+        ctx->physical = pds[index];
+        return 0;
+    }
+    int best = -1, best_rank = -1;
+    for (uint32_t i = 0; i < n; ++i) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(pds[i], &p);
+        if (device_is_usable(pds[i]) && device_rank(p.deviceType) > best_rank) {
+            best = (int)i;
+            best_rank = device_rank(p.deviceType);
+        }
+    }
+    if (best < 0) {
+        fprintf(stderr, "vksky: no Vulkan 1.3 device with a graphics+compute queue\n");
+        return -1;
+    }
+    ctx->physical = pds[best];
+    return 0;
+}
+
+int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
+{
+    *ctx = (gpu_context){0};
+    if (create_instance(ctx, desc, false) != 0) return -1;
+    int picked = pick_device(ctx, desc->device_index);
+    if (picked != 0) {
+        gpu_context_destroy(ctx);
+        return picked;
+    }
+    vkGetPhysicalDeviceProperties(ctx->physical, &ctx->props);
+    vkGetPhysicalDeviceMemoryProperties(ctx->physical, &ctx->memory);
+    ctx->queue_family = (uint32_t)find_queue_family(ctx->physical);
+
+    uint32_t qn = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(ctx->physical, &qn, NULL);
+    VkQueueFamilyProperties qprops[16];
+    if (qn > 16) qn = 16;
+    vkGetPhysicalDeviceQueueFamilyProperties(ctx->physical, &qn, qprops);
+    ctx->timestamps = qprops[ctx->queue_family].timestampValidBits > 0 && ctx->props.limits.timestampPeriod > 0;
+    ctx->timestamp_period_ns = ctx->props.limits.timestampPeriod;
+
+    VkPhysicalDeviceVulkan13Features f13 = {0};
+    f13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+    VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f13};
+    vkGetPhysicalDeviceFeatures2(ctx->physical, &f2);
+    if (!f13.synchronization2 || !f13.dynamicRendering || !f13.maintenance4) {
+        fprintf(stderr, "vksky: the device lacks synchronization2, dynamicRendering or maintenance4\n");
+        gpu_context_destroy(ctx);
+        return -1;
+    }
+    /* maintenance4: glslang 12 emits LocalSizeId for vulkan1.3 targets. */
+    VkPhysicalDeviceVulkan13Features enable13 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        .synchronization2 = VK_TRUE,
+        .dynamicRendering = VK_TRUE,
+        .maintenance4 = VK_TRUE,
+    };
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qinfo = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+        .queueFamilyIndex = ctx->queue_family,
+        .queueCount = 1,
+        .pQueuePriorities = &priority,
+    };
+    const char *dev_ext[1] = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+    VkDeviceCreateInfo dinfo = {
+        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+        .pNext = &enable13,
+        .queueCreateInfoCount = 1,
+        .pQueueCreateInfos = &qinfo,
+        .enabledExtensionCount = desc->want_swapchain ? 1 : 0,
+        .ppEnabledExtensionNames = dev_ext,
+    };
+    VkResult r = vkCreateDevice(ctx->physical, &dinfo, NULL, &ctx->device);
+    if (r != VK_SUCCESS) {
+        fprintf(stderr, "vksky: vkCreateDevice failed: %s\n", gpu_result_name(r));
+        gpu_context_destroy(ctx);
+        return -1;
+    }
+    volkLoadDevice(ctx->device);
+    vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
+    gpu_set_name(ctx, VK_OBJECT_TYPE_QUEUE, (uint64_t)(uintptr_t)ctx->queue, "main queue");
+
+    VkCommandPoolCreateInfo pinfo = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+        .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+        .queueFamilyIndex = ctx->queue_family,
+    };
+    VK_CHECK(vkCreateCommandPool(ctx->device, &pinfo, NULL, &ctx->command_pool));
+    gpu_set_name(ctx, VK_OBJECT_TYPE_COMMAND_POOL, (uint64_t)ctx->command_pool, "main command pool");
+    return 0;
+}
+
+void gpu_context_destroy(gpu_context *ctx)
+{
+    if (ctx->device) {
+        vkDeviceWaitIdle(ctx->device);
+        if (ctx->command_pool) vkDestroyCommandPool(ctx->device, ctx->command_pool, NULL);
+        vkDestroyDevice(ctx->device, NULL);
+    }
+    if (ctx->messenger) vkDestroyDebugUtilsMessengerEXT(ctx->instance, ctx->messenger, NULL);
+    if (ctx->instance) vkDestroyInstance(ctx->instance, NULL);
+    *ctx = (gpu_context){0};
+}
+
+void gpu_set_name(const gpu_context *ctx, VkObjectType type, uint64_t handle, const char *name)
+{
+    if (!ctx->debug_utils || !vkSetDebugUtilsObjectNameEXT) return;
+    VkDebugUtilsObjectNameInfoEXT info = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT,
+        .objectType = type,
+        .objectHandle = handle,
+        .pObjectName = name,
+    };
+    vkSetDebugUtilsObjectNameEXT(ctx->device, &info);
+}
+
+void gpu_label_begin(const gpu_context *ctx, VkCommandBuffer cmd, const char *name)
+{
+    if (!ctx->debug_utils || !vkCmdBeginDebugUtilsLabelEXT) return;
+    VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = name};
+    vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
+}
+
+void gpu_label_end(const gpu_context *ctx, VkCommandBuffer cmd)
+{
+    if (!ctx->debug_utils || !vkCmdEndDebugUtilsLabelEXT) return;
+    vkCmdEndDebugUtilsLabelEXT(cmd);
+}
+
+VkCommandBuffer gpu_begin_commands(const gpu_context *ctx)
+{
+    VkCommandBufferAllocateInfo ainfo = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+        .commandPool = ctx->command_pool,
+        .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+        .commandBufferCount = 1,
+    };
+    VkCommandBuffer cmd;
+    VK_CHECK(vkAllocateCommandBuffers(ctx->device, &ainfo, &cmd));
+    VkCommandBufferBeginInfo binfo = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
+    };
+    VK_CHECK(vkBeginCommandBuffer(cmd, &binfo));
+    return cmd;
+}
+
+void gpu_submit_and_wait(const gpu_context *ctx, VkCommandBuffer cmd)
+{
+    VK_CHECK(vkEndCommandBuffer(cmd));
+    VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence;
+    VK_CHECK(vkCreateFence(ctx->device, &finfo, NULL, &fence));
+    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
+    VkSubmitInfo2 sinfo = {
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
+        .commandBufferInfoCount = 1,
+        .pCommandBufferInfos = &cinfo,
+    };
+    VK_CHECK(vkQueueSubmit2(ctx->queue, 1, &sinfo, fence));
+    VK_CHECK(vkWaitForFences(ctx->device, 1, &fence, VK_TRUE, UINT64_MAX));
+    vkDestroyFence(ctx->device, fence, NULL);
+    vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, &cmd);
+}

@@ -1,0 +1,130 @@
+#include "gpu/resources.h"
+#include <stdlib.h>
+
+static uint32_t find_memory_type(const gpu_context *ctx, uint32_t bits, VkMemoryPropertyFlags want,
+                                 VkMemoryPropertyFlags prefer)
+{
+    for (int pass = 0; pass < 2; ++pass) {
+        VkMemoryPropertyFlags need = pass == 0 ? want | prefer : want;
+        for (uint32_t i = 0; i < ctx->memory.memoryTypeCount; ++i)
+            if ((bits & (1u << i)) && (ctx->memory.memoryTypes[i].propertyFlags & need) == need) return i;
+    }
+    fprintf(stderr, "vksky: no suitable memory type (bits 0x%x, flags 0x%x)\n", bits, want);
+    exit(1);
+}
+
+VkImageSubresourceRange gpu_color_range(uint32_t base_mip, uint32_t count)
+{
+    return (VkImageSubresourceRange){
+        .aspectMask = VK_IMAGE_ASPECT_COLOR_BIT, .baseMipLevel = base_mip, .levelCount = count, .layerCount = 1};
+}
+
+VkExtent2D gpu_mip_extent(VkExtent2D base, uint32_t mip)
+{
+    uint32_t w = base.width >> mip, h = base.height >> mip;
+    return (VkExtent2D){w ? w : 1, h ? h : 1};
+}
+
+static VkImageView make_view(const gpu_context *ctx, VkImage image, VkFormat format, VkImageSubresourceRange range)
+{
+    VkImageViewCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+        .image = image,
+        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .format = format,
+        .subresourceRange = range,
+    };
+    VkImageView view;
+    VK_CHECK(vkCreateImageView(ctx->device, &info, NULL, &view));
+    return view;
+}
+
+void gpu_image_create(const gpu_context *ctx, gpu_image *img, const char *name, VkFormat format, uint32_t width,
+                      uint32_t height, uint32_t mips, VkImageUsageFlags usage)
+{
+    *img = (gpu_image){.format = format, .extent = {width, height}, .mip_levels = mips, .name = name};
+    VkImageCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+        .imageType = VK_IMAGE_TYPE_2D,
+        .format = format,
+        .extent = {width, height, 1},
+        .mipLevels = mips,
+        .arrayLayers = 1,
+        .samples = VK_SAMPLE_COUNT_1_BIT,
+        .tiling = VK_IMAGE_TILING_OPTIMAL,
+        .usage = usage,
+        .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
+    };
+    VK_CHECK(vkCreateImage(ctx->device, &info, NULL, &img->image));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(ctx->device, img->image, &req);
+    VkMemoryAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        .allocationSize = req.size,
+        .memoryTypeIndex = find_memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0),
+    };
+    VK_CHECK(vkAllocateMemory(ctx->device, &alloc, NULL, &img->memory));
+    VK_CHECK(vkBindImageMemory(ctx->device, img->image, img->memory, 0));
+    img->view = make_view(ctx, img->image, format, gpu_color_range(0, mips));
+    for (uint32_t m = 0; m < mips && mips > 1; ++m) {
+        img->mip_views[m] = make_view(ctx, img->image, format, gpu_color_range(m, 1));
+        gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)img->mip_views[m], name);
+    }
+    gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE, (uint64_t)img->image, name);
+    gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)img->view, name);
+    gpu_set_name(ctx, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)img->memory, name);
+}
+
+void gpu_image_destroy(const gpu_context *ctx, gpu_image *img)
+{
+    if (!img->image) return;
+    for (uint32_t m = 0; m < GPU_MAX_MIPS; ++m)
+        if (img->mip_views[m]) vkDestroyImageView(ctx->device, img->mip_views[m], NULL);
+    vkDestroyImageView(ctx->device, img->view, NULL);
+    vkDestroyImage(ctx->device, img->image, NULL);
+    vkFreeMemory(ctx->device, img->memory, NULL);
+    *img = (gpu_image){0};
+}
+
+void gpu_buffer_create(const gpu_context *ctx, gpu_buffer *buf, const char *name, VkDeviceSize size,
+                       VkBufferUsageFlags usage)
+{
+    *buf = (gpu_buffer){.size = size};
+    VkBufferCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+        .size = size,
+        .usage = usage,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+    };
+    VK_CHECK(vkCreateBuffer(ctx->device, &info, NULL, &buf->buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx->device, buf->buffer, &req);
+    /* Readback prefers cached memory (fast host reads), coherent is a bonus. */
+    uint32_t type = find_memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT,
+                                     VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    buf->coherent = (ctx->memory.memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
+    VkMemoryAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = type};
+    VK_CHECK(vkAllocateMemory(ctx->device, &alloc, NULL, &buf->memory));
+    VK_CHECK(vkBindBufferMemory(ctx->device, buf->buffer, buf->memory, 0));
+    VK_CHECK(vkMapMemory(ctx->device, buf->memory, 0, VK_WHOLE_SIZE, 0, &buf->mapped));
+    gpu_set_name(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)buf->buffer, name);
+    gpu_set_name(ctx, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)buf->memory, name);
+}
+
+void gpu_buffer_destroy(const gpu_context *ctx, gpu_buffer *buf)
+{
+    if (!buf->buffer) return;
+    vkUnmapMemory(ctx->device, buf->memory);
+    vkDestroyBuffer(ctx->device, buf->buffer, NULL);
+    vkFreeMemory(ctx->device, buf->memory, NULL);
+    *buf = (gpu_buffer){0};
+}
+
+void gpu_buffer_invalidate(const gpu_context *ctx, const gpu_buffer *buf)
+{
+    if (buf->coherent) return;
+    VkMappedMemoryRange range = {
+        .sType = VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE, .memory = buf->memory, .offset = 0, .size = VK_WHOLE_SIZE};
+    VK_CHECK(vkInvalidateMappedMemoryRanges(ctx->device, 1, &range));
+}

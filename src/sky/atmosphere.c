@@ -1,0 +1,43 @@
+#include "sky/atmosphere.h"
+#include <stddef.h>
+#include <string.h>
+
+sky_lut_quality sky_lut_quality_default(void)
+{
+    return (sky_lut_quality){.transmittance_steps = 40, .multiscatter_steps = 20, .multiscatter_sqrt_dirs = 8};
+}
+
+static vksky_vec4 v4(const double rgb[3], double w)
+{
+    return (vksky_vec4){(float)rgb[0], (float)rgb[1], (float)rgb[2], (float)w};
+}
+
+void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,
+                         AtmosphereParams *out)
+{
+    memset(out, 0, sizeof *out);
+    /* Rt - Rb in double: the shaders never subtract planet-scale radii themselves. */
+    out->radii = (vksky_vec4){(float)a->bottom_radius, (float)a->top_radius,
+                              (float)(a->top_radius - a->bottom_radius), 0.0f};
+    out->rayleigh_scattering = v4(a->rayleigh_scattering, a->rayleigh_scale_height);
+    out->mie_scattering = v4(a->mie_scattering, a->mie_scale_height);
+    out->mie_absorption = v4(a->mie_absorption, a->mie_g);
+    out->ozone_absorption = v4(a->ozone_absorption, a->ozone_center);
+    out->ozone_shape = (vksky_vec4){(float)a->ozone_half_width, 0, 0, 0};
+    out->sun = v4(a->sun_illuminance, sun_angular_radius_rad);
+    out->lut_steps = (vksky_vec4){(float)q.transmittance_steps, (float)q.multiscatter_steps,
+                                  (float)q.multiscatter_sqrt_dirs, 0.0f};
+}
+
+uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p)
+{
+    /* Everything but the sun's illuminance and size (the LUTs are per unit illuminance) and the Mie g
+     * (the LUTs use the isotropic phase). */
+    const vksky_vec4 fields[] = {p->radii, p->rayleigh_scattering, p->mie_scattering,
+                                 {p->mie_absorption.x, p->mie_absorption.y, p->mie_absorption.z, 0},
+                                 p->ozone_absorption, p->ozone_shape, p->lut_steps};
+    const unsigned char *bytes = (const unsigned char *)fields;
+    uint64_t h = 1469598103934665603ull;
+    for (size_t i = 0; i < sizeof fields; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+    return h;
+}

@@ -1,0 +1,20 @@
+/* Atmosphere parameters on the CPU (the model's ref_atmosphere, in double) packed into the uniform block the
+ * shaders read (AtmosphereParams in shaders/glsl/shared.h). */
+#ifndef VKSKY_SKY_ATMOSPHERE_H
+#define VKSKY_SKY_ATMOSPHERE_H
+#include "reference/ref_atmosphere.h"
+#include "shared.h"
+#include <stdint.h>
+
+typedef struct sky_lut_quality {
+    int transmittance_steps;      /* 40 */
+    int multiscatter_steps;       /* 20 */
+    int multiscatter_sqrt_dirs;   /* 8 -> 64 directions */
+} sky_lut_quality;
+
+sky_lut_quality sky_lut_quality_default(void);
+void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,
+                         AtmosphereParams *out);
+/* FNV-1a of the packed block's LUT-relevant part: LUTs are recomputed only when it changes. */
+uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p);
+#endif

@@ -1,0 +1,68 @@
+#include "sky/passes.h"
+#include "sky/shaders.h"
+
+void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr)
+{
+    const gpu_context *ctx = s->ctx;
+    b->hdr_extent = hdr->extent;
+    b->mip_count = BLOOM_MIPS;
+    uint32_t w = hdr->extent.width / 2, h = hdr->extent.height / 2;
+    gpu_image_create(ctx, &b->mips, "bloom mips", HDR_FORMAT, w ? w : 1, h ? h : 1, b->mip_count,
+                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+
+    VkDescriptorType types[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+    b->set_layout = gpu_set_layout(ctx, types, 1, VK_SHADER_STAGE_FRAGMENT_BIT, "bloom set layout");
+    b->layout = gpu_pipeline_layout(ctx, b->set_layout, sizeof(BloomPush), VK_SHADER_STAGE_FRAGMENT_BIT, "bloom layout");
+    VkFormat format = HDR_FORMAT;
+    VkShaderModule down = gpu_shader_module(ctx, spirv_bloom_downsample.code, spirv_bloom_downsample.size, "bloom_downsample.frag");
+    VkShaderModule up = gpu_shader_module(ctx, spirv_bloom_upsample.code, spirv_bloom_upsample.size, "bloom_upsample.frag");
+    b->down_pipeline = gpu_fullscreen_pipeline(ctx, b->layout, s->fullscreen_vs, down, &format, 1, GPU_BLEND_NONE, "bloom downsample");
+    /* Upsample adds onto what the downsample left in the mip: blend ONE + ONE with load op LOAD. */
+    b->up_pipeline = gpu_fullscreen_pipeline(ctx, b->layout, s->fullscreen_vs, up, &format, 1, GPU_BLEND_ADDITIVE, "bloom upsample");
+    vkDestroyShaderModule(ctx->device, down, NULL);
+    vkDestroyShaderModule(ctx->device, up, NULL);
+    for (uint32_t i = 0; i < b->mip_count; ++i) {
+        b->down_sets[i] = gpu_alloc_set(ctx, s->pool, b->set_layout, "bloom downsample set");
+        gpu_write_sampled(ctx, b->down_sets[i], 0, i == 0 ? hdr->view : b->mips.mip_views[i - 1], s->linear_clamp);
+        if (i + 1 < b->mip_count) {
+            b->up_sets[i] = gpu_alloc_set(ctx, s->pool, b->set_layout, "bloom upsample set");
+            gpu_write_sampled(ctx, b->up_sets[i], 0, b->mips.mip_views[i + 1], s->linear_clamp);
+        }
+    }
+}
+
+void bloom_destroy(bloom_chain *b, const pass_shared *s)
+{
+    VkDevice d = s->ctx->device;
+    vkDestroyPipeline(d, b->down_pipeline, NULL);
+    vkDestroyPipeline(d, b->up_pipeline, NULL);
+    vkDestroyPipelineLayout(d, b->layout, NULL);
+    vkDestroyDescriptorSetLayout(d, b->set_layout, NULL);
+    gpu_image_destroy(s->ctx, &b->mips);
+}
+
+static void draw(const bloom_chain *b, VkCommandBuffer cmd, VkPipeline pipeline, VkDescriptorSet set, uint32_t dst,
+                 VkAttachmentLoadOp load, VkExtent2D src_extent, float first, float threshold)
+{
+    gpu_attachment target = {b->mips.mip_views[dst], load};
+    gpu_begin_rendering(cmd, gpu_mip_extent(b->mips.extent, dst), &target, 1);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, b->layout, 0, 1, &set, 0, NULL);
+    BloomPush push = {.src_texel = {1.0f / (float)src_extent.width, 1.0f / (float)src_extent.height, first, threshold}};
+    vkCmdPushConstants(cmd, b->layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRendering(cmd);
+}
+
+void bloom_record_downsample(const bloom_chain *b, VkCommandBuffer cmd, uint32_t dst, float threshold)
+{
+    VkExtent2D src = dst == 0 ? b->hdr_extent : gpu_mip_extent(b->mips.extent, dst - 1);
+    draw(b, cmd, b->down_pipeline, b->down_sets[dst], dst, VK_ATTACHMENT_LOAD_OP_DONT_CARE, src, dst == 0 ? 1.0f : 0.0f,
+         threshold);
+}
+
+void bloom_record_upsample(const bloom_chain *b, VkCommandBuffer cmd, uint32_t dst)
+{
+    draw(b, cmd, b->up_pipeline, b->up_sets[dst], dst, VK_ATTACHMENT_LOAD_OP_LOAD,
+         gpu_mip_extent(b->mips.extent, dst + 1), 0.0f, 0.0f);
+}

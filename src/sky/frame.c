@@ -1,0 +1,181 @@
+/* The frame spine: every pass of a frame in order, and every barrier between them.
+ *
+ * Read this function top to bottom beside docs/synchronization.md. Each barrier names who wrote, who reads and
+ * the hazard it prevents (RAW read-after-write, WAR write-after-read, WAW, layout transition). Passes record
+ * their own draws/dispatches (luts.c, sky_pass.c, bloom.c, tonemap.c); barriers live only here. */
+#include "sky/renderer.h"
+
+/* How each frame image was last used by the previous frame: the first barrier of this frame waits for it (WAR)
+ * and discards the contents (old layout UNDEFINED). */
+#define HDR_LAST_USE GPU_USAGE_FRAGMENT_SAMPLED            /* bloom downsample 0 and tone map read it */
+#define BLOOM_LAST_USE GPU_USAGE_FRAGMENT_SAMPLED          /* upsample sources and the tone map read the mips */
+#define LUT_LAST_USE GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED    /* the last frame's sky pass (and multiscatter) read them */
+
+static uint32_t timed_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
+{
+    gpu_label_begin(r->ctx, cmd, pass);
+    return gpu_timer_begin(&r->timer, cmd, pass);
+}
+
+static void timed_end(sky_renderer *r, VkCommandBuffer cmd, uint32_t slot)
+{
+    gpu_timer_end(&r->timer, cmd, slot);
+    gpu_label_end(r->ctx, cmd);
+}
+
+static void record_luts(sky_renderer *r, VkCommandBuffer cmd)
+{
+    sky_luts *l = &r->luts;
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+
+    /* Transmittance LUT: the previous frames' sky passes sampled it (WAR); to GENERAL for imageStore. */
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before transmittance_lut");
+    gpu_barrier_add_image(&b, "transmittance.to_storage", "transmittance_lut", l->transmittance.image, one,
+                          LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+    gpu_barrier_flush(cmd, &b);
+    uint32_t t = timed_begin(r, cmd, "transmittance_lut");
+    luts_record_transmittance(l, cmd);
+    timed_end(r, cmd, t);
+
+    /* The transmittance compute shader wrote the LUT; the multiscatter compute shader (and later the sky's
+     * fragment shader) samples it: RAW + GENERAL -> SHADER_READ_ONLY. The multiscatter LUT was sampled by the
+     * previous frames (WAR) and becomes the storage target. */
+    b = gpu_barrier_batch_begin("before multiscatter_lut");
+    gpu_barrier_add_image(&b, "transmittance.write_to_sample", "transmittance_lut", l->transmittance.image, one,
+                          GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    gpu_barrier_add_image(&b, "multiscatter.to_storage", "multiscatter_lut", l->multiscatter.image, one,
+                          LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+    gpu_barrier_flush(cmd, &b);
+    t = timed_begin(r, cmd, "multiscatter_lut");
+    luts_record_multiscatter(l, cmd);
+    timed_end(r, cmd, t);
+
+    /* The multiscatter compute shader wrote its LUT; the sky's fragment shader samples it: RAW + layout.
+     * (The usage covers compute too, so every frame's first barrier has the same source usage.) */
+    b = gpu_barrier_batch_begin("after multiscatter_lut");
+    gpu_barrier_add_image(&b, "multiscatter.write_to_sample", "multiscatter_lut", l->multiscatter.image, one,
+                          GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    gpu_barrier_flush(cmd, &b);
+}
+
+static void record_bloom(sky_renderer *r, VkCommandBuffer cmd, const sky_view *v)
+{
+    bloom_chain *bl = &r->bloom;
+    char name[64];
+    /* Downsample chain: pass i renders mip i from mip i-1 (from the HDR image for i = 0). */
+    for (uint32_t i = 0; i < bl->mip_count; ++i) {
+        uint32_t t = timed_begin(r, cmd, "bloom_downsample");
+        bloom_record_downsample(bl, cmd, i, (float)v->bloom_threshold);
+        timed_end(r, cmd, t);
+        /* Downsample i wrote mip i; downsample i+1 (or upsample into mip i-1, for the last) samples it: RAW +
+         * layout. One barrier range per mip: the mip being rendered is never the one being sampled. */
+        gpu_barrier_batch b = gpu_barrier_batch_begin("bloom downsample chain");
+        snprintf(name, sizeof name, "bloom.mip%u.write_to_sample", i);
+        gpu_barrier_add_image(&b, name, "bloom", bl->mips.image, gpu_color_range(i, 1),
+                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_FRAGMENT_SAMPLED, false);
+        gpu_barrier_flush(cmd, &b);
+    }
+    /* Upsample chain: pass into mip i adds a tent-filtered mip i+1 onto mip i's own downsampled contents. */
+    for (int i = (int)bl->mip_count - 2; i >= 0; --i) {
+        /* Mip i was last sampled by downsample i+1 (WAR) and holds its downsample result, which the load op
+         * LOAD and the blend read: SHADER_READ_ONLY -> COLOR_ATTACHMENT with COLOR_ATTACHMENT_READ|WRITE. */
+        gpu_barrier_batch b = gpu_barrier_batch_begin("bloom upsample chain");
+        snprintf(name, sizeof name, "bloom.mip%d.to_blend", i);
+        gpu_barrier_add_image(&b, name, "bloom", bl->mips.image, gpu_color_range((uint32_t)i, 1),
+                              GPU_USAGE_FRAGMENT_SAMPLED, GPU_USAGE_COLOR_ATTACHMENT_BLEND, false);
+        gpu_barrier_flush(cmd, &b);
+        uint32_t t = timed_begin(r, cmd, "bloom_upsample");
+        bloom_record_upsample(bl, cmd, (uint32_t)i);
+        timed_end(r, cmd, t);
+        /* Upsample wrote mip i; the next upsample (or the tone map, for mip 0) samples it: RAW + layout. */
+        b = gpu_barrier_batch_begin("bloom upsample chain");
+        snprintf(name, sizeof name, "bloom.mip%d.blend_to_sample", i);
+        gpu_barrier_add_image(&b, name, "bloom", bl->mips.image, gpu_color_range((uint32_t)i, 1),
+                              GPU_USAGE_COLOR_ATTACHMENT_BLEND, GPU_USAGE_FRAGMENT_SAMPLED, false);
+        gpu_barrier_flush(cmd, &b);
+    }
+}
+
+void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
+{
+    const sky_view *v = f->view;
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    bool bloom = v->bloom && r->desc.bloom;
+    gpu_timer_reset(&r->timer, cmd);
+
+    /* 1. LUTs, only when the atmosphere changed: transmittance, then multi-scattering (reads transmittance). */
+    if (f->force_luts || sky_renderer_luts_dirty(r)) {
+        record_luts(r, cmd);
+        r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere);
+        r->luts_valid = true;
+    }
+
+    /* 2. Sky pass. The previous frame's bloom and tone map sampled the HDR image (WAR); its contents are
+     * not needed (every pixel is rewritten): UNDEFINED -> COLOR_ATTACHMENT. */
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before sky");
+    gpu_barrier_add_image(&b, "hdr.to_attachment", "hdr", r->hdr.image, one, HDR_LAST_USE,
+                          GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+    gpu_barrier_flush(cmd, &b);
+    SkyPush push = sky_view_push(v, r->hdr.extent.width, r->hdr.extent.height);
+    uint32_t t = timed_begin(r, cmd, "sky");
+    sky_pass_record(&r->sky, cmd, &r->hdr, &push);
+    timed_end(r, cmd, t);
+
+    /* The sky pass wrote the HDR image; bloom downsample 0 and the tone map sample it: RAW + layout.
+     * The bloom mips were sampled by the previous frame (WAR) and are rendered anew: UNDEFINED -> attachment. */
+    b = gpu_barrier_batch_begin("after sky");
+    gpu_barrier_add_image(&b, "hdr.write_to_sample", "hdr", r->hdr.image, one, GPU_USAGE_COLOR_ATTACHMENT_WRITE,
+                          GPU_USAGE_FRAGMENT_SAMPLED, false);
+    if (bloom)
+        gpu_barrier_add_image(&b, "bloom.to_attachment", "bloom", r->bloom.mips.image,
+                              gpu_color_range(0, r->bloom.mip_count), BLOOM_LAST_USE,
+                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+    gpu_barrier_flush(cmd, &b);
+
+    /* 3. Bloom: 5 downsamples, 4 additive upsamples. */
+    if (bloom) record_bloom(r, cmd, v);
+
+    /* 4. Tone map into the display image (and the linear composite for EXR output). Both were read by the
+     * previous frame's readback copy (WAR) and are fully rewritten. */
+    b = gpu_barrier_batch_begin("before tonemap");
+    gpu_usage display_last_use = r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE;
+    gpu_barrier_add_image(&b, "display.to_attachment", "display", r->display.image, one, display_last_use,
+                          GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+    if (r->desc.readback)
+        gpu_barrier_add_image(&b, "composite.to_attachment", "composite", r->composite.image, one,
+                              GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+    gpu_barrier_flush(cmd, &b);
+    TonemapPush tm = sky_view_tonemap_push(v, false);
+    if (!bloom) tm.params.z = 0.0f;
+    t = timed_begin(r, cmd, "tonemap");
+    tonemap_record(&r->tonemap, cmd, r->display.extent, r->display.view,
+                   r->desc.readback ? r->composite.view : VK_NULL_HANDLE, &tm);
+    timed_end(r, cmd, t);
+
+    /* 5. Readback: the tone map wrote both images; the copies read them: RAW + layout. Then the copies wrote
+     * the host buffers; the CPU reads them after the fence: RAW (a fence alone does not make device writes
+     * visible to the host; the HOST_READ barrier does). */
+    if (r->desc.readback) {
+        b = gpu_barrier_batch_begin("before readback");
+        gpu_barrier_add_image(&b, "display.write_to_copy", "display", r->display.image, one,
+                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false);
+        gpu_barrier_add_image(&b, "composite.write_to_copy", "composite", r->composite.image, one,
+                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false);
+        gpu_barrier_flush(cmd, &b);
+        t = timed_begin(r, cmd, "readback");
+        VkBufferImageCopy region = {
+            .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+            .imageExtent = {r->display.extent.width, r->display.extent.height, 1}};
+        vkCmdCopyImageToBuffer(cmd, r->composite.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               r->readback_linear.buffer, 1, &region);
+        vkCmdCopyImageToBuffer(cmd, r->display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               r->readback_display.buffer, 1, &region);
+        timed_end(r, cmd, t);
+        b = gpu_barrier_batch_begin("after readback");
+        gpu_barrier_add_buffer(&b, "readback.linear_to_host", "readback_linear", r->readback_linear.buffer,
+                               GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
+        gpu_barrier_add_buffer(&b, "readback.display_to_host", "readback_display", r->readback_display.buffer,
+                               GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
+        gpu_barrier_flush(cmd, &b);
+    }
+}

@@ -1,0 +1,69 @@
+/* The sky renderer: owns the passes and the frame's images; frame.c records a frame over them. */
+#ifndef VKSKY_SKY_RENDERER_H
+#define VKSKY_SKY_RENDERER_H
+#include "gpu/timing.h"
+#include "sky/atmosphere.h"
+#include "sky/passes.h"
+
+typedef struct sky_view {
+    double altitude_km;                     /* camera altitude above the ground, >= 0 */
+    double yaw_deg, pitch_deg, fov_deg;     /* view axis: same convention as the sun's azimuth/elevation */
+    double sun_azimuth_deg, sun_elevation_deg;
+    int steps;                              /* view march steps */
+    double exposure_ev;                     /* tone map exposure, in stops */
+    int tonemap;                            /* VKSKY_TONEMAP_* */
+    bool bloom;
+    double bloom_strength, bloom_threshold;
+} sky_view;
+
+sky_view sky_view_default(void);
+
+typedef struct sky_renderer_desc {
+    uint32_t width, height;
+    bool bloom;                  /* allocate the bloom chain (no bloom: no passes, no mip chain) */
+    bool readback;               /* keep the linear composite + display image and copy them to host buffers */
+    VkFormat display_format;     /* the 8-bit target's format (headless: R8G8B8A8_SRGB) */
+} sky_renderer_desc;
+
+typedef struct sky_renderer {
+    gpu_context *ctx;
+    pass_shared shared;
+    sky_luts luts;
+    sky_pass sky;
+    bloom_chain bloom;
+    tonemap_pass tonemap;
+    sky_renderer_desc desc;
+    gpu_image hdr;               /* sky pass output, RGBA16F */
+    gpu_image display;           /* tone-mapped, 8-bit (headless) */
+    gpu_image composite;         /* HDR + bloom, scene-linear (readback only) */
+    gpu_buffer readback_linear, readback_display;
+    gpu_timer timer;
+    AtmosphereParams atmosphere;
+    uint64_t lut_hash;           /* of the atmosphere the LUTs hold; 0: never computed */
+    bool luts_valid;
+} sky_renderer;
+
+void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_desc *desc);
+void sky_renderer_destroy(sky_renderer *r);
+/* Set the atmosphere (writes the uniform buffer: call only while no frame is in flight). LUTs are recomputed
+ * by the next frame if their inputs changed. */
+void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad,
+                                 sky_lut_quality q);
+bool sky_renderer_luts_dirty(const sky_renderer *r);
+
+/* Camera + sun -> the sky pass's push constants (the ray matrix built from the camera basis). */
+SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height);
+TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader);
+
+/* frame.c: the whole frame, in order, with every barrier between the passes. */
+typedef struct frame_desc {
+    const sky_view *view;
+    bool force_luts;             /* recompute the LUTs even if they are up to date (benchmarks) */
+} frame_desc;
+void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
+
+/* Records a frame, submits it, waits. Returns wall milliseconds from submit to fence. */
+double sky_renderer_render(sky_renderer *r, const frame_desc *f);
+/* Copy a LUT to the host as floats RGBA (tests). which: 0 transmittance, 1 multiscatter. */
+void sky_renderer_read_lut(sky_renderer *r, int which, float *rgba_out);
+#endif

@@ -1,0 +1,19 @@
+#include "sky/shaders.h"
+#include "transmittance_lut_comp.h"
+#include "multiscatter_lut_comp.h"
+#include "fullscreen_vert.h"
+#include "sky_frag.h"
+#include "bloom_downsample_frag.h"
+#include "bloom_upsample_frag.h"
+#include "tonemap_frag.h"
+#include "tonemap_composite_frag.h"
+
+#define SPIRV(var) {var, sizeof var}
+const sky_spirv spirv_transmittance_lut = SPIRV(spv_transmittance_lut_comp);
+const sky_spirv spirv_multiscatter_lut = SPIRV(spv_multiscatter_lut_comp);
+const sky_spirv spirv_fullscreen_vert = SPIRV(spv_fullscreen_vert);
+const sky_spirv spirv_sky_frag = SPIRV(spv_sky_frag);
+const sky_spirv spirv_bloom_downsample = SPIRV(spv_bloom_downsample_frag);
+const sky_spirv spirv_bloom_upsample = SPIRV(spv_bloom_upsample_frag);
+const sky_spirv spirv_tonemap = SPIRV(spv_tonemap_frag);
+const sky_spirv spirv_tonemap_composite = SPIRV(spv_tonemap_composite_frag);

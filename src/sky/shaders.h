@@ -1,0 +1,10 @@
+/* SPIR-V compiled from shaders/glsl at build time, embedded in the binary. */
+#ifndef VKSKY_SKY_SHADERS_H
+#define VKSKY_SKY_SHADERS_H
+#include <stddef.h>
+#include <stdint.h>
+
+typedef struct sky_spirv { const uint32_t *code; size_t size; } sky_spirv;
+extern const sky_spirv spirv_transmittance_lut, spirv_multiscatter_lut, spirv_fullscreen_vert, spirv_sky_frag,
+    spirv_bloom_downsample, spirv_bloom_upsample, spirv_tonemap, spirv_tonemap_composite;
+#endif

@@ -1,0 +1,88 @@
+/* Shared helpers of the GPU tests: a validated context (validation + synchronization validation, always on),
+ * rendering a view into host memory, and check macros. Any validation message fails the test. */
+#ifndef VKSKY_GPU_TEST_H
+#define VKSKY_GPU_TEST_H
+#include "io/image_io.h"
+#include "sky/renderer.h"
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static int test_failures;
+#define CHECK(cond, ...)                                                                                    \
+    do {                                                                                                    \
+        if (!(cond)) {                                                                                      \
+            ++test_failures;                                                                                \
+            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                                 \
+            fprintf(stderr, __VA_ARGS__);                                                                   \
+            fputc('\n', stderr);                                                                            \
+        }                                                                                                   \
+    } while (0)
+
+static const double TEST_DEG = 3.14159265358979323846 / 180.0;
+static const double SUN_RADIUS_RAD = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
+
+static void test_context(gpu_context *ctx)
+{
+    gpu_context_desc desc = {.validation = true, .device_index = -1};
+    if (gpu_context_create(ctx, &desc) != 0) {
+        fprintf(stderr, "FAIL: no Vulkan device with the validation layer\n");
+        exit(1);
+    }
+}
+
+/* A rendered frame on the host: scene-linear RGBA floats (HDR + bloom if on) and the 8-bit display image. */
+typedef struct test_frame {
+    int width, height;
+    float *linear;
+    unsigned char *display;
+} test_frame;
+
+static test_frame test_render(gpu_context *ctx, const sky_view *view, int width, int height)
+{
+    sky_renderer r;
+    sky_renderer_desc desc = {.width = (uint32_t)width, .height = (uint32_t)height, .bloom = view->bloom,
+                              .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
+    sky_renderer_create(&r, ctx, &desc);
+    ref_atmosphere a;
+    ref_atmosphere_earth(&a);
+    sky_renderer_set_atmosphere(&r, &a, SUN_RADIUS_RAD, sky_lut_quality_default());
+    frame_desc f = {.view = view};
+    sky_renderer_render(&r, &f);
+    test_frame out = {width, height, malloc(sizeof(float) * 4 * (size_t)width * height),
+                      malloc(4 * (size_t)width * height)};
+    const uint16_t *half = r.readback_linear.mapped;
+    for (size_t i = 0; i < 4 * (size_t)width * height; ++i) out.linear[i] = io_half_to_float(half[i]);
+    memcpy(out.display, r.readback_display.mapped, 4 * (size_t)width * height);
+    sky_renderer_destroy(&r);
+    return out;
+}
+
+static void test_frame_free(test_frame *f)
+{
+    free(f->linear);
+    free(f->display);
+}
+
+static const float *test_pixel(const test_frame *f, int x, int y) { return f->linear + 4 * ((size_t)y * f->width + x); }
+
+static double luminance(const float *rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+
+/* Every pixel finite and non-negative. Returns the number of bad pixels. */
+static int count_bad_pixels(const test_frame *f)
+{
+    int bad = 0;
+    for (size_t i = 0; i < 4 * (size_t)f->width * f->height; ++i)
+        if (!isfinite(f->linear[i]) || f->linear[i] < 0.0f) ++bad;
+    return bad;
+}
+
+static int test_finish(const char *name)
+{
+    unsigned messages = gpu_validation_message_count();
+    CHECK(messages == 0, "validation reported %u messages", messages);
+    if (test_failures) fprintf(stderr, "%s: %d failure(s)\n", name, test_failures);
+    else printf("%s: ok\n", name);
+    return test_failures ? 1 : 0;
+}
+#endif
