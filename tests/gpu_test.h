@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static int test_failures;
 #define CHECK(cond, ...)                                                                                    \
@@ -22,7 +23,7 @@ static int test_failures;
 static const double TEST_DEG = 3.14159265358979323846 / 180.0;
 static const double SUN_RADIUS_RAD = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
 
-static void test_context(gpu_context *ctx)
+static inline void test_context(gpu_context *ctx)
 {
     gpu_context_desc desc = {.validation = true, .device_index = -1};
     if (gpu_context_create(ctx, &desc) != 0) {
@@ -38,7 +39,7 @@ typedef struct test_frame {
     unsigned char *display;
 } test_frame;
 
-static test_frame test_render(gpu_context *ctx, const sky_view *view, int width, int height)
+static inline test_frame test_render(gpu_context *ctx, const sky_view *view, int width, int height)
 {
     sky_renderer r;
     sky_renderer_desc desc = {.width = (uint32_t)width, .height = (uint32_t)height, .bloom = view->bloom,
@@ -58,18 +59,18 @@ static test_frame test_render(gpu_context *ctx, const sky_view *view, int width,
     return out;
 }
 
-static void test_frame_free(test_frame *f)
+static inline void test_frame_free(test_frame *f)
 {
     free(f->linear);
     free(f->display);
 }
 
-static const float *test_pixel(const test_frame *f, int x, int y) { return f->linear + 4 * ((size_t)y * f->width + x); }
+static inline const float *test_pixel(const test_frame *f, int x, int y) { return f->linear + 4 * ((size_t)y * f->width + x); }
 
-static double luminance(const float *rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+static inline double luminance(const float *rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
 /* Every pixel finite and non-negative. Returns the number of bad pixels. */
-static int count_bad_pixels(const test_frame *f)
+static inline int count_bad_pixels(const test_frame *f)
 {
     int bad = 0;
     for (size_t i = 0; i < 4 * (size_t)f->width * f->height; ++i)
@@ -77,7 +78,7 @@ static int count_bad_pixels(const test_frame *f)
     return bad;
 }
 
-static int test_finish(const char *name)
+static inline int test_finish(const char *name)
 {
     unsigned messages = gpu_validation_message_count();
     CHECK(messages == 0, "validation reported %u messages", messages);

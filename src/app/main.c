@@ -1,6 +1,7 @@
 /* vksky: a physically based sky (Hillaire 2020) over raw Vulkan. */
 #include "app/headless.h"
 #include "app/options.h"
+#include "app/window.h"
 #include <stdlib.h>
 
 int main(int argc, char **argv)
@@ -16,8 +17,10 @@ int main(int argc, char **argv)
         return 0;
     }
     if (o.list_devices) return gpu_list_devices(stdout) == 0 ? 0 : 1;
-    if (o.output_count == 0 && o.bench_frames == 0) {
-        fprintf(stderr, "vksky: nothing to do; give --render FILE.exr|FILE.png or --bench N (see --help)\n");
+    if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);
+    if (o.frames || o.screenshot) {
+        fprintf(stderr, "vksky: %s: only for the interactive window (not with --render or --bench)\n",
+                o.frames ? "--frames" : "--screenshot");
         return 2;
     }
     return headless_run(&o);

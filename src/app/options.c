@@ -29,6 +29,8 @@ static const flag flags[] = {
     {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
     {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
     {"--bench", ARG_INT, 1, 100000, "N      render N frames after warm-up, print per-pass GPU ms medians"},
+    {"--frames", ARG_INT, 1, 100000000, "N     window: quit after N presented frames"},
+    {"--screenshot", ARG_STRING, 0, 0, "FILE window: save the last presented frame as PNG before quitting"},
     {"--validate", ARG_NONE, 0, 0, "      Khronos validation + synchronization validation; any message fails the run (also VKSKY_VALIDATION=1)"},
     {"--trace-barriers", ARG_NONE, 0, 0, "print one line per barrier as the frame is recorded"},
     {"--list-devices", ARG_NONE, 0, 0, "  list Vulkan devices and exit"},
@@ -39,7 +41,8 @@ static const flag flags[] = {
 
 void options_print_help(FILE *out)
 {
-    fprintf(out, "usage: vksky --render FILE.exr|FILE.png [options]    headless render\n"
+    fprintf(out, "usage: vksky [options]                               interactive window (see F1 for controls)\n"
+                 "       vksky --render FILE.exr|FILE.png [options]    headless render\n"
                  "       vksky --bench N [options]                       benchmark\n\noptions:\n");
     for (size_t i = 0; i < sizeof flags / sizeof flags[0]; ++i) fprintf(out, "  %s %s\n", flags[i].name, flags[i].help);
 }
@@ -107,7 +110,11 @@ static int apply(options *o, const flag *f, const char *value)
     } else if (!strcmp(n, "--no-bloom")) o->view.bloom = false;
     else if (!strcmp(n, "--steps")) o->view.steps = (int)x;
     else if (!strcmp(n, "--bench")) o->bench_frames = (int)x;
-    else if (!strcmp(n, "--validate")) o->validate = true;
+    else if (!strcmp(n, "--frames")) o->frames = (int)x;
+    else if (!strcmp(n, "--screenshot")) {
+        if (!has_extension(value, ".png")) return bad(n, "expected a file name ending in .png");
+        o->screenshot = value;
+    } else if (!strcmp(n, "--validate")) o->validate = true;
     else if (!strcmp(n, "--trace-barriers")) o->trace_barriers = true;
     else if (!strcmp(n, "--list-devices")) o->list_devices = true;
     else if (!strcmp(n, "--device")) o->device_index = (int)x;

@@ -13,6 +13,8 @@ typedef struct options {
     const char *outputs[OPTIONS_MAX_OUTPUTS];   /* --render, .exr or .png */
     int output_count;
     int bench_frames;                           /* --bench N (0: off) */
+    int frames;                                 /* window: quit after N presented frames (0: run until closed) */
+    const char *screenshot;                     /* window: save the last presented image (.png) before quitting */
     bool validate;
     bool list_devices;
     int device_index;                           /* -1: pick */

@@ -28,6 +28,10 @@ static const gpu_usage_info usages[GPU_USAGE_COUNT] = {
                                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL},
     [GPU_USAGE_HOST_READ] = {"host_read", VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT,
                              VK_IMAGE_LAYOUT_GENERAL},
+    /* The acquire semaphore is waited on at COLOR_ATTACHMENT_OUTPUT; the first barrier on the image starts
+     * from that same stage so the layout transition happens after the wait (the classic acquire mistake). */
+    [GPU_USAGE_ACQUIRED] = {"acquired", VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE,
+                            VK_IMAGE_LAYOUT_UNDEFINED},
     /* Presentation: no stage or access in the barrier; the semaphore signalled by the submit orders it. */
     [GPU_USAGE_PRESENT] = {"present", VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR},
 };

@@ -24,6 +24,7 @@ typedef enum gpu_usage {
     GPU_USAGE_TRANSFER_SRC,             /* copy source */
     GPU_USAGE_TRANSFER_DST,             /* copy destination */
     GPU_USAGE_HOST_READ,                /* read by the CPU after the fence (buffers) */
+    GPU_USAGE_ACQUIRED,                 /* swapchain image just acquired: the acquire semaphore's wait stage */
     GPU_USAGE_PRESENT,                  /* handed to the presentation engine */
     GPU_USAGE_COUNT
 } gpu_usage;

@@ -14,12 +14,12 @@
 static uint32_t timed_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
 {
     gpu_label_begin(r->ctx, cmd, pass);
-    return gpu_timer_begin(&r->timer, cmd, pass);
+    return gpu_timer_begin(r->active_timer, cmd, pass);
 }
 
 static void timed_end(sky_renderer *r, VkCommandBuffer cmd, uint32_t slot)
 {
-    gpu_timer_end(&r->timer, cmd, slot);
+    gpu_timer_end(r->active_timer, cmd, slot);
     gpu_label_end(r->ctx, cmd);
 }
 
@@ -96,12 +96,26 @@ static void record_bloom(sky_renderer *r, VkCommandBuffer cmd, const sky_view *v
     }
 }
 
+static bool format_is_srgb(VkFormat f)
+{
+    return f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_B8G8R8A8_SRGB || f == VK_FORMAT_A8B8G8R8_SRGB_PACK32;
+}
+
+static void copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent, VkBuffer buffer)
+{
+    VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                .imageExtent = {extent.width, extent.height, 1}};
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
+}
+
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
 {
     const sky_view *v = f->view;
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     bool bloom = v->bloom && r->desc.bloom;
-    gpu_timer_reset(&r->timer, cmd);
+    gpu_timer *timer = f->timer ? f->timer : &r->timer;
+    r->active_timer = timer;
+    gpu_timer_reset(timer, cmd);
 
     /* 1. LUTs, only when the atmosphere changed: transmittance, then multi-scattering (reads transmittance). */
     if (f->force_luts || sky_renderer_luts_dirty(r)) {
@@ -135,27 +149,31 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     /* 3. Bloom: 5 downsamples, 4 additive upsamples. */
     if (bloom) record_bloom(r, cmd, v);
 
-    /* 4. Tone map into the display image (and the linear composite for EXR output). Both were read by the
-     * previous frame's readback copy (WAR) and are fully rewritten. */
+    /* 4. Tone map into the display image (and the linear composite for EXR output). The previous frame's
+     * readback copy read them (WAR), or for a swapchain image the acquire semaphore's wait stage; they are
+     * fully rewritten. */
+    frame_target own = {r->display.image, r->display.view, r->display.extent,
+                        r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE,
+                        r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE, NULL};
+    const frame_target *display = f->target ? f->target : &own;
     b = gpu_barrier_batch_begin("before tonemap");
-    gpu_usage display_last_use = r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE;
-    gpu_barrier_add_image(&b, "display.to_attachment", "display", r->display.image, one, display_last_use,
+    gpu_barrier_add_image(&b, "display.to_attachment", "display", display->image, one, display->before,
                           GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
     if (r->desc.readback)
         gpu_barrier_add_image(&b, "composite.to_attachment", "composite", r->composite.image, one,
                               GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
     gpu_barrier_flush(cmd, &b);
-    TonemapPush tm = sky_view_tonemap_push(v, false);
+    TonemapPush tm = sky_view_tonemap_push(v, !f->target ? false : !format_is_srgb(r->desc.display_format));
     if (!bloom) tm.params.z = 0.0f;
     t = timed_begin(r, cmd, "tonemap");
-    tonemap_record(&r->tonemap, cmd, r->display.extent, r->display.view,
+    tonemap_record(&r->tonemap, cmd, display->extent, display->view,
                    r->desc.readback ? r->composite.view : VK_NULL_HANDLE, &tm);
     timed_end(r, cmd, t);
 
-    /* 5. Readback: the tone map wrote both images; the copies read them: RAW + layout. Then the copies wrote
-     * the host buffers; the CPU reads them after the fence: RAW (a fence alone does not make device writes
-     * visible to the host; the HOST_READ barrier does). */
-    if (r->desc.readback) {
+    /* 5. Readback (headless): the tone map wrote both images; the copies read them: RAW + layout. Then the
+     * copies wrote the host buffers; the CPU reads them after the fence: RAW (a fence alone does not make
+     * device writes visible to the host; the HOST_READ barrier does). */
+    if (r->desc.readback && !f->target) {
         b = gpu_barrier_batch_begin("before readback");
         gpu_barrier_add_image(&b, "display.write_to_copy", "display", r->display.image, one,
                               GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false);
@@ -163,13 +181,8 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                               GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false);
         gpu_barrier_flush(cmd, &b);
         t = timed_begin(r, cmd, "readback");
-        VkBufferImageCopy region = {
-            .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-            .imageExtent = {r->display.extent.width, r->display.extent.height, 1}};
-        vkCmdCopyImageToBuffer(cmd, r->composite.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               r->readback_linear.buffer, 1, &region);
-        vkCmdCopyImageToBuffer(cmd, r->display.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               r->readback_display.buffer, 1, &region);
+        copy_to_buffer(cmd, r->composite.image, r->composite.extent, r->readback_linear.buffer);
+        copy_to_buffer(cmd, r->display.image, r->display.extent, r->readback_display.buffer);
         timed_end(r, cmd, t);
         b = gpu_barrier_batch_begin("after readback");
         gpu_barrier_add_buffer(&b, "readback.linear_to_host", "readback_linear", r->readback_linear.buffer,
@@ -177,5 +190,30 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
         gpu_barrier_add_buffer(&b, "readback.display_to_host", "readback_display", r->readback_display.buffer,
                                GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
         gpu_barrier_flush(cmd, &b);
+    }
+
+    /* 6. An external target (swapchain image): optionally captured (screenshot), then handed to its next user.
+     * To present: COLOR_ATTACHMENT -> PRESENT_SRC; the submit's signal semaphore (stage COLOR_ATTACHMENT_OUTPUT)
+     * orders presentation after the tone map's writes. */
+    if (f->target) {
+        gpu_usage last = GPU_USAGE_COLOR_ATTACHMENT_WRITE;
+        if (f->target->capture) {
+            b = gpu_barrier_batch_begin("before capture");
+            gpu_barrier_add_image(&b, "display.write_to_capture", "display", display->image, one,
+                                  GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false);
+            gpu_barrier_flush(cmd, &b);
+            copy_to_buffer(cmd, display->image, display->extent, f->target->capture->buffer);
+            b = gpu_barrier_batch_begin("after capture");
+            gpu_barrier_add_buffer(&b, "capture.to_host", "capture", f->target->capture->buffer,
+                                   GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
+            gpu_barrier_flush(cmd, &b);
+            last = GPU_USAGE_TRANSFER_SRC;
+        }
+        if (f->target->after != last) {
+            b = gpu_barrier_batch_begin("end of frame");
+            gpu_barrier_add_image(&b, "display.to_present", "display", display->image, one, last,
+                                  f->target->after, false);
+            gpu_barrier_flush(cmd, &b);
+        }
     }
 }

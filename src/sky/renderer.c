@@ -57,6 +57,54 @@ TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader)
                                     v->bloom ? (float)v->bloom_strength : 0.0f, encode_srgb_in_shader ? 1.0f : 0.0f}};
 }
 
+/* Everything whose size follows the output: HDR target, display/composite images, readback buffers, the bloom
+ * chain and the tone map's descriptors. Their descriptor sets come from their own pool, reset on resize. */
+static void create_sized(sky_renderer *r)
+{
+    const gpu_context *ctx = r->ctx;
+    const sky_renderer_desc *desc = &r->desc;
+    pass_shared sized = r->shared;
+    sized.pool = r->size_pool;
+    VkImageUsageFlags target_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+    gpu_image_create(ctx, &r->hdr, "hdr", HDR_FORMAT, desc->width, desc->height, 1, target_usage);
+    if (!desc->external_display)
+        gpu_image_create(ctx, &r->display, "display", desc->display_format, desc->width, desc->height, 1,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    if (desc->readback) {
+        gpu_image_create(ctx, &r->composite, "composite", HDR_FORMAT, desc->width, desc->height, 1,
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        VkDeviceSize pixels = (VkDeviceSize)desc->width * desc->height;
+        gpu_buffer_create(ctx, &r->readback_linear, "readback linear", pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+        gpu_buffer_create(ctx, &r->readback_display, "readback display", pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    }
+    if (desc->bloom) bloom_create(&r->bloom, &sized, &r->hdr);
+    tonemap_create(&r->tonemap, &sized, r->hdr.view, desc->bloom ? r->bloom.mips.mip_views[0] : r->hdr.view,
+                   desc->display_format, desc->readback);
+}
+
+static void destroy_sized(sky_renderer *r)
+{
+    const gpu_context *ctx = r->ctx;
+    tonemap_destroy(&r->tonemap, &r->shared);
+    if (r->desc.bloom) bloom_destroy(&r->bloom, &r->shared);
+    gpu_buffer_destroy(ctx, &r->readback_linear);
+    gpu_buffer_destroy(ctx, &r->readback_display);
+    gpu_image_destroy(ctx, &r->composite);
+    gpu_image_destroy(ctx, &r->display);
+    gpu_image_destroy(ctx, &r->hdr);
+    VK_CHECK(vkResetDescriptorPool(ctx->device, r->size_pool, 0));
+}
+
+void sky_renderer_resize(sky_renderer *r, uint32_t width, uint32_t height)
+{
+    if (width == r->desc.width && height == r->desc.height) return;
+    vkDeviceWaitIdle(r->ctx->device);
+    destroy_sized(r);
+    r->desc.width = width;
+    r->desc.height = height;
+    create_sized(r);
+}
+
 void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_desc *desc)
 {
     memset(r, 0, sizeof *r);
@@ -75,22 +123,11 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     s->fullscreen_vs = gpu_shader_module(ctx, spirv_fullscreen_vert.code, spirv_fullscreen_vert.size, "fullscreen.vert");
 
-    VkImageUsageFlags target_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    gpu_image_create(ctx, &r->hdr, "hdr", HDR_FORMAT, desc->width, desc->height, 1, target_usage);
-    gpu_image_create(ctx, &r->display, "display", desc->display_format, desc->width, desc->height, 1,
-                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-    if (desc->readback) {
-        gpu_image_create(ctx, &r->composite, "composite", HDR_FORMAT, desc->width, desc->height, 1,
-                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        VkDeviceSize pixels = (VkDeviceSize)desc->width * desc->height;
-        gpu_buffer_create(ctx, &r->readback_linear, "readback linear", pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-        gpu_buffer_create(ctx, &r->readback_display, "readback display", pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    }
+    VkDescriptorPoolCreateInfo size_info = pinfo;
+    VK_CHECK(vkCreateDescriptorPool(ctx->device, &size_info, NULL, &r->size_pool));
     luts_create(&r->luts, s);
     sky_pass_create(&r->sky, s, &r->luts);
-    if (desc->bloom) bloom_create(&r->bloom, s, &r->hdr);
-    tonemap_create(&r->tonemap, s, r->hdr.view, desc->bloom ? r->bloom.mips.mip_views[0] : r->hdr.view,
-                   desc->display_format, desc->readback);
+    create_sized(r);
     gpu_timer_create(ctx, &r->timer);
 }
 
@@ -101,15 +138,10 @@ void sky_renderer_destroy(sky_renderer *r)
     pass_shared *s = &r->shared;
     vkDeviceWaitIdle(ctx->device);
     gpu_timer_destroy(ctx, &r->timer);
-    tonemap_destroy(&r->tonemap, s);
-    if (r->desc.bloom) bloom_destroy(&r->bloom, s);
+    destroy_sized(r);
+    vkDestroyDescriptorPool(ctx->device, r->size_pool, NULL);
     sky_pass_destroy(&r->sky, s);
     luts_destroy(&r->luts, s);
-    gpu_buffer_destroy(ctx, &r->readback_linear);
-    gpu_buffer_destroy(ctx, &r->readback_display);
-    gpu_image_destroy(ctx, &r->composite);
-    gpu_image_destroy(ctx, &r->display);
-    gpu_image_destroy(ctx, &r->hdr);
     vkDestroyShaderModule(ctx->device, s->fullscreen_vs, NULL);
     gpu_buffer_destroy(ctx, &s->atmosphere_ubo);
     vkDestroySampler(ctx->device, s->linear_clamp, NULL);

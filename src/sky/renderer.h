@@ -22,12 +22,14 @@ typedef struct sky_renderer_desc {
     uint32_t width, height;
     bool bloom;                  /* allocate the bloom chain (no bloom: no passes, no mip chain) */
     bool readback;               /* keep the linear composite + display image and copy them to host buffers */
+    bool external_display;       /* the tone map writes a frame_target (swapchain), no own display image */
     VkFormat display_format;     /* the 8-bit target's format (headless: R8G8B8A8_SRGB) */
 } sky_renderer_desc;
 
 typedef struct sky_renderer {
     gpu_context *ctx;
     pass_shared shared;
+    VkDescriptorPool size_pool;  /* descriptor sets of the size-dependent passes (bloom, tone map) */
     sky_luts luts;
     sky_pass sky;
     bloom_chain bloom;
@@ -38,6 +40,7 @@ typedef struct sky_renderer {
     gpu_image composite;         /* HDR + bloom, scene-linear (readback only) */
     gpu_buffer readback_linear, readback_display;
     gpu_timer timer;
+    gpu_timer *active_timer;     /* the timer of the frame being recorded */
     AtmosphereParams atmosphere;
     uint64_t lut_hash;           /* of the atmosphere the LUTs hold; 0: never computed */
     bool luts_valid;
@@ -50,15 +53,29 @@ void sky_renderer_destroy(sky_renderer *r);
 void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad,
                                  sky_lut_quality q);
 bool sky_renderer_luts_dirty(const sky_renderer *r);
+/* New size: rebuilds the HDR target, the bloom mip chain and the tone map's descriptors (waits for the GPU). */
+void sky_renderer_resize(sky_renderer *r, uint32_t width, uint32_t height);
 
 /* Camera + sun -> the sky pass's push constants (the ray matrix built from the camera basis). */
 SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height);
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader);
 
+/* An image the tone map writes that the renderer does not own (a swapchain image). */
+typedef struct frame_target {
+    VkImage image;
+    VkImageView view;
+    VkExtent2D extent;
+    gpu_usage before;            /* GPU_USAGE_ACQUIRED for a swapchain image */
+    gpu_usage after;             /* GPU_USAGE_PRESENT for a swapchain image */
+    gpu_buffer *capture;         /* non-NULL: also copy the image into this host buffer (4 bytes a pixel) */
+} frame_target;
+
 /* frame.c: the whole frame, in order, with every barrier between the passes. */
 typedef struct frame_desc {
     const sky_view *view;
     bool force_luts;             /* recompute the LUTs even if they are up to date (benchmarks) */
+    const frame_target *target;  /* NULL: the renderer's own display image (headless) */
+    gpu_timer *timer;            /* NULL: the renderer's timer (one per frame in flight otherwise) */
 } frame_desc;
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The command line: good renders write valid files; every bad input exits 2 with one clear line on stderr that
+# names the flag, and leaves no file (and no temporary file) behind. Every render runs with --validate
+# (validation + synchronization validation); any message would make it exit non-zero.
+set -u
+VKSKY=${1:?usage: cli_test.sh path/to/vksky}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+
+# expect_bad "what" "expected text in stderr" args...
+expect_bad() {
+    local what=$1 needle=$2; shift 2
+    local out="$work/bad.exr"
+    rm -f "$work"/* "$work"/.[!.]* 2>/dev/null
+    "$VKSKY" "$@" >"$work/stdout" 2>"$work/stderr"
+    local rc=$?
+    [ $rc -eq 2 ] || fail "$what: exit status $rc, expected 2 (stderr: $(cat "$work/stderr"))"
+    [ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "$what: expected exactly one line on stderr, got: $(cat "$work/stderr")"
+    grep -qF -- "$needle" "$work/stderr" || fail "$what: stderr does not mention '$needle': $(cat "$work/stderr")"
+    [ -z "$(ls -A "$work" | grep -v -e '^stdout$' -e '^stderr$')" ] || fail "$what: left files behind: $(ls -A "$work")"
+    [ ! -e "$out" ] || fail "$what: wrote $out"
+}
+
+R=(--render "$work/bad.exr" --width 64 --height 36 --validate)
+expect_bad "unknown flag" "--frobnicate" "${R[@]}" --frobnicate
+expect_bad "stray argument" "flags start with --" "${R[@]}" frame.exr
+expect_bad "missing value" "--width" --render "$work/bad.exr" --width
+expect_bad "non-numeric" "--height" "${R[@]}" --height abc
+expect_bad "trailing junk" "--width" "${R[@]}" --width 64px
+expect_bad "fractional int" "--steps" "${R[@]}" --steps 3.5
+expect_bad "NaN" "--sun-elevation" "${R[@]}" --sun-elevation nan
+expect_bad "Inf" "--altitude" "${R[@]}" --altitude inf
+expect_bad "too small" "[32, 16384]" "${R[@]}" --width 8
+expect_bad "too large" "--width" "${R[@]}" --width 100000
+expect_bad "elevation range" "[-90, 90]" "${R[@]}" --sun-elevation 91
+expect_bad "pitch range" "--pitch" "${R[@]}" --pitch -90.5
+expect_bad "negative altitude" "--altitude" "${R[@]}" --altitude -1
+expect_bad "fov range" "--fov" "${R[@]}" --fov 0
+expect_bad "exposure range" "--exposure" "${R[@]}" --exposure 1e9
+expect_bad "zero steps" "--steps" "${R[@]}" --steps 0
+expect_bad "tonemap" "clamp, reinhard or aces" "${R[@]}" --tonemap filmic
+expect_bad "extension" ".exr or .png" --render "$work/bad.jpg" --validate
+expect_bad "no extension" ".exr or .png" --render "$work/bad" --validate
+expect_bad "missing directory" "no/such/dir" --render "$work/no/such/dir/x.exr" --width 64 --height 36 --validate
+touch "$work/afile"
+expect_bad "directory is a file" "afile" --render "$work/afile/x.png" --width 64 --height 36 --validate
+rm -f "$work/afile"
+expect_bad "device out of range" "--device" "${R[@]}" --device 63
+expect_bad "flag with = and no value expected" "--no-bloom" "${R[@]}" --no-bloom=1
+expect_bad "nothing to do" "nothing to do" --width 64
+
+# Good renders: EXR (half RGBA, ZIP) and PNG, with the atomic rename (no temp file left).
+rm -rf "$work"/*
+"$VKSKY" --render "$work/a.exr" --render "$work/a.png" --width 65 --height 37 --validate --sun-elevation=5 2>"$work/err" \
+    || fail "good render failed: $(cat "$work/err")"
+[ -s "$work/a.exr" ] && [ -s "$work/a.png" ] || fail "good render did not write both files"
+exrheader "$work/a.exr" >"$work/hdr.txt" 2>&1 || fail "exrheader rejects the EXR"
+grep -q "zip" "$work/hdr.txt" || fail "EXR is not ZIP compressed"
+grep -q "(0 0) - (64 36)" "$work/hdr.txt" || fail "EXR has the wrong size: $(grep dataWindow "$work/hdr.txt")"
+for c in R G B A; do grep -q "^    $c, 16-bit floating-point" "$work/hdr.txt" || fail "EXR lacks half channel $c"; done
+file "$work/a.png" | grep -q "65 x 37, 8-bit/color RGBA" || fail "PNG is not 65x37 RGBA: $(file "$work/a.png")"
+[ "$(ls -A "$work" | grep -c tmp)" -eq 0 ] || fail "temporary files left: $(ls -A "$work")"
+[ ! -s "$work/err" ] || fail "a good render printed to stderr: $(cat "$work/err")"
+VKSKY_VALIDATION=1 "$VKSKY" --render "$work/b.png" --width 64 --height 36 --no-bloom --tonemap reinhard --exposure -1 \
+    2>"$work/err" || fail "VKSKY_VALIDATION=1 render failed: $(cat "$work/err")"
+
+"$VKSKY" --help | grep -q -- "--sun-elevation" || fail "--help does not list the flags"
+"$VKSKY" --version | grep -q "^vksky [0-9]" || fail "--version"
+"$VKSKY" --list-devices | grep -q "^0: " || fail "--list-devices lists no device"
+
+# A validation message makes the run fail: drop one barrier (the test hook) and expect exit 1 + the hazard.
+VKSKY_DROP_BARRIER=hdr.write_to_sample "$VKSKY" --render "$work/c.png" --width 64 --height 36 --validate \
+    >/dev/null 2>"$work/err"
+rc=$?
+[ $rc -eq 1 ] || fail "a run with validation messages exited $rc, expected 1"
+grep -q "SYNC-HAZARD" "$work/err" || fail "dropped barrier not reported as a sync hazard: $(head -c 400 "$work/err")"
+
+if [ $fails -ne 0 ]; then echo "cli_test: $fails failure(s)"; exit 1; fi
+echo "cli_test: ok"

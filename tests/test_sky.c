@@ -1,0 +1,96 @@
+/* Rendered frames checked on pixels whose view direction the test computes (odd sizes put the centre pixel
+ * exactly on the view axis): physics (blue noon zenith, red sunset horizon, dark twilight, the sun disc and
+ * its occlusion), finiteness of every output pixel, and agreement with the CPU reference. */
+#include "gpu_test.h"
+#include <string.h>
+
+enum { N = 33, C = N / 2 };
+
+static int frames_rendered;
+
+/* Renders a 33x33 frame looking along (yaw, pitch) and returns the centre pixel; checks every pixel. */
+static void probe(gpu_context *ctx, sky_view v, double yaw, double pitch, float out[3])
+{
+    v.yaw_deg = yaw;
+    v.pitch_deg = pitch;
+    test_frame f = test_render(ctx, &v, N, N);
+    int bad = count_bad_pixels(&f);
+    CHECK(bad == 0, "%d NaN/Inf/negative values (sun el %.2f, yaw %.1f, pitch %.1f)", bad, v.sun_elevation_deg, yaw, pitch);
+    const float *p = test_pixel(&f, C, C);
+    memcpy(out, p, 3 * sizeof(float));
+    ++frames_rendered;
+    test_frame_free(&f);
+}
+
+static sky_view scene(double sun_elevation, bool bloom)
+{
+    sky_view v = sky_view_default();
+    v.sun_azimuth_deg = 30.0;
+    v.sun_elevation_deg = sun_elevation;
+    v.altitude_km = 0.001;
+    v.fov_deg = 20.0;
+    v.bloom = bloom;
+    return v;
+}
+
+static double rel_err(double gpu, double ref) { return fabs(gpu - ref) / fmax(ref, 1e-9); }
+
+int main(void)
+{
+    gpu_context ctx;
+    test_context(&ctx);
+    float noon_zenith[3], sunset_zenith[3], sunset_horizon[3], twilight_zenith[3], disc[3], beside[3], hidden[3];
+
+    /* Noon: the zenith is blue, B > G > R. */
+    probe(&ctx, scene(70.0, true), 0.0, 90.0, noon_zenith);
+    printf("noon zenith      %.4f %.4f %.4f\n", noon_zenith[0], noon_zenith[1], noon_zenith[2]);
+    CHECK(noon_zenith[2] > noon_zenith[1] && noon_zenith[1] > noon_zenith[0], "noon zenith not blue");
+
+    /* Sunset (sun 2 deg): the horizon toward the sun is redder than the zenith. */
+    probe(&ctx, scene(2.0, true), 0.0, 90.0, sunset_zenith);
+    probe(&ctx, scene(2.0, true), 30.0, 1.0, sunset_horizon);
+    double rb_zenith = sunset_zenith[0] / sunset_zenith[2], rb_horizon = sunset_horizon[0] / sunset_horizon[2];
+    printf("sunset R/B: zenith %.3f horizon toward the sun %.3f\n", rb_zenith, rb_horizon);
+    CHECK(rb_horizon > 2.0 * rb_zenith, "sunset horizon R/B %.3f not well above the zenith's %.3f", rb_horizon, rb_zenith);
+    CHECK(rb_horizon > 1.0, "sunset horizon toward the sun is not red (R/B %.3f)", rb_horizon);
+
+    /* Twilight (sun -6 deg): at least 10x darker than noon. */
+    probe(&ctx, scene(-6.0, true), 0.0, 90.0, twilight_zenith);
+    double ratio = luminance(noon_zenith) / fmax(luminance(twilight_zenith), 1e-12);
+    printf("noon / twilight zenith luminance: %.1f\n", ratio);
+    CHECK(ratio >= 10.0, "twilight only %.1fx darker than noon", ratio);
+
+    /* The sun disc: present at noon (far brighter than the sky 3 degrees away), absent when the sun is 2 degrees
+     * below the horizon (the view ray toward it hits the ground). No bloom, to see the disc itself. */
+    probe(&ctx, scene(70.0, false), 30.0, 70.0, disc);
+    probe(&ctx, scene(70.0, false), 30.0, 67.0, beside);
+    printf("noon sun pixel %.1f, 3 deg beside %.3f\n", luminance(disc), luminance(beside));
+    CHECK(luminance(disc) > 20.0 * luminance(beside), "no sun disc at noon");
+    probe(&ctx, scene(-2.0, false), 30.0, -2.0, hidden);
+    printf("sun at -2 deg, pixel toward it %.5f\n", luminance(hidden));
+    CHECK(luminance(hidden) < 0.05 * luminance(beside), "sun disc visible below the horizon");
+
+    /* Agreement with the CPU reference (converged, no LUTs) along a few view axes, bloom off, 32 steps. */
+    ref_atmosphere a;
+    ref_atmosphere_earth(&a);
+    struct { double sun_el, yaw, pitch, tol; } cases[] = {
+        {70.0, 0.0, 90.0, 0.03}, {70.0, 200.0, 10.0, 0.03}, {20.0, 30.0, 25.0, 0.03},
+        {20.0, 210.0, 5.0, 0.03}, {2.0, 30.0, 3.0, 0.05}, {2.0, 120.0, 45.0, 0.03}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        float gpu[3];
+        sky_view v = scene(cases[i].sun_el, false);
+        probe(&ctx, v, cases[i].yaw, cases[i].pitch, gpu);
+        double view_dir[3], sun_dir[3], ref[3];
+        ref_dir(cases[i].yaw * TEST_DEG, cases[i].pitch * TEST_DEG, view_dir);
+        ref_dir(v.sun_azimuth_deg * TEST_DEG, v.sun_elevation_deg * TEST_DEG, sun_dir);
+        ref_sky_radiance(&a, v.altitude_km, view_dir, sun_dir, ref_quality_converged(), ref);
+        double ref_lum = 0.2126 * ref[0] + 0.7152 * ref[1] + 0.0722 * ref[2];
+        double e = rel_err(luminance(gpu), ref_lum);
+        printf("sun %5.1f view (%5.1f, %5.1f): gpu %.5f %.5f %.5f ref %.5f %.5f %.5f  luminance error %.2f%%\n",
+               cases[i].sun_el, cases[i].yaw, cases[i].pitch, gpu[0], gpu[1], gpu[2], ref[0], ref[1], ref[2], 100 * e);
+        CHECK(e <= cases[i].tol, "luminance error %.2f%% > %.0f%%", 100 * e, 100 * cases[i].tol);
+    }
+    printf("%d frames rendered\n", frames_rendered);
+    gpu_context_destroy(&ctx);
+    return test_finish("test_sky");
+}
