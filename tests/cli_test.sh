@@ -49,7 +49,7 @@ expect_bad "directory is a file" "afile" --render "$work/afile/x.png" --width 64
 rm -f "$work/afile"
 expect_bad "device out of range" "--device" "${R[@]}" --device 63
 expect_bad "flag with = and no value expected" "--no-bloom" "${R[@]}" --no-bloom=1
-expect_bad "nothing to do" "nothing to do" --width 64
+(unset DISPLAY WAYLAND_DISPLAY; f0=$fails; expect_bad "no display" "no display available" --width 64; [ $fails -eq $f0 ]) || fails=$((fails + 1))
 
 # Good renders: EXR (half RGBA, ZIP) and PNG, with the atomic rename (no temp file left).
 rm -rf "$work"/*

@@ -39,15 +39,18 @@ typedef struct test_frame {
     unsigned char *display;
 } test_frame;
 
-static inline test_frame test_render(gpu_context *ctx, const sky_view *view, int width, int height)
+/* `lut` NULL: the default LUT quality. */
+static inline test_frame test_render_quality(gpu_context *ctx, const sky_view *view, int width, int height,
+                                             const sky_lut_quality *lut)
 {
     sky_renderer r;
     sky_renderer_desc desc = {.width = (uint32_t)width, .height = (uint32_t)height, .bloom = view->bloom,
                               .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
+    desc.lut = lut ? *lut : sky_lut_quality_default();
     sky_renderer_create(&r, ctx, &desc);
     ref_atmosphere a;
     ref_atmosphere_earth(&a);
-    sky_renderer_set_atmosphere(&r, &a, SUN_RADIUS_RAD, sky_lut_quality_default());
+    sky_renderer_set_atmosphere(&r, &a, SUN_RADIUS_RAD);
     frame_desc f = {.view = view};
     sky_renderer_render(&r, &f);
     test_frame out = {width, height, malloc(sizeof(float) * 4 * (size_t)width * height),
@@ -57,6 +60,11 @@ static inline test_frame test_render(gpu_context *ctx, const sky_view *view, int
     memcpy(out.display, r.readback_display.mapped, 4 * (size_t)width * height);
     sky_renderer_destroy(&r);
     return out;
+}
+
+static inline test_frame test_render(gpu_context *ctx, const sky_view *view, int width, int height)
+{
+    return test_render_quality(ctx, view, width, height, NULL);
 }
 
 static inline void test_frame_free(test_frame *f)

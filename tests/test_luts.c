@@ -15,11 +15,11 @@ int main(void)
     sky_renderer_create(&r, &ctx, &desc);
     ref_atmosphere a;
     ref_atmosphere_earth(&a);
-    sky_renderer_set_atmosphere(&r, &a, SUN_RADIUS_RAD, sky_lut_quality_default());
+    sky_renderer_set_atmosphere(&r, &a, SUN_RADIUS_RAD);
     frame_desc f = {.view = &view};
     sky_renderer_render(&r, &f);
 
-    enum { TW = TRANSMITTANCE_LUT_WIDTH, TH = TRANSMITTANCE_LUT_HEIGHT, MN = MULTISCATTER_LUT_SIZE };
+    enum { TW = 256, TH = 64, MN = 32 };   /* the default LUT sizes */
     static float trans[TW * TH * 4], ms[MN * MN * 4];
     sky_renderer_read_lut(&r, 0, trans);
     sky_renderer_read_lut(&r, 1, ms);

@@ -70,25 +70,44 @@ int main(void)
     printf("sun at -2 deg, pixel toward it %.5f\n", luminance(hidden));
     CHECK(luminance(hidden) < 0.05 * luminance(beside), "sun disc visible below the horizon");
 
-    /* Agreement with the CPU reference (converged, no LUTs) along a few view axes, bloom off, 32 steps. */
+    /* Agreement with the CPU reference (converged, no LUTs, double precision) along a few view axes, bloom
+     * off. Converged GPU settings (RGBA32F LUTs, 1024 x 64 multi-scattering samples, 256 view steps) must agree
+     * within 1 %: the two implementations of the model are the same model. The defaults (64 x 20 samples,
+     * 32 view steps) are an approximation measured in docs/accuracy.md: within 5 % on these views. */
     ref_atmosphere a;
     ref_atmosphere_earth(&a);
-    struct { double sun_el, yaw, pitch, tol; } cases[] = {
-        {70.0, 0.0, 90.0, 0.03}, {70.0, 200.0, 10.0, 0.03}, {20.0, 30.0, 25.0, 0.03},
-        {20.0, 210.0, 5.0, 0.03}, {2.0, 30.0, 3.0, 0.05}, {2.0, 120.0, 45.0, 0.03}};
-    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
-        float gpu[3];
-        sky_view v = scene(cases[i].sun_el, false);
-        probe(&ctx, v, cases[i].yaw, cases[i].pitch, gpu);
-        double view_dir[3], sun_dir[3], ref[3];
-        ref_dir(cases[i].yaw * TEST_DEG, cases[i].pitch * TEST_DEG, view_dir);
-        ref_dir(v.sun_azimuth_deg * TEST_DEG, v.sun_elevation_deg * TEST_DEG, sun_dir);
-        ref_sky_radiance(&a, v.altitude_km, view_dir, sun_dir, ref_quality_converged(), ref);
-        double ref_lum = 0.2126 * ref[0] + 0.7152 * ref[1] + 0.0722 * ref[2];
-        double e = rel_err(luminance(gpu), ref_lum);
-        printf("sun %5.1f view (%5.1f, %5.1f): gpu %.5f %.5f %.5f ref %.5f %.5f %.5f  luminance error %.2f%%\n",
-               cases[i].sun_el, cases[i].yaw, cases[i].pitch, gpu[0], gpu[1], gpu[2], ref[0], ref[1], ref[2], 100 * e);
-        CHECK(e <= cases[i].tol, "luminance error %.2f%% > %.0f%%", 100 * e, 100 * cases[i].tol);
+    struct { double sun_el, yaw, pitch; } cases[] = {
+        {70.0, 0.0, 90.0}, {70.0, 200.0, 10.0}, {20.0, 30.0, 25.0}, {20.0, 210.0, 5.0}, {2.0, 30.0, 3.0}, {2.0, 120.0, 45.0}};
+    sky_lut_quality converged = sky_lut_quality_default();
+    converged.lut_f32 = true;
+    converged.multiscatter_sqrt_dirs = 32;
+    converged.multiscatter_steps = 64;
+    for (int quality = 0; quality < 2; ++quality) {
+        double worst = 0.0, tol = quality ? 0.01 : 0.05;
+        for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+            float gpu[3];
+            sky_view v = scene(cases[i].sun_el, false);
+            v.yaw_deg = cases[i].yaw;
+            v.pitch_deg = cases[i].pitch;
+            if (quality) v.steps = 256;
+            test_frame f = test_render_quality(&ctx, &v, N, N, quality ? &converged : NULL);
+            CHECK(count_bad_pixels(&f) == 0, "NaN/Inf/negative pixels");
+            memcpy(gpu, test_pixel(&f, C, C), sizeof gpu);
+            test_frame_free(&f);
+            ++frames_rendered;
+            double view_dir[3], sun_dir[3], ref[3];
+            ref_dir(cases[i].yaw * TEST_DEG, cases[i].pitch * TEST_DEG, view_dir);
+            ref_dir(v.sun_azimuth_deg * TEST_DEG, v.sun_elevation_deg * TEST_DEG, sun_dir);
+            ref_sky_radiance(&a, v.altitude_km, view_dir, sun_dir, ref_quality_converged(), ref);
+            double ref_lum = 0.2126 * ref[0] + 0.7152 * ref[1] + 0.0722 * ref[2];
+            double e = rel_err(luminance(gpu), ref_lum);
+            if (e > worst) worst = e;
+            printf("%s sun %5.1f view (%5.1f, %5.1f): gpu %.5f %.5f %.5f ref %.5f %.5f %.5f  luminance error %.2f%%\n",
+                   quality ? "converged" : "default  ", cases[i].sun_el, cases[i].yaw, cases[i].pitch, gpu[0], gpu[1],
+                   gpu[2], ref[0], ref[1], ref[2], 100 * e);
+            CHECK(e <= tol, "luminance error %.2f%% > %.0f%%", 100 * e, 100 * tol);
+        }
+        printf("%s settings: max luminance error %.2f%% (bound %.0f%%)\n", quality ? "converged" : "default", 100 * worst, 100 * tol);
     }
     printf("%d frames rendered\n", frames_rendered);
     gpu_context_destroy(&ctx);

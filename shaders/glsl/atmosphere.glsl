@@ -6,9 +6,6 @@
 layout(std140, set = 0, binding = 0) uniform AtmosphereUbo { AtmosphereParams atmo; };
 
 const float PI = 3.14159265358979;
-const float TRANSMITTANCE_W = 256.0;
-const float TRANSMITTANCE_H = 64.0;
-const float MULTISCATTER_N = 32.0;
 /* The multi-scattering LUT clamps its altitude to 10 m (seed bug 1: no sphere-sampled ray may start exactly on
  * the ground). */
 const float MULTISCATTER_MIN_ALTITUDE = 0.01;
@@ -88,11 +85,12 @@ float henyey_greenstein_phase(float nu, float g)
     return (1.0 - g2) / (4.0 * PI * denom * sqrt(denom));
 }
 
-/* (1 - exp(-sigma dt)) / sigma, the exact integral of exp(-sigma s) over one step; -> dt as sigma -> 0. */
-vec3 step_integral(vec3 sigma, float dt)
+/* (1 - exp(-sigma dt)) / sigma, the exact integral of exp(-sigma s) over one step, given the step's
+ * transmittance exp(-sigma dt) (computed once by the caller); -> dt as sigma -> 0. */
+vec3 step_integral(vec3 sigma, float dt, vec3 step_transmittance)
 {
     vec3 x = sigma * dt;
-    vec3 exact = (1.0 - exp(-x)) / max(sigma, vec3(1e-30));
+    vec3 exact = (1.0 - step_transmittance) / max(sigma, vec3(1e-30));
     return mix(exact, vec3(dt) * (1.0 - 0.5 * x), lessThan(x, vec3(1e-4)));
 }
 
@@ -109,25 +107,27 @@ float sub_uv_to_unit(float u, float n) { return (u - 0.5 / n) * n / (n - 1.0); }
 
 /* Bruneton's transmittance parameterisation, forward: (h, mu) -> uv. The distance d is always to the top of the
  * atmosphere, never clipped to the ground (seed bug 6), so forward and inverse are exact inverses. */
-vec2 transmittance_uv(float h, float mu)
+/* Distance to the top along the horizon-tangent ray from the ground: sqrt(Rt^2 - Rb^2). */
+float horizon_distance() { return sqrt(top_altitude() * (top_radius() + ground_radius())); }
+
+vec2 transmittance_uv(float h, float mu, vec2 size)
 {
-    float H = sqrt(top_altitude() * (top_radius() + ground_radius()));
+    float H = horizon_distance();
     float rho = sqrt(rho2_of(h));
     float d = distance_to_top(h, mu);
     float d_min = top_altitude() - h;
     float d_max = rho + H;
     float x_mu = (d - d_min) / max(d_max - d_min, 1e-30);
     float x_r = rho / H;
-    return vec2(unit_to_sub_uv(clamp(x_mu, 0.0, 1.0), TRANSMITTANCE_W),
-                unit_to_sub_uv(clamp(x_r, 0.0, 1.0), TRANSMITTANCE_H));
+    return vec2(unit_to_sub_uv(clamp(x_mu, 0.0, 1.0), size.x), unit_to_sub_uv(clamp(x_r, 0.0, 1.0), size.y));
 }
 
 /* Inverse: uv -> (h, mu). */
-void transmittance_params(vec2 uv, out float h, out float mu)
+void transmittance_params(vec2 uv, vec2 size, out float h, out float mu)
 {
-    float x_mu = sub_uv_to_unit(uv.x, TRANSMITTANCE_W);
-    float x_r = sub_uv_to_unit(uv.y, TRANSMITTANCE_H);
-    float H = sqrt(top_altitude() * (top_radius() + ground_radius()));
+    float x_mu = sub_uv_to_unit(uv.x, size.x);
+    float x_r = sub_uv_to_unit(uv.y, size.y);
+    float H = horizon_distance();
     float rho = H * x_r;
     h = rho * rho / (sqrt(rho * rho + ground_radius() * ground_radius()) + ground_radius());
     float r = ground_radius() + h;
@@ -138,8 +138,51 @@ void transmittance_params(vec2 uv, out float h, out float mu)
     mu = d <= 0.0 ? 1.0 : clamp((d_min * (top_radius() + r) - d * d) / (2.0 * r * d), -1.0, 1.0);
 }
 
-vec2 multiscatter_uv(float h, float mu_s)
+vec2 multiscatter_uv(float h, float mu_s, vec2 size)
 {
-    return vec2(unit_to_sub_uv(clamp(mu_s * 0.5 + 0.5, 0.0, 1.0), MULTISCATTER_N),
-                unit_to_sub_uv(clamp(h / top_altitude(), 0.0, 1.0), MULTISCATTER_N));
+    return vec2(unit_to_sub_uv(clamp(mu_s * 0.5 + 0.5, 0.0, 1.0), size.x),
+                unit_to_sub_uv(clamp(h / top_altitude(), 0.0, 1.0), size.y));
+}
+
+/* Hillaire's sky-view LUT parameterisation, with the exact texel-centre sub-UV. x: azimuth from the sun,
+ * u = sqrt((1 - cos)/2), dense toward the sun. y: view zenith angle, the horizon at v = 0.5, quadratic on both
+ * sides so texels crowd at the horizon. beta is the angle between the horizon and the nadir at altitude h. */
+void skyview_horizon(float h, out float zenith_horizon_angle, out float beta)
+{
+    float r = ground_radius() + h;
+    beta = acos(clamp(sqrt(rho2_of(h)) / r, 0.0, 1.0));
+    zenith_horizon_angle = PI - beta;
+}
+
+vec2 skyview_uv(float h, float mu, float cos_azimuth, vec2 size)
+{
+    float zha, beta;
+    skyview_horizon(h, zha, beta);
+    float theta = acos(clamp(mu, -1.0, 1.0));
+    float y;
+    if (theta < zha) {
+        y = 0.5 * (1.0 - sqrt(max(0.0, 1.0 - theta / zha)));
+    } else {
+        y = 0.5 + 0.5 * sqrt(clamp((theta - zha) / max(beta, 1e-6), 0.0, 1.0));
+    }
+    float x = sqrt(clamp(0.5 - 0.5 * cos_azimuth, 0.0, 1.0));
+    return vec2(unit_to_sub_uv(x, size.x), unit_to_sub_uv(y, size.y));
+}
+
+void skyview_params(vec2 uv, float h, vec2 size, out float mu, out float cos_azimuth)
+{
+    float zha, beta;
+    skyview_horizon(h, zha, beta);
+    float x = clamp(sub_uv_to_unit(uv.x, size.x), 0.0, 1.0);
+    float y = clamp(sub_uv_to_unit(uv.y, size.y), 0.0, 1.0);
+    float theta;
+    if (y < 0.5) {
+        float c = 1.0 - 2.0 * y;
+        theta = zha * (1.0 - c * c);
+    } else {
+        float c = 2.0 * y - 1.0;
+        theta = zha + beta * c * c;
+    }
+    mu = cos(theta);
+    cos_azimuth = 1.0 - 2.0 * x * x;
 }

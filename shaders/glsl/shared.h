@@ -26,12 +26,16 @@ VKSKY_STRUCT(AtmosphereParams) {
     vec4 lut_steps;            /* x: transmittance steps, y: multiscatter steps, z: multiscatter sqrt(directions) */
 } VKSKY_END(AtmosphereParams)
 
-/* Sky pass push constants: the camera as altitude + directions (never an absolute planet-scale position). */
+/* Sky pass (and sky-view LUT) push constants: the camera as altitude + directions (never an absolute
+ * planet-scale position). */
 VKSKY_STRUCT(SkyPush) {
-    vec4 forward;              /* xyz: view axis (unit),        w: camera altitude km (>= 0) */
-    vec4 right;                /* xyz: right * tan(fov/2)*aspect, w: view march steps */
-    vec4 up;                   /* xyz: up * tan(fov/2),          w: unused */
-    vec4 sun_dir;              /* xyz: unit direction toward the sun (camera up = +Y) */
+    vec4 forward;              /* xyz: view axis (unit),          w: camera altitude km (>= 0) */
+    vec4 right;                /* xyz: right * tan(fov/2)*aspect, w: 1 / output width */
+    vec4 up;                   /* xyz: up * tan(fov/2),           w: 1 / output height */
+    vec4 sun_dir;              /* xyz: unit direction toward the sun (camera up = +Y), w: step distribution
+                                  exponent p (steps end at t_max (i/N)^p: 1 uniform, 2 quadratic) */
+    vec4 march;                /* x: min steps, y: max steps (= min: fixed count), z: sample position in a step
+                                  (0.5 midpoint, 0.3 Hillaire), w: km of path at which the count reaches max */
 } VKSKY_END(SkyPush)
 
 /* Bloom push constants. */

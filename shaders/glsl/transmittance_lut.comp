@@ -4,15 +4,19 @@
 #include "atmosphere.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 1, rgba16f) uniform writeonly image2D transmittance_out;
+#ifndef LUT_FORMAT
+#define LUT_FORMAT rgba16f
+#endif
+layout(set = 0, binding = 1, LUT_FORMAT) uniform writeonly image2D transmittance_out;
 
 void main()
 {
     ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(texel, imageSize(transmittance_out)))) return;
-    vec2 uv = (vec2(texel) + 0.5) / vec2(TRANSMITTANCE_W, TRANSMITTANCE_H);
+    vec2 size = vec2(imageSize(transmittance_out));
+    vec2 uv = (vec2(texel) + 0.5) / size;
     float h, mu;
-    transmittance_params(uv, h, mu);
+    transmittance_params(uv, size, h, mu);
 
     int steps = int(atmo.lut_steps.x);
     float dt = distance_to_top(h, mu) / float(steps);

@@ -97,6 +97,40 @@ static void bench(const options *o, sky_renderer *r)
     free(gpu_total);
 }
 
+/* VKSKY_FRAMES=N (tests): N frames recorded back to back into one command buffer, the LUTs recomputed in every
+ * frame after the first; the last frame is written. Barriers order work across submissions to one queue just as
+ * within one command buffer, so this is what the queue sees of frames in flight; synchronization validation,
+ * which checks within a command buffer, then also sees each frame's first use of an image after the previous
+ * frame's last (the write-after-read barriers that only matter from the second frame on). */
+static void render_frames(sky_renderer *r, const frame_desc *f)
+{
+    const char *env = getenv("VKSKY_FRAMES");
+    int n = env ? atoi(env) : 1;
+    if (n <= 1) {
+        sky_renderer_render(r, f);
+        return;
+    }
+    VkCommandBuffer cmd = gpu_begin_commands(r->ctx);
+    for (int i = 0; i < n && i < 16; ++i) {
+        if (i > 0) {
+            /* Between real readback frames the fence wait and the host's read order the next copy into the
+             * readback buffers after the previous one; in one command buffer this barrier stands in for them. */
+            gpu_barrier_batch b = gpu_barrier_batch_begin("between frames (VKSKY_FRAMES)");
+            gpu_barrier_add_buffer(&b, "frames.readback_linear", "readback_linear", r->readback_linear.buffer,
+                                   GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
+            gpu_barrier_add_buffer(&b, "frames.readback_display", "readback_display", r->readback_display.buffer,
+                                   GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
+            gpu_barrier_flush(cmd, &b);
+        }
+        frame_desc fi = *f;
+        fi.force_luts = f->force_luts || i > 0;
+        frame_record(r, cmd, &fi);
+    }
+    gpu_submit_and_wait(r->ctx, cmd);
+    gpu_buffer_invalidate(r->ctx, &r->readback_linear);
+    gpu_buffer_invalidate(r->ctx, &r->readback_display);
+}
+
 int headless_run(const options *o)
 {
     char err[512];
@@ -115,12 +149,12 @@ int headless_run(const options *o)
 
     sky_renderer r;
     sky_renderer_desc rdesc = {.width = (uint32_t)o->width, .height = (uint32_t)o->height, .bloom = o->view.bloom,
-                               .readback = o->output_count > 0, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
+                               .readback = o->output_count > 0, .display_format = VK_FORMAT_R8G8B8A8_SRGB,
+                               .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips};
     sky_renderer_create(&r, &ctx, &rdesc);
     ref_atmosphere atmosphere;
     ref_atmosphere_earth(&atmosphere);
-    sky_renderer_set_atmosphere(&r, &atmosphere, 0.5 * 0.53 * 3.14159265358979323846 / 180.0,
-                                sky_lut_quality_default());
+    sky_renderer_set_atmosphere(&r, &atmosphere, 0.5 * 0.53 * 3.14159265358979323846 / 180.0);
 
     int status = 0;
     if (o->bench_frames > 0) {
@@ -128,7 +162,7 @@ int headless_run(const options *o)
         bench(o, &r);
     } else {
         frame_desc f = {.view = &o->view};
-        sky_renderer_render(&r, &f);
+        render_frames(&r, &f);
         status = write_outputs(o, &r);
     }
     sky_renderer_destroy(&r);

@@ -28,6 +28,22 @@ static const flag flags[] = {
     {"--tonemap", ARG_STRING, 0, 0, "OP   clamp | reinhard | aces (default aces)"},
     {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
     {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
+    {"--max-steps", ARG_INT, 1, 4096, "N  variable step count (Hillaire): from --steps up to N as the path grows (default: = --steps)"},
+    {"--steps-ramp", ARG_DOUBLE, 0.001, 1e5, "KM path length at which the variable count reaches --max-steps (default 100)"},
+    {"--sample-offset", ARG_DOUBLE, 0, 1, "X sample position within a step: 0.5 midpoint (default), 0.3 Hillaire"},
+    {"--step-distribution", ARG_DOUBLE, 1, 4, "P steps end at t_max (i/N)^P: 1 uniform, 2 quadratic (default 2; uniform for rays entering from space)"},
+    {"--sky-mode", ARG_STRING, 0, 0, "M   march | skyview | auto: per-pixel march, sky-view LUT lookup, or the LUT inside the atmosphere (default march)"},
+    {"--sky-pass", ARG_STRING, 0, 0, "K   fragment | compute: the sky pass as a full-screen draw or a compute dispatch (default fragment)"},
+    {"--skyview-lut", ARG_STRING, 0, 0, "WxH sky-view LUT size (default 192x108)"},
+    {"--skyview-steps", ARG_INT, 1, 1024, "N march steps per sky-view LUT texel (default 30)"},
+    {"--transmittance-lut", ARG_STRING, 0, 0, "WxH transmittance LUT size (default 256x64)"},
+    {"--transmittance-steps", ARG_INT, 1, 4096, "N steps per transmittance texel (default 40)"},
+    {"--multiscatter-lut", ARG_INT, 2, 1024, "N multi-scattering LUT size NxN (default 32)"},
+    {"--multiscatter-dirs", ARG_INT, 1, 4096, "N sphere directions per texel, a perfect square (default 64)"},
+    {"--multiscatter-steps", ARG_INT, 1, 4096, "N steps per direction (default 20)"},
+    {"--lut-format", ARG_STRING, 0, 0, "F  f16 | f32: RGBA16F or RGBA32F LUTs (default f16)"},
+    {"--bloom-mips", ARG_INT, 1, 8, "N   bloom downsample passes (default 5)"},
+    {"--render-scale", ARG_DOUBLE, 0.1, 1, "S sky rendered at S x the output size, upsampled by the tone map (default 1)"},
     {"--bench", ARG_INT, 1, 100000, "N      render N frames after warm-up, print per-pass GPU ms medians"},
     {"--frames", ARG_INT, 1, 100000000, "N     window: quit after N presented frames"},
     {"--screenshot", ARG_STRING, 0, 0, "FILE window: save the last presented frame as PNG before quitting"},
@@ -73,6 +89,36 @@ static int parse_number(const flag *f, const char *text, double *out)
     return 0;
 }
 
+/* "WxH" with both in [2, 4096]. */
+static int parse_size(const char *flag_name, const char *text, int *w, int *h)
+{
+    char *end = NULL;
+    long a = strtol(text, &end, 10);
+    if (end == text || (*end != 'x' && *end != 'X')) goto fail;
+    const char *second = end + 1;
+    long b = strtol(second, &end, 10);
+    if (end == second || *end != '\0' || a < 2 || b < 2 || a > 4096 || b > 4096) goto fail;
+    *w = (int)a, *h = (int)b;
+    return 0;
+fail:;
+    char msg[200];
+    snprintf(msg, sizeof msg, "'%s' is not a size; expected WxH with W and H integers in [2, 4096]", text);
+    return bad(flag_name, msg);
+}
+
+/* One of a fixed list of words; returns its index or -1 (message printed). */
+static int parse_word(const char *flag_name, const char *text, const char *const *words, int count)
+{
+    for (int i = 0; i < count; ++i)
+        if (!strcmp(text, words[i])) return i;
+    char msg[256];
+    int n = snprintf(msg, sizeof msg, "unknown value '%s'; expected ", text);
+    for (int i = 0; i < count && n < (int)sizeof msg; ++i)
+        n += snprintf(msg + n, sizeof msg - (size_t)n, "%s%s", words[i], i + 2 < count ? ", " : i + 1 < count ? " or " : "");
+    bad(flag_name, msg);
+    return -1;
+}
+
 static bool has_extension(const char *path, const char *ext)
 {
     size_t n = strlen(path), e = strlen(ext);
@@ -109,6 +155,39 @@ static int apply(options *o, const flag *f, const char *value)
         }
     } else if (!strcmp(n, "--no-bloom")) o->view.bloom = false;
     else if (!strcmp(n, "--steps")) o->view.steps = (int)x;
+    else if (!strcmp(n, "--max-steps")) o->view.max_steps = (int)x;
+    else if (!strcmp(n, "--steps-ramp")) o->view.steps_ramp_km = x;
+    else if (!strcmp(n, "--sample-offset")) o->view.sample_offset = x;
+    else if (!strcmp(n, "--step-distribution")) o->view.step_distribution = x;
+    else if (!strcmp(n, "--sky-mode")) {
+        static const char *const w[] = {"march", "skyview", "auto"};
+        int k = parse_word(n, value, w, 3);
+        if (k < 0) return 2;
+        o->view.mode = (sky_mode_choice)k;
+    } else if (!strcmp(n, "--sky-pass")) {
+        static const char *const w[] = {"fragment", "compute"};
+        int k = parse_word(n, value, w, 2);
+        if (k < 0) return 2;
+        o->view.pass_kind = (sky_pass_kind)k;
+    } else if (!strcmp(n, "--lut-format")) {
+        static const char *const w[] = {"f16", "f32"};
+        int k = parse_word(n, value, w, 2);
+        if (k < 0) return 2;
+        o->lut.lut_f32 = k == 1;
+    } else if (!strcmp(n, "--skyview-lut")) {
+        if (parse_size(n, value, &o->lut.skyview_width, &o->lut.skyview_height)) return 2;
+    } else if (!strcmp(n, "--transmittance-lut")) {
+        if (parse_size(n, value, &o->lut.transmittance_width, &o->lut.transmittance_height)) return 2;
+    } else if (!strcmp(n, "--skyview-steps")) o->view.skyview_steps = (int)x;
+    else if (!strcmp(n, "--transmittance-steps")) o->lut.transmittance_steps = (int)x;
+    else if (!strcmp(n, "--multiscatter-lut")) o->lut.multiscatter_size = (int)x;
+    else if (!strcmp(n, "--multiscatter-dirs")) {
+        int root = (int)(sqrt(x) + 0.5);
+        if (root * root != (int)x) return bad(n, "not a perfect square; expected 1, 4, 9, ..., 4096 directions");
+        o->lut.multiscatter_sqrt_dirs = root;
+    } else if (!strcmp(n, "--multiscatter-steps")) o->lut.multiscatter_steps = (int)x;
+    else if (!strcmp(n, "--bloom-mips")) o->bloom_mips = (int)x;
+    else if (!strcmp(n, "--render-scale")) o->render_scale = x;
     else if (!strcmp(n, "--bench")) o->bench_frames = (int)x;
     else if (!strcmp(n, "--frames")) o->frames = (int)x;
     else if (!strcmp(n, "--screenshot")) {
@@ -125,7 +204,8 @@ static int apply(options *o, const flag *f, const char *value)
 
 int options_parse(options *o, int argc, char **argv)
 {
-    *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1};
+    *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
+                   .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5};
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
     for (int i = 1; i < argc; ++i) {
@@ -150,6 +230,11 @@ int options_parse(options *o, int argc, char **argv)
             return bad(f->name, "takes no value");
         }
         if (apply(o, f, value) != 0) return 2;
+    }
+    if (o->view.max_steps != 0 && o->view.max_steps < o->view.steps) {
+        char msg[160];
+        snprintf(msg, sizeof msg, "%d is below --steps %d; expected a maximum >= the minimum", o->view.max_steps, o->view.steps);
+        return bad("--max-steps", msg);
     }
     return 0;
 }

@@ -10,6 +10,9 @@
 typedef struct options {
     sky_view view;
     int width, height;
+    sky_lut_quality lut;                        /* LUT sizes, steps, format */
+    double render_scale;
+    int bloom_mips;
     const char *outputs[OPTIONS_MAX_OUTPUTS];   /* --render, .exr or .png */
     int output_count;
     int bench_frames;                           /* --bench N (0: off) */

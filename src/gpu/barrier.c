@@ -73,6 +73,10 @@ VkImageMemoryBarrier2 gpu_image_barrier(VkImage image, VkImageSubresourceRange r
 gpu_barrier_batch gpu_barrier_batch_begin(const char *point) { return (gpu_barrier_batch){.point = point}; }
 
 void gpu_barrier_trace(FILE *out) { trace_out = out; }
+void gpu_barrier_trace_pass(const char *pass)
+{
+    if (trace_out) fprintf(trace_out, "pass %s\n", pass);
+}
 void gpu_barrier_set_drop(const char *name) { drop_name = (name && *name) ? name : NULL; }
 unsigned gpu_barrier_dropped_count(void) { return drop_count; }
 
@@ -89,7 +93,9 @@ const char *gpu_hazard_name(gpu_usage from, gpu_usage to, bool discard, char *bu
     bool src_writes = gpu_write_accesses(f->access) != 0;
     bool dst_writes = gpu_write_accesses(t->access) != 0;
     bool dst_reads = (t->access & ~gpu_write_accesses(t->access)) != 0;
-    const char *kind = src_writes ? (dst_reads || !dst_writes ? "RAW" : "WAW") : (dst_writes ? "WAR" : "none");
+    /* From GPU_USAGE_NONE there is no earlier access at all: at most a layout transition. */
+    bool src_used = f->stage != VK_PIPELINE_STAGE_2_NONE;
+    const char *kind = src_writes ? (dst_reads || !dst_writes ? "RAW" : "WAW") : (dst_writes && src_used ? "WAR" : "none");
     if (src_writes && dst_reads && dst_writes) kind = "RAW+WAW";
     VkImageLayout old_layout = discard ? VK_IMAGE_LAYOUT_UNDEFINED : f->layout;
     bool transition = old_layout != t->layout && to != GPU_USAGE_HOST_READ;

@@ -1,4 +1,5 @@
 #include "gpu/context.h"
+#include "gpu/barrier.h"
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -343,6 +344,7 @@ void gpu_set_name(const gpu_context *ctx, VkObjectType type, uint64_t handle, co
 
 void gpu_label_begin(const gpu_context *ctx, VkCommandBuffer cmd, const char *name)
 {
+    gpu_barrier_trace_pass(name);
     if (!ctx->debug_utils || !vkCmdBeginDebugUtilsLabelEXT) return;
     VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = name};
     vkCmdBeginDebugUtilsLabelEXT(cmd, &label);

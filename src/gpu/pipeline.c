@@ -43,10 +43,17 @@ VkPipelineLayout gpu_pipeline_layout(const gpu_context *ctx, VkDescriptorSetLayo
 
 VkPipeline gpu_compute_pipeline(const gpu_context *ctx, VkPipelineLayout layout, VkShaderModule module, const char *name)
 {
+    return gpu_compute_pipeline_spec(ctx, layout, module, NULL, name);
+}
+
+VkPipeline gpu_compute_pipeline_spec(const gpu_context *ctx, VkPipelineLayout layout, VkShaderModule module,
+                                     const VkSpecializationInfo *spec, const char *name)
+{
     VkComputePipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
         .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                  .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = module, .pName = "main"},
+                  .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = module, .pName = "main",
+                  .pSpecializationInfo = spec},
         .layout = layout,
     };
     VkPipeline p;
@@ -59,11 +66,19 @@ VkPipeline gpu_fullscreen_pipeline(const gpu_context *ctx, VkPipelineLayout layo
                                    VkShaderModule frag, const VkFormat *color_formats, uint32_t color_count,
                                    gpu_blend blend, const char *name)
 {
+    return gpu_fullscreen_pipeline_spec(ctx, layout, vert, frag, NULL, color_formats, color_count, blend, name);
+}
+
+VkPipeline gpu_fullscreen_pipeline_spec(const gpu_context *ctx, VkPipelineLayout layout, VkShaderModule vert,
+                                        VkShaderModule frag, const VkSpecializationInfo *frag_spec,
+                                        const VkFormat *color_formats, uint32_t color_count, gpu_blend blend,
+                                        const char *name)
+{
     VkPipelineShaderStageCreateInfo stages[2] = {
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_VERTEX_BIT,
          .module = vert, .pName = "main"},
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
-         .module = frag, .pName = "main"},
+         .module = frag, .pName = "main", .pSpecializationInfo = frag_spec},
     };
     VkPipelineVertexInputStateCreateInfo vertex_input = {.sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     VkPipelineInputAssemblyStateCreateInfo assembly = {

@@ -13,11 +13,19 @@ VkPipelineLayout gpu_pipeline_layout(const gpu_context *ctx, VkDescriptorSetLayo
                                      VkShaderStageFlags push_stages, const char *name);
 VkPipeline gpu_compute_pipeline(const gpu_context *ctx, VkPipelineLayout layout, VkShaderModule module,
                                 const char *name);
+/* With specialization constants (NULL: none). */
+VkPipeline gpu_compute_pipeline_spec(const gpu_context *ctx, VkPipelineLayout layout, VkShaderModule module,
+                                     const VkSpecializationInfo *spec, const char *name);
 
 typedef enum gpu_blend { GPU_BLEND_NONE, GPU_BLEND_ADDITIVE } gpu_blend;
 VkPipeline gpu_fullscreen_pipeline(const gpu_context *ctx, VkPipelineLayout layout, VkShaderModule vert,
                                    VkShaderModule frag, const VkFormat *color_formats, uint32_t color_count,
                                    gpu_blend blend, const char *name);
+/* With specialization constants for the fragment shader (NULL: none). */
+VkPipeline gpu_fullscreen_pipeline_spec(const gpu_context *ctx, VkPipelineLayout layout, VkShaderModule vert,
+                                        VkShaderModule frag, const VkSpecializationInfo *frag_spec,
+                                        const VkFormat *color_formats, uint32_t color_count, gpu_blend blend,
+                                        const char *name);
 
 /* Descriptor writes, terse. */
 void gpu_write_uniform(const gpu_context *ctx, VkDescriptorSet set, uint32_t binding, VkBuffer buffer, VkDeviceSize size);

@@ -4,7 +4,9 @@
 
 sky_lut_quality sky_lut_quality_default(void)
 {
-    return (sky_lut_quality){.transmittance_steps = 40, .multiscatter_steps = 20, .multiscatter_sqrt_dirs = 8};
+    return (sky_lut_quality){.transmittance_width = 256, .transmittance_height = 64, .transmittance_steps = 40,
+                             .multiscatter_size = 32, .multiscatter_steps = 20, .multiscatter_sqrt_dirs = 8,
+                             .lut_f32 = false, .skyview_width = 192, .skyview_height = 108};
 }
 
 static vksky_vec4 v4(const double rgb[3], double w)

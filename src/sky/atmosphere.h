@@ -4,12 +4,19 @@
 #define VKSKY_SKY_ATMOSPHERE_H
 #include "reference/ref_atmosphere.h"
 #include "shared.h"
+#include <stdbool.h>
 #include <stdint.h>
 
+/* LUT quality knobs. Sizes and format are fixed when the renderer is created; step counts can change at run
+ * time (they are uniforms; a change recomputes the LUTs). */
 typedef struct sky_lut_quality {
+    int transmittance_width, transmittance_height;   /* 256 x 64 */
     int transmittance_steps;      /* 40 */
+    int multiscatter_size;        /* 32 (square) */
     int multiscatter_steps;       /* 20 */
     int multiscatter_sqrt_dirs;   /* 8 -> 64 directions */
+    bool lut_f32;                 /* RGBA32F LUTs instead of RGBA16F */
+    int skyview_width, skyview_height;   /* 192 x 108 */
 } sky_lut_quality;
 
 sky_lut_quality sky_lut_quality_default(void);

@@ -1,12 +1,15 @@
 #include "sky/passes.h"
 #include "sky/shaders.h"
 
-void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr)
+void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, uint32_t mips)
 {
     const gpu_context *ctx = s->ctx;
     b->hdr_extent = hdr->extent;
-    b->mip_count = BLOOM_MIPS;
     uint32_t w = hdr->extent.width / 2, h = hdr->extent.height / 2;
+    /* A full mip chain of a w x h image has floor(log2(max(w, h))) + 1 levels; keep every mip >= 2 pixels. */
+    uint32_t fit = 1;
+    while (fit < BLOOM_MAX_MIPS && (w >> fit) >= 2 && (h >> fit) >= 2) ++fit;
+    b->mip_count = mips < fit ? mips : fit;
     gpu_image_create(ctx, &b->mips, "bloom mips", HDR_FORMAT, w ? w : 1, h ? h : 1, b->mip_count,
                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
 

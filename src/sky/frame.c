@@ -124,26 +124,56 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
         r->luts_valid = true;
     }
 
-    /* 2. Sky pass. The previous frame's bloom and tone map sampled the HDR image (WAR); its contents are
-     * not needed (every pixel is rewritten): UNDEFINED -> COLOR_ATTACHMENT. */
-    gpu_barrier_batch b = gpu_barrier_batch_begin("before sky");
-    gpu_barrier_add_image(&b, "hdr.to_attachment", "hdr", r->hdr.image, one, HDR_LAST_USE,
-                          GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+    /* 2. Sky. The sky pass runs as a fragment pass (HDR as colour attachment) or a compute dispatch (HDR as
+     * storage image); with the sky-view LUT it first renders that LUT for this frame's camera and sun. */
+    sky_mode mode = sky_view_resolve_mode(v, r);
+    sky_pass_kind kind = v->pass_kind;
+    gpu_usage sky_reads = kind == SKY_PASS_COMPUTE ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_FRAGMENT_SAMPLED;
+    gpu_usage hdr_write = kind == SKY_PASS_COMPUTE ? GPU_USAGE_COMPUTE_STORAGE_WRITE : GPU_USAGE_COLOR_ATTACHMENT_WRITE;
+    gpu_barrier_batch b;
+    uint32_t t;
+    if (mode == SKY_MODE_SKYVIEW) {
+        /* The previous frame's sky pass sampled the sky-view LUT (WAR; either stage, the pass kind may have
+         * changed); this frame's values replace it: UNDEFINED -> GENERAL. */
+        b = gpu_barrier_batch_begin("before skyview_lut");
+        gpu_barrier_add_image(&b, "skyview.to_storage", "skyview_lut", r->luts.skyview.image, one,
+                              GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+        gpu_barrier_flush(cmd, &b);
+        SkyPush sv = sky_view_skyview_push(v);
+        t = timed_begin(r, cmd, "skyview_lut");
+        luts_record_skyview(&r->luts, cmd, &sv);
+        timed_end(r, cmd, t);
+    }
+
+    /* The previous frame's bloom and tone map sampled the HDR image (WAR); its contents are not needed (every
+     * pixel is rewritten): UNDEFINED -> COLOR_ATTACHMENT (fragment) or GENERAL (compute). With the sky-view
+     * LUT: the LUT pass wrote it, the sky pass samples it (RAW + layout). */
+    b = gpu_barrier_batch_begin("before sky");
+    gpu_barrier_add_image(&b, "hdr.to_sky", "hdr", r->hdr.image, one, HDR_LAST_USE, hdr_write, true);
+    if (mode == SKY_MODE_SKYVIEW)
+        gpu_barrier_add_image(&b, "skyview.write_to_sample", "skyview_lut", r->luts.skyview.image, one,
+                              GPU_USAGE_COMPUTE_STORAGE_WRITE, sky_reads, false);
     gpu_barrier_flush(cmd, &b);
     SkyPush push = sky_view_push(v, r->hdr.extent.width, r->hdr.extent.height);
-    uint32_t t = timed_begin(r, cmd, "sky");
-    sky_pass_record(&r->sky, cmd, &r->hdr, &push);
+    t = timed_begin(r, cmd, "sky");
+    sky_pass_record(&r->sky, cmd, kind, mode, &r->hdr, &push);
     timed_end(r, cmd, t);
 
     /* The sky pass wrote the HDR image; bloom downsample 0 and the tone map sample it: RAW + layout.
      * The bloom mips were sampled by the previous frame (WAR) and are rendered anew: UNDEFINED -> attachment. */
     b = gpu_barrier_batch_begin("after sky");
-    gpu_barrier_add_image(&b, "hdr.write_to_sample", "hdr", r->hdr.image, one, GPU_USAGE_COLOR_ATTACHMENT_WRITE,
+    gpu_barrier_add_image(&b, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
                           GPU_USAGE_FRAGMENT_SAMPLED, false);
     if (bloom)
         gpu_barrier_add_image(&b, "bloom.to_attachment", "bloom", r->bloom.mips.image,
                               gpu_color_range(0, r->bloom.mip_count), BLOOM_LAST_USE,
                               GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+    /* Bloom switched off at run time (the window's B key) with the chain still allocated: the tone map's
+     * descriptor still names mip 0 and must find it in SHADER_READ_ONLY, though it never samples it (strength
+     * 0). A never-rendered chain is UNDEFINED: a layout-only transition, contents discarded (WAR on reads). */
+    else if (r->desc.bloom)
+        gpu_barrier_add_image(&b, "bloom.off_to_sample", "bloom", r->bloom.mips.image, gpu_color_range(0, 1),
+                              BLOOM_LAST_USE, GPU_USAGE_FRAGMENT_SAMPLED, true);
     gpu_barrier_flush(cmd, &b);
 
     /* 3. Bloom: 5 downsamples, 4 additive upsamples. */

@@ -1,62 +1,101 @@
 #include "sky/passes.h"
 #include "sky/shaders.h"
 
-void luts_create(sky_luts *l, const pass_shared *s)
+static VkPipeline compute_pipeline(const gpu_context *ctx, VkPipelineLayout layout, const sky_spirv *spv, const char *name)
+{
+    VkShaderModule m = gpu_shader_module(ctx, spv->code, spv->size, name);
+    VkPipeline p = gpu_compute_pipeline(ctx, layout, m, name);
+    vkDestroyShaderModule(ctx->device, m, NULL);
+    return p;
+}
+
+void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q)
 {
     const gpu_context *ctx = s->ctx;
-    /* Written by compute (storage), then sampled by compute (multiscatter) and fragment (sky); copied out by tests. */
+    VkFormat format = q->lut_f32 ? VK_FORMAT_R32G32B32A32_SFLOAT : HDR_FORMAT;
+    /* Written by compute (storage), then sampled by compute and fragment shaders; copied out by tests. */
     VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-    gpu_image_create(ctx, &l->transmittance, "transmittance LUT", HDR_FORMAT, TRANSMITTANCE_LUT_WIDTH,
-                     TRANSMITTANCE_LUT_HEIGHT, 1, usage);
-    gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", HDR_FORMAT, MULTISCATTER_LUT_SIZE,
-                     MULTISCATTER_LUT_SIZE, 1, usage);
+    gpu_image_create(ctx, &l->transmittance, "transmittance LUT", format, (uint32_t)q->transmittance_width,
+                     (uint32_t)q->transmittance_height, 1, usage);
+    gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format, (uint32_t)q->multiscatter_size,
+                     (uint32_t)q->multiscatter_size, 1, usage);
+    gpu_image_create(ctx, &l->skyview, "skyview LUT", HDR_FORMAT, (uint32_t)q->skyview_width,
+                     (uint32_t)q->skyview_height, 1, usage);
 
-    VkDescriptorType t_types[] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                           STORAGE = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    VkDescriptorType t_types[] = {UBO, STORAGE};
     l->transmittance_set_layout = gpu_set_layout(ctx, t_types, 2, VK_SHADER_STAGE_COMPUTE_BIT, "transmittance set layout");
     l->transmittance_layout = gpu_pipeline_layout(ctx, l->transmittance_set_layout, 0, 0, "transmittance layout");
-    VkShaderModule t_mod = gpu_shader_module(ctx, spirv_transmittance_lut.code, spirv_transmittance_lut.size, "transmittance_lut.comp");
-    l->transmittance_pipeline = gpu_compute_pipeline(ctx, l->transmittance_layout, t_mod, "transmittance LUT");
-    vkDestroyShaderModule(ctx->device, t_mod, NULL);
+    l->transmittance_pipeline = compute_pipeline(ctx, l->transmittance_layout,
+                                                 q->lut_f32 ? &spirv_transmittance_lut_f32 : &spirv_transmittance_lut,
+                                                 "transmittance LUT");
     l->transmittance_set = gpu_alloc_set(ctx, s->pool, l->transmittance_set_layout, "transmittance set");
     gpu_write_uniform(ctx, l->transmittance_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
     gpu_write_storage(ctx, l->transmittance_set, 1, l->transmittance.view);
 
-    VkDescriptorType m_types[] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    VkDescriptorType m_types[] = {UBO, SAMPLED, STORAGE};
     l->multiscatter_set_layout = gpu_set_layout(ctx, m_types, 3, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
     l->multiscatter_layout = gpu_pipeline_layout(ctx, l->multiscatter_set_layout, 0, 0, "multiscatter layout");
-    VkShaderModule m_mod = gpu_shader_module(ctx, spirv_multiscatter_lut.code, spirv_multiscatter_lut.size, "multiscatter_lut.comp");
-    l->multiscatter_pipeline = gpu_compute_pipeline(ctx, l->multiscatter_layout, m_mod, "multiscatter LUT");
-    vkDestroyShaderModule(ctx->device, m_mod, NULL);
+    l->multiscatter_pipeline = compute_pipeline(ctx, l->multiscatter_layout,
+                                                q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut,
+                                                "multiscatter LUT");
     l->multiscatter_set = gpu_alloc_set(ctx, s->pool, l->multiscatter_set_layout, "multiscatter set");
     gpu_write_uniform(ctx, l->multiscatter_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
     gpu_write_sampled(ctx, l->multiscatter_set, 1, l->transmittance.view, s->linear_clamp);
     gpu_write_storage(ctx, l->multiscatter_set, 2, l->multiscatter.view);
+
+    VkDescriptorType v_types[] = {UBO, SAMPLED, SAMPLED, STORAGE};
+    l->skyview_set_layout = gpu_set_layout(ctx, v_types, 4, VK_SHADER_STAGE_COMPUTE_BIT, "skyview set layout");
+    l->skyview_layout = gpu_pipeline_layout(ctx, l->skyview_set_layout, sizeof(SkyPush), VK_SHADER_STAGE_COMPUTE_BIT,
+                                            "skyview layout");
+    l->skyview_pipeline = compute_pipeline(ctx, l->skyview_layout, &spirv_skyview_lut, "skyview LUT");
+    l->skyview_set = gpu_alloc_set(ctx, s->pool, l->skyview_set_layout, "skyview set");
+    gpu_write_uniform(ctx, l->skyview_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
+    gpu_write_sampled(ctx, l->skyview_set, 1, l->transmittance.view, s->linear_clamp);
+    gpu_write_sampled(ctx, l->skyview_set, 2, l->multiscatter.view, s->linear_clamp);
+    gpu_write_storage(ctx, l->skyview_set, 3, l->skyview.view);
 }
 
 void luts_destroy(sky_luts *l, const pass_shared *s)
 {
     VkDevice d = s->ctx->device;
-    vkDestroyPipeline(d, l->transmittance_pipeline, NULL);
-    vkDestroyPipeline(d, l->multiscatter_pipeline, NULL);
-    vkDestroyPipelineLayout(d, l->transmittance_layout, NULL);
-    vkDestroyPipelineLayout(d, l->multiscatter_layout, NULL);
-    vkDestroyDescriptorSetLayout(d, l->transmittance_set_layout, NULL);
-    vkDestroyDescriptorSetLayout(d, l->multiscatter_set_layout, NULL);
+    VkPipeline pipelines[] = {l->transmittance_pipeline, l->multiscatter_pipeline, l->skyview_pipeline};
+    VkPipelineLayout layouts[] = {l->transmittance_layout, l->multiscatter_layout, l->skyview_layout};
+    VkDescriptorSetLayout set_layouts[] = {l->transmittance_set_layout, l->multiscatter_set_layout, l->skyview_set_layout};
+    for (int i = 0; i < 3; ++i) {
+        vkDestroyPipeline(d, pipelines[i], NULL);
+        vkDestroyPipelineLayout(d, layouts[i], NULL);
+        vkDestroyDescriptorSetLayout(d, set_layouts[i], NULL);
+    }
     gpu_image_destroy(s->ctx, &l->transmittance);
     gpu_image_destroy(s->ctx, &l->multiscatter);
+    gpu_image_destroy(s->ctx, &l->skyview);
+}
+
+static void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,
+                     const gpu_image *target)
+{
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, NULL);
+    vkCmdDispatch(cmd, (target->extent.width + 7) / 8, (target->extent.height + 7) / 8, 1);
 }
 
 void luts_record_transmittance(const sky_luts *l, VkCommandBuffer cmd)
 {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->transmittance_pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->transmittance_layout, 0, 1, &l->transmittance_set, 0, NULL);
-    vkCmdDispatch(cmd, TRANSMITTANCE_LUT_WIDTH / 8, TRANSMITTANCE_LUT_HEIGHT / 8, 1);
+    dispatch(cmd, l->transmittance_pipeline, l->transmittance_layout, l->transmittance_set, &l->transmittance);
 }
 
 void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd)
 {
+    /* One 64-thread workgroup per texel (the threads share the sphere directions). */
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_layout, 0, 1, &l->multiscatter_set, 0, NULL);
-    vkCmdDispatch(cmd, MULTISCATTER_LUT_SIZE / 8, MULTISCATTER_LUT_SIZE / 8, 1);
+    vkCmdDispatch(cmd, l->multiscatter.extent.width, l->multiscatter.extent.height, 1);
+}
+
+void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *push)
+{
+    vkCmdPushConstants(cmd, l->skyview_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
+    dispatch(cmd, l->skyview_pipeline, l->skyview_layout, l->skyview_set, &l->skyview);
 }

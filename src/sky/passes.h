@@ -7,10 +7,9 @@
 #include "gpu/resources.h"
 #include "shared.h"
 
-#define TRANSMITTANCE_LUT_WIDTH 256
-#define TRANSMITTANCE_LUT_HEIGHT 64
-#define MULTISCATTER_LUT_SIZE 32
-#define BLOOM_MIPS 5
+#include "sky/atmosphere.h"
+
+#define BLOOM_MAX_MIPS 8
 #define HDR_FORMAT VK_FORMAT_R16G16B16A16_SFLOAT
 
 /* What every pass shares: descriptor pool, sampler, the atmosphere uniform buffer, the full-screen vertex shader. */
@@ -22,42 +21,51 @@ typedef struct pass_shared {
     VkShaderModule fullscreen_vs;
 } pass_shared;
 
-/* --- LUT compute passes (luts.c) --- */
+/* --- LUT compute passes (luts.c): transmittance and multi-scattering (when the atmosphere changes), sky-view
+ * (every frame, fast path) --- */
 typedef struct sky_luts {
-    gpu_image transmittance, multiscatter;
-    VkDescriptorSetLayout transmittance_set_layout, multiscatter_set_layout;
-    VkPipelineLayout transmittance_layout, multiscatter_layout;
-    VkPipeline transmittance_pipeline, multiscatter_pipeline;
-    VkDescriptorSet transmittance_set, multiscatter_set;
+    gpu_image transmittance, multiscatter, skyview;
+    VkDescriptorSetLayout transmittance_set_layout, multiscatter_set_layout, skyview_set_layout;
+    VkPipelineLayout transmittance_layout, multiscatter_layout, skyview_layout;
+    VkPipeline transmittance_pipeline, multiscatter_pipeline, skyview_pipeline;
+    VkDescriptorSet transmittance_set, multiscatter_set, skyview_set;
 } sky_luts;
-void luts_create(sky_luts *l, const pass_shared *s);
+void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q);
 void luts_destroy(sky_luts *l, const pass_shared *s);
 void luts_record_transmittance(const sky_luts *l, VkCommandBuffer cmd);
 void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd);
+void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *push);
 
-/* --- Sky pass (sky_pass.c): per-pixel march into the HDR target --- */
+/* --- Sky pass (sky_pass.c): per-pixel march, or sky-view LUT lookup, into the HDR target; as a full-screen
+ * fragment pass or a compute dispatch --- */
+typedef enum sky_mode { SKY_MODE_MARCH = 0, SKY_MODE_SKYVIEW = 1 } sky_mode;
+typedef enum sky_pass_kind { SKY_PASS_FRAGMENT = 0, SKY_PASS_COMPUTE = 1 } sky_pass_kind;
 typedef struct sky_pass {
-    VkDescriptorSetLayout set_layout;
-    VkPipelineLayout layout;
-    VkPipeline pipeline;
-    VkDescriptorSet set;
+    VkDescriptorSetLayout set_layouts[2];        /* [kind] */
+    VkPipelineLayout layouts[2];                 /* [kind] */
+    VkPipeline pipelines[2][2];                  /* [kind][mode] */
+    VkDescriptorSet sets[2];                     /* [kind]; the compute set also holds the HDR storage image */
 } sky_pass;
 void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts);
 void sky_pass_destroy(sky_pass *p, const pass_shared *s);
-void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, const gpu_image *hdr, const SkyPush *push);
+/* Point the compute path's storage binding at (a new) HDR image. */
+void sky_pass_set_target(sky_pass *p, const pass_shared *s, const gpu_image *hdr);
+void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind, sky_mode mode,
+                     const gpu_image *hdr, const SkyPush *push);
 
-/* --- Bloom (bloom.c): 5 downsamples into a mip chain, 4 additive upsamples back to mip 0 --- */
+/* --- Bloom (bloom.c): N downsamples into a mip chain (5 by default), N-1 additive upsamples back to mip 0 --- */
 typedef struct bloom_chain {
     gpu_image mips;                          /* half the HDR size at mip 0 */
     uint32_t mip_count;
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;
     VkPipeline down_pipeline, up_pipeline;
-    VkDescriptorSet down_sets[BLOOM_MIPS];   /* down_sets[i] samples the source of mip i */
-    VkDescriptorSet up_sets[BLOOM_MIPS];     /* up_sets[i] samples mip i + 1 */
+    VkDescriptorSet down_sets[BLOOM_MAX_MIPS];   /* down_sets[i] samples the source of mip i */
+    VkDescriptorSet up_sets[BLOOM_MAX_MIPS];     /* up_sets[i] samples mip i + 1 */
     VkExtent2D hdr_extent;
 } bloom_chain;
-void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr);
+/* `mips` downsamples (5 by default), fewer if the image is too small for them. */
+void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, uint32_t mips);
 void bloom_destroy(bloom_chain *b, const pass_shared *s);
 /* Downsample into mip `dst` (from the HDR image for dst 0, else from mip dst - 1). */
 void bloom_record_downsample(const bloom_chain *b, VkCommandBuffer cmd, uint32_t dst, float threshold);

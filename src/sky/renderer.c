@@ -11,7 +11,8 @@ sky_view sky_view_default(void)
 {
     return (sky_view){
         .altitude_km = 0.001, .yaw_deg = 0.0, .pitch_deg = 10.0, .fov_deg = 75.0,
-        .sun_azimuth_deg = 0.0, .sun_elevation_deg = 20.0, .steps = 32,
+        .sun_azimuth_deg = 0.0, .sun_elevation_deg = 20.0, .steps = 32, .max_steps = 0, .steps_ramp_km = 100.0,
+        .sample_offset = 0.5, .step_distribution = 2.0, .mode = SKY_CHOICE_MARCH, .pass_kind = SKY_PASS_FRAGMENT, .skyview_steps = 30,
         .exposure_ev = 0.0, .tonemap = VKSKY_TONEMAP_ACES, .bloom = true,
         .bloom_strength = 0.04, .bloom_threshold = 1.0};
 }
@@ -43,12 +44,30 @@ SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height)
     double ty = tan(0.5 * v->fov_deg * DEG), tx = ty * (double)width / (double)height;
     double sun[3];
     dir_from_angles(v->sun_azimuth_deg, v->sun_elevation_deg, sun);
+    int max_steps = v->max_steps > v->steps ? v->max_steps : v->steps;
     return (SkyPush){
         .forward = {(float)f[0], (float)f[1], (float)f[2], (float)v->altitude_km},
-        .right = {(float)(right[0] * tx), (float)(right[1] * tx), (float)(right[2] * tx), (float)v->steps},
-        .up = {(float)(up[0] * ty), (float)(up[1] * ty), (float)(up[2] * ty), 1.0f / (float)width},
-        .sun_dir = {(float)sun[0], (float)sun[1], (float)sun[2], 1.0f / (float)height},
+        .right = {(float)(right[0] * tx), (float)(right[1] * tx), (float)(right[2] * tx), 1.0f / (float)width},
+        .up = {(float)(up[0] * ty), (float)(up[1] * ty), (float)(up[2] * ty), 1.0f / (float)height},
+        .sun_dir = {(float)sun[0], (float)sun[1], (float)sun[2], (float)v->step_distribution},
+        .march = {(float)v->steps, (float)max_steps, (float)v->sample_offset, (float)v->steps_ramp_km},
     };
+}
+
+SkyPush sky_view_skyview_push(const sky_view *v)
+{
+    SkyPush p = sky_view_push(v, 1, 1);
+    p.march = (vksky_vec4){(float)v->skyview_steps, (float)v->skyview_steps, (float)v->sample_offset,
+                           (float)v->steps_ramp_km};
+    return p;
+}
+
+sky_mode sky_view_resolve_mode(const sky_view *v, const sky_renderer *r)
+{
+    if (v->mode == SKY_CHOICE_MARCH) return SKY_MODE_MARCH;
+    bool inside = v->altitude_km < r->atmosphere.radii.z;
+    if (v->mode == SKY_CHOICE_SKYVIEW) return inside ? SKY_MODE_SKYVIEW : SKY_MODE_MARCH;
+    return inside ? SKY_MODE_SKYVIEW : SKY_MODE_MARCH;
 }
 
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader)
@@ -65,8 +84,13 @@ static void create_sized(sky_renderer *r)
     const sky_renderer_desc *desc = &r->desc;
     pass_shared sized = r->shared;
     sized.pool = r->size_pool;
-    VkImageUsageFlags target_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    gpu_image_create(ctx, &r->hdr, "hdr", HDR_FORMAT, desc->width, desc->height, 1, target_usage);
+    /* Colour attachment (fragment sky), storage (compute sky), sampled (bloom, tone map). */
+    VkImageUsageFlags target_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                     VK_IMAGE_USAGE_SAMPLED_BIT;
+    double scale = desc->render_scale > 0.0 ? desc->render_scale : 1.0;
+    uint32_t hw = (uint32_t)(desc->width * scale + 0.5), hh = (uint32_t)(desc->height * scale + 0.5);
+    gpu_image_create(ctx, &r->hdr, "hdr", HDR_FORMAT, hw ? hw : 1, hh ? hh : 1, 1, target_usage);
+    sky_pass_set_target(&r->sky, &r->shared, &r->hdr);
     if (!desc->external_display)
         gpu_image_create(ctx, &r->display, "display", desc->display_format, desc->width, desc->height, 1,
                          VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -77,7 +101,7 @@ static void create_sized(sky_renderer *r)
         gpu_buffer_create(ctx, &r->readback_linear, "readback linear", pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         gpu_buffer_create(ctx, &r->readback_display, "readback display", pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     }
-    if (desc->bloom) bloom_create(&r->bloom, &sized, &r->hdr);
+    if (desc->bloom) bloom_create(&r->bloom, &sized, &r->hdr, desc->bloom_mips ? desc->bloom_mips : 5);
     tonemap_create(&r->tonemap, &sized, r->hdr.view, desc->bloom ? r->bloom.mips.mip_views[0] : r->hdr.view,
                    desc->display_format, desc->readback);
 }
@@ -110,6 +134,7 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
     memset(r, 0, sizeof *r);
     r->ctx = ctx;
     r->desc = *desc;
+    if (r->desc.lut.transmittance_width == 0) r->desc.lut = sky_lut_quality_default();
     pass_shared *s = &r->shared;
     s->ctx = ctx;
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 8},
@@ -125,7 +150,7 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
 
     VkDescriptorPoolCreateInfo size_info = pinfo;
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &size_info, NULL, &r->size_pool));
-    luts_create(&r->luts, s);
+    luts_create(&r->luts, s, &r->desc.lut);
     sky_pass_create(&r->sky, s, &r->luts);
     create_sized(r);
     gpu_timer_create(ctx, &r->timer);
@@ -149,10 +174,9 @@ void sky_renderer_destroy(sky_renderer *r)
     memset(r, 0, sizeof *r);
 }
 
-void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad,
-                                 sky_lut_quality q)
+void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad)
 {
-    sky_atmosphere_pack(a, sun_angular_radius_rad, q, &r->atmosphere);
+    sky_atmosphere_pack(a, sun_angular_radius_rad, r->desc.lut, &r->atmosphere);
     /* Host write before the submit that reads it: vkQueueSubmit makes it visible (no barrier needed); the
      * caller guarantees no frame in flight still reads the old values. */
     memcpy(r->shared.atmosphere_ubo.mapped, &r->atmosphere, sizeof r->atmosphere);

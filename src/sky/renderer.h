@@ -5,11 +5,20 @@
 #include "sky/atmosphere.h"
 #include "sky/passes.h"
 
+typedef enum sky_mode_choice { SKY_CHOICE_MARCH, SKY_CHOICE_SKYVIEW, SKY_CHOICE_AUTO } sky_mode_choice;
+
 typedef struct sky_view {
     double altitude_km;                     /* camera altitude above the ground, >= 0 */
     double yaw_deg, pitch_deg, fov_deg;     /* view axis: same convention as the sun's azimuth/elevation */
     double sun_azimuth_deg, sun_elevation_deg;
-    int steps;                              /* view march steps */
+    int steps;                              /* view march steps (the minimum when max_steps > steps) */
+    int max_steps;                          /* > steps: Hillaire's variable count, growing with path length (0: fixed) */
+    double steps_ramp_km;                   /* path length at which the variable count reaches max_steps */
+    double sample_offset;                   /* sample position within a step: 0.5 midpoint, 0.3 Hillaire */
+    double step_distribution;               /* step ends at t_max (i/N)^p: 1 uniform, 2 quadratic (Hillaire) */
+    sky_mode_choice mode;                   /* per-pixel march, sky-view LUT lookup, or auto */
+    sky_pass_kind pass_kind;                /* fragment or compute sky pass */
+    int skyview_steps;                      /* march steps of the sky-view LUT texels */
     double exposure_ev;                     /* tone map exposure, in stops */
     int tonemap;                            /* VKSKY_TONEMAP_* */
     bool bloom;
@@ -19,8 +28,11 @@ typedef struct sky_view {
 sky_view sky_view_default(void);
 
 typedef struct sky_renderer_desc {
-    uint32_t width, height;
+    uint32_t width, height;      /* output size */
+    double render_scale;         /* the sky is rendered at this fraction of the output size (0: 1), upsampled by the tone map */
+    sky_lut_quality lut;         /* LUT sizes, format, steps (zeroed: the defaults) */
     bool bloom;                  /* allocate the bloom chain (no bloom: no passes, no mip chain) */
+    uint32_t bloom_mips;         /* downsample passes (0: 5) */
     bool readback;               /* keep the linear composite + display image and copy them to host buffers */
     bool external_display;       /* the tone map writes a frame_target (swapchain), no own display image */
     VkFormat display_format;     /* the 8-bit target's format (headless: R8G8B8A8_SRGB) */
@@ -35,7 +47,7 @@ typedef struct sky_renderer {
     bloom_chain bloom;
     tonemap_pass tonemap;
     sky_renderer_desc desc;
-    gpu_image hdr;               /* sky pass output, RGBA16F */
+    gpu_image hdr;               /* sky pass output, RGBA16F, render_scale x the output size */
     gpu_image display;           /* tone-mapped, 8-bit (headless) */
     gpu_image composite;         /* HDR + bloom, scene-linear (readback only) */
     gpu_buffer readback_linear, readback_display;
@@ -50,14 +62,17 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
 void sky_renderer_destroy(sky_renderer *r);
 /* Set the atmosphere (writes the uniform buffer: call only while no frame is in flight). LUTs are recomputed
  * by the next frame if their inputs changed. */
-void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad,
-                                 sky_lut_quality q);
+void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad);
+/* The sky mode a frame of this view uses (auto: the sky-view LUT inside the atmosphere, the march from space). */
+sky_mode sky_view_resolve_mode(const sky_view *v, const sky_renderer *r);
 bool sky_renderer_luts_dirty(const sky_renderer *r);
 /* New size: rebuilds the HDR target, the bloom mip chain and the tone map's descriptors (waits for the GPU). */
 void sky_renderer_resize(sky_renderer *r, uint32_t width, uint32_t height);
 
 /* Camera + sun -> the sky pass's push constants (the ray matrix built from the camera basis). */
 SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height);
+/* The sky-view LUT pass's push constants (its own march settings). */
+SkyPush sky_view_skyview_push(const sky_view *v);
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader);
 
 /* An image the tone map writes that the renderer does not own (a swapchain image). */

@@ -1,8 +1,14 @@
 #include "sky/shaders.h"
 #include "transmittance_lut_comp.h"
 #include "multiscatter_lut_comp.h"
+#include "transmittance_lut_f32_comp.h"
+#include "multiscatter_lut_f32_comp.h"
+#include "skyview_lut_comp.h"
+#include "sky_march_comp.h"
+#include "sky_lookup_comp.h"
+#include "sky_lookup_frag.h"
 #include "fullscreen_vert.h"
-#include "sky_frag.h"
+#include "sky_march_frag.h"
 #include "bloom_downsample_frag.h"
 #include "bloom_upsample_frag.h"
 #include "tonemap_frag.h"
@@ -11,8 +17,14 @@
 #define SPIRV(var) {var, sizeof var}
 const sky_spirv spirv_transmittance_lut = SPIRV(spv_transmittance_lut_comp);
 const sky_spirv spirv_multiscatter_lut = SPIRV(spv_multiscatter_lut_comp);
+const sky_spirv spirv_transmittance_lut_f32 = SPIRV(spv_transmittance_lut_f32_comp);
+const sky_spirv spirv_multiscatter_lut_f32 = SPIRV(spv_multiscatter_lut_f32_comp);
+const sky_spirv spirv_skyview_lut = SPIRV(spv_skyview_lut_comp);
+const sky_spirv spirv_sky_march_comp = SPIRV(spv_sky_march_comp);
+const sky_spirv spirv_sky_lookup_comp = SPIRV(spv_sky_lookup_comp);
+const sky_spirv spirv_sky_lookup_frag = SPIRV(spv_sky_lookup_frag);
 const sky_spirv spirv_fullscreen_vert = SPIRV(spv_fullscreen_vert);
-const sky_spirv spirv_sky_frag = SPIRV(spv_sky_frag);
+const sky_spirv spirv_sky_march_frag = SPIRV(spv_sky_march_frag);
 const sky_spirv spirv_bloom_downsample = SPIRV(spv_bloom_downsample_frag);
 const sky_spirv spirv_bloom_upsample = SPIRV(spv_bloom_upsample_frag);
 const sky_spirv spirv_tonemap = SPIRV(spv_tonemap_frag);

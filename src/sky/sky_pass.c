@@ -1,38 +1,76 @@
 #include "sky/passes.h"
 #include "sky/shaders.h"
 
+/* One pipeline per (kind, mode), each from its own SPIR-V variant: no per-pixel branch on the mode. */
+static const sky_spirv *variant(int kind, int mode)
+{
+    if (kind == SKY_PASS_COMPUTE) return mode == SKY_MODE_SKYVIEW ? &spirv_sky_lookup_comp : &spirv_sky_march_comp;
+    return mode == SKY_MODE_SKYVIEW ? &spirv_sky_lookup_frag : &spirv_sky_march_frag;
+}
+
 void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
 {
     const gpu_context *ctx = s->ctx;
-    VkDescriptorType types[] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-    p->set_layout = gpu_set_layout(ctx, types, 3, VK_SHADER_STAGE_FRAGMENT_BIT, "sky set layout");
-    p->layout = gpu_pipeline_layout(ctx, p->set_layout, sizeof(SkyPush), VK_SHADER_STAGE_FRAGMENT_BIT, "sky layout");
-    VkShaderModule fs = gpu_shader_module(ctx, spirv_sky_frag.code, spirv_sky_frag.size, "sky.frag");
+    const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    VkDescriptorType types[] = {UBO, SAMPLED, SAMPLED, SAMPLED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    VkShaderStageFlags stages[2] = {VK_SHADER_STAGE_FRAGMENT_BIT, VK_SHADER_STAGE_COMPUTE_BIT};
+    const char *names[2] = {"sky (fragment)", "sky (compute)"};
     VkFormat format = HDR_FORMAT;
-    p->pipeline = gpu_fullscreen_pipeline(ctx, p->layout, s->fullscreen_vs, fs, &format, 1, GPU_BLEND_NONE, "sky");
-    vkDestroyShaderModule(ctx->device, fs, NULL);
-    p->set = gpu_alloc_set(ctx, s->pool, p->set_layout, "sky set");
-    gpu_write_uniform(ctx, p->set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
-    gpu_write_sampled(ctx, p->set, 1, luts->transmittance.view, s->linear_clamp);
-    gpu_write_sampled(ctx, p->set, 2, luts->multiscatter.view, s->linear_clamp);
+    for (int kind = 0; kind < 2; ++kind) {
+        p->set_layouts[kind] = gpu_set_layout(ctx, types, kind == SKY_PASS_COMPUTE ? 5 : 4, stages[kind], names[kind]);
+        p->layouts[kind] = gpu_pipeline_layout(ctx, p->set_layouts[kind], sizeof(SkyPush), stages[kind], names[kind]);
+        p->sets[kind] = gpu_alloc_set(ctx, s->pool, p->set_layouts[kind], names[kind]);
+        gpu_write_uniform(ctx, p->sets[kind], 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
+        gpu_write_sampled(ctx, p->sets[kind], 1, luts->transmittance.view, s->linear_clamp);
+        gpu_write_sampled(ctx, p->sets[kind], 2, luts->multiscatter.view, s->linear_clamp);
+        gpu_write_sampled(ctx, p->sets[kind], 3, luts->skyview.view, s->linear_clamp);
+        for (int mode = 0; mode < 2; ++mode) {
+            const char *name = mode ? (kind ? "sky lookup (compute)" : "sky lookup (fragment)")
+                                    : (kind ? "sky march (compute)" : "sky march (fragment)");
+            const sky_spirv *spv = variant(kind, mode);
+            VkShaderModule m = gpu_shader_module(ctx, spv->code, spv->size, name);
+            if (kind == SKY_PASS_FRAGMENT)
+                p->pipelines[kind][mode] = gpu_fullscreen_pipeline(ctx, p->layouts[kind], s->fullscreen_vs, m,
+                                                                   &format, 1, GPU_BLEND_NONE, name);
+            else
+                p->pipelines[kind][mode] = gpu_compute_pipeline(ctx, p->layouts[kind], m, name);
+            vkDestroyShaderModule(ctx->device, m, NULL);
+        }
+    }
+}
+
+void sky_pass_set_target(sky_pass *p, const pass_shared *s, const gpu_image *hdr)
+{
+    gpu_write_storage(s->ctx, p->sets[SKY_PASS_COMPUTE], 4, hdr->view);
 }
 
 void sky_pass_destroy(sky_pass *p, const pass_shared *s)
 {
-    vkDestroyPipeline(s->ctx->device, p->pipeline, NULL);
-    vkDestroyPipelineLayout(s->ctx->device, p->layout, NULL);
-    vkDestroyDescriptorSetLayout(s->ctx->device, p->set_layout, NULL);
+    VkDevice d = s->ctx->device;
+    for (int kind = 0; kind < 2; ++kind) {
+        for (int mode = 0; mode < 2; ++mode) vkDestroyPipeline(d, p->pipelines[kind][mode], NULL);
+        vkDestroyPipelineLayout(d, p->layouts[kind], NULL);
+        vkDestroyDescriptorSetLayout(d, p->set_layouts[kind], NULL);
+    }
 }
 
-void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, const gpu_image *hdr, const SkyPush *push)
+void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind, sky_mode mode,
+                     const gpu_image *hdr, const SkyPush *push)
 {
-    /* DONT_CARE: every pixel is written. */
-    gpu_attachment target = {hdr->view, VK_ATTACHMENT_LOAD_OP_DONT_CARE};
-    gpu_begin_rendering(cmd, hdr->extent, &target, 1);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p->layout, 0, 1, &p->set, 0, NULL);
-    vkCmdPushConstants(cmd, p->layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof *push, push);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-    vkCmdEndRendering(cmd);
+    VkPipelineBindPoint bind = kind == SKY_PASS_COMPUTE ? VK_PIPELINE_BIND_POINT_COMPUTE : VK_PIPELINE_BIND_POINT_GRAPHICS;
+    VkShaderStageFlags stage = kind == SKY_PASS_COMPUTE ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_FRAGMENT_BIT;
+    if (kind == SKY_PASS_FRAGMENT) {
+        /* DONT_CARE: every pixel is written. */
+        gpu_attachment target = {hdr->view, VK_ATTACHMENT_LOAD_OP_DONT_CARE};
+        gpu_begin_rendering(cmd, hdr->extent, &target, 1);
+    }
+    vkCmdBindPipeline(cmd, bind, p->pipelines[kind][mode]);
+    vkCmdBindDescriptorSets(cmd, bind, p->layouts[kind], 0, 1, &p->sets[kind], 0, NULL);
+    vkCmdPushConstants(cmd, p->layouts[kind], stage, 0, sizeof *push, push);
+    if (kind == SKY_PASS_FRAGMENT) {
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        vkCmdEndRendering(cmd);
+    } else {
+        vkCmdDispatch(cmd, (hdr->extent.width + 7) / 8, (hdr->extent.height + 7) / 8, 1);
+    }
 }

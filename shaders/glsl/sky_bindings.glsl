@@ -1,0 +1,14 @@
+/* Bindings of the sky pass (fragment or compute): set 0 = atmosphere UBO, the two LUTs, the sky-view LUT (only
+ * the lookup variant declares it, so the march variant never reads an image it does not need), and for compute
+ * the HDR storage image. Each mode is compiled separately (SKY_LOOKUP defined or not): its own pipeline, no
+ * per-pixel branch. */
+layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
+layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
+#ifdef SKY_LOOKUP
+layout(set = 0, binding = 3) uniform sampler2D skyview_lut;
+#define VKSKY_SKYVIEW_LOOKUP 1
+#define SKY_RADIANCE(h, v, s, march) sky_radiance_lookup(h, v, s)
+#else
+#define SKY_RADIANCE(h, v, s, march) sky_radiance(h, v, s, march, push.sun_dir.w)
+#endif
+layout(push_constant) uniform Push { SkyPush push; };

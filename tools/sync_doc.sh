@@ -1,0 +1,335 @@
+#!/usr/bin/env bash
+# The generated parts of docs/synchronization.md and the frame diagram, from what `vksky --trace-barriers` prints.
+#
+#   tools/sync_doc.sh [--vksky PATH]               regenerate: the tables between the <!-- BEGIN GENERATED: x -->
+#                                                   and <!-- END GENERATED: x --> markers of the guide,
+#                                                   docs/frame_graph.dot, and docs/frame_graph.png (graphviz `dot`)
+#   tools/sync_doc.sh --check [--vksky PATH]       regenerate into a temporary directory and fail (exit 1) if the
+#                                                   guide or the .dot differ, or the PNG was rendered from another
+#                                                   .dot (its checksum is recorded in the guide): text only
+#   tools/sync_doc.sh --check-list [--vksky PATH]  fail if a traced barrier has no line in tests/barrier_drops.txt
+#                                                   that drop-tests it, or a line names a barrier no frame records
+#
+# The frames traced are the configurations of tests/barrier_drops.txt ("config" lines); window ones run under
+# xvfb-run when there is no DISPLAY. Exit 77 (skipped) when a window frame cannot be traced at all.
+# bash, awk, sed, diff, cksum only (no Python on CI); graphviz only to render the PNG.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+vksky=$root/build/vksky
+mode=write
+while [ $# -gt 0 ]; do
+    case $1 in
+    --check) mode=check ;;
+    --check-list) mode=list ;;
+    --vksky) vksky=${2:?--vksky needs a path}; shift ;;
+    *) echo "usage: tools/sync_doc.sh [--check|--check-list] [--vksky PATH]" >&2; exit 2 ;;
+    esac
+    shift
+done
+list=$root/tests/barrier_drops.txt
+doc=$root/docs/synchronization.md
+dotfile=$root/docs/frame_graph.dot
+pngfile=$root/docs/frame_graph.png
+[ -x "$vksky" ] || { echo "sync_doc: no vksky at $vksky (build first, or give --vksky PATH)" >&2; exit 2; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+unset VKSKY_DROP_BARRIER VKSKY_FRAMES VKSKY_VALIDATION
+
+# --- 1. Trace every configuration: $tmp/trace.<id> holds its "pass" and "barrier" lines. -------------------
+configs=$(awk '$1 == "config" { print $2 }' "$list")
+for id in $configs; do
+    read -r kind args < <(awk -v id="$id" '$1 == "config" && $2 == id { $1 = $2 = ""; sub(/^ +/, ""); print }' "$list")
+    args=${args//OUT/$tmp/out}
+    run=("$vksky")
+    if [ "$kind" = window ] && [ -z "${DISPLAY:-}" ]; then
+        if ! command -v xvfb-run >/dev/null; then
+            echo "sync_doc: SKIP: no DISPLAY and no xvfb-run to trace the window frame ($id)" >&2
+            exit 77
+        fi
+        run=(xvfb-run -a -s "-screen 0 640x480x24" "$vksky")
+    fi
+    # shellcheck disable=SC2086  # ARGS are words
+    if ! "${run[@]}" $args --trace-barriers >"$tmp/out.$id" 2>"$tmp/err.$id"; then
+        echo "sync_doc: vksky $args --trace-barriers failed:" >&2
+        head -n 5 "$tmp/err.$id" >&2
+        exit 1
+    fi
+    grep -E '^(pass|barrier) ' "$tmp/out.$id" >"$tmp/trace.$id" || true
+    [ -s "$tmp/trace.$id" ] || { echo "sync_doc: config $id: the trace is empty" >&2; exit 1; }
+done
+
+# Shared awk: parse a trace line into b_name, b_point, b_res, b_mips, b_old, b_new, b_ss, b_sa, b_ds, b_da,
+# b_hazard; markdown and dot helpers. The point contains spaces, the other fields do not.
+read -r -d '' AWK_LIB <<'EOF' || true
+function parse(line,   p, r, rest, n, i, kv, k, v, parts) {
+    b_name = ""; split(line, parts, " "); if (parts[1] != "barrier") return 0
+    b_name = parts[2]
+    p = index(line, " point="); r = index(line, " resource=")
+    b_point = substr(line, p + 7, r - p - 7)
+    rest = substr(line, r + 1); sub(/ DROPPED$/, "", rest)
+    n = split(rest, kv, " ")
+    for (i = 1; i <= n; ++i) {
+        k = substr(kv[i], 1, index(kv[i], "=") - 1); v = substr(kv[i], index(kv[i], "=") + 1)
+        if (k == "resource") b_res = v
+        else if (k == "mips") b_mips = v
+        else if (k == "layout") { b_old = v; sub(/->.*/, "", b_old); b_new = v; sub(/.*->/, "", b_new) }
+        else if (k == "src") { b_ss = v; sub(/\/.*/, "", b_ss); b_sa = v; sub(/.*\//, "", b_sa) }
+        else if (k == "dst") { b_ds = v; sub(/\/.*/, "", b_ds); b_da = v; sub(/.*\//, "", b_da) }
+        else if (k == "hazard") b_hazard = v
+    }
+    return 1
+}
+# A mask in a markdown table cell: code, the bits joined by an escaped pipe.
+function md_mask(m) { gsub(/\|/, " \\| ", m); return "`" m "`" }
+function md_hazard(h) { gsub(/\+/, " + ", h); return h }
+function short_layout(l) { sub(/_OPTIMAL$/, "", l); sub(/_KHR$/, "", l); return l }
+# The drop list: expected[name SUBSEP config], note[...], untraced[...]; entry_configs[name] = "c1 c2".
+function load_list(file,   line, f, n, i, key, rest) {
+    while ((getline line < file) > 0) {
+        if (line ~ /^#/ || line ~ /^[ \t]*$/) continue
+        n = split(line, f, " ")
+        if (f[1] == "config") { cfg_args[f[2]] = line; sub(/^config +[^ ]+ +[^ ]+ */, "", cfg_args[f[2]]); continue }
+        key = f[1] SUBSEP f[2]
+        expected[key] = f[3]; untraced[key] = (f[4] == "untraced")
+        rest = line; for (i = 1; i <= (untraced[key] ? 4 : 3); ++i) sub(/^[^ ]+ +/, "", rest)
+        note[key] = (n > (untraced[key] ? 4 : 3)) ? rest : ""
+        entry_configs[f[1]] = entry_configs[f[1]] " " f[2]
+        entry_order[++entries] = key
+    }
+    close(file)
+}
+EOF
+
+# --- 2. The list check: every traced barrier line is drop-tested by some entry, every entry is recorded. -----
+check_list() {
+    local traces=()
+    for id in $configs; do traces+=("$tmp/trace.$id"); done
+    awk -v list="$list" -v frame_c="$root/src/sky/frame.c" "$AWK_LIB"'
+        BEGIN { load_list(list) }
+        FNR == 1 { cfg = FILENAME; sub(/.*\/trace\./, "", cfg) }
+        /^barrier / { parse($0); line = $0; sub(/ DROPPED$/, "", line)
+                      has[cfg SUBSEP line] = 1; named[cfg SUBSEP b_name] = 1
+                      if (!(line in first_cfg)) { first_cfg[line] = cfg; lines[++nl] = line; lname[line] = b_name } }
+        END {
+            bad = 0
+            for (i = 1; i <= nl; ++i) {
+                line = lines[i]; n = split(entry_configs[lname[line]], cs, " "); ok = 0
+                for (j = 1; j <= n; ++j) if ((cs[j] SUBSEP line) in has) ok = 1
+                if (!ok) { bad++
+                    printf "barrier_list: untested: \"%s\" (config %s) has no line in tests/barrier_drops.txt whose config records it exactly so:\n  %s\n  add \"%s %s <EXPECTED>\" (run tests/barrier_drop_test.sh to see what a drop reports)\n", lname[line], first_cfg[line], line, lname[line], first_cfg[line] }
+            }
+            for (e = 1; e <= entries; ++e) {
+                split(entry_order[e], k, SUBSEP)
+                if (!(k[2] in cfg_args)) { bad++; printf "barrier_list: %s: no \"config %s\" line\n", k[1], k[2]; continue }
+                if (untraced[entry_order[e]]) {
+                    # Not in any trace: the name must at least still be in the frame spine.
+                    found = 0; while ((getline src < frame_c) > 0) if (index(src, "\"" k[1] "\"")) found = 1; close(frame_c)
+                    if (!found) { bad++; printf "barrier_list: %s (untraced) is not named in src/sky/frame.c\n", k[1] }
+                } else if (!((k[2] SUBSEP k[1]) in named)) {
+                    bad++; printf "barrier_list: %s: config %s records no barrier of that name (renamed or gone?)\n", k[1], k[2]
+                }
+            }
+            if (bad) { printf "barrier_list: %d problem(s); the list is tests/barrier_drops.txt\n", bad; exit 1 }
+            printf "barrier_list: ok: %d distinct barriers traced in %d configs, %d drop tests\n", nl, ncfg, entries
+        }' ncfg="$(wc -w <<<"$configs")" "${traces[@]}"
+}
+
+if [ "$mode" = list ]; then
+    check_list
+    exit $?
+fi
+
+# --- 3. The tables. ------------------------------------------------------------------------------------------
+# A barrier table: the trace of one config; lines also found in the traces given by -v skip="a b" are left out.
+# Columns: where it sits (the pass before and after it), the barrier, what it covers, the two scopes, the hazard
+# it prevents, and what validation reports without it (tests/barrier_drops.txt).
+barrier_table() {   # config [skip configs] [label column: config name]
+    local id=$1 skip=${2:-} label=${3:-}
+    local skipfiles=()
+    for s in $skip; do skipfiles+=("$tmp/trace.$s"); done
+    awk -v list="$list" -v id="$id" -v label="$label" "$AWK_LIB"'
+        BEGIN { load_list(list) }
+        FNR == 1 { f++ }
+        # First the traces to skip (f < last), then the config itself (two passes over it: passes after barriers).
+        f < nfiles && /^barrier / { l = $0; sub(/ DROPPED$/, "", l); skipped[l] = 1; next }
+        f < nfiles { next }
+        /^pass / { pass = $2; if (pending) for (i = first_pending; i <= n; ++i) after[i] = pass; pending = 0; next }
+        /^barrier / {
+            parse($0); l = $0; sub(/ DROPPED$/, "", l)
+            ++n; before[n] = pass; row_line[n] = l; name[n] = b_name; res[n] = b_res; mips[n] = b_mips
+            old[n] = b_old; new[n] = b_new; ss[n] = b_ss; sa[n] = b_sa; ds[n] = b_ds; da[n] = b_da; hz[n] = b_hazard
+            if (!pending) { first_pending = n; pending = 1 }
+        }
+        END {
+            if (n == 0) { print "*(none)*"; exit }
+            printf "| # |%s between passes | barrier | resource, mips | layout | src stage / access | dst stage / access | prevents | left out, validation reports |\n", label != "" ? " frame |" : ""
+            printf "|---|%s---|---|---|---|---|---|---|---|\n", label != "" ? "---|" : ""
+            rows = 0
+            for (i = 1; i <= n; ++i) {
+                if (row_line[i] in skipped) continue
+                b = before[i] == "" ? "*frame start*" : "`" before[i] "`"
+                a = (i in after) ? "`" after[i] "`" : (da[i] ~ /HOST/ ? "*host, after the fence*" : (new[i] ~ /PRESENT/ ? "*present*" : "*frame end*"))
+                lay = mips[i] == "-" ? "*buffer*" : "`" old[i] "` → `" new[i] "`"
+                rm = mips[i] == "-" ? "`" res[i] "`" : "`" res[i] "` " mips[i]
+                key = name[i] SUBSEP id
+                if (!(key in expected)) {   # drop-tested in another config that records it identically
+                    c = entry_configs[name[i]]; split(c, cs, " "); key = name[i] SUBSEP cs[1]
+                }
+                rep = (key in expected) ? md_hazard(expected[key]) : "**not tested**"
+                if (note[key] != "" && note[key] != "idem") rep = rep " — " note[key]
+                else if (note[key] == "idem") rep = rep " — idem"
+                printf "| %d |%s %s → %s | `%s` | %s | %s | %s / %s | %s / %s | %s | %s |\n", ++rows,
+                       label != "" ? " " label " |" : "", b, a, name[i], rm, lay, md_mask(ss[i]), md_mask(sa[i]),
+                       md_mask(ds[i]), md_mask(da[i]), md_hazard(hz[i]), rep
+            }
+            if (rows == 0) print "*(none)*"
+        }' nfiles=$((${#skipfiles[@]} + 1)) "${skipfiles[@]}" "$tmp/trace.$id"
+}
+
+render_configs=$(awk '$1 == "config" && $3 == "render" && $2 != "render" { print $2 }' "$list")
+window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
+{
+    echo "<!-- BEGIN GENERATED: frame table -->"
+    echo "<!-- tools/sync_doc.sh, from: vksky $(awk '$1 == "config" && $2 == "render" { $1 = $2 = $3 = ""; sub(/^ +/, ""); print }' "$list") --trace-barriers -->"
+    barrier_table render
+    echo "<!-- END GENERATED: frame table -->"
+} >"$tmp/gen.frame"
+{
+    echo "<!-- BEGIN GENERATED: present table -->"
+    id=$(head -n 1 <<<"$window_configs")
+    if [ -n "$id" ]; then
+        echo "<!-- vksky $(awk -v id="$id" '$1 == "config" && $2 == id { $1 = $2 = $3 = ""; sub(/^ +/, ""); print }' "$list") --trace-barriers: the barriers that differ from the headless frame -->"
+        barrier_table "$id" render
+    fi
+    echo "<!-- END GENERATED: present table -->"
+} >"$tmp/gen.present"
+{
+    echo "<!-- BEGIN GENERATED: variant table -->"
+    echo "<!-- the barriers of the other headless configurations of tests/barrier_drops.txt that the frame table does not show -->"
+    seen=render
+    for id in $render_configs; do
+        flags=$(awk -v id="$id" '$1 == "config" && $2 == id { $1 = $2 = $3 = ""; sub(/^ +/, ""); sub(/^--render OUT[^ ]* /, ""); sub(/--width [0-9]+ --height [0-9]+ ?/, ""); print }' "$list")
+        rows=$(barrier_table "$id" "$seen" "\`${flags:-default}\`" | tail -n +3)
+        if [ -n "$rows" ] && [ "$rows" != "*(none)*" ]; then
+            [ -s "$tmp/variant_rows" ] || barrier_table "$id" "$seen" "x" | head -n 2 >"$tmp/variant_head"
+            echo "$rows" >>"$tmp/variant_rows"
+        else
+            echo "$flags" >>"$tmp/variant_same"
+        fi
+        seen="$seen $id"
+    done
+    if [ -s "$tmp/variant_rows" ]; then
+        cat "$tmp/variant_head"
+        awk -F'|' 'BEGIN { OFS = "|" } { $2 = " " ++n " "; print }' "$tmp/variant_rows"
+    fi
+    if [ -s "$tmp/variant_same" ]; then
+        echo
+        echo "Configurations that record no barrier beyond those above: $(sed 's/.*/`&`/' "$tmp/variant_same" | paste -sd, - | sed 's/,/, /g')."
+    fi
+    echo "<!-- END GENERATED: variant table -->"
+} >"$tmp/gen.variant"
+
+# --- 4. The diagram: passes in order, each edge labelled with the barriers recorded between two passes. -----
+# The window's semaphore stages, as window.c's submit() sets them (wait, then signal).
+read -r sem_wait sem_signal < <(awk '/^static void submit\(/ { f = 1 } f && /stageMask = / { s = $0; sub(/.*stageMask = VK_PIPELINE_STAGE_2_/, "", s); sub(/_BIT.*/, "", s); out = out " " s } f && /^}/ { f = 0 } END { print out }' "$root/src/app/window.c" 2>/dev/null || true)
+window_id=$(head -n 1 <<<"$window_configs")
+awk -v sem_wait="${sem_wait:-?}" -v sem_signal="${sem_signal:-?}" "$AWK_LIB"'
+    function esc(s) { gsub(/"/, "\\\"", s); return s }
+    function label_of(i) { return names[i] "  " hz[i] "\\l" (old[i] == "UNDEFINED" && new[i] == "UNDEFINED" ? "buffer (no layout)" : short_layout(old[i]) " → " short_layout(new[i])) "\\l" }
+    FNR == 1 { f++ }
+    f == 1 && /^barrier / { l = $0; sub(/ DROPPED$/, "", l); in_render[l] = 1 }
+    f == 1 && /^pass / { np++; pname[np] = $2; edge[np] = lab; lab = ""; next }
+    f == 1 && /^barrier / { parse($0); ++nb; names[nb] = b_name; hz[nb] = b_hazard; old[nb] = b_old; new[nb] = b_new
+                            lab = lab label_of(nb)
+                            # What the pass just recorded wrote: the resources whose next barrier has a write source.
+                            if (np && b_sa ~ /WRITE/) writes[np] = writes[np] (writes[np] == "" ? "" : ", ") b_res (b_mips ~ /^[0-9]+$/ && b_res == "bloom" ? " mip " b_mips : "") }
+    f == 2 && /^pass / { wpass = $2; next }
+    f == 2 && /^barrier / { l = $0; sub(/ DROPPED$/, "", l); if (l in in_render) next
+                            parse($0); ++nb; names[nb] = b_name; hz[nb] = b_hazard; old[nb] = b_old; new[nb] = b_new
+                            if (b_new ~ /PRESENT/) wpost = wpost label_of(nb); else wpre = wpre label_of(nb) }
+    END {
+        print "// Generated by tools/sync_doc.sh from vksky --trace-barriers; render with: dot -Tpng -o frame_graph.png frame_graph.dot"
+        print "digraph vksky_frame {"
+        print "  graph [fontname=\"Helvetica\", fontsize=12, rankdir=TB, nodesep=0.3, ranksep=0.22, labelloc=t,"
+        print "         label=\"One vksky frame: the passes (boxes) in recording order and every barrier between them (edge labels: name, hazard, layout)\\n\"];"
+        print "  node [fontname=\"Helvetica\", fontsize=11, shape=box, style=\"rounded,filled\", fillcolor=\"#e6eef8\", color=\"#4a6fa5\", height=0.3];"
+        print "  edge [fontname=\"Helvetica\", fontsize=9, color=\"#555555\", arrowsize=0.6];"
+        print "  start [shape=plaintext, style=\"\", label=\"frame start\\n(the previous frame read and wrote the same images)\"];"
+        prev = "start"
+        for (i = 1; i <= np; ++i) {
+            count[pname[i]]++
+            printf "  p%d [label=<%s%s>];\n", i, pname[i], writes[i] == "" ? "" : "<BR/><FONT POINT-SIZE=\"9\">writes " writes[i] "</FONT>"
+            printf "  %s -> p%d [label=\"%s\"];\n", prev, i, edge[i] == "" ? "(no barrier)\\l" : edge[i]
+            prev = "p" i
+            if (pname[i] == "tonemap") tonemap_prev = (i > 1 ? "p" (i - 1) : "start")
+        }
+        if (lab != "") {
+            print "  host [shape=plaintext, style=\"\", label=\"host reads the readback buffers\\n(after the fence)\"];"
+            printf "  %s -> host [label=\"%s\"];\n", prev, lab
+        }
+        if (wpre != "" || wpost != "") {
+            print "  subgraph cluster_window {"
+            print "    label=\"the window: same passes up to the tone map, which renders into the swapchain image\"; fontsize=10; style=dashed; color=\"#999999\";"
+            printf "    acquire [shape=note, fillcolor=\"#fff4d6\", color=\"#b08a2e\", label=\"vkAcquireNextImageKHR signals acquire semaphore;\\nsubmit waits on it at %s\"];\n", sem_wait
+            print "    wtonemap [label=\"tonemap → swapchain image\"];"
+            printf "    present [shape=note, fillcolor=\"#fff4d6\", color=\"#b08a2e\", label=\"submit signals render-finished semaphore at %s;\\nvkQueuePresentKHR waits on it\"];\n", sem_signal
+            printf "    acquire -> wtonemap [label=\"%s\"];\n", wpre
+            printf "    wtonemap -> present [label=\"%s\"];\n", wpost
+            print "  }"
+            if (tonemap_prev != "") printf "  %s -> wtonemap [style=dashed, label=\"window frame\\l\"];\n", tonemap_prev
+        }
+        print "}"
+    }' "$tmp/trace.render" ${window_id:+"$tmp/trace.$window_id"} >"$tmp/frame_graph.dot"
+dot_sum=$(cksum <"$tmp/frame_graph.dot" | awk '{ print $1 "-" $2 }')
+echo "<!-- GENERATED: frame_graph.png is rendered from the frame_graph.dot with cksum $dot_sum -->" >"$tmp/gen.png"
+# Without graphviz the PNG cannot be rendered: keep the guide's record of the .dot it was rendered from, so
+# --check keeps failing until someone renders it.
+if [ "$mode" = write ] && ! command -v dot >/dev/null; then
+    grep "^<!-- GENERATED: frame_graph.png " "$doc" >"$tmp/gen.png" || true
+fi
+
+# --- 5. Splice the generated blocks into the guide. ---------------------------------------------------------
+splice() {   # in out
+    awk -v gdir="$tmp" '
+        function emit(file,   l) { while ((getline l < file) > 0) print l; close(file) }
+        /^<!-- BEGIN GENERATED: frame table -->$/ { emit(gdir "/gen.frame"); skip = 1; next }
+        /^<!-- BEGIN GENERATED: present table -->$/ { emit(gdir "/gen.present"); skip = 1; next }
+        /^<!-- BEGIN GENERATED: variant table -->$/ { emit(gdir "/gen.variant"); skip = 1; next }
+        /^<!-- GENERATED: frame_graph.png / { emit(gdir "/gen.png"); next }
+        skip && /^<!-- END GENERATED: / { skip = 0; next }
+        !skip { print }' "$1" >"$2"
+    for marker in "frame table" "present table" "variant table"; do
+        grep -q "^<!-- BEGIN GENERATED: $marker -->$" "$1" || { echo "sync_doc: $1 lacks <!-- BEGIN GENERATED: $marker -->" >&2; return 1; }
+    done
+    grep -q "^<!-- GENERATED: frame_graph.png " "$1" || { echo "sync_doc: $1 lacks the <!-- GENERATED: frame_graph.png ... --> line" >&2; return 1; }
+}
+splice "$doc" "$tmp/synchronization.md"
+
+if [ "$mode" = check ]; then
+    stale=0
+    if ! diff -u "$doc" "$tmp/synchronization.md" >"$tmp/doc.diff"; then
+        echo "sync_doc: docs/synchronization.md is stale (the frame's barriers changed); run tools/sync_doc.sh:"
+        head -n 40 "$tmp/doc.diff"
+        stale=1
+    fi
+    if ! diff -u "$dotfile" "$tmp/frame_graph.dot" >"$tmp/dot.diff"; then
+        echo "sync_doc: docs/frame_graph.dot is stale; run tools/sync_doc.sh:"
+        head -n 20 "$tmp/dot.diff"
+        stale=1
+    fi
+    [ -f "$pngfile" ] || { echo "sync_doc: docs/frame_graph.png is missing; run tools/sync_doc.sh (needs graphviz)"; stale=1; }
+    [ $stale -eq 0 ] && echo "sync_doc: ok: docs/synchronization.md and docs/frame_graph.dot match the traced frames"
+    exit $stale
+fi
+
+cp "$tmp/synchronization.md" "$doc"
+cp "$tmp/frame_graph.dot" "$dotfile"
+if command -v dot >/dev/null; then
+    dot -Tpng -Gdpi=96 -o "$pngfile" "$dotfile"
+    echo "sync_doc: wrote docs/synchronization.md, docs/frame_graph.dot, docs/frame_graph.png"
+else
+    # The guide now records the new .dot's checksum: --check fails until the PNG is rendered from it.
+    echo "sync_doc: wrote docs/synchronization.md and docs/frame_graph.dot; install graphviz (apt-get install graphviz)" >&2
+    echo "sync_doc: and run: dot -Tpng -Gdpi=96 -o docs/frame_graph.png docs/frame_graph.dot" >&2
+    exit 1
+fi
