@@ -32,7 +32,7 @@ expect_bad "trailing junk" "--width" "${R[@]}" --width 64px
 expect_bad "fractional int" "--steps" "${R[@]}" --steps 3.5
 expect_bad "NaN" "--sun-elevation" "${R[@]}" --sun-elevation nan
 expect_bad "Inf" "--altitude" "${R[@]}" --altitude inf
-expect_bad "too small" "[32, 16384]" "${R[@]}" --width 8
+expect_bad "too small" "[1, 16384]" "${R[@]}" --width 0
 expect_bad "too large" "--width" "${R[@]}" --width 100000
 expect_bad "elevation range" "[-90, 90]" "${R[@]}" --sun-elevation 91
 expect_bad "pitch range" "--pitch" "${R[@]}" --pitch -90.5

@@ -156,13 +156,13 @@ barrier_table() {   # config [skip configs] [label column: config name]
         /^pass / { pass = $2; if (pending) for (i = first_pending; i <= n; ++i) after[i] = pass; pending = 0; next }
         /^barrier / {
             parse($0); l = $0; sub(/ DROPPED$/, "", l)
-            ++n; before[n] = pass; row_line[n] = l; name[n] = b_name; res[n] = b_res; mips[n] = b_mips
+            ++n; before[n] = pass; row_line[n] = l; name[n] = b_name; point[n] = b_point; res[n] = b_res; mips[n] = b_mips
             old[n] = b_old; new[n] = b_new; ss[n] = b_ss; sa[n] = b_sa; ds[n] = b_ds; da[n] = b_da; hz[n] = b_hazard
             if (!pending) { first_pending = n; pending = 1 }
         }
         END {
             if (n == 0) { print "*(none)*"; exit }
-            printf "| # |%s between passes | barrier | resource, mips | layout | src stage / access | dst stage / access | prevents | left out, validation reports |\n", label != "" ? " frame |" : ""
+            printf "| # |%s point: between passes | barrier | resource, mips | layout | src stage / access | dst stage / access | prevents | left out, validation reports |\n", label != "" ? " frame |" : ""
             printf "|---|%s---|---|---|---|---|---|---|---|\n", label != "" ? "---|" : ""
             rows = 0
             for (i = 1; i <= n; ++i) {
@@ -178,8 +178,8 @@ barrier_table() {   # config [skip configs] [label column: config name]
                 rep = (key in expected) ? md_hazard(expected[key]) : "**not tested**"
                 if (note[key] != "" && note[key] != "idem") rep = rep " — " note[key]
                 else if (note[key] == "idem") rep = rep " — idem"
-                printf "| %d |%s %s → %s | `%s` | %s | %s | %s / %s | %s / %s | %s | %s |\n", ++rows,
-                       label != "" ? " " label " |" : "", b, a, name[i], rm, lay, md_mask(ss[i]), md_mask(sa[i]),
+                printf "| %d |%s *%s*: %s → %s | `%s` | %s | %s | %s / %s | %s / %s | %s | %s |\n", ++rows,
+                       label != "" ? " " label " |" : "", point[i], b, a, name[i], rm, lay, md_mask(ss[i]), md_mask(sa[i]),
                        md_mask(ds[i]), md_mask(da[i]), md_hazard(hz[i]), rep
             }
             if (rows == 0) print "*(none)*"
@@ -231,7 +231,8 @@ window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
 
 # --- 4. The diagram: passes in order, each edge labelled with the barriers recorded between two passes. -----
 # The window's semaphore stages, as window.c's submit() sets them (wait, then signal).
-read -r sem_wait sem_signal < <(awk '/^static void submit\(/ { f = 1 } f && /stageMask = / { s = $0; sub(/.*stageMask = VK_PIPELINE_STAGE_2_/, "", s); sub(/_BIT.*/, "", s); out = out " " s } f && /^}/ { f = 0 } END { print out }' "$root/src/app/window.c" 2>/dev/null || true)
+sem_wait="" sem_signal=""
+read -r sem_wait sem_signal < <(awk '/^static void submit\(/ { f = 1 } f && /stageMask = / { s = $0; sub(/.*stageMask = VK_PIPELINE_STAGE_2_/, "", s); sub(/_BIT.*/, "", s); out = out " " s } f && /^}/ { f = 0 } END { print out }' "$root/src/app/window.c" 2>/dev/null || true) || true
 window_id=$(head -n 1 <<<"$window_configs")
 awk -v sem_wait="${sem_wait:-?}" -v sem_signal="${sem_signal:-?}" "$AWK_LIB"'
     function esc(s) { gsub(/"/, "\\\"", s); return s }

@@ -138,9 +138,19 @@ void transmittance_params(vec2 uv, vec2 size, out float h, out float mu)
     mu = d <= 0.0 ? 1.0 : clamp((d_min * (top_radius() + r) - d * d) / (2.0 * r * d), -1.0, 1.0);
 }
 
+/* Multi-scattering LUT x <-> mu_s. Psi changes fastest across the terminator (mu_s near 0, where the earth
+ * shadow sweeps over the atmosphere) and slowly elsewhere, so x = 0.5 + 0.5 sign(mu_s) sqrt(|mu_s|) puts half the
+ * texels within |mu_s| < 0.25 (Hillaire's linear x = (mu_s + 1)/2 costs ~10 % at sunset with 32 texels). */
+float multiscatter_x_of_mu_s(float mu_s) { return 0.5 + 0.5 * sign(mu_s) * sqrt(abs(mu_s)); }
+float multiscatter_mu_s_of_x(float x)
+{
+    float y = 2.0 * x - 1.0;
+    return sign(y) * y * y;
+}
+
 vec2 multiscatter_uv(float h, float mu_s, vec2 size)
 {
-    return vec2(unit_to_sub_uv(clamp(mu_s * 0.5 + 0.5, 0.0, 1.0), size.x),
+    return vec2(unit_to_sub_uv(clamp(multiscatter_x_of_mu_s(mu_s), 0.0, 1.0), size.x),
                 unit_to_sub_uv(clamp(h / top_altitude(), 0.0, 1.0), size.y));
 }
 

@@ -24,7 +24,7 @@ void main()
     vec2 size = vec2(imageSize(multiscatter_out));
     vec2 t_size = vec2(textureSize(transmittance_lut, 0));
     vec2 uv = (vec2(texel) + 0.5) / size;
-    float mu_s = sub_uv_to_unit(uv.x, size.x) * 2.0 - 1.0;
+    float mu_s = multiscatter_mu_s_of_x(sub_uv_to_unit(uv.x, size.x));
     /* Seed bug 1: clamp 10 m above the ground so no direction starts exactly on the sphere. */
     float h = clamp(sub_uv_to_unit(uv.y, size.y) * top_altitude(), MULTISCATTER_MIN_ALTITUDE, top_altitude());
     vec3 sun = vec3(sqrt(max(0.0, 1.0 - mu_s * mu_s)), mu_s, 0.0);

@@ -2,6 +2,7 @@
 #include "app/headless.h"
 #include "app/options.h"
 #include "app/window.h"
+#include "app/reference_run.h"
 #include <stdlib.h>
 
 int main(int argc, char **argv)
@@ -17,6 +18,17 @@ int main(int argc, char **argv)
         return 0;
     }
     if (o.list_devices) return gpu_list_devices(stdout) == 0 ? 0 : 1;
+    if (o.path_trace && !o.reference) {
+        fprintf(stderr, "vksky: --path-trace: only with --reference\n");
+        return 2;
+    }
+    if (o.reference) {
+        if (o.bench_frames) {
+            fprintf(stderr, "vksky: --bench: not with --reference\n");
+            return 2;
+        }
+        return reference_run(&o);
+    }
     if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);
     if (o.frames || o.screenshot) {
         fprintf(stderr, "vksky: %s: only for the interactive window (not with --render or --bench)\n",

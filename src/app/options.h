@@ -11,6 +11,11 @@ typedef struct options {
     sky_view view;
     int width, height;
     sky_lut_quality lut;                        /* LUT sizes, steps, format */
+    ref_atmosphere atmosphere;                  /* the medium (Hillaire Table 1 unless flags change it) */
+    bool reference;                             /* --reference: CPU ground truth instead of the GPU */
+    bool path_trace;                            /* --path-trace: the Monte Carlo path tracer as the ground truth */
+    int path_samples;                           /* paths per pixel / direction */
+    double scales[3];                           /* density scales given so far: Rayleigh, Mie, ozone */
     double render_scale;
     int bloom_mips;
     const char *outputs[OPTIONS_MAX_OUTPUTS];   /* --render, .exr or .png */

@@ -270,6 +270,7 @@ static void swapchain_create_views(app *a, swapchain *sc)
         char name[48];
         snprintf(name, sizeof name, "swapchain image %u", i);
         gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE, (uint64_t)sc->images[i], name);
+        gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)sc->views[i], name);
         snprintf(name, sizeof name, "render finished %u", i);
         gpu_set_name(ctx, VK_OBJECT_TYPE_SEMAPHORE, (uint64_t)sc->render_finished[i], name);
     }

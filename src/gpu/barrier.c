@@ -32,7 +32,8 @@ static const gpu_usage_info usages[GPU_USAGE_COUNT] = {
      * from that same stage so the layout transition happens after the wait (the classic acquire mistake). */
     [GPU_USAGE_ACQUIRED] = {"acquired", VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_NONE,
                             VK_IMAGE_LAYOUT_UNDEFINED},
-    /* Presentation: no stage or access in the barrier; the semaphore signalled by the submit orders it. */
+    /* Presentation: no stage or access in the barrier; the semaphore signalled by the submit orders it, and since
+     * it is signalled at ALL_COMMANDS, this barrier's layout transition too (docs/synchronization.md §4). */
     [GPU_USAGE_PRESENT] = {"present", VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR},
 };
 

@@ -113,7 +113,7 @@ static double rho2_of(const ref_atmosphere *a, double h) { return h * (2.0 * a->
 
 /* Distance to the top from inside, -r mu + sqrt(r^2 (mu^2 - 1) + Rt^2), with Rt^2 - r^2 = c = (top - h)(Rt + r)
  * and, for mu > 0, the root rationalised (c / (r mu + sqrt(..))) so that nothing cancels near mu = 1. */
-static double dist_top_rc(double r, double c, double mu)
+static inline double dist_top_rc(double r, double c, double mu)
 {
     double disc = c + r * r * mu * mu;
     double s = sqrt(disc > 0.0 ? disc : 0.0), d;
@@ -165,10 +165,94 @@ static double sun_visibility_rho2(double rho2, double r, double mus)
     return clampd(10.0 * mus + 0.5, 0.0, 1.0);
 }
 
+/* Distances along a ray (from (h, mu), sun at mu_s, nu = dot(ray, sun)) where it crosses the boundary of the earth's
+ * shadow, i.e. where the inclusive ground test toward the sun flips. With p(t) the point, the shadow is
+ * p.s < 0 and |p|^2 - (p.s)^2 <= Rb^2, i.e. (1 - nu^2) t^2 + 2 r (mu - mu_s nu) t + (rho^2 - r^2 mu_s^2) <= 0
+ * (rho^2 = r^2 - Rb^2, no cancellation) on the anti-sun side. Returns the number of crossings in (0, tend). */
+static int shadow_crossings(const ref_atmosphere *a, double h, double mu, double mus, double nu, double tend,
+                            double out[2])
+{
+    double r = a->bottom_radius + h;
+    double A = (1.0 - nu) * (1.0 + nu), B = r * (mu - mus * nu), C = rho2_of(a, h) - r * r * mus * mus;
+    double roots[2];
+    int n = 0, k = 0;
+    if (A > 1e-12) {
+        double disc = B * B - A * C;
+        if (disc <= 0.0)
+            return 0;
+        double q = -(B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+        roots[n++] = q / A;
+        if (q != 0.0)
+            roots[n++] = C / q;
+    } else if (B != 0.0) {
+        roots[n++] = -C / (2.0 * B);
+    }
+    for (int i = 0; i < n; ++i) {
+        double t = roots[i];
+        if (t > 0.0 && t < tend && r * mus + t * nu < 0.0)
+            out[k++] = t;
+    }
+    if (k == 2 && out[0] > out[1]) {
+        double tmp = out[0];
+        out[0] = out[1];
+        out[1] = tmp;
+    }
+    return k;
+}
+
+/* Distances along a ray where mu_s at the point, (r mu_s + t nu) / r_t, equals c: (r mu_s + t nu)^2 =
+ * c^2 (r^2 + 2 r mu t + t^2) on the side where r mu_s + t nu has the sign of c. Appends those in (0, tend). */
+static int mus_crossings(const ref_atmosphere *a, double h, double mu, double mus, double nu, double tend, double c,
+                         double *out)
+{
+    double r = a->bottom_radius + h;
+    double A = (nu - c) * (nu + c), B = r * (mus * nu - c * c * mu), C = r * r * (mus - c) * (mus + c);
+    double roots[2];
+    int n = 0, k = 0;
+    if (fabs(A) > 1e-12) {
+        double disc = B * B - A * C;
+        if (disc < 0.0)
+            return 0;
+        double q = -(B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+        roots[n++] = q / A;
+        if (q != 0.0)
+            roots[n++] = C / q;
+    } else if (B != 0.0) {
+        roots[n++] = -C / (2.0 * B);
+    }
+    for (int i = 0; i < n; ++i) {
+        double t = roots[i];
+        if (t > 0.0 && t < tend && (r * mus + t * nu) * c > 0.0)
+            out[k++] = t;
+    }
+    return k;
+}
+
+/* Where the sun visibility of the model is not smooth along a ray: the earth's shadow boundary (a jump) and
+ * mu_s = -0.05 / +0.05 (the kinks of the horizon fade). Up to 6 distances in (0, tend), sorted. Integrating each
+ * piece separately keeps the midpoint rule second-order (a jump inside a step makes it first order, a kink
+ * makes its error erratic). */
+#define MAX_CUTS 6
+static int ray_cuts(const ref_atmosphere *a, double h, double mu, double mus, double nu, double tend, double *cuts)
+{
+    int n = shadow_crossings(a, h, mu, mus, nu, tend, cuts);
+    n += mus_crossings(a, h, mu, mus, nu, tend, -0.05, cuts + n);
+    n += mus_crossings(a, h, mu, mus, nu, tend, 0.05, cuts + n);
+    for (int i = 1; i < n; ++i) /* insertion sort */
+        for (int j = i; j > 0 && cuts[j - 1] > cuts[j]; --j) {
+            double tmp = cuts[j];
+            cuts[j] = cuts[j - 1];
+            cuts[j - 1] = tmp;
+        }
+    return n;
+}
+
 /* Step k of `steps` along a ray of length tend from (h, mu): its midpoint t and its length dt.
  * graded == 0: uniform steps (the model's march). graded != 0: steps graded quadratically in a uniform parameter
  * toward the lowest point of the ray, where the density changes fastest (the start for upward rays, the end for
  * ground hits, the tangent point t = -r mu otherwise). Same integral, 4-8x smaller error at equal counts. */
+static double grade(double u) { return u * u; }
+
 static void ray_step(const ref_atmosphere *a, double h, double mu, double tend, int ground, int graded, int steps,
                      int k, double *t, double *dt)
 {
@@ -177,13 +261,11 @@ static void ray_step(const ref_atmosphere *a, double h, double mu, double tend, 
         t0 = tend * k / steps;
         t1 = tend * (k + 1) / steps;
     } else if (mu >= 0.0) {
-        double u0 = (double)k / steps, u1 = (double)(k + 1) / steps;
-        t0 = tend * u0 * u0;
-        t1 = tend * u1 * u1;
+        t0 = tend * grade((double)k / steps);
+        t1 = tend * grade((double)(k + 1) / steps);
     } else if (ground) {
-        double u0 = (double)(steps - k) / steps, u1 = (double)(steps - k - 1) / steps;
-        t0 = tend * (1.0 - u0 * u0);
-        t1 = tend * (1.0 - u1 * u1);
+        t0 = tend * (1.0 - grade((double)(steps - k) / steps));
+        t1 = tend * (1.0 - grade((double)(steps - k - 1) / steps));
     } else {
         double ts = -(a->bottom_radius + h) * mu; /* tangent point */
         if (ts > tend)
@@ -194,14 +276,12 @@ static void ray_step(const ref_atmosphere *a, double h, double mu, double tend, 
         if (n1 > steps - 1)
             n1 = steps - 1;
         if (k < n1) {
-            double u0 = (double)(n1 - k) / n1, u1 = (double)(n1 - k - 1) / n1;
-            t0 = ts * (1.0 - u0 * u0);
-            t1 = ts * (1.0 - u1 * u1);
+            t0 = ts * (1.0 - grade((double)(n1 - k) / n1));
+            t1 = ts * (1.0 - grade((double)(n1 - k - 1) / n1));
         } else {
             int n2 = steps - n1;
-            double u0 = (double)(k - n1) / n2, u1 = (double)(k - n1 + 1) / n2;
-            t0 = ts + (tend - ts) * u0 * u0;
-            t1 = ts + (tend - ts) * u1 * u1;
+            t0 = ts + (tend - ts) * grade((double)(k - n1) / n2);
+            t1 = ts + (tend - ts) * grade((double)(k - n1 + 1) / n2);
         }
     }
     *t = 0.5 * (t0 + t1);
@@ -261,8 +341,9 @@ static void bruneton_params(const ref_atmosphere *a, double x_mu, double x_r, do
     double r = Rb + h;
     double d_min = atmo_height(a) - h, d_max = rho + H;
     double d = d_min + x_mu * (d_max - d_min);
+    double c = (atmo_height(a) - h) * (a->top_radius + r); /* H^2 - rho^2 = Rt^2 - r^2, without cancellation */
     *h_out = h;
-    *mu_out = d == 0.0 ? 1.0 : clampd((H * H - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
+    *mu_out = d == 0.0 ? 1.0 : clampd((c - d * d) / (2.0 * r * d), -1.0, 1.0);
 }
 
 void ref_transmittance_uv_to_params(const ref_atmosphere *a, double u, double v, int width, int height,
@@ -285,7 +366,9 @@ void ref_multiscatter_texel_params(const ref_atmosphere *a, int i, int j, int wi
 {
     double xu = x_from_uv((i + 0.5) / width, width);
     double xv = x_from_uv((j + 0.5) / height, height);
-    *mu_s = 2.0 * xu - 1.0;
+    /* x = 0.5 + 0.5 sign(mu_s) sqrt(|mu_s|): texels crowd at the terminator (docs/model.md). */
+    double y = 2.0 * xu - 1.0;
+    *mu_s = y < 0.0 ? -y * y : y * y;
     *altitude = xv * atmo_height(a);
 }
 
@@ -324,7 +407,7 @@ void ref_transmittance(const ref_atmosphere *a, double altitude, double mu, int 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Cubic interpolation helpers                                                                                */
 
-static void catmull_rom(double f, double w[4])
+static inline void catmull_rom(double f, double w[4])
 {
     double f2 = f * f, f3 = f2 * f;
     w[0] = 0.5 * (-f3 + 2.0 * f2 - f);
@@ -383,11 +466,12 @@ static void cubic_taps(double f, int n, int mirror_lo, int mirror_hi, int idx[4]
 /* Sun transmittance table (internal; only for filling the Psi table fast)                                    */
 
 /* T on a Bruneton grid (nodes at x = k/(N-1)), integrated with SUN_TABLE_STEPS uniform midpoint steps and
- * interpolated bicubically. Against direct integration it is within 1e-6 (absolute) wherever the sun is above
- * the horizon (checked while developing; the Psi it feeds is checked against direct-T Psi by the tests'
- * author, see ref_atmosphere.h). */
+ * interpolated bicubically (Catmull-Rom). Measured against direct integration (4000 steps) at 17k random points
+ * with the sun above the horizon and mu >= -0.05: |dT| <= 9e-4, and > 1e-4 only on rays grazing the kinks of the
+ * ozone tent (tangent altitude ~ 10, 25, 40 km). In Psi it averages out: Psi with this table vs Psi with direct
+ * transmittance (500 steps), same quadrature, 60 random (h, mu_s): max rel. difference 1.3e-5. */
 #define SUN_TABLE_NX 256
-#define SUN_TABLE_NY 64
+#define SUN_TABLE_NY 128
 #define SUN_TABLE_STEPS 500
 
 typedef struct sun_table {
@@ -408,6 +492,23 @@ static sun_table *sun_table_build(const ref_atmosphere *a)
                 t->T[j][i][c] = exp(-tau[c]);
         }
     return t;
+}
+
+/* Bicubic lookup of the sun table at (h, mu), clamped to [0, 1]. */
+static void sun_table_eval(const sun_table *t, const ref_atmosphere *a, double h, double mu, double T[3])
+{
+    double x_mu, x_r, wx[4], wy[4];
+    int ix[4], iy[4];
+    bruneton_x(a, h, mu, &x_mu, &x_r);
+    cubic_taps(x_mu * (SUN_TABLE_NX - 1), SUN_TABLE_NX, 0, 0, ix, wx);
+    cubic_taps(x_r * (SUN_TABLE_NY - 1), SUN_TABLE_NY, 0, 0, iy, wy);
+    for (int c = 0; c < 3; ++c) {
+        double v = 0.0;
+        for (int b = 0; b < 4; ++b)
+            for (int k = 0; k < 4; ++k)
+                v += wy[b] * wx[k] * t->T[iy[b]][ix[k]][c];
+        T[c] = clampd(v, 0.0, 1.0);
+    }
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
@@ -481,23 +582,64 @@ static int polar_horizon(const ref_atmosphere *a, double h, int n, polar_rule *p
     return 1;
 }
 
+/* Sun transmittance at a point: direct (sun_steps) or from the sun table. */
+static void sun_T(const ref_atmosphere *a, const sun_table *st, int sun_steps, double h, double mu, double T[3])
+{
+    if (st) {
+        sun_table_eval(st, a, h, mu, T);
+    } else {
+        double tau[3];
+        optical_depth(a, h, mu, sun_steps, tau);
+        for (int c = 0; c < 3; ++c)
+            T[c] = exp(-tau[c]);
+    }
+}
+
+/* Lit part of the step [t0, t1] of the ray (h, r, mu) for a sun at (mus, nu), cut at the earth-shadow crossings
+ * `cut` (sorted): sum over its pieces of (piece / step length) * visibility * T_sun at the piece's midpoint. */
+static void ms_split_step(const ref_atmosphere *a, const sun_table *st, int sun_steps, double h, double r,
+                          double mu, double mus, double nu, double t0, double t1, const double *cut, int ncut,
+                          double out[3])
+{
+    double lo = t0;
+    out[0] = out[1] = out[2] = 0.0;
+    for (int p = 0; p <= ncut; ++p) {
+        double hi = p < ncut ? clampd(cut[p], t0, t1) : t1;
+        if (hi > lo) {
+            double tm = 0.5 * (lo + hi), rt, ht, T[3];
+            ray_point(a, h, r, mu, tm, &rt, &ht);
+            ht = clampd(ht, 0.0, atmo_height(a));
+            double mst = rt > 0.0 ? clampd((r * mus + tm * nu) / rt, -1.0, 1.0) : mus;
+            double vis = sun_visibility_rho2(rho2_of(a, ht), rt, mst) * (hi - lo) / (t1 - t0);
+            if (vis > 0.0) {
+                sun_T(a, st, sun_steps, ht, mst, T);
+                for (int c = 0; c < 3; ++c)
+                    out[c] += vis * T[c];
+            }
+        }
+        lo = hi > lo ? hi : lo;
+    }
+}
+
 /* Psi(h, mu_s[q]) for `count` sun cosines at one (already clamped) altitude: n_az azimuths (midpoints in theta,
- * as the model) times the polar rule, `steps` steps per direction (uniform or graded). The nested sun
- * transmittance is integrated directly with sun_steps, or, when `st` is given, read from the sun table. The view
- * geometry, the view transmittance and f_ms do not depend on the sun, so they are computed once per (polar node,
- * step) and shared by all azimuths and sun cosines; azimuths theta and 2 pi - theta (i and n_az - 1 - i) are
- * mirror images about the sun's plane and contribute equally, so only half of them are evaluated.
- * Returns 0 when out of memory (out = 0). */
+ * as the model) times the polar rule, `steps` steps per direction (uniform, or graded with the steps that
+ * straddle the earth's shadow integrated piecewise). The nested sun transmittance is integrated directly with
+ * sun_steps, or, when `st` is given, read from the sun table. The view geometry, the view transmittance and f_ms
+ * do not depend on the sun, so they are computed once per (polar node, step) and shared by all azimuths and sun
+ * cosines; azimuths theta and 2 pi - theta (i and n_az - 1 - i) are mirror images about the sun's plane and
+ * contribute equally, so only half of them are evaluated. Returns 0 when out of memory (out = 0). */
 static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus, int count, int n_az,
                             const polar_rule *pr, int steps, int graded, int sun_steps, const sun_table *st,
                             double (*out)[3])
 {
     const double top = atmo_height(a), H = bruneton_H(a), r = a->bottom_radius + h;
     const int n_half = (n_az + 1) / 2;
-    double *az = malloc(sizeof(double) * 2 * (size_t)n_half + sizeof(double) * 2 * (size_t)count);
+    const size_t n_rays = (size_t)count * (size_t)n_half;
+    double *az = malloc(sizeof(double) * (2 * (size_t)n_half + 2 * (size_t)count + (MAX_CUTS + 2) * n_rays) +
+                        sizeof(int) * 2 * n_rays);
     double(*L)[3] = calloc((size_t)count, sizeof *L);
     double F[3] = {0.0, 0.0, 0.0};
-    static double row[SUN_TABLE_NX][3]; /* the sun table interpolated along x_r for the current sample */
+    double row[SUN_TABLE_NX][3]; /* the sun table interpolated along x_r for the current sample */
     for (int q = 0; q < count; ++q)
         out[q][0] = out[q][1] = out[q][2] = 0.0;
     if (!az || !L) {
@@ -506,6 +648,9 @@ static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus
         return 0;
     }
     double *cos_az = az, *w_az = az + n_half, *sin_s = az + 2 * n_half, *cos_s = sin_s + count;
+    double *cut = cos_s + count;             /* [q][i][MAX_CUTS + 1]: ray_cuts of each (sun, azimuth) ray */
+    double *nu_qi = cut + (MAX_CUTS + 1) * n_rays; /* [q][i] */
+    int *next_cut = (int *)(nu_qi + n_rays);       /* [q][i]: first cut not behind the current step */
     for (int i = 0; i < n_half; ++i) {
         cos_az[i] = cos(2.0 * REF_PI * (i + 0.5) / n_az);
         w_az[i] = ((2 * i + 1 == n_az) ? 1.0 : 2.0) * 2.0 * REF_PI / n_az;
@@ -521,6 +666,15 @@ static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus
         int ground = hit_ground(a, h, mu, &tend);
         if (!ground)
             tend = dist_to_top(a, h, mu);
+        for (int q = 0; q < count; ++q)
+            for (int i = 0; i < n_half; ++i) {
+                size_t qi = (size_t)q * n_half + i;
+                double *cq = cut + (MAX_CUTS + 1) * qi;
+                nu_qi[qi] = cos_az[i] * sin_phi * sin_s[q] + mu * cos_s[q];
+                int nc = graded ? ray_cuts(a, h, mu, cos_s[q], nu_qi[qi], tend, cq) : 0;
+                cq[nc] = INFINITY; /* sentinel */
+                next_cut[qi] = 0;
+            }
         double Tv[3] = {1.0, 1.0, 1.0};
         for (int k = 0; k < steps; ++k) {
             double t, dt, rt, ht, w[3];
@@ -537,6 +691,7 @@ static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus
             }
             if (!(rt > 0.0) || (w[0] <= 0.0 && w[1] <= 0.0 && w[2] <= 0.0))
                 continue;
+            const double t0 = t - 0.5 * dt, t1 = t + 0.5 * dt;
             double rho2 = rho2_of(a, ht), c_top = (top - ht) * (a->top_radius + rt);
             double d_min = top - ht, inv_span = 0.0;
             if (st) {
@@ -545,7 +700,7 @@ static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus
                 int iy[4];
                 double wy[4];
                 inv_span = span > 0.0 ? 1.0 / span : 0.0;
-                cubic_taps(clampd(rho / H, 0.0, 1.0) * (SUN_TABLE_NY - 1), SUN_TABLE_NY, 1, 0, iy, wy);
+                cubic_taps(clampd(rho / H, 0.0, 1.0) * (SUN_TABLE_NY - 1), SUN_TABLE_NY, 0, 0, iy, wy);
                 for (int i = 0; i < SUN_TABLE_NX; ++i)
                     for (int c = 0; c < 3; ++c)
                         row[i][c] = wy[0] * st->T[iy[0]][i][c] + wy[1] * st->T[iy[1]][i][c] +
@@ -558,11 +713,27 @@ static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus
                 double A = ka * cos_s[q], B = kb * sin_s[q];
                 double acc[3] = {0.0, 0.0, 0.0};
                 for (int i = 0; i < n_half; ++i) {
+                    double T[3];
+                    size_t qi = (size_t)q * n_half + i;
+                    const double *ci = cut + (MAX_CUTS + 1) * qi;
+                    int nx = next_cut[qi];
+                    while (ci[nx] <= t0)
+                        ++nx;
+                    next_cut[qi] = nx;
+                    if (ci[nx] < t1) {
+                        /* the visibility jumps or kinks inside this step: integrate its pieces */
+                        int nc = 0;
+                        while (ci[nx + nc] < t1)
+                            ++nc;
+                        ms_split_step(a, st, sun_steps, h, r, mu, cos_s[q], nu_qi[qi], t0, t1, ci + nx, nc, T);
+                        for (int c = 0; c < 3; ++c)
+                            acc[c] += w_az[i] * T[c];
+                        continue;
+                    }
                     double mst = clampd(A + B * cos_az[i], -1.0, 1.0);
                     double vis = sun_visibility_rho2(rho2, rt, mst);
                     if (vis <= 0.0)
                         continue;
-                    double T[3];
                     if (st) {
                         double x_mu = clampd((dist_top_rc(rt, c_top, mst) - d_min) * inv_span, 0.0, 1.0);
                         double fx = x_mu * (SUN_TABLE_NX - 1);
@@ -570,7 +741,7 @@ static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus
                         if (i0 >= 1 && i0 <= SUN_TABLE_NX - 3) { /* interior: plain Catmull-Rom */
                             double wx[4];
                             catmull_rom(fx - i0, wx);
-                            const double(*rw)[3] = row + i0 - 1;
+                            double(*rw)[3] = row + i0 - 1;
                             for (int c = 0; c < 3; ++c)
                                 T[c] = wx[0] * rw[0][c] + wx[1] * rw[1][c] + wx[2] * rw[2][c] + wx[3] * rw[3][c];
                         } else {
@@ -584,10 +755,7 @@ static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus
                         for (int c = 0; c < 3; ++c)
                             T[c] = clampd(T[c], 0.0, 1.0);
                     } else {
-                        double tau[3];
-                        optical_depth(a, ht, mst, sun_steps, tau);
-                        for (int c = 0; c < 3; ++c)
-                            T[c] = exp(-tau[c]);
+                        sun_T(a, NULL, sun_steps, ht, mst, T);
                     }
                     vis *= w_az[i];
                     for (int c = 0; c < 3; ++c)
@@ -633,10 +801,14 @@ void ref_multiscatter(const ref_atmosphere *a, double altitude, double mu_s, int
         out[c] = res[0][c];
 }
 
-/* The Psi quadrature's azimuth count for a given sqrt_dirs: the azimuth integral converges spectrally (1e-5 at
- * 16), the polar one does not, so it gets half as many. */
-static int g_az_num = 1, g_az_den = 2;
-static int ms_azimuths(int sqrt_dirs) { int n = sqrt_dirs * g_az_num / g_az_den; return n > 2 ? n : 2; }
+/* The converged quadrature's azimuth count for a given sqrt_dirs (the polar count): the periodic azimuth integral
+ * converges faster than the polar one (spectrally in daylight; in twilight, where only azimuths toward the sun
+ * reach lit air, still ~1e-4 at 24), so it gets half as many nodes. */
+static int ms_azimuths(int sqrt_dirs) { return sqrt_dirs / 2 > 2 ? sqrt_dirs / 2 : 2; }
+
+/* Steps per Psi ray of the converged quadrature: twice as many for a sun below mu_s = -0.05 (twilight: the
+ * light then comes from lit air far along the rays, where the graded steps are longest). */
+static int ms_steps_for(int steps, double mus) { return mus < -0.05 ? 2 * steps : steps; }
 
 void ref_multiscatter_converged(const ref_atmosphere *a, double altitude, double mu_s, int sqrt_dirs, int steps,
                                 int sun_steps, double out[3])
@@ -651,7 +823,8 @@ void ref_multiscatter_converged(const ref_atmosphere *a, double altitude, double
     if (sun_steps < 1)
         sun_steps = 1;
     if (polar_horizon(a, h, sqrt_dirs, &pr)) {
-        multiscatter_row(a, h, &ms, 1, ms_azimuths(sqrt_dirs), &pr, steps, 1, sun_steps, NULL, res);
+        multiscatter_row(a, h, &ms, 1, ms_azimuths(sqrt_dirs), &pr, ms_steps_for(steps, ms), 1, sun_steps, NULL,
+                         res);
         free(pr.mu);
     }
     for (int c = 0; c < 3; ++c)
@@ -664,15 +837,26 @@ void ref_multiscatter_converged(const ref_atmosphere *a, double altitude, double
 /* Rows: h = 0.01 + (top - 0.01) y^2, y uniform (the 10 m clamp is the first row).
  * Columns: three segments in mu_s that meet at the kinks of the horizon fade, -0.05 and +0.05 (nodes on both, no
  * interpolation stencil crosses them): [-1, -0.05] with nodes crowded toward -0.05 (the twilight tail, where Psi
- * falls by ~e every 0.01), [-0.05, 0.05] uniform, [0.05, 1] crowded toward 0.05.
+ * falls by ~e every 0.01), [-0.05, 0.05] with cosine spacing (crowded toward both kinks, where log Psi bends
+ * fastest), [0.05, 1] crowded toward 0.05.
  * Values: log(Psi) (floored at 1e-300), bicubic Catmull-Rom within a segment, the result clamped to the range of
  * its 16 taps so that the steep tail cannot overshoot.
- * Filled by the converged quadrature (ref_multiscatter_converged's) with the nested transmittance read from the
- * sun table. */
-#define PSI_ROWS 40
-#define PSI_SEG0 48 /* [-1, -0.05]:  mu_s = -1 + 0.95 (1 - (1 - u)^2) */
+ * Filled by the converged quadrature (ref_multiscatter_converged's, twilight columns with twice the steps) with the
+ * nested transmittance read from the sun table.
+ * Error it adds to the radiance (table vs a 56 x (96 + 61 + 80) table, 22 rays, converged counts): <= 4e-5 in
+ * daylight, <= 2e-4 for the sun down to -6 deg, 8e-4 at -10 deg (radiance 1e-7 of noon there). */
+#ifndef PSI_ROWS
+#define PSI_ROWS 24
+#endif
+#ifndef PSI_SEG0
+#define PSI_SEG0 40 /* [-1, -0.05]:  mu_s = -1 + 0.95 (1 - (1 - u)^2) */
+#endif
+#ifndef PSI_SEG1
 #define PSI_SEG1 31 /* [-0.05, 0.05]: mu_s = -0.05 + 0.05 (1 - cos(pi u)) */
-#define PSI_SEG2 40 /* [0.05, 1]:    mu_s = 0.05 + 0.95 u^2 */
+#endif
+#ifndef PSI_SEG2
+#define PSI_SEG2 32 /* [0.05, 1]:    mu_s = 0.05 + 0.95 u^2 */
+#endif
 #define PSI_COLS (PSI_SEG0 + PSI_SEG1 + PSI_SEG2)
 
 typedef struct psi_table {
@@ -715,10 +899,24 @@ static double psi_row_h(const ref_atmosphere *a, int j)
     return j == PSI_ROWS - 1 ? atmo_height(a) : 0.01 + (atmo_height(a) - 0.01) * y * y;
 }
 
+/* The sun table of the last atmosphere a Psi table was built for (Psi tables of other counts reuse it). */
+static sun_table *g_sun_table;
+static ref_atmosphere g_sun_table_atmo;
+
+static const sun_table *sun_table_get(const ref_atmosphere *a)
+{
+    if (g_sun_table && memcmp(&g_sun_table_atmo, a, sizeof *a) == 0)
+        return g_sun_table;
+    free(g_sun_table);
+    g_sun_table = sun_table_build(a);
+    g_sun_table_atmo = *a;
+    return g_sun_table;
+}
+
 static psi_table *psi_table_build(const ref_atmosphere *a, int sqrt_dirs, int steps)
 {
     psi_table *t = malloc(sizeof *t);
-    sun_table *st = sun_table_build(a);
+    const sun_table *st = sun_table_get(a);
     double mus[PSI_COLS], res[PSI_COLS][3];
     int ok = t && st;
     for (int seg = 0; seg < 3; ++seg)
@@ -735,14 +933,19 @@ static psi_table *psi_table_build(const ref_atmosphere *a, int sqrt_dirs, int st
             ok = 0;
             break;
         }
-        /* every column once (the shared segment ends are evaluated twice: cheap, and keeps this simple) */
-        ok = multiscatter_row(a, h, mus, PSI_COLS, ms_azimuths(sqrt_dirs), &pr, steps, 1, 0, st, res);
+        /* every column once (the shared segment ends are evaluated twice: cheap, and keeps this simple); the
+         * twilight columns (segment 0) with twice the steps, as ref_multiscatter_converged does */
+        ok = multiscatter_row(a, h, mus, PSI_SEG0, ms_azimuths(sqrt_dirs), &pr, ms_steps_for(steps, -1.0), 1, 0,
+                              st, res) &&
+             multiscatter_row(a, h, mus + PSI_SEG0, PSI_COLS - PSI_SEG0, ms_azimuths(sqrt_dirs), &pr, steps, 1, 0,
+                              st, res + PSI_SEG0);
         free(pr.mu);
+        for (int c = 0; c < 3; ++c) /* the shared node -0.05 belongs to the 1x-steps side (continuity) */
+            res[PSI_SEG0 - 1][c] = res[PSI_SEG0][c];
         for (int i = 0; i < PSI_COLS; ++i)
             for (int c = 0; c < 3; ++c)
                 t->v[j][i][c] = log(fmax(res[i][c], 1e-300));
     }
-    free(st);
     if (!ok) {
         free(t);
         return NULL;
@@ -776,8 +979,9 @@ static void psi_table_eval(const psi_table *t, const ref_atmosphere *a, double h
     }
 }
 
-/* Lazily built tables, keyed by the atmosphere's bytes and the Psi counts (a small LRU; not thread-safe). */
-#define PSI_CACHE_SLOTS 4
+/* Lazily built tables, keyed by the atmosphere's bytes (less E and g) and the Psi counts; the oldest is replaced
+ * when all slots are taken. Building is not thread-safe; looking up an existing table is. */
+#define PSI_CACHE_SLOTS 8
 
 typedef struct psi_cache_slot {
     ref_atmosphere atmo;
@@ -789,23 +993,25 @@ typedef struct psi_cache_slot {
 static psi_cache_slot g_psi_cache[PSI_CACHE_SLOTS];
 static unsigned long long g_psi_clock;
 
-static const psi_table *psi_cache_get(const ref_atmosphere *a, int sqrt_dirs, int steps)
+static const psi_table *psi_cache_get(const ref_atmosphere *a_in, int sqrt_dirs, int steps)
 {
+    /* Psi is per unit sun illuminance and isotropic: the key leaves out E and g. */
+    ref_atmosphere a = *a_in;
+    a.mie_g = 0.0;
+    a.sun_illuminance[0] = a.sun_illuminance[1] = a.sun_illuminance[2] = 0.0;
     psi_cache_slot *victim = &g_psi_cache[0];
     for (int i = 0; i < PSI_CACHE_SLOTS; ++i) {
         psi_cache_slot *s = &g_psi_cache[i];
-        if (s->table && s->sqrt_dirs == sqrt_dirs && s->steps == steps && memcmp(&s->atmo, a, sizeof *a) == 0) {
-            s->used = ++g_psi_clock;
-            return s->table;
-        }
+        if (s->table && s->sqrt_dirs == sqrt_dirs && s->steps == steps && memcmp(&s->atmo, &a, sizeof a) == 0)
+            return s->table; /* read-only on a hit: concurrent lookups of an existing table are safe */
         if (!s->table || (victim->table && s->used < victim->used))
             victim = s;
     }
-    psi_table *t = psi_table_build(a, sqrt_dirs, steps);
+    psi_table *t = psi_table_build(&a, sqrt_dirs, steps);
     if (!t)
         return NULL;
     free(victim->table);
-    victim->atmo = *a;
+    victim->atmo = a;
     victim->sqrt_dirs = sqrt_dirs;
     victim->steps = steps;
     victim->table = t;
@@ -819,7 +1025,7 @@ static const psi_table *psi_cache_get(const ref_atmosphere *a, int sqrt_dirs, in
 ref_quality ref_quality_converged(void)
 {
     /* See tests/test_reference.c for the convergence study behind these counts. */
-    ref_quality q = {256, 256, 32, 64};
+    ref_quality q = {512, 256, 48, 64};
     return q;
 }
 
@@ -846,55 +1052,21 @@ static int sky_start(const ref_atmosphere *a, double altitude, const double v_in
         return 1;
     if (!isfinite(*h) || !(*mu < 0.0))
         return 0;
-    /* Above the top: near intersection with the top sphere without cancellation. With
-     * c = r^2 - Rt^2 = (h - top)(r + Rt) and disc = r^2 mu^2 - c: t = c / (-r mu + sqrt(disc)), and at the entry
-     * point mu_e = (r mu + t) / Rt = -sqrt(disc) / Rt exactly. */
+    /* Above the top: enter at the near intersection with the top sphere, computed about the ray's point of closest
+     * approach to the centre so that nothing cancels even for a very distant camera: impact parameter
+     * p = r sqrt(1 - mu^2), closest point P_c = r (y - mu v) = r (-mu v.x, (1 - mu)(1 + mu), -mu v.z), the entry
+     * point P_e = P_c - sqrt(Rt^2 - p^2) v. There mu_e = -sqrt(Rt^2 - p^2) / Rt and mu_s_e = P_e.s / Rt. */
     double r = a->bottom_radius + *h, Rt = a->top_radius;
-    double c = (*h - top) * (r + Rt);
-    double disc = r * r * *mu * *mu - c;
-    if (!(disc > 0.0))
+    double sin2 = (1.0 - *mu) * (1.0 + *mu);
+    double p = r * sqrt(sin2);
+    if (!(p < Rt))
         return 0; /* misses (or only grazes) the atmosphere */
-    double sq = sqrt(disc);
-    double t = c / (-r * *mu + sq);
-    *mus = clampd((r * *mus + t * *nu) / Rt, -1.0, 1.0);
+    double sq = sqrt((Rt - p) * (Rt + p));
+    double pcs = r * (-*mu * v[0] * s[0] + sin2 * s[1] - *mu * v[2] * s[2]);
+    *mus = clampd((pcs - sq * *nu) / Rt, -1.0, 1.0);
     *mu = -sq / Rt;
     *h = top;
     return 1;
-}
-
-/* Distances along the view ray (from (h, mu), sun at mu_s, nu) where it crosses the boundary of the earth's
- * shadow, i.e. where the inclusive ground test toward the sun flips. With p(t) the point, the shadow is
- * p.s < 0 and |p|^2 - (p.s)^2 <= Rb^2, i.e. (1 - nu^2) t^2 + 2 r (mu - mu_s nu) t + (rho^2 - r^2 mu_s^2) <= 0
- * (rho^2 = r^2 - Rb^2, no cancellation) on the anti-sun side. Returns the number of crossings in (0, tend). */
-static int shadow_crossings(const ref_atmosphere *a, double h, double mu, double mus, double nu, double tend,
-                            double out[2])
-{
-    double r = a->bottom_radius + h;
-    double A = (1.0 - nu) * (1.0 + nu), B = r * (mu - mus * nu), C = rho2_of(a, h) - r * r * mus * mus;
-    double roots[2];
-    int n = 0, k = 0;
-    if (A > 1e-12) {
-        double disc = B * B - A * C;
-        if (disc <= 0.0)
-            return 0;
-        double q = -(B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
-        roots[n++] = q / A;
-        if (q != 0.0)
-            roots[n++] = C / q;
-    } else if (B != 0.0) {
-        roots[n++] = -C / (2.0 * B);
-    }
-    for (int i = 0; i < n; ++i) {
-        double t = roots[i];
-        if (t > 0.0 && t < tend && r * mus + t * nu < 0.0)
-            out[k++] = t;
-    }
-    if (k == 2 && out[0] > out[1]) {
-        double tmp = out[0];
-        out[0] = out[1];
-        out[1] = tmp;
-    }
-    return k;
 }
 
 typedef struct sky_ray {
@@ -937,19 +1109,19 @@ static void sky_step(sky_ray *s, double t, double dt)
 }
 
 /* March from (h, mu) with the sun at mu_s and nu = dot(view, sun): view_steps steps graded toward the lowest
- * point, a step that contains a crossing of the earth's shadow split there (the integrand jumps: without the
- * split the error would be first order), direct sun transmittance, Psi from the table. */
+ * point, a step that contains a crossing of the earth's shadow or a kink of the horizon fade split there
+ * (ray_cuts), direct sun transmittance, Psi from the table. */
 static void sky_march(const ref_atmosphere *a, double h, double mu, double mus, double nu, int view_steps,
                       int sun_steps, const psi_table *psi, double out[3])
 {
     sky_ray s = {a, h, a->bottom_radius + h, mu, mus, nu, phase_rayleigh(nu), phase_hg(a->mie_g, nu),
                  sun_steps, psi, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}};
-    double tend, cuts[2];
+    double tend, cuts[MAX_CUTS];
     int ground = hit_ground(a, h, mu, &tend);
     if (!ground)
         tend = dist_to_top(a, h, mu);
     if (tend > 0.0) {
-        int ncut = shadow_crossings(a, h, mu, mus, nu, tend, cuts), ic = 0;
+        int ncut = ray_cuts(a, h, mu, mus, nu, tend, cuts), ic = 0;
         for (int k = 0; k < view_steps; ++k) {
             double t, dt;
             ray_step(a, h, mu, tend, ground, 1, view_steps, k, &t, &dt);

@@ -223,8 +223,9 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     }
 
     /* 6. An external target (swapchain image): optionally captured (screenshot), then handed to its next user.
-     * To present: COLOR_ATTACHMENT -> PRESENT_SRC; the submit's signal semaphore (stage COLOR_ATTACHMENT_OUTPUT)
-     * orders presentation after the tone map's writes. */
+     * To present: COLOR_ATTACHMENT -> PRESENT_SRC with no destination stage; the submit's signal semaphore, at
+     * ALL_COMMANDS (window.c), orders presentation after the tone map's writes and this layout transition (a
+     * signal at COLOR_ATTACHMENT_OUTPUT would need that stage as this barrier's destination). */
     if (f->target) {
         gpu_usage last = GPU_USAGE_COLOR_ATTACHMENT_WRITE;
         if (f->target->capture) {

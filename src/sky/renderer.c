@@ -213,14 +213,21 @@ double sky_renderer_render(sky_renderer *r, const frame_desc *f)
     return wall;
 }
 
+VkExtent2D sky_renderer_lut_extent(const sky_renderer *r, int which)
+{
+    return which == 0 ? r->luts.transmittance.extent : r->luts.multiscatter.extent;
+}
+
 void sky_renderer_read_lut(sky_renderer *r, int which, float *rgba_out)
 {
     const gpu_context *ctx = r->ctx;
     const gpu_image *img = which == 0 ? &r->luts.transmittance : &r->luts.multiscatter;
     const char *name = which == 0 ? "transmittance_lut" : "multiscatter_lut";
     size_t count = (size_t)img->extent.width * img->extent.height * 4;
+    bool f32 = img->format == VK_FORMAT_R32G32B32A32_SFLOAT;
     gpu_buffer buf;
-    gpu_buffer_create(ctx, &buf, "lut readback", count * sizeof(uint16_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    gpu_buffer_create(ctx, &buf, "lut readback", count * (f32 ? sizeof(float) : sizeof(uint16_t)),
+                      VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     VkCommandBuffer cmd = gpu_begin_commands(ctx);
     /* The LUT passes wrote the LUT and made it readable by shaders; the copy reads it: to TRANSFER_SRC. */
     gpu_barrier_batch b = gpu_barrier_batch_begin("lut readback");
@@ -239,7 +246,11 @@ void sky_renderer_read_lut(sky_renderer *r, int which, float *rgba_out)
     gpu_barrier_flush(cmd, &b);
     gpu_submit_and_wait(ctx, cmd);
     gpu_buffer_invalidate(ctx, &buf);
-    const uint16_t *h = buf.mapped;
-    for (size_t i = 0; i < count; ++i) rgba_out[i] = io_half_to_float(h[i]);
+    if (f32) {
+        memcpy(rgba_out, buf.mapped, count * sizeof(float));
+    } else {
+        const uint16_t *h = buf.mapped;
+        for (size_t i = 0; i < count; ++i) rgba_out[i] = io_half_to_float(h[i]);
+    }
     gpu_buffer_destroy(ctx, &buf);
 }

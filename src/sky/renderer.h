@@ -96,6 +96,8 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 
 /* Records a frame, submits it, waits. Returns wall milliseconds from submit to fence. */
 double sky_renderer_render(sky_renderer *r, const frame_desc *f);
-/* Copy a LUT to the host as floats RGBA (tests). which: 0 transmittance, 1 multiscatter. */
+/* Copy a LUT to the host as floats RGBA (tests): which 0 transmittance, 1 multiscatter; rgba_out holds
+ * 4 x the extent's pixels. */
+VkExtent2D sky_renderer_lut_extent(const sky_renderer *r, int which);
 void sky_renderer_read_lut(sky_renderer *r, int which, float *rgba_out);
 #endif

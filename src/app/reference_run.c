@@ -1,0 +1,96 @@
+#include "app/reference_run.h"
+#include "io/image_io.h"
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+static const double DEG = 3.14159265358979323846 / 180.0;
+
+typedef struct ref_job {
+    const options *o;
+    double sun[3];
+    float *rgba;
+    int next_row;                /* shared work counter */
+    pthread_mutex_t lock;
+} ref_job;
+
+static void radiance(const options *o, const double view[3], const double sun[3], double rgb[3], double err[3])
+{
+    ref_quality q = ref_quality_converged();
+    ref_sky_radiance(&o->atmosphere, o->view.altitude_km, view, sun, q, rgb);
+    err[0] = err[1] = err[2] = 0.0;
+}
+
+static void *render_rows(void *arg)
+{
+    ref_job *job = arg;
+    const options *o = job->o;
+    for (;;) {
+        pthread_mutex_lock(&job->lock);
+        int y = job->next_row++;
+        pthread_mutex_unlock(&job->lock);
+        if (y >= o->height) return NULL;
+        for (int x = 0; x < o->width; ++x) {
+            double dir[3], rgb[3], err[3];
+            ref_pixel_dir(x, y, o->width, o->height, o->view.yaw_deg * DEG, o->view.pitch_deg * DEG,
+                          o->view.fov_deg * DEG, dir);
+            radiance(o, dir, job->sun, rgb, err);
+            float *p = job->rgba + 4 * ((size_t)y * o->width + x);
+            for (int c = 0; c < 3; ++c) p[c] = (float)rgb[c];
+            p[3] = 1.0f;
+        }
+    }
+}
+
+int reference_run(const options *o)
+{
+    char err[512];
+    for (int i = 0; i < o->output_count; ++i) {
+        size_t n = strlen(o->outputs[i]);
+        if (n < 4 || strcasecmp(o->outputs[i] + n - 4, ".exr") != 0) {
+            fprintf(stderr, "vksky: --render: with --reference only .exr (scene-linear) outputs are accepted\n");
+            return 2;
+        }
+        if (io_check_writable(o->outputs[i], err, sizeof err) != 0) {
+            fprintf(stderr, "vksky: --render: %s\n", err);
+            return 2;
+        }
+    }
+    ref_job job = {.o = o};
+    ref_dir(o->view.sun_azimuth_deg * DEG, o->view.sun_elevation_deg * DEG, job.sun);
+    if (o->output_count == 0) {
+        double view[3], rgb[3], e[3];
+        ref_dir(o->view.yaw_deg * DEG, o->view.pitch_deg * DEG, view);
+        radiance(o, view, job.sun, rgb, e);
+        printf("%.9g %.9g %.9g\n", rgb[0], rgb[1], rgb[2]);
+        return 0;
+    }
+    size_t pixels = (size_t)o->width * o->height;
+    job.rgba = malloc(pixels * 4 * sizeof(float));
+    pthread_mutex_init(&job.lock, NULL);
+    /* The reference's multi-scattering table is built lazily: build it once before the threads share it. */
+    {
+        double view[3] = {0, 1, 0}, rgb[3], e[3];
+        radiance(o, view, job.sun, rgb, e);
+    }
+    enum { THREADS = 2 };
+    pthread_t threads[THREADS];
+    for (int i = 0; i < THREADS; ++i) pthread_create(&threads[i], NULL, render_rows, &job);
+    for (int i = 0; i < THREADS; ++i) pthread_join(threads[i], NULL);
+    pthread_mutex_destroy(&job.lock);
+    uint16_t *half = malloc(pixels * 4 * sizeof(uint16_t));
+    for (size_t i = 0; i < pixels * 4; ++i) half[i] = io_float_to_half(job.rgba[i]);
+    free(job.rgba);
+    int status = 0;
+    for (int i = 0; i < o->output_count && status == 0; ++i) {
+        io_exr_layer layer = {.name = "", .rgba_half = half};
+        if (io_write_exr(o->outputs[i], o->width, o->height, &layer, 1, err, sizeof err) != 0) {
+            fprintf(stderr, "vksky: %s\n", err);
+            status = 1;
+        }
+    }
+    free(half);
+    return status;
+}
