@@ -4,7 +4,10 @@
  * per-pixel branch. */
 layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
 layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
-#ifdef SKY_LOOKUP
+#if defined(SKY_FILL)
+/* The bandwidth floor for benchmarks: a constant written to every pixel. */
+#define SKY_RADIANCE(h, v, s, march) vec3(0.25, 0.5, 1.0)
+#elif defined(SKY_LOOKUP)
 layout(set = 0, binding = 3) uniform sampler2D skyview_lut;
 #define VKSKY_SKYVIEW_LOOKUP 1
 #define SKY_RADIANCE(h, v, s, march) sky_radiance_lookup(h, v, s)

@@ -116,8 +116,12 @@ vec3 sky_radiance_lookup(float h_cam, vec3 v, vec3 s)
     float cos_azimuth = (lv > 1e-6 && ls > 1e-6) ? dot(hv, hs) / (lv * ls) : 1.0;
     vec2 uv = skyview_uv(h_cam, v.y, cos_azimuth, vec2(textureSize(skyview_lut, 0)));
     vec3 radiance = texture(skyview_lut, uv).rgb;
-    bool hits_ground = ray_hits_ground(h_cam, v.y);
-    vec3 throughput = hits_ground ? vec3(0.0) : lookup_transmittance(h_cam, v.y);
-    return clamp(radiance + sun_disc(v, s, throughput, hits_ground), vec3(0.0), vec3(FP16_MAX));
+    /* Only pixels inside the sun's disc pay for its transmittance lookup. */
+    if (small_angle(v, s) < atmo.sun.w) {
+        bool hits_ground = ray_hits_ground(h_cam, v.y);
+        vec3 throughput = hits_ground ? vec3(0.0) : lookup_transmittance(h_cam, v.y);
+        radiance += sun_disc(v, s, throughput, hits_ground);
+    }
+    return clamp(radiance, vec3(0.0), vec3(FP16_MAX));
 }
 #endif

@@ -1,4 +1,5 @@
 #include "app/options.h"
+#include "app/quality.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -28,12 +29,14 @@ static const flag flags[] = {
     {"--tonemap", ARG_STRING, 0, 0, "OP   clamp | reinhard | aces (default aces)"},
     {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
     {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
+    {"--quality", ARG_STRING, 0, 0, "P   low | medium | high | ultra: a preset of the knobs below (later flags override it)"},
+    {"--max-error", ARG_DOUBLE, 1e-4, 1, "E the cheapest measured configuration whose mean relative luminance error on this kind of scene is <= E"},
     {"--max-steps", ARG_INT, 1, 4096, "N  variable step count (Hillaire): from --steps up to N as the path grows (default: = --steps)"},
     {"--steps-ramp", ARG_DOUBLE, 0.001, 1e5, "KM path length at which the variable count reaches --max-steps (default 100)"},
     {"--sample-offset", ARG_DOUBLE, 0, 1, "X sample position within a step: 0.5 midpoint (default), 0.3 Hillaire"},
     {"--step-distribution", ARG_DOUBLE, 1, 4, "P steps end at t_max (i/N)^P: 1 uniform, 2 quadratic (default 2; uniform for rays entering from space)"},
-    {"--sky-mode", ARG_STRING, 0, 0, "M   march | skyview | auto: per-pixel march, sky-view LUT lookup, or the LUT inside the atmosphere (default march)"},
-    {"--sky-pass", ARG_STRING, 0, 0, "K   fragment | compute: the sky pass as a full-screen draw or a compute dispatch (default fragment)"},
+    {"--sky-mode", ARG_STRING, 0, 0, "M   march | skyview | auto | fill: per-pixel march, sky-view LUT lookup, the LUT inside the atmosphere, or a constant (the benchmark floor) (default march)"},
+    {"--sky-pass", ARG_STRING, 0, 0, "K   fragment | compute | auto: the sky pass as a full-screen draw or a compute dispatch; auto: fragment on a CPU device, compute on a GPU (default auto)"},
     {"--skyview-lut", ARG_STRING, 0, 0, "WxH sky-view LUT size (default 192x108)"},
     {"--skyview-steps", ARG_INT, 1, 1024, "N march steps per sky-view LUT texel (default 30)"},
     {"--transmittance-lut", ARG_STRING, 0, 0, "WxH transmittance LUT size (default 256x64)"},
@@ -168,18 +171,24 @@ static int apply(options *o, const flag *f, const char *value)
         }
     } else if (!strcmp(n, "--no-bloom")) o->view.bloom = false;
     else if (!strcmp(n, "--steps")) o->view.steps = (int)x;
+    else if (!strcmp(n, "--quality")) {
+        static const char *const w[] = {"low", "medium", "high", "ultra"};
+        int k = parse_word(n, value, w, 4);
+        if (k < 0) return 2;
+        o->quality = w[k];
+    } else if (!strcmp(n, "--max-error")) o->max_error = x;
     else if (!strcmp(n, "--max-steps")) o->view.max_steps = (int)x;
     else if (!strcmp(n, "--steps-ramp")) o->view.steps_ramp_km = x;
     else if (!strcmp(n, "--sample-offset")) o->view.sample_offset = x;
     else if (!strcmp(n, "--step-distribution")) o->view.step_distribution = x;
     else if (!strcmp(n, "--sky-mode")) {
-        static const char *const w[] = {"march", "skyview", "auto"};
-        int k = parse_word(n, value, w, 3);
+        static const char *const w[] = {"march", "skyview", "auto", "fill"};
+        int k = parse_word(n, value, w, 4);
         if (k < 0) return 2;
         o->view.mode = (sky_mode_choice)k;
     } else if (!strcmp(n, "--sky-pass")) {
-        static const char *const w[] = {"fragment", "compute"};
-        int k = parse_word(n, value, w, 2);
+        static const char *const w[] = {"fragment", "compute", "auto"};
+        int k = parse_word(n, value, w, 3);
         if (k < 0) return 2;
         o->view.pass_kind = (sky_pass_kind)k;
     } else if (!strcmp(n, "--lut-format")) {
@@ -226,10 +235,32 @@ int options_parse(options *o, int argc, char **argv)
 {
     *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
                    .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5,
-                   .scales = {1.0, 1.0, 1.0}, .path_samples = 4096};
+                   .scales = {1.0, 1.0, 1.0}, .path_samples = 4096, .sun_angular_radius_deg = 0.265,
+                   .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true};
     ref_atmosphere_earth(&o->atmosphere);
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
+    /* Two passes: the quality preset (or --max-error's choice) sets the knobs first, so that any knob flag,
+     * wherever it stands, overrides it. */
+    for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+        if (o->quality && o->max_error > 0.0) return bad("--max-error", "not with --quality; give one or the other");
+        const quality_config *q = o->quality ? quality_preset(o->quality) : NULL;
+        if (o->max_error > 0.0) {
+            double measured = 0.0;
+            const char *scene = NULL;
+            q = quality_pick(o->max_error, o->view.altitude_km, o->view.sun_elevation_deg, &measured, &scene);
+            if (!q) {
+                char msg[200];
+                snprintf(msg, sizeof msg, "no measured configuration reaches %g on a %s scene; try a larger budget or --quality ultra",
+                         o->max_error, scene);
+                return bad("--max-error", msg);
+            }
+            printf("vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
+                   o->max_error, q->name, measured, scene);
+        }
+        if (q) quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips);
+    }
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         const char *eq = strchr(arg, '=');
@@ -251,7 +282,12 @@ int options_parse(options *o, int argc, char **argv)
         } else if (eq && name_len < strlen(arg)) {
             return bad(f->name, "takes no value");
         }
-        if (apply(o, f, value) != 0) return 2;
+        bool first_pass_flag = !strcmp(f->name, "--quality") || !strcmp(f->name, "--max-error") ||
+                               !strcmp(f->name, "--altitude") || !strcmp(f->name, "--sun-elevation");
+        /* Pass 0 reads only what the choice depends on; pass 1 applies every flag except the choice. */
+        if (pass == 0 ? first_pass_flag : strcmp(f->name, "--quality") && strcmp(f->name, "--max-error"))
+            if (apply(o, f, value) != 0) return 2;
+    }
     }
     scale3(o->atmosphere.rayleigh_scattering, o->scales[0]);
     scale3(o->atmosphere.mie_scattering, o->scales[1]);

@@ -127,7 +127,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     /* 2. Sky. The sky pass runs as a fragment pass (HDR as colour attachment) or a compute dispatch (HDR as
      * storage image); with the sky-view LUT it first renders that LUT for this frame's camera and sun. */
     sky_mode mode = sky_view_resolve_mode(v, r);
-    sky_pass_kind kind = v->pass_kind;
+    sky_pass_kind kind = sky_renderer_pass_kind(r, v);
     gpu_usage sky_reads = kind == SKY_PASS_COMPUTE ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_FRAGMENT_SAMPLED;
     gpu_usage hdr_write = kind == SKY_PASS_COMPUTE ? GPU_USAGE_COMPUTE_STORAGE_WRITE : GPU_USAGE_COLOR_ATTACHMENT_WRITE;
     gpu_barrier_batch b;

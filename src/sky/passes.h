@@ -38,12 +38,15 @@ void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *
 
 /* --- Sky pass (sky_pass.c): per-pixel march, or sky-view LUT lookup, into the HDR target; as a full-screen
  * fragment pass or a compute dispatch --- */
-typedef enum sky_mode { SKY_MODE_MARCH = 0, SKY_MODE_SKYVIEW = 1 } sky_mode;
-typedef enum sky_pass_kind { SKY_PASS_FRAGMENT = 0, SKY_PASS_COMPUTE = 1 } sky_pass_kind;
+/* FILL writes a constant: the bandwidth floor benchmarks compare against. */
+typedef enum sky_mode { SKY_MODE_MARCH = 0, SKY_MODE_SKYVIEW = 1, SKY_MODE_FILL = 2 } sky_mode;
+/* AUTO: fragment on a CPU implementation (lavapipe: ~10 % faster), compute on GPUs (datacenter parts run fragment
+ * shaders on a few units only: 30x slower on an H200). */
+typedef enum sky_pass_kind { SKY_PASS_FRAGMENT = 0, SKY_PASS_COMPUTE = 1, SKY_PASS_AUTO = 2 } sky_pass_kind;
 typedef struct sky_pass {
     VkDescriptorSetLayout set_layouts[2];        /* [kind] */
     VkPipelineLayout layouts[2];                 /* [kind] */
-    VkPipeline pipelines[2][2];                  /* [kind][mode] */
+    VkPipeline pipelines[2][3];                  /* [kind][mode] */
     VkDescriptorSet sets[2];                     /* [kind]; the compute set also holds the HDR storage image */
 } sky_pass;
 void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts);

@@ -12,7 +12,7 @@ sky_view sky_view_default(void)
     return (sky_view){
         .altitude_km = 0.001, .yaw_deg = 0.0, .pitch_deg = 10.0, .fov_deg = 75.0,
         .sun_azimuth_deg = 0.0, .sun_elevation_deg = 20.0, .steps = 32, .max_steps = 0, .steps_ramp_km = 100.0,
-        .sample_offset = 0.5, .step_distribution = 2.0, .mode = SKY_CHOICE_MARCH, .pass_kind = SKY_PASS_FRAGMENT, .skyview_steps = 30,
+        .sample_offset = 0.5, .step_distribution = 2.0, .mode = SKY_CHOICE_MARCH, .pass_kind = SKY_PASS_AUTO, .skyview_steps = 30,
         .exposure_ev = 0.0, .tonemap = VKSKY_TONEMAP_ACES, .bloom = true,
         .bloom_strength = 0.04, .bloom_threshold = 1.0};
 }
@@ -62,9 +62,16 @@ SkyPush sky_view_skyview_push(const sky_view *v)
     return p;
 }
 
+sky_pass_kind sky_renderer_pass_kind(const sky_renderer *r, const sky_view *v)
+{
+    if (v->pass_kind != SKY_PASS_AUTO) return v->pass_kind;
+    return r->ctx->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? SKY_PASS_FRAGMENT : SKY_PASS_COMPUTE;
+}
+
 sky_mode sky_view_resolve_mode(const sky_view *v, const sky_renderer *r)
 {
     if (v->mode == SKY_CHOICE_MARCH) return SKY_MODE_MARCH;
+    if (v->mode == SKY_CHOICE_FILL) return SKY_MODE_FILL;
     bool inside = v->altitude_km < r->atmosphere.radii.z;
     if (v->mode == SKY_CHOICE_SKYVIEW) return inside ? SKY_MODE_SKYVIEW : SKY_MODE_MARCH;
     return inside ? SKY_MODE_SKYVIEW : SKY_MODE_MARCH;

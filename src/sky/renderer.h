@@ -5,7 +5,7 @@
 #include "sky/atmosphere.h"
 #include "sky/passes.h"
 
-typedef enum sky_mode_choice { SKY_CHOICE_MARCH, SKY_CHOICE_SKYVIEW, SKY_CHOICE_AUTO } sky_mode_choice;
+typedef enum sky_mode_choice { SKY_CHOICE_MARCH, SKY_CHOICE_SKYVIEW, SKY_CHOICE_AUTO, SKY_CHOICE_FILL } sky_mode_choice;
 
 typedef struct sky_view {
     double altitude_km;                     /* camera altitude above the ground, >= 0 */
@@ -63,6 +63,8 @@ void sky_renderer_destroy(sky_renderer *r);
 /* Set the atmosphere (writes the uniform buffer: call only while no frame is in flight). LUTs are recomputed
  * by the next frame if their inputs changed. */
 void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad);
+/* The sky pass kind a frame of this view uses (auto resolved for the device). */
+sky_pass_kind sky_renderer_pass_kind(const sky_renderer *r, const sky_view *v);
 /* The sky mode a frame of this view uses (auto: the sky-view LUT inside the atmosphere, the march from space). */
 sky_mode sky_view_resolve_mode(const sky_view *v, const sky_renderer *r);
 bool sky_renderer_luts_dirty(const sky_renderer *r);

@@ -5,6 +5,8 @@
 #include "multiscatter_lut_f32_comp.h"
 #include "skyview_lut_comp.h"
 #include "sky_march_comp.h"
+#include "sky_fill_comp.h"
+#include "sky_fill_frag.h"
 #include "sky_lookup_comp.h"
 #include "sky_lookup_frag.h"
 #include "fullscreen_vert.h"
@@ -21,6 +23,8 @@ const sky_spirv spirv_transmittance_lut_f32 = SPIRV(spv_transmittance_lut_f32_co
 const sky_spirv spirv_multiscatter_lut_f32 = SPIRV(spv_multiscatter_lut_f32_comp);
 const sky_spirv spirv_skyview_lut = SPIRV(spv_skyview_lut_comp);
 const sky_spirv spirv_sky_march_comp = SPIRV(spv_sky_march_comp);
+const sky_spirv spirv_sky_fill_comp = SPIRV(spv_sky_fill_comp);
+const sky_spirv spirv_sky_fill_frag = SPIRV(spv_sky_fill_frag);
 const sky_spirv spirv_sky_lookup_comp = SPIRV(spv_sky_lookup_comp);
 const sky_spirv spirv_sky_lookup_frag = SPIRV(spv_sky_lookup_frag);
 const sky_spirv spirv_fullscreen_vert = SPIRV(spv_fullscreen_vert);

@@ -4,8 +4,10 @@
 /* One pipeline per (kind, mode), each from its own SPIR-V variant: no per-pixel branch on the mode. */
 static const sky_spirv *variant(int kind, int mode)
 {
-    if (kind == SKY_PASS_COMPUTE) return mode == SKY_MODE_SKYVIEW ? &spirv_sky_lookup_comp : &spirv_sky_march_comp;
-    return mode == SKY_MODE_SKYVIEW ? &spirv_sky_lookup_frag : &spirv_sky_march_frag;
+    static const sky_spirv *const table[2][3] = {
+        {&spirv_sky_march_frag, &spirv_sky_lookup_frag, &spirv_sky_fill_frag},
+        {&spirv_sky_march_comp, &spirv_sky_lookup_comp, &spirv_sky_fill_comp}};
+    return table[kind][mode];
 }
 
 void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
@@ -24,9 +26,11 @@ void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
         gpu_write_sampled(ctx, p->sets[kind], 1, luts->transmittance.view, s->linear_clamp);
         gpu_write_sampled(ctx, p->sets[kind], 2, luts->multiscatter.view, s->linear_clamp);
         gpu_write_sampled(ctx, p->sets[kind], 3, luts->skyview.view, s->linear_clamp);
-        for (int mode = 0; mode < 2; ++mode) {
-            const char *name = mode ? (kind ? "sky lookup (compute)" : "sky lookup (fragment)")
-                                    : (kind ? "sky march (compute)" : "sky march (fragment)");
+        for (int mode = 0; mode < 3; ++mode) {
+            static const char *const names_km[2][3] = {
+                {"sky march (fragment)", "sky lookup (fragment)", "sky fill (fragment)"},
+                {"sky march (compute)", "sky lookup (compute)", "sky fill (compute)"}};
+            const char *name = names_km[kind][mode];
             const sky_spirv *spv = variant(kind, mode);
             VkShaderModule m = gpu_shader_module(ctx, spv->code, spv->size, name);
             if (kind == SKY_PASS_FRAGMENT)
@@ -48,7 +52,7 @@ void sky_pass_destroy(sky_pass *p, const pass_shared *s)
 {
     VkDevice d = s->ctx->device;
     for (int kind = 0; kind < 2; ++kind) {
-        for (int mode = 0; mode < 2; ++mode) vkDestroyPipeline(d, p->pipelines[kind][mode], NULL);
+        for (int mode = 0; mode < 3; ++mode) vkDestroyPipeline(d, p->pipelines[kind][mode], NULL);
         vkDestroyPipelineLayout(d, p->layouts[kind], NULL);
         vkDestroyDescriptorSetLayout(d, p->set_layouts[kind], NULL);
     }

@@ -1,0 +1,306 @@
+/* tools/tradeoff: the speed/accuracy trade, measured.
+ *
+ * For every configuration (the presets and a sweep of the knobs) and every scene of the fixed set (noon,
+ * afternoon, sunset, twilight, 10 km at the horizon, 400 km at the limb):
+ *   - GPU time: per-pass timestamps, median over --frames frames after warm-up, at --size (no readback);
+ *   - error: a small frame (--error-size, bloom off) against the converged CPU reference of the same view:
+ *     relative luminance error over sky pixels (mean, p95, max) and mean CIEDE2000 of the tone-mapped images.
+ * Writes a CSV, a gnuplot script + PNG of error vs GPU ms (presets labelled), and optionally the C table that
+ * --max-error chooses from.
+ *
+ *   tradeoff [--size WxH] [--error-size WxH] [--frames N] [--csv FILE] [--plot FILE.png] [--emit-table FILE]
+ *            [--configs a,b,...] [--device N]
+ */
+#include "app/quality.h"
+#include "io/image_io.h"
+#include "reference/metrics.h"
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const double DEG = 3.14159265358979323846 / 180.0;
+static const double SUN_RADIUS = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
+
+typedef struct row {
+    const char *config;
+    int scene;
+    double sky_ms, frame_ms, wall_ms;
+    metrics_luminance err;
+    double de2000;
+} row;
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static sky_view scene_view(const quality_scene *s)
+{
+    sky_view v = sky_view_default();
+    v.altitude_km = s->altitude_km;
+    v.sun_elevation_deg = s->sun_elevation_deg;
+    v.sun_azimuth_deg = 0.0;
+    v.yaw_deg = s->yaw_deg;
+    v.pitch_deg = s->pitch_deg;
+    v.fov_deg = s->fov_deg;
+    v.exposure_ev = s->exposure_ev;
+    return v;
+}
+
+/* --- The converged reference image of a scene (CPU, two threads) --- */
+typedef struct ref_job {
+    const ref_atmosphere *a;
+    const quality_scene *s;
+    int w, h, next;
+    float *rgba;
+    pthread_mutex_t lock;
+} ref_job;
+
+static void *ref_rows(void *arg)
+{
+    ref_job *j = arg;
+    double sun[3];
+    ref_dir(0.0, j->s->sun_elevation_deg * DEG, sun);
+    for (;;) {
+        pthread_mutex_lock(&j->lock);
+        int y = j->next++;
+        pthread_mutex_unlock(&j->lock);
+        if (y >= j->h) return NULL;
+        for (int x = 0; x < j->w; ++x) {
+            double dir[3], rgb[3];
+            ref_pixel_dir(x, y, j->w, j->h, j->s->yaw_deg * DEG, j->s->pitch_deg * DEG, j->s->fov_deg * DEG, dir);
+            ref_sky_radiance(j->a, j->s->altitude_km, dir, sun, ref_quality_converged(), rgb);
+            float *p = j->rgba + 4 * ((size_t)y * j->w + x);
+            p[0] = (float)rgb[0], p[1] = (float)rgb[1], p[2] = (float)rgb[2], p[3] = 1.0f;
+        }
+    }
+}
+
+static float *reference_image(const ref_atmosphere *a, const quality_scene *s, int w, int h)
+{
+    ref_job j = {.a = a, .s = s, .w = w, .h = h, .rgba = malloc(sizeof(float) * 4 * (size_t)w * h)};
+    pthread_mutex_init(&j.lock, NULL);
+    double up[3] = {0, 1, 0}, sun[3], rgb[3];
+    ref_dir(0.0, s->sun_elevation_deg * DEG, sun);
+    ref_sky_radiance(a, s->altitude_km, up, sun, ref_quality_converged(), rgb);   /* builds the Psi table once */
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    int n = cores < 1 ? 1 : cores > 32 ? 32 : (int)cores;
+    pthread_t t[32];
+    for (int i = 0; i < n; ++i) pthread_create(&t[i], NULL, ref_rows, &j);
+    for (int i = 0; i < n; ++i) pthread_join(t[i], NULL);
+    pthread_mutex_destroy(&j.lock);
+    return j.rgba;
+}
+
+/* Sky pixels, minus the sun's disc and its immediate surroundings (the reference excludes the disc). */
+static void error_mask(const ref_atmosphere *a, const quality_scene *s, int w, int h, unsigned char *mask)
+{
+    metrics_sky_mask(a, s->altitude_km, w, h, s->yaw_deg * DEG, s->pitch_deg * DEG, s->fov_deg * DEG, mask);
+    double sun[3];
+    ref_dir(0.0, s->sun_elevation_deg * DEG, sun);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            double d[3];
+            ref_pixel_dir(x, y, w, h, s->yaw_deg * DEG, s->pitch_deg * DEG, s->fov_deg * DEG, d);
+            if (d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2] > cos(4.0 * SUN_RADIUS)) mask[y * w + x] = 0;
+        }
+}
+
+static sky_renderer make_renderer(gpu_context *ctx, const quality_config *q, sky_view *v, int w, int h, bool readback,
+                                  const ref_atmosphere *a)
+{
+    sky_renderer_desc desc = {.width = (uint32_t)w, .height = (uint32_t)h, .bloom = v->bloom, .readback = readback,
+                              .display_format = VK_FORMAT_R8G8B8A8_SRGB};
+    int bloom_mips = 5;
+    desc.lut = sky_lut_quality_default();
+    quality_apply(q, v, &desc.lut, &desc.render_scale, &bloom_mips);
+    desc.bloom_mips = (uint32_t)bloom_mips;
+    sky_renderer r;
+    sky_renderer_create(&r, ctx, &desc);
+    sky_renderer_set_atmosphere(&r, a, SUN_RADIUS);
+    return r;
+}
+
+static void measure_time(gpu_context *ctx, const quality_config *q, const quality_scene *s, int w, int h, int frames,
+                         const ref_atmosphere *a, row *out)
+{
+    sky_view v = scene_view(s);
+    sky_renderer r = make_renderer(ctx, q, &v, w, h, false, a);
+    frame_desc f = {.view = &v};
+    for (int i = 0; i < 3; ++i) sky_renderer_render(&r, &f);    /* warm-up: shader compilation, clocks */
+    double *sky = calloc((size_t)frames, sizeof(double)), *total = calloc((size_t)frames, sizeof(double)),
+           *wall = calloc((size_t)frames, sizeof(double));
+    double ms[GPU_TIMER_MAX];
+    for (int i = 0; i < frames; ++i) {
+        wall[i] = sky_renderer_render(&r, &f);
+        uint32_t n = gpu_timer_read(ctx, &r.timer, ms);
+        for (uint32_t k = 0; k < n; ++k) {
+            total[i] += ms[k];
+            if (!strcmp(r.timer.names[k], "sky") || !strcmp(r.timer.names[k], "skyview_lut")) sky[i] += ms[k];
+        }
+    }
+    out->sky_ms = median(sky, frames);
+    out->frame_ms = median(total, frames);
+    out->wall_ms = median(wall, frames);
+    free(sky), free(total), free(wall);
+    sky_renderer_destroy(&r);
+}
+
+static void measure_error(gpu_context *ctx, const quality_config *q, const quality_scene *s, int w, int h,
+                          const ref_atmosphere *a, const float *ref, const unsigned char *mask, row *out)
+{
+    sky_view v = scene_view(s);
+    v.bloom = false;
+    sky_renderer r = make_renderer(ctx, q, &v, w, h, true, a);
+    frame_desc f = {.view = &v};
+    sky_renderer_render(&r, &f);
+    size_t n = 4 * (size_t)w * h;
+    float *gpu = malloc(sizeof(float) * n);
+    const uint16_t *half = r.readback_linear.mapped;
+    for (size_t i = 0; i < n; ++i) gpu[i] = io_half_to_float(half[i]);
+    sky_renderer_destroy(&r);
+    double max_ref = 0.0;
+    for (size_t i = 0; i < (size_t)w * h; ++i)
+        if (mask[i]) max_ref = fmax(max_ref, 0.2126 * ref[4 * i] + 0.7152 * ref[4 * i + 1] + 0.0722 * ref[4 * i + 2]);
+    out->err = metrics_relative_luminance(gpu, ref, mask, w, h, 1e-3 * max_ref);
+    unsigned char *a8 = malloc(n), *b8 = malloc(n);
+    metrics_tonemap_srgb8(gpu, w, h, s->exposure_ev, VKSKY_TONEMAP_ACES, a8);
+    metrics_tonemap_srgb8(ref, w, h, s->exposure_ev, VKSKY_TONEMAP_ACES, b8);
+    out->de2000 = metrics_ciede2000_mean(a8, b8, mask, w, h);
+    free(a8), free(b8), free(gpu);
+}
+
+static int parse_size(const char *s, int *w, int *h) { return sscanf(s, "%dx%d", w, h) == 2 && *w > 0 && *h > 0 ? 0 : -1; }
+
+static bool wanted(const char *list, const char *name)
+{
+    if (!list) return true;
+    size_t n = strlen(name);
+    for (const char *p = list; (p = strstr(p, name)); p += n)
+        if ((p == list || p[-1] == ',') && (p[n] == ',' || p[n] == 0)) return true;
+    return false;
+}
+
+static void write_plot(const char *png, const char *csv, const row *rows, int count)
+{
+    /* Per configuration: the median sky-pass GPU ms over the scenes vs the mean error over the scenes. */
+    char dat[1024];
+    snprintf(dat, sizeof dat, "%s.dat", png);
+    FILE *d = fopen(dat, "w");
+    if (!d) return;
+    for (int i = 0; i < count; ++i) {
+        if ((i && !strcmp(rows[i].config, rows[i - 1].config)) || !isfinite(rows[i].err.mean)) continue;
+        double ms[8], err = 0;
+        int n = 0;
+        for (int k = i; k < count && !strcmp(rows[k].config, rows[i].config); ++k) ms[n] = rows[k].sky_ms, err += rows[k].err.mean, ++n;
+        bool preset = quality_preset(rows[i].config) != NULL;
+        fprintf(d, "%g %g %s %d\n", median(ms, n), 100.0 * err / n, rows[i].config, preset);
+    }
+    fclose(d);
+    char gp[1024];
+    snprintf(gp, sizeof gp, "%s.gp", png);
+    FILE *g = fopen(gp, "w");
+    if (!g) return;
+    fprintf(g, "set terminal pngcairo size 1000,650 font 'sans,10'\nset output '%s'\n"
+               "set logscale xy\nset grid\nset xlabel 'sky GPU time per frame, ms (median over the scene set)'\n"
+               "set ylabel 'mean relative luminance error vs the converged reference, %% (mean over scenes)'\n"
+               "set title 'vksky speed/accuracy trade (%s)'\nset key off\n"
+               "plot '%s' using 1:2 with points pt 7 ps 1.2 lc rgb '#4060a0', \\\n"
+               "     '' using 1:($4==1?$2:1/0) with points pt 7 ps 2 lc rgb '#d04020', \\\n"
+               "     '' using 1:2:3 with labels offset 0.8,0.6 left font 'sans,8'\n",
+            png, csv, dat);
+    fclose(g);
+    char cmd[2200];
+    snprintf(cmd, sizeof cmd, "command -v gnuplot >/dev/null && gnuplot '%s'", gp);
+    if (system(cmd) != 0)
+        fprintf(stderr, "tradeoff: no plot (gnuplot missing: apt-get install gnuplot-nox); run gnuplot %s later\n", gp);
+}
+
+int main(int argc, char **argv)
+{
+    int tw = 1920, th = 1080, ew = 96, eh = 54, frames = 30, device = -1;
+    const char *csv = "tradeoff.csv", *plot = NULL, *table = NULL, *configs = NULL;
+    for (int i = 1; i < argc; ++i) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!v) { fprintf(stderr, "tradeoff: %s needs a value\n", a); return 2; }
+        if (!strcmp(a, "--size") && !parse_size(v, &tw, &th)) ++i;
+        else if (!strcmp(a, "--error-size") && !parse_size(v, &ew, &eh)) ++i;
+        else if (!strcmp(a, "--frames") && (frames = atoi(v)) > 0) ++i;
+        else if (!strcmp(a, "--csv")) csv = v, ++i;
+        else if (!strcmp(a, "--plot")) plot = v, ++i;
+        else if (!strcmp(a, "--emit-table")) table = v, ++i;
+        else if (!strcmp(a, "--configs")) configs = v, ++i;
+        else if (!strcmp(a, "--device")) device = atoi(v), ++i;
+        else { fprintf(stderr, "tradeoff: bad argument %s %s\n", a, v); return 2; }
+    }
+    gpu_context ctx;
+    gpu_context_desc desc = {.device_index = device};
+    if (gpu_context_create(&ctx, &desc) != 0) return 1;
+    fprintf(stderr, "tradeoff: device %s, timing at %dx%d (%d frames), error at %dx%d\n", ctx.props.deviceName, tw, th,
+            frames, ew, eh);
+    ref_atmosphere a;
+    ref_atmosphere_earth(&a);
+    int nconf = 4 + quality_sweep_count;
+    row *rows = calloc((size_t)nconf * 6, sizeof *rows);
+    int count = 0;
+    float *refs[6];
+    unsigned char *masks[6];
+    for (int s = 0; s < 6; ++s) {
+        refs[s] = reference_image(&a, &quality_scenes[s], ew, eh);
+        masks[s] = malloc((size_t)ew * eh);
+        error_mask(&a, &quality_scenes[s], ew, eh, masks[s]);
+    }
+    FILE *out = fopen(csv, "w");
+    if (!out) { fprintf(stderr, "tradeoff: cannot write %s\n", csv); return 1; }
+    fprintf(out, "device,config,scene,width,height,sky_gpu_ms,frame_gpu_ms,wall_ms,err_mean,err_p95,err_max,ciede2000\n");
+    for (int c = 0; c < nconf; ++c) {
+        const quality_config *q = c < 4 ? &quality_presets[c] : &quality_sweep[c - 4];
+        if (!wanted(configs, q->name)) continue;
+        for (int s = 0; s < 6; ++s) {
+            row *r = &rows[count++];
+            r->config = q->name;
+            r->scene = s;
+            measure_time(&ctx, q, &quality_scenes[s], tw, th, frames, &a, r);
+            /* The fill floor has no accuracy to speak of. */
+            if (q->mode == SKY_CHOICE_FILL) r->err.mean = r->err.p95 = r->err.max = r->de2000 = NAN;
+            else measure_error(&ctx, q, &quality_scenes[s], ew, eh, &a, refs[s], masks[s], r);
+            fprintf(out, "\"%s\",%s,%s,%d,%d,%.4f,%.4f,%.4f,%.5f,%.5f,%.5f,%.4f\n", ctx.props.deviceName, q->name,
+                    quality_scenes[s].name, tw, th, r->sky_ms, r->frame_ms, r->wall_ms, r->err.mean, r->err.p95,
+                    r->err.max, r->de2000);
+            fflush(out);
+            fprintf(stderr, "%-20s %-13s sky %8.3f ms frame %8.3f ms wall %8.2f ms | err mean %6.2f%% p95 %6.2f%% max %6.2f%% dE00 %.2f\n",
+                    q->name, quality_scenes[s].name, r->sky_ms, r->frame_ms, r->wall_ms, 100 * r->err.mean,
+                    100 * r->err.p95, 100 * r->err.max, r->de2000);
+        }
+    }
+    fclose(out);
+    if (plot) write_plot(plot, csv, rows, count);
+    if (table) {
+        FILE *t = fopen(table, "w");
+        if (t) {
+            fprintf(t, "/* Measured by tools/tradeoff on %s (sky GPU ms at %dx%d, median of %d frames; mean relative\n"
+                       " * luminance error at %dx%d vs the converged reference). Regenerate: tradeoff --emit-table FILE. */\n"
+                       "typedef struct quality_measurement { const char *config; int scene; double gpu_ms, err_mean, err_p95; } quality_measurement;\n"
+                       "static const quality_measurement quality_table[] = {\n",
+                    ctx.props.deviceName, tw, th, frames, ew, eh);
+            int emitted = 0;
+            for (int i = 0; i < count; ++i)
+                if (isfinite(rows[i].err.mean) && ++emitted)
+                    fprintf(t, "    {\"%s\", %d, %.4f, %.5f, %.5f},\n", rows[i].config, rows[i].scene, rows[i].sky_ms,
+                        rows[i].err.mean, rows[i].err.p95);
+            fprintf(t, "};\nstatic const int quality_table_count = %d;\n", emitted);
+            fclose(t);
+        }
+    }
+    gpu_context_destroy(&ctx);
+    return 0;
+}
