@@ -77,5 +77,23 @@ rc=$?
 [ $rc -eq 1 ] || fail "a run with validation messages exited $rc, expected 1"
 grep -q "SYNC-HAZARD" "$work/err" || fail "dropped barrier not reported as a sync hazard: $(head -c 400 "$work/err")"
 
+# Presets and --max-error: presets parse and run; --max-error says what it picked, and the pick's measured error
+# (printed) is within the budget; impossible budgets and conflicting flags are bad input.
+for q in low medium high ultra; do
+    "$VKSKY" --quality $q --render "$work/q.png" --width 48 --height 27 --validate 2>"$work/err" \
+        || fail "--quality $q failed: $(cat "$work/err")"
+done
+expect_bad "unknown preset" "low, medium, high or ultra" --quality extreme --render "$work/bad.exr"
+expect_bad "preset and budget" "--max-error" --quality low --max-error 0.1 --render "$work/bad.exr"
+expect_bad "impossible budget" "no measured configuration" --max-error 0.0001 --sun-elevation -4 --render "$work/bad.exr"
+for budget in 0.005 0.02 0.3; do
+    out=$("$VKSKY" --max-error $budget --sun-elevation 60 --render "$work/m.png" --width 48 --height 27 --validate 2>"$work/err") \
+        || fail "--max-error $budget failed: $(cat "$work/err")"
+    echo "$out" | grep -q "picked '" || fail "--max-error $budget does not say what it picked: $out"
+    measured=$(echo "$out" | sed -n "s/.*error \([0-9.e+-]*\) on the.*/\1/p")
+    awk -v m="$measured" -v b="$budget" 'BEGIN { exit !(m != "" && m <= b) }' \
+        || fail "--max-error $budget picked a configuration measured at '$measured'"
+done
+
 if [ $fails -ne 0 ]; then echo "cli_test: $fails failure(s)"; exit 1; fi
 echo "cli_test: ok"

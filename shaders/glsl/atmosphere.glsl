@@ -5,6 +5,16 @@
 
 layout(std140, set = 0, binding = 0) uniform AtmosphereUbo { AtmosphereParams atmo; };
 
+/* The scene's variant (see shared.h): species with zero coefficients, multi-scattering, the sun disc and a lit
+ * ground cost nothing when absent. */
+layout(constant_id = VKSKY_SPEC_RAYLEIGH) const bool HAS_RAYLEIGH = true;
+layout(constant_id = VKSKY_SPEC_MIE) const bool HAS_MIE = true;
+layout(constant_id = VKSKY_SPEC_OZONE) const bool HAS_OZONE = true;
+layout(constant_id = VKSKY_SPEC_MULTISCATTER) const bool HAS_MULTISCATTER = true;
+layout(constant_id = VKSKY_SPEC_SUN_DISC) const bool HAS_SUN_DISC = true;
+layout(constant_id = VKSKY_SPEC_GROUND) const bool HAS_GROUND = false;
+layout(constant_id = VKSKY_SPEC_MIE_PHASE) const int MIE_PHASE = VKSKY_MIE_PHASE_HG;
+
 const float PI = 3.14159265358979;
 /* The multi-scattering LUT clamps its altitude to 10 m (seed bug 1: no sphere-sampled ray may start exactly on
  * the ground). */
@@ -65,9 +75,9 @@ struct Medium {
 Medium sample_medium(float h)
 {
     h = max(h, 0.0);
-    float d_r = exp(-h / atmo.rayleigh_scattering.w);
-    float d_m = exp(-h / atmo.mie_scattering.w);
-    float d_o = max(0.0, 1.0 - abs(h - atmo.ozone_absorption.w) / atmo.ozone_shape.x);
+    float d_r = HAS_RAYLEIGH ? exp(-h / atmo.rayleigh_scattering.w) : 0.0;
+    float d_m = HAS_MIE ? exp(-h / atmo.mie_scattering.w) : 0.0;
+    float d_o = HAS_OZONE ? max(0.0, 1.0 - abs(h - atmo.ozone_absorption.w) / atmo.ozone_shape.x) : 0.0;
     Medium m;
     m.rayleigh = atmo.rayleigh_scattering.rgb * d_r;
     m.mie = atmo.mie_scattering.rgb * d_m;
@@ -77,6 +87,20 @@ Medium sample_medium(float h)
 }
 
 float rayleigh_phase(float nu) { return 3.0 / (16.0 * PI) * (1.0 + nu * nu); }
+
+/* Cornette-Shanks: Henyey-Greenstein with a Rayleigh-like (1 + nu^2) factor, normalised. */
+float cornette_shanks_phase(float nu, float g)
+{
+    float g2 = g * g;
+    float denom = max(1.0 + g2 - 2.0 * g * nu, 1e-8);
+    return 3.0 / (8.0 * PI) * (1.0 - g2) * (1.0 + nu * nu) / ((2.0 + g2) * denom * sqrt(denom));
+}
+
+float henyey_greenstein_phase(float nu, float g);
+float mie_phase(float nu, float g)
+{
+    return MIE_PHASE == VKSKY_MIE_PHASE_CORNETTE_SHANKS ? cornette_shanks_phase(nu, g) : henyey_greenstein_phase(nu, g);
+}
 
 float henyey_greenstein_phase(float nu, float g)
 {

@@ -60,6 +60,13 @@ void main()
             f_ms += throughput * m.scattering * integral;
             throughput *= step_t;
         }
+        /* Hillaire's ground bounce: the sunlit ground seen along this direction, Lambertian (per unit
+         * illuminance), scattered again like the rest of L_2nd. */
+        if (HAS_GROUND && ray_hits_ground(h, mu)) {
+            float mu_s_g = clamp((r * mu_s + t_max * nu) / ground_radius(), -1.0, 1.0);
+            vec3 sun_g = texture(transmittance_lut, transmittance_uv(0.0, mu_s_g, t_size)).rgb;
+            l_2nd += throughput * sun_g * max(mu_s_g, 0.0) * atmo.ground.rgb / PI;
+        }
     }
     shared_l[thread] = l_2nd;
     shared_f[thread] = f_ms;

@@ -24,6 +24,7 @@ VKSKY_STRUCT(AtmosphereParams) {
     vec4 ozone_shape;          /* x: tent half width km */
     vec4 sun;                  /* rgb: illuminance, w: angular radius (rad) */
     vec4 lut_steps;            /* x: transmittance steps, y: multiscatter steps, z: multiscatter sqrt(directions) */
+    vec4 ground;               /* rgb: ground albedo (Lambertian), w: sun limb darkening coefficient u */
 } VKSKY_END(AtmosphereParams)
 
 /* Sky pass (and sky-view LUT) push constants: the camera as altitude + directions (never an absolute
@@ -48,6 +49,18 @@ VKSKY_STRUCT(TonemapPush) {
     vec4 params;               /* x: exposure (linear multiplier), y: operator (0 clamp, 1 Reinhard, 2 ACES),
                                   z: bloom strength (0 = no bloom), w: 1 = encode sRGB in the shader */
 } VKSKY_END(TonemapPush)
+
+/* Specialization constants: what a scene needs, compiled in; what it does not, compiled out (one pipeline
+ * per variant, no per-pixel branch). The same IDs in every shader that includes atmosphere.glsl. */
+#define VKSKY_SPEC_RAYLEIGH 1
+#define VKSKY_SPEC_MIE 2
+#define VKSKY_SPEC_OZONE 3
+#define VKSKY_SPEC_MULTISCATTER 4
+#define VKSKY_SPEC_SUN_DISC 5
+#define VKSKY_SPEC_GROUND 6
+#define VKSKY_SPEC_MIE_PHASE 7
+#define VKSKY_MIE_PHASE_HG 0
+#define VKSKY_MIE_PHASE_CORNETTE_SHANKS 1
 
 #define VKSKY_TONEMAP_CLAMP 0
 #define VKSKY_TONEMAP_REINHARD 1

@@ -58,7 +58,7 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
     float steps = floor(mix(march.x, march.y, clamp(t_max / max(march.w, 1e-6), 0.0, 1.0)));
     float r = ground_radius() + h;
     float phase_r = rayleigh_phase(nu);
-    float phase_m = henyey_greenstein_phase(nu, atmo.mie_absorption.w);
+    float phase_m = mie_phase(nu, atmo.mie_absorption.w);
     /* Step boundaries at t_max (i/N)^p: p = 1 uniform, p = 2 Hillaire's quadratic spacing, which puts short
      * steps near the camera where an upward or horizontal ray meets the dense, thin Mie layer. A ray that
      * enters from space starts in the thinnest air, so it keeps uniform steps. */
@@ -83,6 +83,13 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
         radiance += throughput * source * step_integral(m.extinction, dt, step_t);
         throughput *= step_t;
     }
+    /* A lit ground (albedo > 0): Lambertian, lit by the sun through the atmosphere (Hillaire's ground term; the
+     * sky's own light on the ground is left out). */
+    if (HAS_GROUND && hits_ground) {
+        float mu_s_g = clamp((r * mu_s + t_max * nu) / ground_radius(), -1.0, 1.0);
+        vec3 sun_g = lookup_transmittance(0.0, mu_s_g) * earth_shadow(0.0, mu_s_g);
+        radiance += throughput * atmo.sun.rgb * sun_g * max(mu_s_g, 0.0) * atmo.ground.rgb / PI;
+    }
     return radiance;
 }
 
@@ -92,9 +99,9 @@ vec3 sun_disc(vec3 v, vec3 s, vec3 throughput, bool hits_ground)
 {
     float angle = small_angle(v, s);
     float radius = atmo.sun.w;
-    if (hits_ground || angle >= radius) return vec3(0.0);
+    if (!HAS_SUN_DISC || hits_ground || angle >= radius) return vec3(0.0);
     float x = angle / radius;
-    float limb = 1.0 - 0.6 * (1.0 - sqrt(max(0.0, 1.0 - x * x)));
+    float limb = 1.0 - atmo.ground.w * (1.0 - sqrt(max(0.0, 1.0 - x * x)));
     return atmo.sun.rgb * 10.0 * throughput * limb;
 }
 
@@ -117,7 +124,7 @@ vec3 sky_radiance_lookup(float h_cam, vec3 v, vec3 s)
     vec2 uv = skyview_uv(h_cam, v.y, cos_azimuth, vec2(textureSize(skyview_lut, 0)));
     vec3 radiance = texture(skyview_lut, uv).rgb;
     /* Only pixels inside the sun's disc pay for its transmittance lookup. */
-    if (small_angle(v, s) < atmo.sun.w) {
+    if (HAS_SUN_DISC && small_angle(v, s) < atmo.sun.w) {
         bool hits_ground = ray_hits_ground(h_cam, v.y);
         vec3 throughput = hits_ground ? vec3(0.0) : lookup_transmittance(h_cam, v.y);
         radiance += sun_disc(v, s, throughput, hits_ground);

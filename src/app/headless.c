@@ -152,7 +152,10 @@ int headless_run(const options *o)
                                .readback = o->output_count > 0, .display_format = VK_FORMAT_R8G8B8A8_SRGB,
                                .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips};
     sky_renderer_create(&r, &ctx, &rdesc);
-    sky_renderer_set_atmosphere(&r, &o->atmosphere, 0.5 * 0.53 * 3.14159265358979323846 / 180.0);
+    sky_renderer_set_atmosphere(&r, &o->atmosphere, options_sun_radius_rad(o));
+    sky_features features = options_features(o);
+    sky_renderer_set_features(&r, &features);
+    if (o->trace_passes) r.pass_trace = stdout;
 
     int status = 0;
     if (o->bench_frames > 0) {

@@ -65,6 +65,19 @@ static const flag flags[] = {
     {"--version", ARG_NONE, 0, 0, "       print the version"},
 };
 
+sky_features options_features(const options *o)
+{
+    sky_features f = sky_features_default();
+    for (int i = 0; i < 3; ++i) f.ground_albedo[i] = o->ground_albedo[i];
+    f.mie_phase = o->mie_phase;
+    f.limb_darkening = o->limb_darkening;
+    f.sun_disc = o->sun_disc;
+    f.multiple_scattering = o->multiple_scattering;
+    return f;
+}
+
+double options_sun_radius_rad(const options *o) { return o->sun_angular_radius_deg * 3.14159265358979323846 / 180.0; }
+
 void options_print_help(FILE *out)
 {
     fprintf(out, "usage: vksky [options]                               interactive window (see F1 for controls)\n"

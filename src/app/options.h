@@ -42,6 +42,10 @@ typedef struct options {
     bool help, version;
 } options;
 
+/* The options' scene features for the renderer. */
+sky_features options_features(const options *o);
+double options_sun_radius_rad(const options *o);
+
 /* 0: ok; 2: bad input (message printed). */
 int options_parse(options *o, int argc, char **argv);
 void options_print_help(FILE *out);

@@ -669,9 +669,9 @@ static int start_rendering(app *a)
                                .readback = false, .external_display = true, .display_format = a->sc.format.format,
                                .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips};
     sky_renderer_create(&a->renderer, &a->ctx, &rdesc);
-    ref_atmosphere atmosphere;
-    ref_atmosphere_earth(&atmosphere);
-    sky_renderer_set_atmosphere(&a->renderer, &atmosphere, 0.5 * 0.53 * 3.14159265358979323846 / 180.0);
+    sky_renderer_set_atmosphere(&a->renderer, &o->atmosphere, options_sun_radius_rad(o));
+    sky_features features = options_features(o);
+    sky_renderer_set_features(&a->renderer, &features);
     a->view = o->view;
     camera_init(&a->cam, &o->view);
     camera_to_view(&a->cam, &a->view);

@@ -9,13 +9,34 @@ sky_lut_quality sky_lut_quality_default(void)
                              .lut_f32 = false, .skyview_width = 192, .skyview_height = 108};
 }
 
+sky_features sky_features_default(void)
+{
+    return (sky_features){.mie_phase = VKSKY_MIE_PHASE_HG, .limb_darkening = 0.6, .sun_disc = true,
+                          .multiple_scattering = true};
+}
+
+static bool any3(const double v[3]) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; }
+
+sky_variant sky_variant_of(const ref_atmosphere *a, const sky_features *f)
+{
+    return (sky_variant){
+        .rayleigh = any3(a->rayleigh_scattering),
+        .mie = any3(a->mie_scattering) || any3(a->mie_absorption),
+        .ozone = any3(a->ozone_absorption),
+        .multiscatter = f->multiple_scattering,
+        .sun_disc = f->sun_disc,
+        .ground = any3(f->ground_albedo),
+        .mie_phase = f->mie_phase,
+    };
+}
+
 static vksky_vec4 v4(const double rgb[3], double w)
 {
     return (vksky_vec4){(float)rgb[0], (float)rgb[1], (float)rgb[2], (float)w};
 }
 
 void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,
-                         AtmosphereParams *out)
+                         const sky_features *f, AtmosphereParams *out)
 {
     memset(out, 0, sizeof *out);
     /* Rt - Rb in double: the shaders never subtract planet-scale radii themselves. */
@@ -28,16 +49,18 @@ void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad,
     out->ozone_shape = (vksky_vec4){(float)a->ozone_half_width, 0, 0, 0};
     out->sun = v4(a->sun_illuminance, sun_angular_radius_rad);
     out->lut_steps = (vksky_vec4){(float)q.transmittance_steps, (float)q.multiscatter_steps,
-                                  (float)q.multiscatter_sqrt_dirs, 0.0f};
+                                  (float)q.multiscatter_sqrt_dirs, f->multiple_scattering ? 1.0f : 0.0f};
+    out->ground = v4(f->ground_albedo, f->limb_darkening);
 }
 
 uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p)
 {
-    /* Everything but the sun's illuminance and size (the LUTs are per unit illuminance) and the Mie g
-     * (the LUTs use the isotropic phase). */
+    /* Everything but the sun's illuminance, size and limb (the LUTs are per unit illuminance) and the Mie g
+     * (the LUTs use the isotropic phase); the ground albedo counts (the multi-scattering ground bounce). */
     const vksky_vec4 fields[] = {p->radii, p->rayleigh_scattering, p->mie_scattering,
                                  {p->mie_absorption.x, p->mie_absorption.y, p->mie_absorption.z, 0},
-                                 p->ozone_absorption, p->ozone_shape, p->lut_steps};
+                                 p->ozone_absorption, p->ozone_shape, p->lut_steps,
+                                 {p->ground.x, p->ground.y, p->ground.z, 0}};
     const unsigned char *bytes = (const unsigned char *)fields;
     uint64_t h = 1469598103934665603ull;
     for (size_t i = 0; i < sizeof fields; ++i) h = (h ^ bytes[i]) * 1099511628211ull;

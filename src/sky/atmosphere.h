@@ -5,6 +5,7 @@
 #include "reference/ref_atmosphere.h"
 #include "shared.h"
 #include <stdbool.h>
+#include <volk.h>
 #include <stdint.h>
 
 /* LUT quality knobs. Sizes and format are fixed when the renderer is created; step counts can change at run
@@ -20,8 +21,25 @@ typedef struct sky_lut_quality {
 } sky_lut_quality;
 
 sky_lut_quality sky_lut_quality_default(void);
+
+/* Scene features beyond the medium (scene files and their flags). */
+typedef struct sky_features {
+    double ground_albedo[3];      /* Lambertian; 0: the ground is black and not shaded (compiled out) */
+    int mie_phase;                /* VKSKY_MIE_PHASE_HG or VKSKY_MIE_PHASE_CORNETTE_SHANKS */
+    double limb_darkening;        /* u of 1 - u (1 - cos); 0.6 */
+    bool sun_disc;
+    bool multiple_scattering;     /* false: no multi-scattering LUT pass, no Psi term */
+} sky_features;
+sky_features sky_features_default(void);
+
+/* The pipeline variant a scene needs: specialization constants VKSKY_SPEC_* (shared.h). */
+typedef struct sky_variant {
+    VkBool32 rayleigh, mie, ozone, multiscatter, sun_disc, ground;
+    int32_t mie_phase;
+} sky_variant;
+sky_variant sky_variant_of(const ref_atmosphere *a, const sky_features *f);
 void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,
-                         AtmosphereParams *out);
+                         const sky_features *f, AtmosphereParams *out);
 /* FNV-1a of the packed block's LUT-relevant part: LUTs are recomputed only when it changes. */
 uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p);
 #endif

@@ -13,6 +13,7 @@
 
 static uint32_t timed_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
 {
+    if (r->pass_trace) fprintf(r->pass_trace, "pass %s\n", pass);
     gpu_label_begin(r->ctx, cmd, pass);
     return gpu_timer_begin(r->active_timer, cmd, pass);
 }
@@ -43,6 +44,14 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd)
     b = gpu_barrier_batch_begin("before multiscatter_lut");
     gpu_barrier_add_image(&b, "transmittance.write_to_sample", "transmittance_lut", l->transmittance.image, one,
                           GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    if (!r->variant.multiscatter) {
+        /* No multi-scattering: no LUT pass. The 1x1 placeholder is never read (compiled out) but stays bound,
+         * so it must be in the sampled layout: a layout transition only. */
+        gpu_barrier_add_image(&b, "multiscatter.unused_to_sample", "multiscatter_lut", l->multiscatter.image, one,
+                              GPU_USAGE_NONE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, true);
+        gpu_barrier_flush(cmd, &b);
+        return;
+    }
     gpu_barrier_add_image(&b, "multiscatter.to_storage", "multiscatter_lut", l->multiscatter.image, one,
                           LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
     gpu_barrier_flush(cmd, &b);

@@ -1,15 +1,16 @@
 #include "sky/passes.h"
 #include "sky/shaders.h"
 
-static VkPipeline compute_pipeline(const gpu_context *ctx, VkPipelineLayout layout, const sky_spirv *spv, const char *name)
+static VkPipeline compute_pipeline(const pass_shared *s, VkPipelineLayout layout, const sky_spirv *spv, const char *name)
 {
+    const gpu_context *ctx = s->ctx;
     VkShaderModule m = gpu_shader_module(ctx, spv->code, spv->size, name);
-    VkPipeline p = gpu_compute_pipeline(ctx, layout, m, name);
+    VkPipeline p = gpu_compute_pipeline_spec(ctx, layout, m, s->spec, name);
     vkDestroyShaderModule(ctx->device, m, NULL);
     return p;
 }
 
-void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q)
+void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter)
 {
     const gpu_context *ctx = s->ctx;
     VkFormat format = q->lut_f32 ? VK_FORMAT_R32G32B32A32_SFLOAT : HDR_FORMAT;
@@ -17,8 +18,10 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q)
     VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     gpu_image_create(ctx, &l->transmittance, "transmittance LUT", format, (uint32_t)q->transmittance_width,
                      (uint32_t)q->transmittance_height, 1, usage);
-    gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format, (uint32_t)q->multiscatter_size,
-                     (uint32_t)q->multiscatter_size, 1, usage);
+    /* Without multi-scattering the LUT is never computed nor read (compiled out); a 1x1 image keeps the
+     * descriptor valid. */
+    uint32_t ms_size = multiscatter ? (uint32_t)q->multiscatter_size : 1;
+    gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format, ms_size, ms_size, 1, usage);
     gpu_image_create(ctx, &l->skyview, "skyview LUT", HDR_FORMAT, (uint32_t)q->skyview_width,
                      (uint32_t)q->skyview_height, 1, usage);
 
@@ -27,7 +30,7 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q)
     VkDescriptorType t_types[] = {UBO, STORAGE};
     l->transmittance_set_layout = gpu_set_layout(ctx, t_types, 2, VK_SHADER_STAGE_COMPUTE_BIT, "transmittance set layout");
     l->transmittance_layout = gpu_pipeline_layout(ctx, l->transmittance_set_layout, 0, 0, "transmittance layout");
-    l->transmittance_pipeline = compute_pipeline(ctx, l->transmittance_layout,
+    l->transmittance_pipeline = compute_pipeline(s, l->transmittance_layout,
                                                  q->lut_f32 ? &spirv_transmittance_lut_f32 : &spirv_transmittance_lut,
                                                  "transmittance LUT");
     l->transmittance_set = gpu_alloc_set(ctx, s->pool, l->transmittance_set_layout, "transmittance set");
@@ -37,7 +40,7 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q)
     VkDescriptorType m_types[] = {UBO, SAMPLED, STORAGE};
     l->multiscatter_set_layout = gpu_set_layout(ctx, m_types, 3, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
     l->multiscatter_layout = gpu_pipeline_layout(ctx, l->multiscatter_set_layout, 0, 0, "multiscatter layout");
-    l->multiscatter_pipeline = compute_pipeline(ctx, l->multiscatter_layout,
+    l->multiscatter_pipeline = compute_pipeline(s, l->multiscatter_layout,
                                                 q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut,
                                                 "multiscatter LUT");
     l->multiscatter_set = gpu_alloc_set(ctx, s->pool, l->multiscatter_set_layout, "multiscatter set");
@@ -49,7 +52,7 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q)
     l->skyview_set_layout = gpu_set_layout(ctx, v_types, 4, VK_SHADER_STAGE_COMPUTE_BIT, "skyview set layout");
     l->skyview_layout = gpu_pipeline_layout(ctx, l->skyview_set_layout, sizeof(SkyPush), VK_SHADER_STAGE_COMPUTE_BIT,
                                             "skyview layout");
-    l->skyview_pipeline = compute_pipeline(ctx, l->skyview_layout, &spirv_skyview_lut, "skyview LUT");
+    l->skyview_pipeline = compute_pipeline(s, l->skyview_layout, &spirv_skyview_lut, "skyview LUT");
     l->skyview_set = gpu_alloc_set(ctx, s->pool, l->skyview_set_layout, "skyview set");
     gpu_write_uniform(ctx, l->skyview_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
     gpu_write_sampled(ctx, l->skyview_set, 1, l->transmittance.view, s->linear_clamp);

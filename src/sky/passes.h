@@ -19,6 +19,7 @@ typedef struct pass_shared {
     VkSampler linear_clamp;
     gpu_buffer atmosphere_ubo;
     VkShaderModule fullscreen_vs;
+    const VkSpecializationInfo *spec;   /* the scene's variant, for every shader that includes atmosphere.glsl */
 } pass_shared;
 
 /* --- LUT compute passes (luts.c): transmittance and multi-scattering (when the atmosphere changes), sky-view
@@ -30,7 +31,8 @@ typedef struct sky_luts {
     VkPipeline transmittance_pipeline, multiscatter_pipeline, skyview_pipeline;
     VkDescriptorSet transmittance_set, multiscatter_set, skyview_set;
 } sky_luts;
-void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q);
+/* multiscatter false: no multi-scattering LUT to compute (a 1x1 placeholder keeps the descriptor valid). */
+void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter);
 void luts_destroy(sky_luts *l, const pass_shared *s);
 void luts_record_transmittance(const sky_luts *l, VkCommandBuffer cmd);
 void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd);

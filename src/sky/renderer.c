@@ -2,6 +2,7 @@
 #include "sky/shaders.h"
 #include "io/image_io.h"
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 #include <time.h>
 
@@ -136,6 +137,41 @@ void sky_renderer_resize(sky_renderer *r, uint32_t width, uint32_t height)
     create_sized(r);
 }
 
+/* The pipelines that carry the scene's variant (specialization constants): LUT passes and sky pass. */
+static void build_variant(sky_renderer *r)
+{
+    pass_shared *s = &r->shared;
+    r->variant = sky_variant_of(&r->medium, &r->features);
+    const sky_variant *v = &r->variant;
+    const struct { uint32_t id; size_t offset, size; } map[7] = {
+        {VKSKY_SPEC_RAYLEIGH, offsetof(sky_variant, rayleigh), sizeof v->rayleigh},
+        {VKSKY_SPEC_MIE, offsetof(sky_variant, mie), sizeof v->mie},
+        {VKSKY_SPEC_OZONE, offsetof(sky_variant, ozone), sizeof v->ozone},
+        {VKSKY_SPEC_MULTISCATTER, offsetof(sky_variant, multiscatter), sizeof v->multiscatter},
+        {VKSKY_SPEC_SUN_DISC, offsetof(sky_variant, sun_disc), sizeof v->sun_disc},
+        {VKSKY_SPEC_GROUND, offsetof(sky_variant, ground), sizeof v->ground},
+        {VKSKY_SPEC_MIE_PHASE, offsetof(sky_variant, mie_phase), sizeof v->mie_phase}};
+    for (int i = 0; i < 7; ++i)
+        r->spec_entries[i] = (VkSpecializationMapEntry){map[i].id, (uint32_t)map[i].offset, map[i].size};
+    r->spec = (VkSpecializationInfo){.mapEntryCount = 7, .pMapEntries = r->spec_entries, .dataSize = sizeof *v, .pData = v};
+    s->spec = &r->spec;
+    luts_create(&r->luts, s, &r->desc.lut, v->multiscatter);
+    sky_pass_create(&r->sky, s, &r->luts);
+    r->luts_valid = false;
+}
+
+static void rebuild_variant_if_changed(sky_renderer *r)
+{
+    sky_variant want = sky_variant_of(&r->medium, &r->features);
+    if (!memcmp(&want, &r->variant, sizeof want)) return;
+    vkDeviceWaitIdle(r->ctx->device);
+    sky_pass_destroy(&r->sky, &r->shared);
+    luts_destroy(&r->luts, &r->shared);
+    VK_CHECK(vkResetDescriptorPool(r->ctx->device, r->shared.pool, 0));
+    build_variant(r);
+    sky_pass_set_target(&r->sky, &r->shared, &r->hdr);
+}
+
 void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_desc *desc)
 {
     memset(r, 0, sizeof *r);
@@ -157,8 +193,10 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
 
     VkDescriptorPoolCreateInfo size_info = pinfo;
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &size_info, NULL, &r->size_pool));
-    luts_create(&r->luts, s, &r->desc.lut);
-    sky_pass_create(&r->sky, s, &r->luts);
+    ref_atmosphere_earth(&r->medium);
+    r->features = sky_features_default();
+    r->sun_angular_radius = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
+    build_variant(r);
     create_sized(r);
     gpu_timer_create(ctx, &r->timer);
 }
@@ -181,9 +219,10 @@ void sky_renderer_destroy(sky_renderer *r)
     memset(r, 0, sizeof *r);
 }
 
-void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad)
+static void upload_atmosphere(sky_renderer *r)
 {
-    sky_atmosphere_pack(a, sun_angular_radius_rad, r->desc.lut, &r->atmosphere);
+    rebuild_variant_if_changed(r);
+    sky_atmosphere_pack(&r->medium, r->sun_angular_radius, r->desc.lut, &r->features, &r->atmosphere);
     /* Host write before the submit that reads it: vkQueueSubmit makes it visible (no barrier needed); the
      * caller guarantees no frame in flight still reads the old values. */
     memcpy(r->shared.atmosphere_ubo.mapped, &r->atmosphere, sizeof r->atmosphere);
@@ -192,6 +231,19 @@ void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, doubl
                                      .memory = r->shared.atmosphere_ubo.memory, .size = VK_WHOLE_SIZE};
         VK_CHECK(vkFlushMappedMemoryRanges(r->ctx->device, 1, &range));
     }
+}
+
+void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad)
+{
+    r->medium = *a;
+    r->sun_angular_radius = sun_angular_radius_rad;
+    upload_atmosphere(r);
+}
+
+void sky_renderer_set_features(sky_renderer *r, const sky_features *f)
+{
+    r->features = *f;
+    upload_atmosphere(r);
 }
 
 bool sky_renderer_luts_dirty(const sky_renderer *r)

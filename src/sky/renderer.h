@@ -54,6 +54,13 @@ typedef struct sky_renderer {
     gpu_timer timer;
     gpu_timer *active_timer;     /* the timer of the frame being recorded */
     AtmosphereParams atmosphere;
+    ref_atmosphere medium;       /* as last set */
+    double sun_angular_radius;
+    sky_features features;
+    sky_variant variant;         /* of the pipelines built now */
+    VkSpecializationMapEntry spec_entries[7];
+    VkSpecializationInfo spec;
+    FILE *pass_trace;            /* non-NULL: print "pass <name>" for every pass a frame records */
     uint64_t lut_hash;           /* of the atmosphere the LUTs hold; 0: never computed */
     bool luts_valid;
 } sky_renderer;
@@ -63,6 +70,9 @@ void sky_renderer_destroy(sky_renderer *r);
 /* Set the atmosphere (writes the uniform buffer: call only while no frame is in flight). LUTs are recomputed
  * by the next frame if their inputs changed. */
 void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad);
+/* Ground albedo, Mie phase model, limb darkening, sun disc, multi-scattering. A change of what the scene needs
+ * (species present, multi-scattering, disc, ground, phase model) rebuilds the pipelines for the new variant. */
+void sky_renderer_set_features(sky_renderer *r, const sky_features *f);
 /* The sky pass kind a frame of this view uses (auto resolved for the device). */
 sky_pass_kind sky_renderer_pass_kind(const sky_renderer *r, const sky_view *v);
 /* The sky mode a frame of this view uses (auto: the sky-view LUT inside the atmosphere, the march from space). */

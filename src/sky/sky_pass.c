@@ -34,10 +34,10 @@ void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
             const sky_spirv *spv = variant(kind, mode);
             VkShaderModule m = gpu_shader_module(ctx, spv->code, spv->size, name);
             if (kind == SKY_PASS_FRAGMENT)
-                p->pipelines[kind][mode] = gpu_fullscreen_pipeline(ctx, p->layouts[kind], s->fullscreen_vs, m,
-                                                                   &format, 1, GPU_BLEND_NONE, name);
+                p->pipelines[kind][mode] = gpu_fullscreen_pipeline_spec(ctx, p->layouts[kind], s->fullscreen_vs, m,
+                                                                        s->spec, &format, 1, GPU_BLEND_NONE, name);
             else
-                p->pipelines[kind][mode] = gpu_compute_pipeline(ctx, p->layouts[kind], m, name);
+                p->pipelines[kind][mode] = gpu_compute_pipeline_spec(ctx, p->layouts[kind], m, s->spec, name);
             vkDestroyShaderModule(ctx->device, m, NULL);
         }
     }
