@@ -1,12 +1,13 @@
 #include "app/options.h"
 #include "app/quality.h"
+#include "app/scene.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
-typedef enum { ARG_NONE, ARG_INT, ARG_DOUBLE, ARG_STRING } arg_kind;
+typedef enum { ARG_NONE, ARG_INT, ARG_DOUBLE, ARG_STRING, ARG_TRIPLE } arg_kind;   /* TRIPLE: "R,G,B" in [min, max] */
 
 typedef struct flag {
     const char *name;
@@ -37,9 +38,9 @@ static const flag flags[] = {
     {"--step-distribution", ARG_DOUBLE, 1, 4, "P steps end at t_max (i/N)^P: 1 uniform, 2 quadratic (default 2; uniform for rays entering from space)"},
     {"--sky-mode", ARG_STRING, 0, 0, "M   march | skyview | auto | fill: per-pixel march, sky-view LUT lookup, the LUT inside the atmosphere, or a constant (the benchmark floor) (default march)"},
     {"--sky-pass", ARG_STRING, 0, 0, "K   fragment | compute | auto: the sky pass as a full-screen draw or a compute dispatch; auto: fragment on a CPU device, compute on a GPU (default auto)"},
-    {"--skyview-lut", ARG_STRING, 0, 0, "WxH sky-view LUT size (default 192x108)"},
+    {"--skyview-lut", ARG_STRING, 2, 4096, "WxH sky-view LUT size (default 192x108)"},
     {"--skyview-steps", ARG_INT, 1, 1024, "N march steps per sky-view LUT texel (default 30)"},
-    {"--transmittance-lut", ARG_STRING, 0, 0, "WxH transmittance LUT size (default 256x64)"},
+    {"--transmittance-lut", ARG_STRING, 2, 4096, "WxH transmittance LUT size (default 256x64)"},
     {"--transmittance-steps", ARG_INT, 1, 4096, "N steps per transmittance texel (default 40)"},
     {"--multiscatter-lut", ARG_INT, 2, 1024, "N multi-scattering LUT size NxN (default 32)"},
     {"--multiscatter-dirs", ARG_INT, 1, 4096, "N sphere directions per texel, a perfect square (default 64)"},
@@ -51,6 +52,15 @@ static const flag flags[] = {
     {"--rayleigh-scale", ARG_DOUBLE, 0, 1000, "S Rayleigh density scale (default 1)"},
     {"--mie-scale", ARG_DOUBLE, 0, 1000, "S      Mie (aerosol) density scale (default 1)"},
     {"--ozone-scale", ARG_DOUBLE, 0, 1000, "S    ozone density scale (default 1)"},
+    {"--scene", ARG_STRING, 0, 0, "FILE.json  load a scene file first (schema: scenes/README.md); every other flag overrides it"},
+    {"--dump-scene", ARG_NONE, 0, 0, "      print the effective scene (after all overrides) as scene JSON and exit"},
+    {"--ground-albedo", ARG_TRIPLE, 0, 1, "R,G,B ground albedo (default 0,0,0)"},
+    {"--mie-phase", ARG_STRING, 0, 0, "M    hg | cornette-shanks: the Mie phase function (default hg = Henyey-Greenstein)"},
+    {"--sun-illuminance", ARG_TRIPLE, 0, 1e6, "R,G,B sun illuminance at the top of the atmosphere (default 20,20,20)"},
+    {"--sun-angular-radius", ARG_DOUBLE, 0.01, 10, "DEG sun disc angular radius (default 0.265)"},
+    {"--limb-darkening", ARG_DOUBLE, 0, 1, "U   sun limb darkening coefficient (default 0.6)"},
+    {"--no-sun-disc", ARG_NONE, 0, 0, "     leave the sun disc out"},
+    {"--no-multiscatter", ARG_NONE, 0, 0, " single scattering only (no multi-scattering term or LUT)"},
     {"--reference", ARG_NONE, 0, 0, "       CPU reference (double precision, no LUTs): print R G B along the view axis, or with --render write a reference image"},
     {"--path-trace", ARG_NONE, 0, 0, "      with --reference: Monte Carlo path tracer of the same medium, all scattering orders"},
     {"--samples", ARG_INT, 1, 100000000, "N        with --path-trace: paths per estimate (default 4096)"},
@@ -59,6 +69,7 @@ static const flag flags[] = {
     {"--screenshot", ARG_STRING, 0, 0, "FILE window: save the last presented frame as PNG before quitting"},
     {"--validate", ARG_NONE, 0, 0, "      Khronos validation + synchronization validation; any message fails the run (also VKSKY_VALIDATION=1)"},
     {"--trace-barriers", ARG_NONE, 0, 0, "print one line per barrier as the frame is recorded"},
+    {"--trace-passes", ARG_NONE, 0, 0, "  list the passes the frame records"},
     {"--list-devices", ARG_NONE, 0, 0, "  list Vulkan devices and exit"},
     {"--device", ARG_INT, 0, 63, "N     use device N of --list-devices (default: discrete > integrated > CPU)"},
     {"--help", ARG_NONE, 0, 0, "          this text"},
@@ -118,21 +129,54 @@ static void scale3(double v[3], double factor)
     for (int i = 0; i < 3; ++i) v[i] *= factor;
 }
 
-/* "WxH" with both in [2, 4096]. */
-static int parse_size(const char *flag_name, const char *text, int *w, int *h)
+bool options_flag_range(const char *flag_name, double *min, double *max)
+{
+    for (size_t i = 0; i < sizeof flags / sizeof flags[0]; ++i)
+        if (!strcmp(flags[i].name, flag_name) && flags[i].min < flags[i].max) {
+            *min = flags[i].min, *max = flags[i].max;
+            return true;
+        }
+    return false;
+}
+
+/* "WxH" with both in the flag's range. */
+static int parse_size(const flag *f, const char *text, int *w, int *h)
 {
     char *end = NULL;
     long a = strtol(text, &end, 10);
     if (end == text || (*end != 'x' && *end != 'X')) goto fail;
     const char *second = end + 1;
     long b = strtol(second, &end, 10);
-    if (end == second || *end != '\0' || a < 2 || b < 2 || a > 4096 || b > 4096) goto fail;
+    if (end == second || *end != '\0' || a < f->min || b < f->min || a > f->max || b > f->max) goto fail;
     *w = (int)a, *h = (int)b;
     return 0;
 fail:;
     char msg[200];
-    snprintf(msg, sizeof msg, "'%s' is not a size; expected WxH with W and H integers in [2, 4096]", text);
-    return bad(flag_name, msg);
+    snprintf(msg, sizeof msg, "'%s' is not a size; expected WxH with W and H integers in [%g, %g]", text, f->min, f->max);
+    return bad(f->name, msg);
+}
+
+/* "R,G,B": three numbers, each in the flag's range. */
+static int parse_triple(const flag *f, const char *text, double out[3])
+{
+    const flag one = {f->name, ARG_DOUBLE, f->min, f->max, NULL};
+    const char *p = text;
+    for (int i = 0; i < 3; ++i) {
+        const char *comma = strchr(p, ',');
+        size_t n = comma && i < 2 ? (size_t)(comma - p) : strlen(p);
+        char part[64];
+        if ((i < 2 && !comma) || (i == 2 && comma) || n >= sizeof part) {
+            char msg[200];
+            snprintf(msg, sizeof msg, "'%s' is not R,G,B; expected three numbers in [%g, %g] separated by commas", text,
+                     f->min, f->max);
+            return bad(f->name, msg);
+        }
+        memcpy(part, p, n);
+        part[n] = '\0';
+        if (parse_number(&one, part, &out[i])) return 2;
+        p += n + 1;
+    }
+    return 0;
 }
 
 /* One of a fixed list of words; returns its index or -1 (message printed). */
@@ -210,9 +254,9 @@ static int apply(options *o, const flag *f, const char *value)
         if (k < 0) return 2;
         o->lut.lut_f32 = k == 1;
     } else if (!strcmp(n, "--skyview-lut")) {
-        if (parse_size(n, value, &o->lut.skyview_width, &o->lut.skyview_height)) return 2;
+        if (parse_size(f, value, &o->lut.skyview_width, &o->lut.skyview_height)) return 2;
     } else if (!strcmp(n, "--transmittance-lut")) {
-        if (parse_size(n, value, &o->lut.transmittance_width, &o->lut.transmittance_height)) return 2;
+        if (parse_size(f, value, &o->lut.transmittance_width, &o->lut.transmittance_height)) return 2;
     } else if (!strcmp(n, "--skyview-steps")) o->view.skyview_steps = (int)x;
     else if (!strcmp(n, "--transmittance-steps")) o->lut.transmittance_steps = (int)x;
     else if (!strcmp(n, "--multiscatter-lut")) o->lut.multiscatter_size = (int)x;
@@ -227,6 +271,25 @@ static int apply(options *o, const flag *f, const char *value)
     else if (!strcmp(n, "--rayleigh-scale")) o->scales[0] = x;
     else if (!strcmp(n, "--mie-scale")) o->scales[1] = x;
     else if (!strcmp(n, "--ozone-scale")) o->scales[2] = x;
+    else if (!strcmp(n, "--scene")) {
+        if (o->scene_path) return bad(n, "given twice; expected one scene (later flags override its fields)");
+        o->scene_path = value;
+        if (scene_load(value, o) != 0) return 2;
+    } else if (!strcmp(n, "--dump-scene")) o->dump_scene = true;
+    else if (!strcmp(n, "--ground-albedo")) {
+        if (parse_triple(f, value, o->ground_albedo)) return 2;
+    } else if (!strcmp(n, "--sun-illuminance")) {
+        if (parse_triple(f, value, o->atmosphere.sun_illuminance)) return 2;
+    } else if (!strcmp(n, "--mie-phase")) {
+        static const char *const w[] = {"hg", "cornette-shanks", "henyey-greenstein"};
+        int k = parse_word(n, value, w, 3);
+        if (k < 0) return 2;
+        o->mie_phase = k == 1;
+    } else if (!strcmp(n, "--sun-angular-radius")) o->sun_angular_radius_deg = x;
+    else if (!strcmp(n, "--limb-darkening")) o->limb_darkening = x;
+    else if (!strcmp(n, "--no-sun-disc")) o->sun_disc = false;
+    else if (!strcmp(n, "--no-multiscatter")) o->multiple_scattering = false;
+    else if (!strcmp(n, "--trace-passes")) o->trace_passes = true;
     else if (!strcmp(n, "--reference")) o->reference = true;
     else if (!strcmp(n, "--path-trace")) o->path_trace = true;
     else if (!strcmp(n, "--samples")) o->path_samples = (int)x;
@@ -253,9 +316,11 @@ int options_parse(options *o, int argc, char **argv)
     ref_atmosphere_earth(&o->atmosphere);
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
-    /* Two passes: the quality preset (or --max-error's choice) sets the knobs first, so that any knob flag,
-     * wherever it stands, overrides it. */
-    for (int pass = 0; pass < 2; ++pass) {
+    /* Three passes: --scene first (pass -1), wherever it stands; then the quality preset (or --max-error's choice)
+     * sets the knobs, so that any knob flag, wherever it stands, overrides it. */
+    const char *scene_quality = NULL;
+    for (int pass = -1; pass < 2; ++pass) {
+    if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
     if (pass == 1) {
         if (o->quality && o->max_error > 0.0) return bad("--max-error", "not with --quality; give one or the other");
         const quality_config *q = o->quality ? quality_preset(o->quality) : NULL;
@@ -269,10 +334,14 @@ int options_parse(options *o, int argc, char **argv)
                          o->max_error, scene);
                 return bad("--max-error", msg);
             }
-            printf("vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
-                   o->max_error, q->name, measured, scene);
+            fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
+                    "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
+                    o->max_error, q->name, measured, scene);
         }
+        /* --quality / --max-error replace the scene's whole quality section; without them the scene's preset (applied
+         * by scene_load, under the scene's knobs) stays. */
         if (q) quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips);
+        else o->quality = scene_quality;
     }
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
@@ -295,10 +364,14 @@ int options_parse(options *o, int argc, char **argv)
         } else if (eq && name_len < strlen(arg)) {
             return bad(f->name, "takes no value");
         }
+        bool scene_flag = !strcmp(f->name, "--scene");
         bool first_pass_flag = !strcmp(f->name, "--quality") || !strcmp(f->name, "--max-error") ||
-                               !strcmp(f->name, "--altitude") || !strcmp(f->name, "--sun-elevation");
-        /* Pass 0 reads only what the choice depends on; pass 1 applies every flag except the choice. */
-        if (pass == 0 ? first_pass_flag : strcmp(f->name, "--quality") && strcmp(f->name, "--max-error"))
+                               !strcmp(f->name, "--altitude") || !strcmp(f->name, "--sun-elevation") ||
+                               !strcmp(f->name, "--dump-scene");
+        /* Pass -1 loads the scene; pass 0 reads only what the choice depends on; pass 1 applies every flag except the
+         * scene and the choice. */
+        if (pass < 0 ? scene_flag
+                     : pass == 0 ? first_pass_flag : !scene_flag && strcmp(f->name, "--quality") && strcmp(f->name, "--max-error"))
             if (apply(o, f, value) != 0) return 2;
     }
     }
@@ -311,5 +384,6 @@ int options_parse(options *o, int argc, char **argv)
         snprintf(msg, sizeof msg, "%d is below --steps %d; expected a maximum >= the minimum", o->view.max_steps, o->view.steps);
         return bad("--max-steps", msg);
     }
+    if (o->dump_scene && !o->help && !o->version) exit(scene_dump(o, stdout));   /* --dump-scene: nothing else runs */
     return 0;
 }

@@ -1,5 +1,6 @@
 #include "app/reference_run.h"
 #include "io/image_io.h"
+#include "reference/path_tracer.h"
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -16,11 +17,17 @@ typedef struct ref_job {
     pthread_mutex_t lock;
 } ref_job;
 
+/* The converged model, or (--path-trace) the Monte Carlo path tracer of the same medium with all scattering
+ * orders and no horizon fade; err gets the path tracer's standard errors (0 for the model). */
 static void radiance(const options *o, const double view[3], const double sun[3], double rgb[3], double err[3])
 {
-    ref_quality q = ref_quality_converged();
-    ref_sky_radiance(&o->atmosphere, o->view.altitude_km, view, sun, q, rgb);
     err[0] = err[1] = err[2] = 0.0;
+    if (o->path_trace) {
+        pt_settings s = {.samples = o->path_samples, .seed = 2020, .ground_albedo = o->ground_albedo[1], .threads = 1};
+        pt_radiance(&o->atmosphere, o->view.altitude_km, view, sun, &s, rgb, err);
+        return;
+    }
+    ref_sky_radiance(&o->atmosphere, o->view.altitude_km, view, sun, ref_quality_converged(), rgb);
 }
 
 static void *render_rows(void *arg)
@@ -64,7 +71,8 @@ int reference_run(const options *o)
         double view[3], rgb[3], e[3];
         ref_dir(o->view.yaw_deg * DEG, o->view.pitch_deg * DEG, view);
         radiance(o, view, job.sun, rgb, e);
-        printf("%.9g %.9g %.9g\n", rgb[0], rgb[1], rgb[2]);
+        if (o->path_trace) printf("%.9g %.9g %.9g stderr %.3g %.3g %.3g\n", rgb[0], rgb[1], rgb[2], e[0], e[1], e[2]);
+        else printf("%.9g %.9g %.9g\n", rgb[0], rgb[1], rgb[2]);
         return 0;
     }
     size_t pixels = (size_t)o->width * o->height;

@@ -37,6 +37,10 @@ static const char *const phase_words[] = {"henyey-greenstein", "cornette-shanks"
 static const char *const preset_words[] = {"low", "medium", "high", "ultra"};
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
+/* The description of the scene loaded last: --dump-scene keeps it (a dump of mars.json still says what it is and
+ * cites its sources). The options struct has no field for it; options_parse runs once per process. */
+static char *loaded_description;
+
 /* A printable, bounded copy (control characters -> '?'): messages stay one line whatever the file holds. */
 static void printable(char *dst, size_t n, const char *src)
 {
@@ -181,7 +185,7 @@ static int get_array(const ctx *c, const cJSON *obj, const char *key, const char
     double v[4];
     int i = 0;
     for (const cJSON *e = j->child; e; e = e->next, ++i) {
-        char pe[PATH_LEN + 8];
+        char pe[PATH_LEN + 16];
         snprintf(pe, sizeof pe, "%s[%d]", p, i);
         if (check_number(c, e, pe, r, &v[i])) return 2;
     }
@@ -482,6 +486,11 @@ static int read_all(const char *path, const char *shown, char **text, size_t *le
     return 0;
 }
 
+static bool blank(char ch)
+{
+    return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n';
+}
+
 /* 1-based line and column (in characters: UTF-8 continuation bytes do not count) of byte offset `at`. */
 static void line_column(const char *text, size_t at, int *line, int *column)
 {
@@ -497,20 +506,28 @@ static int syntax_error(const ctx *c, const char *text, size_t len, const char *
     size_t at = why_at && why_at >= text && why_at <= text + len ? (size_t)(why_at - text) : len;
     int line, column;
     line_column(text, at, &line, &column);
-    char near[32];
-    size_t k = 0;
-    for (size_t i = at; i < len && text[i] != '\n' && text[i] != '\r' && k + 1 < sizeof near; ++i) near[k++] = text[i];
-    near[k] = '\0';
-    char shown[sizeof near];
-    printable(shown, sizeof shown, near);
     bool at_end = true;
-    for (size_t i = at; i < len; ++i) at_end = at_end && strchr(" \t\r\n", text[i]) != NULL;
-    if (at_end)
+    for (size_t i = at; i < len; ++i) at_end = at_end && blank(text[i]);
+    if (at < len && text[at] == '\0') {
+        fprintf(stderr, "vksky: %s:%d:%d: a NUL byte; expected JSON text\n", c->file, line, column);
+        return 2;
+    }
+    if (at_end) {
         fprintf(stderr, "vksky: %s:%d:%d: syntax error: unexpected end of the file (an unclosed object, array or "
                         "string?); expected a JSON object\n", c->file, line, column);
-    else
-        fprintf(stderr, "vksky: %s:%d:%d: syntax error at '%s'; expected JSON (no comments, no trailing commas)\n",
-                c->file, line, column, shown);
+        return 2;
+    }
+    /* The line the parser stopped in (from its first non-blank character), to show where. */
+    size_t start = at;
+    while (start > 0 && text[start - 1] != '\n') --start;
+    while (start < at && blank(text[start])) ++start;
+    char near[48], shown[48];
+    size_t k = 0;
+    for (size_t i = start; i < len && text[i] != '\n' && text[i] != '\r' && k + 1 < sizeof near; ++i) near[k++] = text[i];
+    near[k] = '\0';
+    printable(shown, sizeof shown, near);
+    fprintf(stderr, "vksky: %s:%d:%d: syntax error near '%s'; expected JSON (no comments, no trailing commas, "
+                    "strings in double quotes)\n", c->file, line, column, shown);
     return 2;
 }
 
@@ -525,10 +542,10 @@ int scene_load(const char *path, options *o)
     if (read_all(path, c.file, &text, &len)) return 2;
     int rc = 2;
     cJSON *root = NULL;
-    size_t blank = 0;
-    while (blank < len && strchr(" \t\r\n", text[blank])) ++blank;
+    size_t first = 0;
+    while (first < len && blank(text[first])) ++first;
     const char *nul = memchr(text, '\0', len);
-    if (blank == len) {
+    if (first == len) {
         fprintf(stderr, "vksky: %s: empty file; expected a JSON object (see scenes/README.md)\n", c.file);
         goto done;
     }
@@ -536,7 +553,8 @@ int scene_load(const char *path, options *o)
         rc = syntax_error(&c, text, len, nul);
         goto done;
     }
-    root = cJSON_ParseWithLengthOpts(text, len, NULL, true);
+    /* The length includes the terminating NUL: cJSON's "nothing after the value" check looks for it. */
+    root = cJSON_ParseWithLengthOpts(text, len + 1, NULL, true);
     if (!root) {
         rc = syntax_error(&c, text, len, cJSON_GetErrorPtr());
         goto done;
@@ -552,6 +570,8 @@ int scene_load(const char *path, options *o)
         fail(&c, "description", "expected a string, got %s", type_of(description));
         goto done;
     }
+    free(loaded_description);
+    loaded_description = description ? strdup(description->valuestring) : NULL;
     const cJSON *section;
     if (get_object(&c, root, "planet", "", &section) || (section && parse_planet(&c, section))) goto done;
     if (get_object(&c, root, "species", "", &section) || (section && parse_species(&c, section))) goto done;
@@ -615,11 +635,10 @@ int scene_dump(const options *o, FILE *out)
     builder b = {.ok = true};
     cJSON *root = cJSON_CreateObject();
     if (!root) return 1;
-    char description[PATH_LEN + 160], from[PATH_LEN];
-    printable(from, sizeof from, o->scene_path ? o->scene_path : "");
-    snprintf(description, sizeof description, "vksky %s --dump-scene: the effective scene (defaults%s%s, then the "
-             "command-line flags)", VKSKY_VERSION, o->scene_path ? ", then " : "", from);
-    str(&b, root, "description", description);
+    char description[160];
+    snprintf(description, sizeof description, "vksky %s --dump-scene: the effective scene (defaults, then the "
+             "command-line flags)", VKSKY_VERSION);
+    str(&b, root, "description", o->scene_path && loaded_description ? loaded_description : description);
 
     cJSON *planet = obj(&b, root, "planet");
     num(&b, planet, "ground_radius_km", a->bottom_radius);

@@ -46,9 +46,9 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd)
                           GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
     if (!r->variant.multiscatter) {
         /* No multi-scattering: no LUT pass. The 1x1 placeholder is never read (compiled out) but stays bound,
-         * so it must be in the sampled layout: a layout transition only. */
+         * so it must be in the sampled layout: a layout transition, after the previous frames' (static) reads. */
         gpu_barrier_add_image(&b, "multiscatter.unused_to_sample", "multiscatter_lut", l->multiscatter.image, one,
-                              GPU_USAGE_NONE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, true);
+                              LUT_LAST_USE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, true);
         gpu_barrier_flush(cmd, &b);
         return;
     }

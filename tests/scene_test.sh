@@ -1,0 +1,193 @@
+#!/usr/bin/env bash
+# Scene files (--scene, --dump-scene; src/app/scene.c, scenes/README.md):
+#  1. every shipped scene (scenes/*.json) renders validation-clean (--validate: any validation message exits 1),
+#     writes its file and prints nothing on stderr; its --dump-scene loads back to the same dump, and the dump
+#     renders the very same image; earth-clear.json is the defaults;
+#  2. flags override scene fields wherever they stand (the dump shows the override); a --quality flag replaces
+#     the scene's quality section; a dump with many overrides round-trips too;
+#  3. every malformed scene (tests/scenes_bad/*.json, and a few made here) and every bad value of the new flags
+#     exits 2 with exactly one line on stderr naming the field (or file:line:column), and leaves no file behind;
+#  4. the Mars sky (colour only): butterscotch by day (R > B), and bluer near the sun at sunset than at noon.
+# Usage: scene_test.sh VKSKY EXR_PROBE [SCENES_DIR] [BAD_SCENES_DIR]
+set -u
+VKSKY=${1:?usage: scene_test.sh path/to/vksky path/to/exr_probe [scenes dir] [bad scenes dir]}
+PROBE=${2:?usage: scene_test.sh path/to/vksky path/to/exr_probe [scenes dir] [bad scenes dir]}
+here=$(cd "$(dirname "$0")" && pwd)
+SCENES=${3:-$here/../scenes}
+BAD=${4:-$here/scenes_bad}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+SMALL=(--width 64 --height 36 --validate)
+
+# ---- 1. shipped scenes ------------------------------------------------------------------------------------
+shipped=0
+for scene in "$SCENES"/*.json; do
+    name=$(basename "$scene" .json)
+    shipped=$((shipped + 1))
+    "$VKSKY" --scene "$scene" "${SMALL[@]}" --render "$work/$name.exr" --render "$work/$name.png" \
+        >"$work/out" 2>"$work/err"
+    rc=$?
+    [ $rc -eq 0 ] || fail "$name: render exited $rc: $(head -c 600 "$work/err")"
+    [ ! -s "$work/err" ] || fail "$name: render printed on stderr: $(head -c 600 "$work/err")"
+    [ -s "$work/$name.exr" ] && [ -s "$work/$name.png" ] || fail "$name: render wrote no image"
+    if ! "$VKSKY" --scene "$scene" --dump-scene >"$work/$name.dump.json" 2>"$work/err" || [ -s "$work/err" ]; then
+        fail "$name: --dump-scene failed: $(cat "$work/err")"
+        continue
+    fi
+    "$VKSKY" --scene "$work/$name.dump.json" --dump-scene >"$work/$name.dump2.json" 2>"$work/err" ||
+        fail "$name: its dump does not load: $(cat "$work/err")"
+    cmp -s "$work/$name.dump.json" "$work/$name.dump2.json" ||
+        fail "$name: dump -> load -> dump differs: $(diff "$work/$name.dump.json" "$work/$name.dump2.json" | head -5)"
+    "$VKSKY" --scene "$work/$name.dump.json" "${SMALL[@]}" --render "$work/$name.again.exr" 2>"$work/err" ||
+        fail "$name: the dump does not render: $(cat "$work/err")"
+    cmp -s "$work/$name.exr" "$work/$name.again.exr" || fail "$name: the dump renders a different image"
+done
+[ $shipped -ge 4 ] || fail "expected at least 4 shipped scenes in $SCENES, found $shipped"
+"$VKSKY" --dump-scene | grep -v '"description"' >"$work/defaults.json"
+"$VKSKY" --scene "$SCENES/earth-clear.json" --dump-scene | grep -v '"description"' >"$work/clear.json"
+cmp -s "$work/defaults.json" "$work/clear.json" ||
+    fail "earth-clear.json is not the defaults: $(diff "$work/defaults.json" "$work/clear.json" | head -6)"
+
+# ---- 2. flags override the scene ---------------------------------------------------------------------------
+# has DUMP_FILE "key" VALUE: the dump holds "key": VALUE (cJSON prints a tab after the colon).
+has() { grep -qE "^[[:space:]]*\"$2\":[[:space:]]*$3,?\$" "$1"; }
+dump() { "$VKSKY" "$@" --dump-scene >"$work/d.json" 2>"$work/err" || fail "dump of $* failed: $(cat "$work/err")"; }
+MARS=$SCENES/mars.json
+dump --scene "$MARS" --sun-elevation 33 --width 99 --pitch -5
+has "$work/d.json" elevation_deg 33 && has "$work/d.json" width 99 && has "$work/d.json" pitch_deg -5 ||
+    fail "flags after --scene do not override it: $(grep -E 'elevation_deg|width|pitch_deg' "$work/d.json")"
+has "$work/d.json" ground_radius_km 3389.5 || fail "the Mars scene's planet did not load"
+dump --sun-elevation 33 --width 99 --scene "$MARS"
+has "$work/d.json" elevation_deg 33 && has "$work/d.json" width 99 ||
+    fail "flags before --scene do not override it (the scene must load first)"
+dump --scene "$MARS" --mie-scale 2 --sun-illuminance 1,2,3 --ground-albedo 0.1,0.2,0.3 --no-sun-disc --no-multiscatter \
+     --mie-phase cornette-shanks --sun-angular-radius 0.5 --limb-darkening 0.25 --no-bloom --tonemap reinhard
+has "$work/d.json" scattering "\[0\.09088, 0\.08378, 0\.06918\]" || fail "--mie-scale does not scale the scene's Mie"
+has "$work/d.json" illuminance "\[1, 2, 3\]" || fail "--sun-illuminance"
+has "$work/d.json" ground_albedo "\[0\.1, 0\.2, 0\.3\]" || fail "--ground-albedo"
+has "$work/d.json" disc false && has "$work/d.json" multiple_scattering false && has "$work/d.json" bloom false ||
+    fail "--no-sun-disc / --no-multiscatter / --no-bloom"
+has "$work/d.json" model '"cornette-shanks"' && has "$work/d.json" angular_radius_deg 0.5 &&
+    has "$work/d.json" limb_darkening 0.25 && has "$work/d.json" tonemap '"reinhard"' ||
+    fail "--mie-phase / --sun-angular-radius / --limb-darkening / --tonemap"
+cp "$work/d.json" "$work/many.json"
+"$VKSKY" --scene "$work/many.json" --dump-scene >"$work/many2.json" 2>"$work/err" && cmp -s "$work/many.json" "$work/many2.json" ||
+    fail "a dump with overrides does not round-trip: $(cat "$work/err"; diff "$work/many.json" "$work/many2.json" | head -5)"
+# Quality: the scene's knobs override its preset; --quality replaces both; knob flags override everything.
+# (Compared with the same choice made by flags alone, so that the test does not copy the preset table.)
+cat >"$work/q.json" <<'EOF'
+{"quality": {"preset": "low", "steps": 100, "lut_format": "f32"}}
+EOF
+same_dump() {   # same_dump "what" "args A" "args B": the two dumps are equal but for the description
+    local what=$1 a b
+    read -r -a a <<<"$2"; read -r -a b <<<"$3"
+    "$VKSKY" "${a[@]}" --dump-scene 2>&1 | grep -v '"description"' >"$work/a.json"
+    "$VKSKY" "${b[@]}" --dump-scene 2>&1 | grep -v '"description"' >"$work/b.json"
+    cmp -s "$work/a.json" "$work/b.json" || fail "$what: $(diff "$work/a.json" "$work/b.json" | head -8)"
+}
+same_dump "a scene's knobs must override its preset" "--scene $work/q.json" "--quality low --steps 100 --lut-format f32"
+same_dump "--quality must replace the scene's quality section" "--scene $work/q.json --quality high" "--quality high"
+dump --steps 7 --scene "$work/q.json" --quality high
+has "$work/d.json" steps 7 || fail "--steps must override --quality and the scene"
+"$VKSKY" --scene "$work/q.json" --max-error 1 --dump-scene >"$work/d.json" 2>"$work/err" ||
+    fail "--max-error with a scene that names a preset: $(cat "$work/err")"
+grep -q "picked" "$work/err" && ! grep -q "picked" "$work/d.json" || fail "--max-error's note must go to stderr with --dump-scene"
+"$VKSKY" --scene "$work/d.json" --dump-scene >/dev/null 2>&1 || fail "the dump after --max-error is not a scene"
+"$VKSKY" --trace-passes --dump-scene >/dev/null 2>&1 || fail "--trace-passes is not accepted"
+
+# ---- 3. errors: exit 2, one line naming the field, nothing written ---------------------------------------
+# expect_bad "what" "expected text in stderr" args...
+expect_bad() {
+    local what=$1 needle=$2; shift 2
+    rm -f "$work/bad.exr" "$work"/.bad.exr.* 2>/dev/null
+    "$VKSKY" "$@" >"$work/stdout" 2>"$work/stderr"
+    local rc=$?
+    [ $rc -eq 2 ] || fail "$what: exit status $rc, expected 2 (stderr: $(head -c 400 "$work/stderr"))"
+    [ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "$what: expected exactly one line on stderr, got: $(head -c 800 "$work/stderr")"
+    grep -qF -- "$needle" "$work/stderr" || fail "$what: stderr does not mention '$needle': $(cat "$work/stderr")"
+    [ ! -s "$work/stdout" ] || fail "$what: printed on stdout: $(head -c 200 "$work/stdout")"
+    [ -z "$(ls -A "$work" | grep -e 'bad\.exr')" ] || fail "$what: left a file behind: $(ls -A "$work" | grep bad)"
+}
+R=(--render "$work/bad.exr" "${SMALL[@]}")
+bad_scene() { expect_bad "$1" "$2" --scene "$BAD/$1.json" "${R[@]}"; }
+bad_scene syntax-line5 "syntax-line5.json:5:13: syntax error near '\"disc\": tru'"
+bad_scene trailing-comma "trailing-comma.json:4:"
+bad_scene unterminated "unterminated.json:4:1: syntax error: unexpected end of the file"
+bad_scene empty "empty.json: empty file"
+bad_scene top-array "top-array.json: the top level is an array; expected a JSON object"
+bad_scene unknown-field "unknown-field.json: sun.elevaton_deg: unknown field; accepted: elevation_deg, azimuth_deg, illuminance, angular_radius_deg, limb_darkening, disc"
+bad_scene unknown-top-field "clouds: unknown field; accepted: description, planet, species"
+bad_scene unknown-species "species.water: unknown species; vksky renders rayleigh, mie and ozone"
+bad_scene wrong-type "camera.fov_deg: expected a number, got a string"
+bad_scene wrong-type-bool "sun.disc: expected true or false, got a string"
+bad_scene wrong-type-section "output: expected an object, got an array"
+bad_scene out-of-range "camera.fov_deg: 0 is out of range; expected a number in [1, 170] (as --fov)"
+bad_scene negative-coefficient "species.mie.scattering[1]: -0.001 is out of range; expected a number in [0, 1000]"
+bad_scene top-below-ground "planet.atmosphere_top_km: the atmosphere top (6300 km) is not above the ground (6360 km)"
+bad_scene mie-g-one "species.mie.phase.g: 1 is out of range; expected a number in [-0.999, 0.999] (as --mie-g)"
+bad_scene huge-number "sun.illuminance[1]: not a finite number; expected a number in [0, 1e+06] (as --sun-illuminance)"
+bad_scene rayleigh-absorption "species.rayleigh.absorption: not supported"
+bad_scene ozone-scattering "species.ozone.scattering: not supported"
+bad_scene unknown-profile "species.mie.density.profile: unknown profile 'gaussian'; accepted for mie: exponential"
+bad_scene ozone-exponential "species.ozone.density.profile: unsupported profile 'exponential'; accepted for ozone: tent"
+bad_scene profile-field "species.rayleigh.density.center_km: unknown field; accepted: profile, scale_height_km"
+bad_scene phase-model "species.mie.phase.model: unknown value 'rayleigh'; expected henyey-greenstein or cornette-shanks"
+bad_scene array-length "planet.ground_albedo: expected 3 numbers, got 2"
+bad_scene not-integer "output.width: 64.5 is not an integer; expected an integer in [1, 16384] (as --width)"
+bad_scene duplicate-field "camera.pitch_deg: given twice"
+bad_scene bad-preset "quality.preset: unknown value 'extreme'; expected low, medium, high or ultra"
+bad_scene max-steps-below "quality.max_steps: max_steps 16 is below steps 64"
+bad_scene not-square "quality.multiscatter_directions: 50 is not a perfect square"
+for f in "$BAD"/*.json; do   # every fixture is exercised above
+    grep -qF "bad_scene $(basename "$f" .json) " "$0" || fail "fixture $(basename "$f") is not tested"
+done
+printf '{"sun": {"elevation_deg": 1}}\0' >"$work/nul.json"
+expect_bad "NUL byte" "nul.json:1:30: a NUL byte" --scene "$work/nul.json" "${R[@]}"
+printf '{"a\\nb": 1}' >"$work/ctl.json"
+expect_bad "control character in a key" "ctl.json: a?b: unknown field" --scene "$work/ctl.json" "${R[@]}"
+expect_bad "missing file" "--scene: cannot read '$work/nope.json': No such file or directory" --scene "$work/nope.json" "${R[@]}"
+mkdir -p "$work/dir.json"
+expect_bad "directory" "--scene: cannot read '$work/dir.json'" --scene "$work/dir.json" "${R[@]}"
+rmdir "$work/dir.json"
+expect_bad "two scenes" "--scene: given twice" --scene "$MARS" --scene "$MARS" "${R[@]}"
+expect_bad "no scene file" "--scene: missing value" "${R[@]}" --scene
+expect_bad "albedo count" "--ground-albedo: '0.5,0.5' is not R,G,B" "${R[@]}" --ground-albedo 0.5,0.5
+expect_bad "albedo range" "--ground-albedo: 2 is out of range; expected a number in [0, 1]" "${R[@]}" --ground-albedo 0.5,0.5,2
+expect_bad "albedo junk" "--ground-albedo: 'x' is not a number" "${R[@]}" --ground-albedo 0.5,x,0.5
+expect_bad "albedo extra" "--ground-albedo" "${R[@]}" --ground-albedo 0.1,0.2,0.3,0.4
+expect_bad "illuminance range" "--sun-illuminance: -1 is out of range" "${R[@]}" --sun-illuminance 20,-1,20
+expect_bad "illuminance NaN" "--sun-illuminance: 'nan' is not a number" "${R[@]}" --sun-illuminance 20,nan,20
+expect_bad "mie phase" "--mie-phase: unknown value 'mie'" "${R[@]}" --mie-phase mie
+expect_bad "sun radius" "--sun-angular-radius: 0 is out of range; expected a number in [0.01, 10]" "${R[@]}" --sun-angular-radius 0
+expect_bad "limb darkening" "--limb-darkening: 1.5 is out of range; expected a number in [0, 1]" "${R[@]}" --limb-darkening 1.5
+expect_bad "no-sun-disc value" "--no-sun-disc: takes no value" "${R[@]}" --no-sun-disc=1
+expect_bad "bad flag after a scene" "--fov" --scene "$MARS" "${R[@]}" --fov 0
+
+# ---- 4. the Mars sky's colours (sky only; the sun disc stays out of the probed pixel, bloom is off) --------
+# rgb ARGS...: render a 65x37 EXR of the Mars scene (the centre pixel (32, 18) lies on the view axis) and print
+# the centre pixel's R G B.
+rgb() {
+    "$VKSKY" --scene "$MARS" --width 65 --height 37 --no-bloom --validate --render "$work/mars.exr" "$@" 2>"$work/err" ||
+        { fail "Mars render $* failed: $(head -c 400 "$work/err")"; echo "0 0 1"; return; }
+    "$PROBE" "$work/mars.exr" 32 18 || echo "0 0 1"
+}
+# ratio "R G B" -> R/B
+ratio() { echo "$1" | awk '{ printf "%.4f", ($3 > 0 ? $1 / $3 : 0) }'; }
+gt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a > b) }'; }
+day=$(rgb --sun-elevation 45 --sun-azimuth 0 --yaw 180 --pitch 40)        # 40 deg up, away from the sun
+side=$(rgb --sun-elevation 45 --sun-azimuth 0 --yaw 90 --pitch 40)        # 40 deg up, 90 deg from the sun
+gt "$(ratio "$day")" 1.15 && gt "$(ratio "$side")" 1.15 ||
+    fail "Mars day sky is not butterscotch (R/B > 1.15): away $day, side $side"
+noon=$(rgb --sun-elevation 60 --sun-azimuth 0 --yaw 0 --pitch 55)         # 5 deg below a high sun
+sunset=$(rgb --sun-elevation 1 --sun-azimuth 0 --yaw 0 --pitch 6)         # 5 deg above the setting sun
+gt "$(ratio "$noon")" "$(ratio "$sunset")" ||
+    fail "Mars sunset aureole is not bluer than noon's: R/B noon $(ratio "$noon") ($noon), sunset $(ratio "$sunset") ($sunset)"
+earth=$("$VKSKY" --scene "$SCENES/earth-clear.json" --width 65 --height 37 --no-bloom --render "$work/earth.exr" \
+        --sun-elevation 45 --yaw 180 --pitch 40 2>/dev/null && "$PROBE" "$work/earth.exr" 32 18)
+gt 1 "$(ratio "$earth")" || fail "the Earth day sky is not blue (R/B < 1): $earth"
+echo "scene_test: Mars R/B: day away $(ratio "$day"), side $(ratio "$side"), near the sun at noon $(ratio "$noon"), at sunset $(ratio "$sunset"); Earth day $(ratio "$earth")"
+
+if [ $fails -ne 0 ]; then echo "scene_test: $fails failure(s)"; exit 1; fi
+echo "scene_test: ok ($shipped shipped scenes)"
