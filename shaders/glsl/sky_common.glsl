@@ -75,7 +75,7 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
         Medium m = sample_medium(h_t);
         vec3 step_t = exp(-m.extinction * dt);
         vec3 sun_t = lookup_transmittance(h_t, mu_s_t);
-        vec3 psi = lookup_multiscatter(h_t, mu_s_t);
+        vec3 psi = HAS_MULTISCATTER ? lookup_multiscatter(h_t, mu_s_t) : vec3(0.0);
         /* Single scattering is shadowed by the planet (seed bug 5); multiple scattering is already integrated
          * over the sphere, shadow included, in the LUT (seed bug 9). */
         vec3 source = atmo.sun.rgb * (earth_shadow(h_t, mu_s_t) * sun_t * (m.rayleigh * phase_r + m.mie * phase_m)

@@ -307,6 +307,17 @@ static int apply(options *o, const flag *f, const char *value)
     return 0;
 }
 
+/* No --render, --bench, --reference or an informational flag: the window will open. */
+static bool window_mode(int argc, char **argv)
+{
+    static const char *const headless[] = {"--render", "--bench", "--reference", "--help", "--version",
+                                           "--list-devices", "--dump-scene"};
+    for (int i = 1; i < argc; ++i)
+        for (size_t k = 0; k < sizeof headless / sizeof headless[0]; ++k)
+            if (!strncmp(argv[i], headless[k], strlen(headless[k]))) return false;
+    return true;
+}
+
 int options_parse(options *o, int argc, char **argv)
 {
     *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
@@ -319,6 +330,9 @@ int options_parse(options *o, int argc, char **argv)
     /* Three passes: --scene first (pass -1), wherever it stands; then the quality preset (or --max-error's choice)
      * sets the knobs, so that any knob flag, wherever it stands, overrides it. */
     const char *scene_quality = NULL;
+    /* The interactive window starts from the interactive preset (headless renders from the lesson's defaults);
+     * a scene and the flags override it. */
+    if (window_mode(argc, argv)) quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips);
     for (int pass = -1; pass < 2; ++pass) {
     if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
     if (pass == 1) {
