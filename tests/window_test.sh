@@ -14,8 +14,10 @@ SELF=$(readlink -f "$0")
 # --- Inside Xvfb: run vksky, wait for its window, hold Up until the title shows the sun high, quit with Escape.
 if [ "${2:-}" = "--keys-inside-xvfb" ]; then
     work=$3
+    # A scene file to edit and reload with F5 while the window runs.
+    cp "$(dirname "$SELF")/../scenes/earth-clear.json" "$work/scene.json"
     "$VKSKY" --validate --frames 100000 --width 320 --height 180 --sun-elevation -5 --pitch 10 \
-        --screenshot "$work/keys.png" >"$work/keys.out" 2>"$work/keys.err" &
+        --scene "$work/scene.json" --screenshot "$work/keys.png" >"$work/keys.out" 2>"$work/keys.err" &
     pid=$!
     # Window title "vksky | 12.3 fps | GPU 45.60 ms | sun 12.0° | ..." appears once frames are being presented.
     title() { timeout 5 xdotool getwindowname "$wid" 2>/dev/null; }
@@ -39,6 +41,10 @@ if [ "${2:-}" = "--keys-inside-xvfb" ]; then
         sleep 0.1
     done
     timeout 5 xdotool keyup Up
+    # Edit the scene (denser Rayleigh: the LUTs must be recomputed) and reload it with F5.
+    sed -i 's/"scale_height_km": 8\b/"scale_height_km": 9/' "$work/scene.json"
+    timeout 5 xdotool key F5
+    for _ in $(seq 100); do grep -q "scene reloaded" "$work/keys.out" && break; sleep 0.1; done
     timeout 5 xdotool key Escape   # cursor not captured: Escape quits (after one more frame: the screenshot)
     for _ in $(seq 300); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done
     kill -0 $pid 2>/dev/null && { echo "vksky did not quit on Escape" >"$work/keys.fail"; kill $pid; }
@@ -90,6 +96,8 @@ grep -q "^sun_elevation -5.000$" "$work/base.out" || fail "baseline run: sun mov
 xvfb "$SELF" "$VKSKY" --keys-inside-xvfb "$work"
 [ ! -e "$work/keys.fail" ] || fail "key run: $(cat "$work/keys.fail")"
 expect_clean "key run" "$(cat "$work/keys.rc" 2>/dev/null || echo 99)" "$work/keys.err"
+grep -q "scene reloaded: .*(LUTs recomputed" "$work/keys.out" \
+    || fail "F5 after editing the scene's Rayleigh profile did not reload it with new LUTs: $(grep -i scene "$work/keys.out")"
 elev=$(sed -n 's/^sun_elevation //p' "$work/keys.out")
 awk -v e="${elev:-nan}" 'BEGIN { exit !(e > 10) }' || fail "key run: sun elevation at exit '${elev}', expected > 10"
 for f in base keys; do

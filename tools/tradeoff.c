@@ -5,10 +5,9 @@
  *   - GPU time: per-pass timestamps, median over --frames frames after warm-up, at --size (no readback);
  *   - error: a small frame (--error-size, bloom off) against the converged CPU reference of the same view:
  *     relative luminance error over sky pixels (mean, p95, max) and mean CIEDE2000 of the tone-mapped images.
- * Writes a CSV, a gnuplot script + PNG of error vs GPU ms (presets labelled), and optionally the C table that
- * --max-error chooses from.
+ * Writes a CSV (plot it with tools/plot_tradeoff.sh) and optionally the C table that --max-error chooses from.
  *
- *   tradeoff [--size WxH] [--error-size WxH] [--frames N] [--csv FILE] [--plot FILE.png] [--emit-table FILE]
+ *   tradeoff [--size WxH] [--error-size WxH] [--frames N] [--csv FILE] [--emit-table FILE]
  *            [--configs a,b,...] [--device N]
  */
 #include "app/quality.h"
@@ -190,45 +189,10 @@ static bool wanted(const char *list, const char *name)
     return false;
 }
 
-static void write_plot(const char *png, const char *csv, const row *rows, int count)
-{
-    /* Per configuration: the median sky-pass GPU ms over the scenes vs the mean error over the scenes. */
-    char dat[1024];
-    snprintf(dat, sizeof dat, "%s.dat", png);
-    FILE *d = fopen(dat, "w");
-    if (!d) return;
-    for (int i = 0; i < count; ++i) {
-        if ((i && !strcmp(rows[i].config, rows[i - 1].config)) || !isfinite(rows[i].err.mean)) continue;
-        double ms[8], err = 0;
-        int n = 0;
-        for (int k = i; k < count && !strcmp(rows[k].config, rows[i].config); ++k) ms[n] = rows[k].sky_ms, err += rows[k].err.mean, ++n;
-        bool preset = quality_preset(rows[i].config) != NULL;
-        fprintf(d, "%g %g %s %d\n", median(ms, n), 100.0 * err / n, rows[i].config, preset);
-    }
-    fclose(d);
-    char gp[1024];
-    snprintf(gp, sizeof gp, "%s.gp", png);
-    FILE *g = fopen(gp, "w");
-    if (!g) return;
-    fprintf(g, "set terminal pngcairo size 1000,650 font 'sans,10'\nset output '%s'\n"
-               "set logscale xy\nset grid\nset xlabel 'sky GPU time per frame, ms (median over the scene set)'\n"
-               "set ylabel 'mean relative luminance error vs the converged reference, %% (mean over scenes)'\n"
-               "set title 'vksky speed/accuracy trade (%s)'\nset key off\n"
-               "plot '%s' using 1:2 with points pt 7 ps 1.2 lc rgb '#4060a0', \\\n"
-               "     '' using 1:($4==1?$2:1/0) with points pt 7 ps 2 lc rgb '#d04020', \\\n"
-               "     '' using 1:2:3 with labels offset 0.8,0.6 left font 'sans,8'\n",
-            png, csv, dat);
-    fclose(g);
-    char cmd[2200];
-    snprintf(cmd, sizeof cmd, "command -v gnuplot >/dev/null && gnuplot '%s'", gp);
-    if (system(cmd) != 0)
-        fprintf(stderr, "tradeoff: no plot (gnuplot missing: apt-get install gnuplot-nox); run gnuplot %s later\n", gp);
-}
-
 int main(int argc, char **argv)
 {
     int tw = 1920, th = 1080, ew = 96, eh = 54, frames = 30, device = -1;
-    const char *csv = "tradeoff.csv", *plot = NULL, *table = NULL, *configs = NULL;
+    const char *csv = "tradeoff.csv", *table = NULL, *configs = NULL;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) { fprintf(stderr, "tradeoff: %s needs a value\n", a); return 2; }
@@ -236,7 +200,6 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--error-size") && !parse_size(v, &ew, &eh)) ++i;
         else if (!strcmp(a, "--frames") && (frames = atoi(v)) > 0) ++i;
         else if (!strcmp(a, "--csv")) csv = v, ++i;
-        else if (!strcmp(a, "--plot")) plot = v, ++i;
         else if (!strcmp(a, "--emit-table")) table = v, ++i;
         else if (!strcmp(a, "--configs")) configs = v, ++i;
         else if (!strcmp(a, "--device")) device = atoi(v), ++i;
@@ -283,7 +246,6 @@ int main(int argc, char **argv)
         }
     }
     fclose(out);
-    if (plot) write_plot(plot, csv, rows, count);
     if (table) {
         FILE *t = fopen(table, "w");
         if (t) {

@@ -65,7 +65,8 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
     float p = from_space ? 1.0 : distribution;
     float t_prev = 0.0;
     for (float i = 0.0; i < steps; i += 1.0) {
-        float t_next = t_max * pow((i + 1.0) / steps, p);
+        float u = (i + 1.0) / steps;
+        float t_next = t_max * (p == 2.0 ? u * u : p == 1.0 ? u : pow(u, p));   /* pow costs exp + log per step */
         float dt = t_next - t_prev;
         float t = t_prev + march.z * dt;
         t_prev = t_next;

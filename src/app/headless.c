@@ -63,7 +63,10 @@ static void bench(const options *o, sky_renderer *r)
     for (int i = 0; i < n; ++i) {
         sky_renderer_render(r, &with_luts);
         uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
-        for (uint32_t k = 0; k < c && k < 2; ++k) lut_ms[k][i] = ms[k];
+        for (uint32_t k = 0; k < c; ++k) {
+            if (!strcmp(r->timer.names[k], "transmittance_lut")) lut_ms[0][i] = ms[k];
+            if (!strcmp(r->timer.names[k], "multiscatter_lut")) lut_ms[1][i] = ms[k];
+        }
     }
     /* Steady-state frames. */
     for (int i = 0; i < n; ++i) {
@@ -86,7 +89,7 @@ static void bench(const options *o, sky_renderer *r)
     }
     if (r->timer.enabled) {
         printf("pass transmittance_lut gpu_ms %.4f\n", median(lut_ms[0], n));
-        printf("pass multiscatter_lut gpu_ms %.4f\n", median(lut_ms[1], n));
+        if (r->variant.multiscatter) printf("pass multiscatter_lut gpu_ms %.4f\n", median(lut_ms[1], n));
         for (int p = 0; p < pass_count; ++p) printf("pass %s gpu_ms %.4f\n", names[p], median(per_pass[p], n));
     }
     printf("frame gpu_ms %.4f wall_ms %.4f\n", r->timer.enabled ? median(gpu_total, n) : -1.0, median(wall, n));

@@ -53,7 +53,8 @@ static void join(char *out, const char *parent, const char *key)
 {
     char k[64];
     printable(k, sizeof k, key);
-    snprintf(out, PATH_LEN, "%s%s%s", parent, parent[0] ? "." : "", k);
+    /* Long paths are cut; the return value is checked only to say so to the compiler. */
+    if (snprintf(out, PATH_LEN, "%s%s%s", parent, parent[0] ? "." : "", k) >= PATH_LEN) out[PATH_LEN - 1] = '\0';
 }
 
 __attribute__((format(printf, 3, 4))) static int fail(const ctx *c, const char *path, const char *fmt, ...)

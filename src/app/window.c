@@ -120,6 +120,7 @@ static void print_controls(void)
            "  = + / -        exposure +/- 0.5 EV\n"
            "  B              bloom on/off\n"
            "  Escape         release the mouse; again: quit\n"
+           "  F5             reload the --scene file (recomputes only what changed)\n"
            "  F1 / H         this table\n");
     fflush(stdout);
 }
@@ -139,6 +140,30 @@ static const char *tonemap_name(int t)
 }
 
 /* Discrete keys (toggles, steps) act on the press; held keys are polled once a frame in read_input. */
+/* F5: reload the scene file's medium and features. The renderer recomputes only what changed: the LUTs when
+ * their inputs' hash changed, the pipelines when the variant changed. The camera and the sun stay where the user
+ * put them. A broken file leaves the current scene (its one-line error is printed). */
+static void reload_scene(app *a)
+{
+    if (!a->o->scene_path) {
+        printf("F5: no --scene file to reload\n");
+        return;
+    }
+    char *argv[] = {"vksky", "--scene", (char *)a->o->scene_path, "--render", "x.png"};
+    options fresh;
+    if (options_parse(&fresh, 5, argv) != 0) return;
+    /* The atmosphere uniform buffer is shared by the frames in flight: wait for them before rewriting it. */
+    vkDeviceWaitIdle(a->ctx.device);
+    sky_variant before = a->renderer.variant;
+    sky_renderer_set_atmosphere(&a->renderer, &fresh.atmosphere, options_sun_radius_rad(&fresh));
+    sky_features features = options_features(&fresh);
+    sky_renderer_set_features(&a->renderer, &features);
+    printf("scene reloaded: %s (LUTs %s, pipelines %s)\n", a->o->scene_path,
+           sky_renderer_luts_dirty(&a->renderer) ? "recomputed" : "kept",
+           memcmp(&before, &a->renderer.variant, sizeof before) ? "rebuilt" : "kept");
+    fflush(stdout);
+}
+
 static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
 {
     (void)scancode, (void)mods;
@@ -158,6 +183,7 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: v->exposure_ev = fmax(-20.0, v->exposure_ev - 0.5); break;
     case GLFW_KEY_B: v->bloom = !v->bloom; printf("bloom %s\n", v->bloom ? "on" : "off"); break;
     case GLFW_KEY_F1: case GLFW_KEY_H: print_controls(); return;
+    case GLFW_KEY_F5: reload_scene(a); return;
     default: return;
     }
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_3) printf("tonemap %s\n", tonemap_name(v->tonemap));
