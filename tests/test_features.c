@@ -8,6 +8,7 @@ enum { N = 33 };
 
 typedef struct run {
     char passes[1024];
+    char first_passes[1024];      /* the first frame's (with the LUT passes) */
     float centre[3];
     sky_variant variant;
     VkExtent2D ms_extent;
@@ -26,7 +27,10 @@ static run render(gpu_context *ctx, const ref_atmosphere *a, const sky_features 
     sky_renderer_set_atmosphere(&r, a, SUN_RADIUS_RAD);
     sky_renderer_set_features(&r, f);
     frame_desc fd = {.view = &v};
+    FILE *first = fmemopen(out.first_passes, sizeof out.first_passes - 1, "w");
+    r.pass_trace = first;
     sky_renderer_render(&r, &fd);
+    fclose(first);
     FILE *trace = fmemopen(out.passes, sizeof out.passes - 1, "w");
     r.pass_trace = trace;
     sky_renderer_render(&r, &fd);
@@ -65,7 +69,10 @@ int main(void)
     no_ms.multiple_scattering = false;
     run ms_off = render(&ctx, &earth, &no_ms, v, true);
     CHECK(ms_off.variant.multiscatter == VK_FALSE && base.variant.multiscatter == VK_TRUE, "variant unchanged");
-    CHECK(ms_off.ms_extent.width == 1 && base.ms_extent.width == 32, "multiscatter image not shrunk (%u)", ms_off.ms_extent.width);
+    CHECK(ms_off.ms_extent.width == 0 && base.ms_extent.width == 32, "multiscatter image allocated without multi-scattering (%u)",
+          ms_off.ms_extent.width);
+    CHECK(!strstr(ms_off.first_passes, "multiscatter_lut") && strstr(base.first_passes, "multiscatter_lut"),
+          "multi-scattering LUT pass recorded without multi-scattering:\n%s", ms_off.first_passes);
     CHECK(ms_off.centre[2] < base.centre[2], "no-multiscatter sky not darker (%g vs %g)", ms_off.centre[2], base.centre[2]);
 
     /* No bloom: no bloom passes and no mip chain. */
@@ -102,8 +109,21 @@ int main(void)
     run dark = render(&ctx, &earth, &defaults, down, false), lit = render(&ctx, &earth, &ground, down, false);
     printf("ground: albedo 0 %.4f, albedo 0.3 %.4f\n", luminance(dark.centre), luminance(lit.centre));
     CHECK(lit.variant.ground == VK_TRUE && dark.variant.ground == VK_FALSE, "ground variant");
-    /* Sun 30 deg up, albedo 0.3: E cos(60 deg) 0.3/pi x transmittance ~ 20 x 0.5 x 0.095 x ~0.7 ~ 0.7. */
-    CHECK(luminance(lit.centre) > luminance(dark.centre) + 0.2, "ground not lit by albedo 0.3");
+    /* The ground point is 2 m away (view transmittance 1). Sun-lit part, from the reference's transmittance:
+     * E T(0, mu_s) mu_s albedo / pi; the sky's irradiance (the ground-irradiance LUT) adds 5-100 % to it. */
+    {
+        double t_sun[3];
+        double mu_s = sin(v.sun_elevation_deg * TEST_DEG);
+        ref_transmittance(&earth, 0.0, mu_s, 4000, t_sun);
+        float sun_only[3];
+        for (int c = 0; c < 3; ++c) sun_only[c] = (float)(earth.sun_illuminance[c] * t_sun[c] * mu_s * 0.3 / 3.14159265358979);
+        double ratio = luminance(lit.centre) / luminance(sun_only);
+        printf("ground: lit / sun-only = %.3f (sky irradiance share %.1f %%)\n", ratio, 100.0 * (1.0 - 1.0 / ratio));
+        CHECK(ratio > 1.05 && ratio < 2.0, "ground radiance %.4f vs its sun-lit part %.4f: sky irradiance missing or wrong",
+              luminance(lit.centre), luminance(sun_only));
+    }
+    CHECK(strstr(lit.first_passes, "ground_irradiance_lut") && !strstr(dark.first_passes, "ground_irradiance_lut"),
+          "ground-irradiance LUT pass not recorded exactly when the ground is lit");
 
     /* Cornette-Shanks vs Henyey-Greenstein near the sun: different lobes. */
     sky_features cs = defaults;

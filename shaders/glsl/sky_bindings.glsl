@@ -4,6 +4,7 @@
  * per-pixel branch. */
 layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
 layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
+layout(set = 0, binding = 5) uniform sampler2D ground_irradiance_lut;
 #if defined(SKY_FILL)
 /* The bandwidth floor for benchmarks: a constant written to every pixel. */
 #define SKY_RADIANCE(h, v, s, march) vec3(0.25, 0.5, 1.0)

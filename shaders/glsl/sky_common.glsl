@@ -6,6 +6,12 @@ vec3 lookup_transmittance(float h, float mu)
 {
     return texture(transmittance_lut, transmittance_uv(h, mu, vec2(textureSize(transmittance_lut, 0)))).rgb;
 }
+/* The sky's irradiance on the ground (per unit sun illuminance) by sun zenith cosine. */
+#ifndef GROUND_SKY_IRRADIANCE
+#define GROUND_SKY_IRRADIANCE(mu_s) texture(ground_irradiance_lut, vec2(unit_to_sub_uv(multiscatter_x_of_mu_s(mu_s), \
+                                            float(textureSize(ground_irradiance_lut, 0).x)), 0.5)).rgb
+#endif
+
 vec3 lookup_multiscatter(float h, float mu_s)
 {
     return texture(multiscatter_lut, multiscatter_uv(h, mu_s, vec2(textureSize(multiscatter_lut, 0)))).rgb;
@@ -84,12 +90,12 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
         radiance += throughput * source * step_integral(m.extinction, dt, step_t);
         throughput *= step_t;
     }
-    /* A lit ground (albedo > 0): Lambertian, lit by the sun through the atmosphere (Hillaire's ground term; the
-     * sky's own light on the ground is left out). */
+    /* A lit ground (albedo > 0): Lambertian, lit by the sun through the atmosphere and by the sky (the
+     * ground-irradiance LUT: the sky's irradiance on the ground per unit sun illuminance, by sun angle). */
     if (HAS_GROUND && hits_ground) {
         float mu_s_g = clamp((r * mu_s + t_max * nu) / ground_radius(), -1.0, 1.0);
-        vec3 sun_g = lookup_transmittance(0.0, mu_s_g) * earth_shadow(0.0, mu_s_g);
-        radiance += throughput * atmo.sun.rgb * sun_g * max(mu_s_g, 0.0) * atmo.ground.rgb / PI;
+        vec3 sun_g = lookup_transmittance(0.0, mu_s_g) * earth_shadow(0.0, mu_s_g) * max(mu_s_g, 0.0);
+        radiance += throughput * atmo.sun.rgb * (sun_g + GROUND_SKY_IRRADIANCE(mu_s_g)) * atmo.ground.rgb / PI;
     }
     return radiance;
 }

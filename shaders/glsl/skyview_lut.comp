@@ -8,6 +8,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
 layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D skyview_out;
+layout(set = 0, binding = 4) uniform sampler2D ground_irradiance_lut;
 layout(push_constant) uniform Push { SkyPush push; };
 #include "sky_common.glsl"
 

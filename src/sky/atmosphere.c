@@ -60,7 +60,9 @@ uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p)
     const vksky_vec4 fields[] = {p->radii, p->rayleigh_scattering, p->mie_scattering,
                                  {p->mie_absorption.x, p->mie_absorption.y, p->mie_absorption.z, 0},
                                  p->ozone_absorption, p->ozone_shape, p->lut_steps,
-                                 {p->ground.x, p->ground.y, p->ground.z, 0}};
+                                 {p->ground.x, p->ground.y, p->ground.z, 0},
+                                 /* the ground-irradiance LUT marches the sky with the Mie phase */
+                                 {p->ground.x + p->ground.y + p->ground.z > 0.0f ? p->mie_absorption.w : 0.0f, 0, 0, 0}};
     const unsigned char *bytes = (const unsigned char *)fields;
     uint64_t h = 1469598103934665603ull;
     for (size_t i = 0; i < sizeof fields; ++i) h = (h ^ bytes[i]) * 1099511628211ull;

@@ -44,26 +44,34 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd)
     b = gpu_barrier_batch_begin("before multiscatter_lut");
     gpu_barrier_add_image(&b, "transmittance.write_to_sample", "transmittance_lut", l->transmittance.image, one,
                           GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
-    if (!r->variant.multiscatter) {
-        /* No multi-scattering: no LUT pass. The 1x1 placeholder is never read (compiled out) but stays bound,
-         * so it must be in the sampled layout: a layout transition, after the previous frames' (static) reads. */
-        gpu_barrier_add_image(&b, "multiscatter.unused_to_sample", "multiscatter_lut", l->multiscatter.image, one,
-                              LUT_LAST_USE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, true);
+    if (r->variant.multiscatter) {
+        gpu_barrier_add_image(&b, "multiscatter.to_storage", "multiscatter_lut", l->multiscatter.image, one,
+                              LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
-        return;
+        t = timed_begin(r, cmd, "multiscatter_lut");
+        luts_record_multiscatter(l, cmd);
+        timed_end(r, cmd, t);
+        /* The multiscatter compute shader wrote its LUT; the sky pass (and the ground-irradiance LUT) sample it:
+         * RAW + layout. (The usage covers compute too, so every frame's first barrier has the same source.) */
+        b = gpu_barrier_batch_begin("after multiscatter_lut");
+        gpu_barrier_add_image(&b, "multiscatter.write_to_sample", "multiscatter_lut", l->multiscatter.image, one,
+                              GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
     }
-    gpu_barrier_add_image(&b, "multiscatter.to_storage", "multiscatter_lut", l->multiscatter.image, one,
-                          LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
-    gpu_barrier_flush(cmd, &b);
-    t = timed_begin(r, cmd, "multiscatter_lut");
-    luts_record_multiscatter(l, cmd);
-    timed_end(r, cmd, t);
-
-    /* The multiscatter compute shader wrote its LUT; the sky's fragment shader samples it: RAW + layout.
-     * (The usage covers compute too, so every frame's first barrier has the same source usage.) */
-    b = gpu_barrier_batch_begin("after multiscatter_lut");
-    gpu_barrier_add_image(&b, "multiscatter.write_to_sample", "multiscatter_lut", l->multiscatter.image, one,
-                          GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    /* Without multi-scattering: no LUT, no pass (readers bind the transmittance LUT, made readable above). */
+    if (r->variant.ground) {
+        /* The sky's irradiance on the ground (a lit ground only): previous frames sampled it (WAR). */
+        gpu_barrier_add_image(&b, "ground_irradiance.to_storage", "ground_irradiance_lut", l->ground_irradiance.image,
+                              one, LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+        gpu_barrier_flush(cmd, &b);
+        t = timed_begin(r, cmd, "ground_irradiance_lut");
+        luts_record_ground_irradiance(l, cmd);
+        timed_end(r, cmd, t);
+        /* It wrote the LUT; the sky pass and the sky-view LUT sample it: RAW + layout. */
+        b = gpu_barrier_batch_begin("after ground_irradiance_lut");
+        gpu_barrier_add_image(&b, "ground_irradiance.write_to_sample", "ground_irradiance_lut",
+                              l->ground_irradiance.image, one, GPU_USAGE_COMPUTE_STORAGE_WRITE,
+                              GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    }
     gpu_barrier_flush(cmd, &b);
 }
 

@@ -10,18 +10,19 @@ static VkPipeline compute_pipeline(const pass_shared *s, VkPipelineLayout layout
     return p;
 }
 
-void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter)
+void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter, bool ground)
 {
+    *l = (sky_luts){0};
     const gpu_context *ctx = s->ctx;
     VkFormat format = q->lut_f32 ? VK_FORMAT_R32G32B32A32_SFLOAT : HDR_FORMAT;
     /* Written by compute (storage), then sampled by compute and fragment shaders; copied out by tests. */
     VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     gpu_image_create(ctx, &l->transmittance, "transmittance LUT", format, (uint32_t)q->transmittance_width,
                      (uint32_t)q->transmittance_height, 1, usage);
-    /* Without multi-scattering the LUT is never computed nor read (compiled out); a 1x1 image keeps the
-     * descriptor valid. */
-    uint32_t ms_size = multiscatter ? (uint32_t)q->multiscatter_size : 1;
-    gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format, ms_size, ms_size, 1, usage);
+    if (multiscatter)
+        gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format, (uint32_t)q->multiscatter_size,
+                         (uint32_t)q->multiscatter_size, 1, usage);
+    l->multiscatter_view = multiscatter ? l->multiscatter.view : l->transmittance.view;
     gpu_image_create(ctx, &l->skyview, "skyview LUT", HDR_FORMAT, (uint32_t)q->skyview_width,
                      (uint32_t)q->skyview_height, 1, usage);
 
@@ -37,36 +38,54 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
     gpu_write_uniform(ctx, l->transmittance_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
     gpu_write_storage(ctx, l->transmittance_set, 1, l->transmittance.view);
 
-    VkDescriptorType m_types[] = {UBO, SAMPLED, STORAGE};
-    l->multiscatter_set_layout = gpu_set_layout(ctx, m_types, 3, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
-    l->multiscatter_layout = gpu_pipeline_layout(ctx, l->multiscatter_set_layout, 0, 0, "multiscatter layout");
-    l->multiscatter_pipeline = compute_pipeline(s, l->multiscatter_layout,
-                                                q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut,
-                                                "multiscatter LUT");
-    l->multiscatter_set = gpu_alloc_set(ctx, s->pool, l->multiscatter_set_layout, "multiscatter set");
-    gpu_write_uniform(ctx, l->multiscatter_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
-    gpu_write_sampled(ctx, l->multiscatter_set, 1, l->transmittance.view, s->linear_clamp);
-    gpu_write_storage(ctx, l->multiscatter_set, 2, l->multiscatter.view);
+    if (multiscatter) {
+        VkDescriptorType m_types[] = {UBO, SAMPLED, STORAGE};
+        l->multiscatter_set_layout = gpu_set_layout(ctx, m_types, 3, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
+        l->multiscatter_layout = gpu_pipeline_layout(ctx, l->multiscatter_set_layout, 0, 0, "multiscatter layout");
+        l->multiscatter_pipeline = compute_pipeline(s, l->multiscatter_layout,
+                                                    q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut,
+                                                    "multiscatter LUT");
+        l->multiscatter_set = gpu_alloc_set(ctx, s->pool, l->multiscatter_set_layout, "multiscatter set");
+        gpu_write_uniform(ctx, l->multiscatter_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
+        gpu_write_sampled(ctx, l->multiscatter_set, 1, l->transmittance.view, s->linear_clamp);
+        gpu_write_storage(ctx, l->multiscatter_set, 2, l->multiscatter.view);
+    }
 
-    VkDescriptorType v_types[] = {UBO, SAMPLED, SAMPLED, STORAGE};
-    l->skyview_set_layout = gpu_set_layout(ctx, v_types, 4, VK_SHADER_STAGE_COMPUTE_BIT, "skyview set layout");
+    if (ground) {
+        gpu_image_create(ctx, &l->ground_irradiance, "ground irradiance LUT", format, 64, 1, 1, usage);
+        VkDescriptorType g_types[] = {UBO, SAMPLED, SAMPLED, STORAGE};
+        l->ground_set_layout = gpu_set_layout(ctx, g_types, 4, VK_SHADER_STAGE_COMPUTE_BIT, "ground irradiance set layout");
+        l->ground_layout = gpu_pipeline_layout(ctx, l->ground_set_layout, 0, 0, "ground irradiance layout");
+        l->ground_pipeline = compute_pipeline(s, l->ground_layout, &spirv_ground_irradiance_lut, "ground irradiance LUT");
+        l->ground_set = gpu_alloc_set(ctx, s->pool, l->ground_set_layout, "ground irradiance set");
+        gpu_write_uniform(ctx, l->ground_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
+        gpu_write_sampled(ctx, l->ground_set, 1, l->transmittance.view, s->linear_clamp);
+        gpu_write_sampled(ctx, l->ground_set, 2, l->multiscatter_view, s->linear_clamp);
+        gpu_write_storage(ctx, l->ground_set, 3, l->ground_irradiance.view);
+    }
+    l->ground_irradiance_view = ground ? l->ground_irradiance.view : l->transmittance.view;
+
+    VkDescriptorType v_types[] = {UBO, SAMPLED, SAMPLED, STORAGE, SAMPLED};
+    l->skyview_set_layout = gpu_set_layout(ctx, v_types, 5, VK_SHADER_STAGE_COMPUTE_BIT, "skyview set layout");
     l->skyview_layout = gpu_pipeline_layout(ctx, l->skyview_set_layout, sizeof(SkyPush), VK_SHADER_STAGE_COMPUTE_BIT,
                                             "skyview layout");
     l->skyview_pipeline = compute_pipeline(s, l->skyview_layout, &spirv_skyview_lut, "skyview LUT");
     l->skyview_set = gpu_alloc_set(ctx, s->pool, l->skyview_set_layout, "skyview set");
     gpu_write_uniform(ctx, l->skyview_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
     gpu_write_sampled(ctx, l->skyview_set, 1, l->transmittance.view, s->linear_clamp);
-    gpu_write_sampled(ctx, l->skyview_set, 2, l->multiscatter.view, s->linear_clamp);
+    gpu_write_sampled(ctx, l->skyview_set, 2, l->multiscatter_view, s->linear_clamp);
     gpu_write_storage(ctx, l->skyview_set, 3, l->skyview.view);
+    gpu_write_sampled(ctx, l->skyview_set, 4, l->ground_irradiance_view, s->linear_clamp);
 }
 
 void luts_destroy(sky_luts *l, const pass_shared *s)
 {
     VkDevice d = s->ctx->device;
-    VkPipeline pipelines[] = {l->transmittance_pipeline, l->multiscatter_pipeline, l->skyview_pipeline};
-    VkPipelineLayout layouts[] = {l->transmittance_layout, l->multiscatter_layout, l->skyview_layout};
-    VkDescriptorSetLayout set_layouts[] = {l->transmittance_set_layout, l->multiscatter_set_layout, l->skyview_set_layout};
-    for (int i = 0; i < 3; ++i) {
+    VkPipeline pipelines[] = {l->transmittance_pipeline, l->multiscatter_pipeline, l->skyview_pipeline, l->ground_pipeline};
+    VkPipelineLayout layouts[] = {l->transmittance_layout, l->multiscatter_layout, l->skyview_layout, l->ground_layout};
+    VkDescriptorSetLayout set_layouts[] = {l->transmittance_set_layout, l->multiscatter_set_layout,
+                                           l->skyview_set_layout, l->ground_set_layout};
+    for (int i = 0; i < 4; ++i) {
         vkDestroyPipeline(d, pipelines[i], NULL);
         vkDestroyPipelineLayout(d, layouts[i], NULL);
         vkDestroyDescriptorSetLayout(d, set_layouts[i], NULL);
@@ -74,6 +93,8 @@ void luts_destroy(sky_luts *l, const pass_shared *s)
     gpu_image_destroy(s->ctx, &l->transmittance);
     gpu_image_destroy(s->ctx, &l->multiscatter);
     gpu_image_destroy(s->ctx, &l->skyview);
+    gpu_image_destroy(s->ctx, &l->ground_irradiance);
+    *l = (sky_luts){0};
 }
 
 static void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,
@@ -101,4 +122,12 @@ void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *
 {
     vkCmdPushConstants(cmd, l->skyview_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
     dispatch(cmd, l->skyview_pipeline, l->skyview_layout, l->skyview_set, &l->skyview);
+}
+
+void luts_record_ground_irradiance(const sky_luts *l, VkCommandBuffer cmd)
+{
+    /* One 64-thread workgroup per texel (the threads share the hemisphere directions). */
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->ground_pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->ground_layout, 0, 1, &l->ground_set, 0, NULL);
+    vkCmdDispatch(cmd, l->ground_irradiance.extent.width, 1, 1);
 }

@@ -25,18 +25,28 @@ typedef struct pass_shared {
 /* --- LUT compute passes (luts.c): transmittance and multi-scattering (when the atmosphere changes), sky-view
  * (every frame, fast path) --- */
 typedef struct sky_luts {
-    gpu_image transmittance, multiscatter, skyview;
+    gpu_image transmittance, multiscatter, skyview, ground_irradiance;
     VkDescriptorSetLayout transmittance_set_layout, multiscatter_set_layout, skyview_set_layout;
     VkPipelineLayout transmittance_layout, multiscatter_layout, skyview_layout;
     VkPipeline transmittance_pipeline, multiscatter_pipeline, skyview_pipeline;
     VkDescriptorSet transmittance_set, multiscatter_set, skyview_set;
+    /* What readers bind as the multi-scattering LUT: the LUT, or without multi-scattering (no image, no pass)
+     * the transmittance LUT as a stand-in the compiled-out code never samples. */
+    VkImageView multiscatter_view;
+    /* The sky's irradiance on the ground by sun angle (only with a lit ground; else the same kind of stand-in). */
+    VkDescriptorSetLayout ground_set_layout;
+    VkPipelineLayout ground_layout;
+    VkPipeline ground_pipeline;
+    VkDescriptorSet ground_set;
+    VkImageView ground_irradiance_view;
 } sky_luts;
-/* multiscatter false: no multi-scattering LUT to compute (a 1x1 placeholder keeps the descriptor valid). */
-void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter);
+/* multiscatter false: no multi-scattering LUT image, pipeline or pass. */
+void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter, bool ground);
 void luts_destroy(sky_luts *l, const pass_shared *s);
 void luts_record_transmittance(const sky_luts *l, VkCommandBuffer cmd);
 void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd);
 void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *push);
+void luts_record_ground_irradiance(const sky_luts *l, VkCommandBuffer cmd);
 
 /* --- Sky pass (sky_pass.c): per-pixel march, or sky-view LUT lookup, into the HDR target; as a full-screen
  * fragment pass or a compute dispatch --- */

@@ -155,7 +155,7 @@ static void build_variant(sky_renderer *r)
         r->spec_entries[i] = (VkSpecializationMapEntry){map[i].id, (uint32_t)map[i].offset, map[i].size};
     r->spec = (VkSpecializationInfo){.mapEntryCount = 7, .pMapEntries = r->spec_entries, .dataSize = sizeof *v, .pData = v};
     s->spec = &r->spec;
-    luts_create(&r->luts, s, &r->desc.lut, v->multiscatter);
+    luts_create(&r->luts, s, &r->desc.lut, v->multiscatter, v->ground);
     sky_pass_create(&r->sky, s, &r->luts);
     r->luts_valid = false;
 }
@@ -281,6 +281,7 @@ void sky_renderer_read_lut(sky_renderer *r, int which, float *rgba_out)
 {
     const gpu_context *ctx = r->ctx;
     const gpu_image *img = which == 0 ? &r->luts.transmittance : &r->luts.multiscatter;
+    if (!img->image) return;   /* no multi-scattering LUT in this variant */
     const char *name = which == 0 ? "transmittance_lut" : "multiscatter_lut";
     size_t count = (size_t)img->extent.width * img->extent.height * 4;
     bool f32 = img->format == VK_FORMAT_R32G32B32A32_SFLOAT;

@@ -4,6 +4,7 @@
 #include "transmittance_lut_f32_comp.h"
 #include "multiscatter_lut_f32_comp.h"
 #include "skyview_lut_comp.h"
+#include "ground_irradiance_lut_comp.h"
 #include "sky_march_comp.h"
 #include "sky_fill_comp.h"
 #include "sky_fill_frag.h"
@@ -22,6 +23,7 @@ const sky_spirv spirv_multiscatter_lut = SPIRV(spv_multiscatter_lut_comp);
 const sky_spirv spirv_transmittance_lut_f32 = SPIRV(spv_transmittance_lut_f32_comp);
 const sky_spirv spirv_multiscatter_lut_f32 = SPIRV(spv_multiscatter_lut_f32_comp);
 const sky_spirv spirv_skyview_lut = SPIRV(spv_skyview_lut_comp);
+const sky_spirv spirv_ground_irradiance_lut = SPIRV(spv_ground_irradiance_lut_comp);
 const sky_spirv spirv_sky_march_comp = SPIRV(spv_sky_march_comp);
 const sky_spirv spirv_sky_fill_comp = SPIRV(spv_sky_fill_comp);
 const sky_spirv spirv_sky_fill_frag = SPIRV(spv_sky_fill_frag);

@@ -14,18 +14,20 @@ void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
 {
     const gpu_context *ctx = s->ctx;
     const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    VkDescriptorType types[] = {UBO, SAMPLED, SAMPLED, SAMPLED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
+    VkDescriptorType types[] = {UBO, SAMPLED, SAMPLED, SAMPLED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, SAMPLED};
     VkShaderStageFlags stages[2] = {VK_SHADER_STAGE_FRAGMENT_BIT, VK_SHADER_STAGE_COMPUTE_BIT};
     const char *names[2] = {"sky (fragment)", "sky (compute)"};
     VkFormat format = HDR_FORMAT;
     for (int kind = 0; kind < 2; ++kind) {
-        p->set_layouts[kind] = gpu_set_layout(ctx, types, kind == SKY_PASS_COMPUTE ? 5 : 4, stages[kind], names[kind]);
+        /* Binding 4 (the HDR storage image) is the compute path's; the fragment layout leaves it unused. */
+        p->set_layouts[kind] = gpu_set_layout(ctx, types, 6, stages[kind], names[kind]);
         p->layouts[kind] = gpu_pipeline_layout(ctx, p->set_layouts[kind], sizeof(SkyPush), stages[kind], names[kind]);
         p->sets[kind] = gpu_alloc_set(ctx, s->pool, p->set_layouts[kind], names[kind]);
         gpu_write_uniform(ctx, p->sets[kind], 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
         gpu_write_sampled(ctx, p->sets[kind], 1, luts->transmittance.view, s->linear_clamp);
-        gpu_write_sampled(ctx, p->sets[kind], 2, luts->multiscatter.view, s->linear_clamp);
+        gpu_write_sampled(ctx, p->sets[kind], 2, luts->multiscatter_view, s->linear_clamp);
         gpu_write_sampled(ctx, p->sets[kind], 3, luts->skyview.view, s->linear_clamp);
+        gpu_write_sampled(ctx, p->sets[kind], 5, luts->ground_irradiance_view, s->linear_clamp);
         for (int mode = 0; mode < 3; ++mode) {
             static const char *const names_km[2][3] = {
                 {"sky march (fragment)", "sky lookup (fragment)", "sky fill (fragment)"},
@@ -56,6 +58,7 @@ void sky_pass_destroy(sky_pass *p, const pass_shared *s)
         vkDestroyPipelineLayout(d, p->layouts[kind], NULL);
         vkDestroyDescriptorSetLayout(d, p->set_layouts[kind], NULL);
     }
+    *p = (sky_pass){0};
 }
 
 void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind, sky_mode mode,
