@@ -42,7 +42,7 @@ if [ "$kind" = render ]; then
     env_vars+=(VKSKY_FRAMES=2)
 elif [ -z "${DISPLAY:-}" ]; then
     command -v xvfb-run >/dev/null || { echo "SKIP: no DISPLAY and no xvfb-run for the window"; exit 77; }
-    run=(xvfb-run -a -s "-screen 0 640x480x24" "$VKSKY")
+    run=("$(dirname "$0")/xvfb_run.sh" 640x480x24 "$VKSKY")
 fi
 # shellcheck disable=SC2086  # ARGS are words
 env "${env_vars[@]}" "${run[@]}" $args --validate --trace-barriers >"$work/stdout" 2>"$work/stderr"

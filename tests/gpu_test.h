@@ -39,9 +39,9 @@ typedef struct test_frame {
     unsigned char *display;
 } test_frame;
 
-/* `lut` NULL: the default LUT quality. */
-static inline test_frame test_render_quality(gpu_context *ctx, const sky_view *view, int width, int height,
-                                             const sky_lut_quality *lut)
+/* `lut` NULL: the default LUT quality; `atmosphere` NULL: Earth (ref_atmosphere_earth). */
+static inline test_frame test_render_atmosphere(gpu_context *ctx, const sky_view *view, int width, int height,
+                                                const sky_lut_quality *lut, const ref_atmosphere *atmosphere)
 {
     sky_renderer r;
     sky_renderer_desc desc = {.width = (uint32_t)width, .height = (uint32_t)height, .bloom = view->bloom,
@@ -50,7 +50,7 @@ static inline test_frame test_render_quality(gpu_context *ctx, const sky_view *v
     sky_renderer_create(&r, ctx, &desc);
     ref_atmosphere a;
     ref_atmosphere_earth(&a);
-    sky_renderer_set_atmosphere(&r, &a, SUN_RADIUS_RAD);
+    sky_renderer_set_atmosphere(&r, atmosphere ? atmosphere : &a, SUN_RADIUS_RAD);
     frame_desc f = {.view = view};
     sky_renderer_render(&r, &f);
     test_frame out = {width, height, malloc(sizeof(float) * 4 * (size_t)width * height),
@@ -60,6 +60,12 @@ static inline test_frame test_render_quality(gpu_context *ctx, const sky_view *v
     memcpy(out.display, r.readback_display.mapped, 4 * (size_t)width * height);
     sky_renderer_destroy(&r);
     return out;
+}
+
+static inline test_frame test_render_quality(gpu_context *ctx, const sky_view *view, int width, int height,
+                                             const sky_lut_quality *lut)
+{
+    return test_render_atmosphere(ctx, view, width, height, lut, NULL);
 }
 
 static inline test_frame test_render(gpu_context *ctx, const sky_view *view, int width, int height)

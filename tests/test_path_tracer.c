@@ -39,8 +39,8 @@ static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a
 
 static void coeffs(const ref_atmosphere *a, double h, double sR[3], double sM[3], double st[3])
 {
-    double rr = exp(-h / a->rayleigh_scale_height), rm = exp(-h / a->mie_scale_height);
-    double ro = 1.0 - fabs(h - a->ozone_center) / a->ozone_half_width;
+    double rr = ref_density(&a->rayleigh_density, h), rm = ref_density(&a->mie_density, h);
+    double ro = ref_density(&a->ozone_density, h);
     if (ro < 0.0)
         ro = 0.0;
     for (int c = 0; c < 3; ++c) {
@@ -323,6 +323,24 @@ int main(void)
     printf("-- a) max_bounces = 1 vs independent single-scattering quadrature\n");
     pt_settings ss = {80000, 1234, 0.0, 1, 2};
     compare_to_quadrature(&earth, &ss, 1e-5, "single:");
+
+    /* a2) single scattering in a layered medium: Bruneton layer pairs the segment majorants must bound exactly
+     * (ref_density_max): a 2 km well-mixed haze layer under an exponential tail, an ozone layer with a flat top
+     * and Rayleigh with a linear term. A majorant below the density would bias PT low. */
+    printf("-- a2) max_bounces = 1 in a layered medium vs the quadrature\n");
+    {
+        ref_atmosphere layered = earth;
+        for (int c = 0; c < 3; ++c)
+            layered.mie_scattering[c] *= 3.0;
+        layered.mie_density = (ref_density_profile){{{.width = 2.0, .constant_term = 1.0},
+                                                     {.exp_term = exp(2.0 / 1.2), .exp_scale = -1.0 / 1.2}}};
+        layered.ozone_density = (ref_density_profile){{{.width = 20.0, .linear_term = 0.2, .constant_term = -2.0},
+                                                       {.linear_term = -1.0 / 15.0, .constant_term = 35.0 / 15.0}}};
+        layered.rayleigh_density = (ref_density_profile){{{.width = 0.0},
+                                                          {.exp_term = 1.0, .exp_scale = -1.0 / 8.0,
+                                                           .linear_term = -0.002, .constant_term = 0.05}}};
+        compare_to_quadrature(&layered, &ss, 1e-5, "layered:");
+    }
 
     /* b) optically thin limit */
     printf("-- b) optically thin limit (coefficients x 1e-3): all orders vs single-scattering quadrature\n");

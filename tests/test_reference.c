@@ -71,6 +71,61 @@ static int finite_nonneg3(const double v[3])
 }
 
 /* --------------------------------------------------------------------------------------------------------- */
+/* 0. Density profiles (Bruneton layer pairs)                                                                */
+
+static void test_profiles(void)
+{
+    printf("\n== 0. Density profiles ==\n");
+    /* The named forms against their closed forms, and recognised back. */
+    ref_density_profile e = ref_profile_exponential(8.0), t = ref_profile_tent(25.0, 15.0);
+    double err_e = 0.0, err_t = 0.0;
+    for (double h = 0.0; h <= 100.0; h += 0.37) {
+        err_e = fmax(err_e, fabs(ref_density(&e, h) - exp(-h / 8.0)));
+        err_t = fmax(err_t, fabs(ref_density(&t, h) - fmax(0.0, 1.0 - fabs(h - 25.0) / 15.0)));
+    }
+    double H = 0.0, c = 0.0, w = 0.0;
+    check(err_e < 1e-15 && err_t < 1e-14 && ref_profile_as_exponential(&e, &H) && H == 8.0 &&
+              ref_profile_as_tent(&t, &c, &w) && fabs(c - 25.0) < 1e-12 && fabs(w - 15.0) < 1e-12 &&
+              !ref_profile_as_tent(&e, &c, &w) && !ref_profile_as_exponential(&t, &H),
+          "exponential and tent layer pairs equal exp(-h/H) and max(0, 1-|h-c|/w) (max err %.1e, %.1e) and are "
+          "recognised back", err_e, err_t);
+    check(ref_density(&e, -3.0) == 1.0 && ref_density(&t, -3.0) == 0.0,
+          "below the ground the density is the ground's (exponential 1, tent 0)");
+
+    /* ref_density_max (the path tracer's majorant) against dense sampling, on random layer pairs with
+     * exponential, linear and constant terms, discontinuities at the layer boundary and the [0, 1] clamp. */
+    unsigned long long x = 88172645463325252ULL;
+    double worst_below = 0.0, worst_loose = 0.0;
+    for (int k = 0; k < 2000; ++k) {
+        double r[12];
+        for (int i = 0; i < 12; ++i) {
+            x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+            r[i] = (double)(x >> 11) / 9007199254740992.0;
+        }
+        ref_density_profile p = {{{.width = 40.0 * r[0], .exp_term = 3.0 * r[1] - 1.0, .exp_scale = 0.6 * r[2] - 0.4,
+                                   .linear_term = 0.2 * r[3] - 0.1, .constant_term = 2.0 * r[4] - 0.5},
+                                  {.exp_term = 3.0 * r[5] - 1.0, .exp_scale = 0.6 * r[6] - 0.4,
+                                   .linear_term = 0.2 * r[7] - 0.1, .constant_term = 2.0 * r[8] - 0.5}}};
+        double lo = 60.0 * r[9] - 5.0, hi = lo + 50.0 * r[10] * r[11];
+        double m = ref_density_max(&p, lo, hi), sampled = 0.0;
+        for (int i = 0; i <= 20000; ++i)
+            sampled = fmax(sampled, ref_density(&p, lo + (hi - lo) * i / 20000.0));
+        worst_below = fmax(worst_below, sampled - m);
+        /* The sampled max approaches the true one from below: within the slope bound times half a sample step
+         * (the only exception, a discontinuity at the boundary, is bounded by the layer 0 limit, counted too). */
+        double w = p.layers[0].width, lim = 0.0;
+        if (lo < w && hi >= w) {
+            const ref_density_layer *l0 = &p.layers[0];
+            lim = fmin(1.0, fmax(0.0, l0->exp_term * exp(l0->exp_scale * w) + l0->linear_term * w + l0->constant_term));
+        }
+        worst_loose = fmax(worst_loose, m - fmax(sampled, lim) - 2.0 * (hi - lo) / 20000.0);
+    }
+    check(worst_below <= 1e-12 && worst_loose <= 1e-9,
+          "ref_density_max over 2000 random layer pairs and ranges: never below the sampled density (by %.1e), "
+          "never above it by more than the sampling step allows (%.1e)", worst_below, worst_loose);
+}
+
+/* --------------------------------------------------------------------------------------------------------- */
 /* 1. Mappings                                                                                               */
 
 static void test_mappings(const ref_atmosphere *a)
@@ -172,10 +227,13 @@ static double tent_cdf(double x, double c, double w)
 static void tau_vertical_exact(const ref_atmosphere *a, double h0, double tau[3])
 {
     double top = a->top_radius - a->bottom_radius;
-    double HR = a->rayleigh_scale_height, HM = a->mie_scale_height;
+    double HR, HM, oz_c, oz_w;
+    ref_profile_as_exponential(&a->rayleigh_density, &HR);
+    ref_profile_as_exponential(&a->mie_density, &HM);
+    ref_profile_as_tent(&a->ozone_density, &oz_c, &oz_w);
     double iR = HR * (exp(-h0 / HR) - exp(-top / HR));
     double iM = HM * (exp(-h0 / HM) - exp(-top / HM));
-    double iO = tent_cdf(top, a->ozone_center, a->ozone_half_width) - tent_cdf(h0, a->ozone_center, a->ozone_half_width);
+    double iO = tent_cdf(top, oz_c, oz_w) - tent_cdf(h0, oz_c, oz_w);
     for (int c = 0; c < 3; ++c)
         tau[c] = a->rayleigh_scattering[c] * iR + (a->mie_scattering[c] + a->mie_absorption[c]) * iM +
                  a->ozone_absorption[c] * iO;
@@ -221,12 +279,15 @@ static void test_transmittance(const ref_atmosphere *a)
 
     /* The same on slanted and grazing rays against a 64000-step solution (no closed form there). */
     printf("  convergence on slanted rays vs 64000 steps (max over channels of rel err):\n");
-    const double cases[][2] = {{0.0, 0.2}, {0.0, 0.0}, {5.0, -0.03}, {30.0, -0.1}};
-    int slant_ok = 1;
+    /* The last ray (30 km, mu -0.1, horizon at mu -0.0969) goes through the planet, where the medium is held at
+     * its ground value: its integrand has kinks where it enters and leaves the ground, so it gets its own bound. */
+    const double cases[][2] = {{0.0, 0.2}, {0.0, 0.0}, {5.0, -0.03}, {30.0, -0.096}, {30.0, -0.1}};
+    const unsigned through_planet = 4;
+    int slant_ok = 1, through_ok = 1;
     for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         double Tref[3], e0 = 0.0, e = 0.0;
         ref_transmittance(a, cases[i][0], cases[i][1], 64000, Tref);
-        printf("    h %4.1f mu %5.2f:", cases[i][0], cases[i][1]);
+        printf("    h %4.1f mu %6.3f:", cases[i][0], cases[i][1]);
         for (int n = 250; n <= 4000; n *= 2) {
             double T[3];
             ref_transmittance(a, cases[i][0], cases[i][1], n, T);
@@ -238,10 +299,14 @@ static void test_transmittance(const ref_atmosphere *a)
         printf("  (T_ref = %.4e %.4e %.4e)\n", Tref[0], Tref[1], Tref[2]);
         /* 16x the steps: 256x less error for a smooth integrand; the ozone tent's kinks, crossed mid-step on
          * these rays, make the constant erratic, so ask for 100x */
-        if (!(e < e0 / 100.0 && e < 1e-6))
+        if (i != through_planet && !(e < e0 / 100.0 && e < 1e-6))
             slant_ok = 0;
+        if (i == through_planet && !(e < e0 / 100.0 && e < 1e-5))
+            through_ok = 0;
     }
-    check(slant_ok, "slanted/grazing rays: error at N = 4000 is < 1e-6 and < 1/100 of that at N = 250");
+    check(slant_ok, "slanted/grazing rays (down to 0.5 km above the ground): error at N = 4000 is < 1e-6 and < 1/100 "
+                    "of that at N = 250");
+    check(through_ok, "ray through the planet: error at N = 4000 is < 1e-5 and < 1/100 of that at N = 250");
 
     /* Extremes: finite, in [0, 1]. */
     const double hx[] = {0.0, 1e-6, 1e-3, 50.0, 100.0, 100.001, 36000.0};
@@ -625,6 +690,7 @@ int main(void)
            cq.view_steps, cq.sun_steps, cq.ms_sqrt_dirs, cq.ms_steps);
 
     double ts = wall_now();
+    test_profiles();
     test_mappings(&a);
     test_transmittance(&a);
     printf("  [sections 1-2: %.2f s]\n", wall_now() - ts);

@@ -61,7 +61,7 @@ trap 'rm -rf "$work"' EXIT
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 # A fresh server per run; 24-bit depth (xvfb-run's default depth of 8 has no Vulkan surface formats).
-xvfb() { timeout 240 xvfb-run -a -s "-screen 0 1280x1024x24" "$@"; }
+xvfb() { timeout 240 "$(dirname "$SELF")/xvfb_run.sh" 1280x1024x24 "$@"; }
 # expect_clean "what" rc stderr-file: exit 0 and not a word about validation on stderr.
 expect_clean() {
     [ "$2" -eq 0 ] || fail "$1: exit status $2 (stderr: $(head -c 2000 "$3"))"

@@ -21,7 +21,7 @@ run() {  # label, flags...
 }
 echo "| configuration | sky ms | frame GPU ms | frame wall ms | LUTs (once) ms |"
 echo "|---|---|---|---|---|"
-for s in earth-clear earth-hazy mars lesson-single-scatter; do run "scene $s" --scene "$here/scenes/$s.json"; done
+for f in "$here"/scenes/*.json; do s=$(basename "$f" .json); run "scene $s" --scene "$f"; done
 base=(--scene "$here/scenes/earth-clear.json")
 run "earth-clear, no bloom" "${base[@]}" --no-bloom
 run "earth-clear, no multi-scattering" "${base[@]}" --no-multiscatter

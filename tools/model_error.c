@@ -45,8 +45,8 @@ static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + 
 
 static void coeffs(const ref_atmosphere *a, double h, double sR[3], double sM[3], double st[3])
 {
-    double rr = exp(-h / a->rayleigh_scale_height), rm = exp(-h / a->mie_scale_height);
-    double ro = fmax(0.0, 1.0 - fabs(h - a->ozone_center) / a->ozone_half_width);
+    double rr = ref_density(&a->rayleigh_density, h), rm = ref_density(&a->mie_density, h);
+    double ro = ref_density(&a->ozone_density, h);
     for (int c = 0; c < 3; ++c) {
         sR[c] = a->rayleigh_scattering[c] * rr;
         sM[c] = a->mie_scattering[c] * rm;

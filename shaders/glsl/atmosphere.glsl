@@ -72,12 +72,20 @@ struct Medium {
     vec3 mie;               /* sigma_s Mie */
 };
 
+/* Density of species 0 (Rayleigh), 1 (Mie), 2 (ozone) at altitude h: a pair of Bruneton density layers. */
+float profile_density(int species, float h)
+{
+    vec4 l = atmo.profiles[2 * species + (h < atmo.profile_widths[species] ? 0 : 1)];
+    float e = l.x != 0.0 ? l.x * exp(l.y * h) : 0.0;
+    return clamp(e + l.z * h + l.w, 0.0, 1.0);
+}
+
 Medium sample_medium(float h)
 {
     h = max(h, 0.0);
-    float d_r = HAS_RAYLEIGH ? exp(-h / atmo.rayleigh_scattering.w) : 0.0;
-    float d_m = HAS_MIE ? exp(-h / atmo.mie_scattering.w) : 0.0;
-    float d_o = HAS_OZONE ? max(0.0, 1.0 - abs(h - atmo.ozone_absorption.w) / atmo.ozone_shape.x) : 0.0;
+    float d_r = HAS_RAYLEIGH ? profile_density(0, h) : 0.0;
+    float d_m = HAS_MIE ? profile_density(1, h) : 0.0;
+    float d_o = HAS_OZONE ? profile_density(2, h) : 0.0;
     Medium m;
     m.rayleigh = atmo.rayleigh_scattering.rgb * d_r;
     m.mie = atmo.mie_scattering.rgb * d_m;

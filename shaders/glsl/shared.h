@@ -16,12 +16,15 @@ typedef struct vksky_vec4 { float x, y, z, w; } vksky_vec4;
 
 /* The atmosphere: uniform buffer, set 0 binding 0 of every sky shader. Changes only when the scene does. */
 VKSKY_STRUCT(AtmosphereParams) {
-    vec4 radii;                /* x: bottom (ground) radius km, y: top radius km */
-    vec4 rayleigh_scattering;  /* rgb: sigma_s /km at density 1, w: scale height km */
-    vec4 mie_scattering;       /* rgb: sigma_s /km, w: scale height km */
-    vec4 mie_absorption;       /* rgb: sigma_a /km, w: Henyey-Greenstein g */
-    vec4 ozone_absorption;     /* rgb: sigma_a /km, w: tent centre altitude km */
-    vec4 ozone_shape;          /* x: tent half width km */
+    vec4 radii;                /* x: bottom (ground) radius km, y: top radius km, z: top - bottom (from double) */
+    vec4 rayleigh_scattering;  /* rgb: sigma_s /km at density 1 */
+    vec4 mie_scattering;       /* rgb: sigma_s /km */
+    vec4 mie_absorption;       /* rgb: sigma_a /km, w: Mie phase g */
+    vec4 ozone_absorption;     /* rgb: sigma_a /km */
+    vec4 profile_widths;       /* x, y, z: layer 0's top (km) of the Rayleigh, Mie, ozone density profiles */
+    vec4 profiles[6];          /* [2 species + layer]: (exp_term, exp_scale /km, linear_term /km, constant_term):
+                                  density = clamp(exp_term exp(exp_scale h) + linear_term h + constant_term, 0, 1),
+                                  Bruneton's DensityProfileLayer; species 0 Rayleigh, 1 Mie, 2 ozone */
     vec4 sun;                  /* rgb: illuminance, w: angular radius (rad) */
     vec4 lut_steps;            /* x: transmittance steps, y: multiscatter steps, z: multiscatter sqrt(directions) */
     vec4 ground;               /* rgb: ground albedo (Lambertian), w: sun limb darkening coefficient u */

@@ -242,37 +242,92 @@ static int parse_planet(const ctx *c, const cJSON *planet)
     return 0;
 }
 
-/* density: {"profile": <the species' profile>, ...its parameters}. */
-static int parse_density(const ctx *c, const cJSON *species, const char *parent, const char *name, bool tent,
-                         double *scale_height, double *center, double *half_width)
+/* One Bruneton layer: {"width_km", "exp_term", "exp_scale_per_km", "linear_term_per_km", "constant_term"}. */
+static int parse_layer(const ctx *c, const cJSON *layer, const char *path, ref_density_layer *out)
 {
-    static const char *const profiles[] = {"exponential", "tent"};
-    static const char *const exp_names[] = {"profile", "scale_height_km"};
-    static const char *const tent_names[] = {"profile", "center_km", "half_width_km"};
+    static const char *const names[] = {"width_km", "exp_term", "exp_scale_per_km", "linear_term_per_km",
+                                        "constant_term"};
+    if (!cJSON_IsObject(layer)) return fail(c, path, "expected an object, got %s", type_of(layer));
+    range any = scene_range(-1000.0, 1000.0);
+    return check_fields(c, layer, path, names, COUNT(names)) ||
+           get_number(c, layer, "width_km", path, scene_range(0.0, HEIGHT_MAX), &out->width) ||
+           get_number(c, layer, "exp_term", path, any, &out->exp_term) ||
+           get_number(c, layer, "exp_scale_per_km", path, any, &out->exp_scale) ||
+           get_number(c, layer, "linear_term_per_km", path, any, &out->linear_term) ||
+           get_number(c, layer, "constant_term", path, any, &out->constant_term) ? 2 : 0;
+}
+
+/* density: {"profile": "exponential" | "tent" | "layers", ...its parameters}, for any species:
+ *   exponential: scale_height_km (exp(-h/H));  tent: center_km, half_width_km;
+ *   layers: [layer] or [layer 0, layer 1] (Bruneton's DensityProfileLayer pair; one layer applies everywhere).
+ * Without "profile" the form follows from the parameters given. Parameters not given keep the current profile's
+ * values when it has that form. */
+static int parse_density(const ctx *c, const cJSON *species, const char *parent, ref_density_profile *out)
+{
+    static const char *const profiles[] = {"exponential", "tent", "layers"};
+    static const char *const names[] = {"profile", "scale_height_km", "center_km", "half_width_km", "layers"};
     const cJSON *d;
     char path[PATH_LEN], p[PATH_LEN];
     if (get_object(c, species, "density", parent, &d)) return 2;
     if (!d) return 0;
     join(path, parent, "density");
+    if (check_fields(c, d, path, names, COUNT(names))) return 2;
+    int form = -1;
     const cJSON *profile = field(d, "profile", path, p);
     if (profile) {
-        const char *want = profiles[tent];
-        if (!cJSON_IsString(profile)) return fail(c, p, "expected a string (%s), got %s", want, type_of(profile));
-        if (strcmp(profile->valuestring, want)) {
+        if (!cJSON_IsString(profile)) return fail(c, p, "expected a string (exponential, tent or layers), got %s", type_of(profile));
+        for (int i = 0; i < COUNT(profiles); ++i)
+            if (!strcmp(profile->valuestring, profiles[i])) form = i;
+        if (form < 0) {
             char value[64];
             printable(value, sizeof value, profile->valuestring);
-            bool known = !strcmp(value, profiles[0]) || !strcmp(value, profiles[1]);
-            return fail(c, p, "%s profile '%s'; accepted for %s: %s", known ? "unsupported" : "unknown", value, name,
-                        want);
+            return fail(c, p, "unknown profile '%s'; expected exponential, tent or layers", value);
         }
+    } else {
+        form = cJSON_GetObjectItemCaseSensitive(d, "layers") ? 2
+             : (cJSON_GetObjectItemCaseSensitive(d, "center_km") || cJSON_GetObjectItemCaseSensitive(d, "half_width_km")) ? 1
+             : cJSON_GetObjectItemCaseSensitive(d, "scale_height_km") ? 0 : -1;
+        if (form < 0) return 0;
     }
+    /* Fields of another form are an error, not silently ignored. */
+    static const int owner[] = {-1, 0, 1, 1, 2};
+    for (int i = 1; i < COUNT(names); ++i)
+        if (owner[i] != form && cJSON_GetObjectItemCaseSensitive(d, names[i])) {
+            join(p, path, names[i]);
+            static const char *const accepted[] = {"scale_height_km", "center_km, half_width_km", "layers"};
+            return fail(c, p, "not a parameter of the %s profile; it takes %s", profiles[form], accepted[form]);
+        }
     range h = scene_range(HEIGHT_MIN, HEIGHT_MAX);
-    if (!tent)
-        return check_fields(c, d, path, exp_names, COUNT(exp_names)) ||
-               get_number(c, d, "scale_height_km", path, h, scale_height) ? 2 : 0;
-    return check_fields(c, d, path, tent_names, COUNT(tent_names)) ||
-           get_number(c, d, "center_km", path, scene_range(0.0, HEIGHT_MAX), center) ||
-           get_number(c, d, "half_width_km", path, h, half_width) ? 2 : 0;
+    if (form == 0) {
+        double H = 8.0;
+        ref_profile_as_exponential(out, &H);
+        if (get_number(c, d, "scale_height_km", path, h, &H)) return 2;
+        *out = ref_profile_exponential(H);
+        return 0;
+    }
+    if (form == 1) {
+        double center = 25.0, half_width = 15.0;
+        ref_profile_as_tent(out, &center, &half_width);
+        if (get_number(c, d, "center_km", path, scene_range(0.0, HEIGHT_MAX), &center) ||
+            get_number(c, d, "half_width_km", path, h, &half_width))
+            return 2;
+        *out = ref_profile_tent(center, half_width);
+        return 0;
+    }
+    const cJSON *layers = field(d, "layers", path, p);
+    int n = cJSON_IsArray(layers) ? cJSON_GetArraySize(layers) : -1;
+    if (!layers) return fail(c, p, "missing; the layers profile needs an array of 1 or 2 layer objects");
+    if (n < 0) return fail(c, p, "expected an array of 1 or 2 layer objects, got %s", type_of(layers));
+    if (n != 1 && n != 2) return fail(c, p, "%d layers; expected 1 or 2 (Bruneton's layer pair)", n);
+    ref_density_profile result = {{{0}}};
+    for (int i = 0; i < n; ++i) {
+        char lp[PATH_LEN];
+        if (snprintf(lp, sizeof lp, "%s[%d]", p, i) >= (int)sizeof lp) lp[sizeof lp - 1] = '\0';
+        if (parse_layer(c, cJSON_GetArrayItem(layers, i), lp, &result.layers[i])) return 2;
+    }
+    if (n == 1) result.layers[1] = result.layers[0];
+    *out = result;
+    return 0;
 }
 
 /* A coefficient triple the model does not have: must be all zero. */
@@ -311,7 +366,7 @@ static int parse_species(const ctx *c, const cJSON *species)
               get_array(c, s, "scattering", "species.rayleigh", coeff, 3, a->rayleigh_scattering, NULL) ||
               get_zero_triple(c, s, "absorption", "species.rayleigh",
                               "vksky's Rayleigh species only scatters; put absorption on mie or ozone") ||
-              parse_density(c, s, "species.rayleigh", "rayleigh", false, &a->rayleigh_scale_height, NULL, NULL)))
+              parse_density(c, s, "species.rayleigh", &a->rayleigh_density)))
         return 2;
     if (get_object(c, species, "mie", "species", &s)) return 2;
     if (s) {
@@ -319,7 +374,7 @@ static int parse_species(const ctx *c, const cJSON *species)
         if (check_fields(c, s, "species.mie", mie_names, COUNT(mie_names)) ||
             get_array(c, s, "scattering", "species.mie", coeff, 3, a->mie_scattering, NULL) ||
             get_array(c, s, "absorption", "species.mie", coeff, 3, a->mie_absorption, NULL) ||
-            parse_density(c, s, "species.mie", "mie", false, &a->mie_scale_height, NULL, NULL) ||
+            parse_density(c, s, "species.mie", &a->mie_density) ||
             get_object(c, s, "phase", "species.mie", &phase))
             return 2;
         if (phase && (check_fields(c, phase, "species.mie.phase", phase_names, COUNT(phase_names)) ||
@@ -333,7 +388,7 @@ static int parse_species(const ctx *c, const cJSON *species)
               get_zero_triple(c, s, "scattering", "species.ozone",
                               "vksky's ozone only absorbs; put scattering on rayleigh or mie") ||
               get_array(c, s, "absorption", "species.ozone", coeff, 3, a->ozone_absorption, NULL) ||
-              parse_density(c, s, "species.ozone", "ozone", true, NULL, &a->ozone_center, &a->ozone_half_width)))
+              parse_density(c, s, "species.ozone", &a->ozone_density)))
         return 2;
     return 0;
 }
@@ -623,6 +678,37 @@ static void arr(builder *b, cJSON *parent, const char *key, const double *v, int
     if (a && !b->ok) cJSON_Delete(a);
 }
 
+/* The simplest form that is exactly the profile: exponential, tent, or the two layers. */
+static void dump_density(builder *b, cJSON *species, const ref_density_profile *p)
+{
+    cJSON *d = obj(b, species, "density");
+    double x, y;
+    if (!d) return;
+    if (ref_profile_as_exponential(p, &x)) {
+        str(b, d, "profile", "exponential");
+        num(b, d, "scale_height_km", x);
+    } else if (ref_profile_as_tent(p, &x, &y)) {
+        str(b, d, "profile", "tent");
+        num(b, d, "center_km", x);
+        num(b, d, "half_width_km", y);
+    } else {
+        str(b, d, "profile", "layers");
+        cJSON *layers = cJSON_AddArrayToObject(d, "layers");
+        b->ok = b->ok && layers;
+        for (int i = 0; i < 2 && layers; ++i) {
+            cJSON *l = cJSON_CreateObject();
+            b->ok = b->ok && l && cJSON_AddItemToArray(layers, l);
+            if (!l) break;
+            const ref_density_layer *q = &p->layers[i];
+            num(b, l, "width_km", q->width);
+            num(b, l, "exp_term", q->exp_term);
+            num(b, l, "exp_scale_per_km", q->exp_scale);
+            num(b, l, "linear_term_per_km", q->linear_term);
+            num(b, l, "constant_term", q->constant_term);
+        }
+    }
+}
+
 static const char *word(const char *const *words, int count, int i)
 {
     return i >= 0 && i < count ? words[i] : words[0];
@@ -651,25 +737,18 @@ int scene_dump(const options *o, FILE *out)
     s = obj(&b, species, "rayleigh");
     arr(&b, s, "scattering", a->rayleigh_scattering, 3);
     arr(&b, s, "absorption", zero, 3);
-    d = obj(&b, s, "density");
-    str(&b, d, "profile", "exponential");
-    num(&b, d, "scale_height_km", a->rayleigh_scale_height);
+    dump_density(&b, s, &a->rayleigh_density);
     s = obj(&b, species, "mie");
     arr(&b, s, "scattering", a->mie_scattering, 3);
     arr(&b, s, "absorption", a->mie_absorption, 3);
-    d = obj(&b, s, "density");
-    str(&b, d, "profile", "exponential");
-    num(&b, d, "scale_height_km", a->mie_scale_height);
+    dump_density(&b, s, &a->mie_density);
     d = obj(&b, s, "phase");
     str(&b, d, "model", word(phase_words, COUNT(phase_words), o->mie_phase));
     num(&b, d, "g", a->mie_g);
     s = obj(&b, species, "ozone");
     arr(&b, s, "scattering", zero, 3);
     arr(&b, s, "absorption", a->ozone_absorption, 3);
-    d = obj(&b, s, "density");
-    str(&b, d, "profile", "tent");
-    num(&b, d, "center_km", a->ozone_center);
-    num(&b, d, "half_width_km", a->ozone_half_width);
+    dump_density(&b, s, &a->ozone_density);
 
     boolean(&b, root, "multiple_scattering", o->multiple_scattering);
 

@@ -24,8 +24,8 @@
  * Segments: a ray [0, tend] is cut at its lowest point (the tangent point t = -r mu, clamped) into an altitude-
  * descending and an altitude-ascending part, and each part into segments of at most dh(h) = 1.5 km + 0.3 h of
  * altitude change (so ~12 segments from the ground to the top, ~140 km long near a tangent point). Altitude is
- * monotone on a segment, so its exact maximum of sigma_t is at its lowest end for the exponential profiles, and
- * the ozone tent's maximum over its altitude range is exact as well: the majorant is tight where the density is.
+ * monotone on a segment, and its majorant is the sum of each species' exact density maximum over the segment's
+ * altitude range (ref_density_max: any Bruneton layer pair), so it is tight where the density is.
  * On a ray whose total majorant optical depth is below PT_MIN_EVENTS all its majorants are scaled up so that it
  * gets PT_MIN_EVENTS tentative points on average (still unbiased; it keeps the direct term's variance bounded in
  * the optically thin limit).
@@ -100,7 +100,7 @@ static double exp1(pt_rng *g) { return -log(1.0 - u01(g)); }
 
 typedef struct pt_ctx {
     double Rb, Rt, top;
-    double HR, HM, oz_c, oz_w;
+    const ref_atmosphere *atmo; /* the density profiles */
     double bR, bMs, bMt, bO; /* Rayleigh scattering, Mie scattering, Mie extinction, ozone absorption */
     double g, E, albedo;
     double sun[3];
@@ -109,33 +109,23 @@ typedef struct pt_ctx {
 
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static double ozone_tent(const pt_ctx *C, double h)
-{
-    if (!(C->oz_w > 0.0))
-        return 0.0;
-    double d = 1.0 - fabs(h - C->oz_c) / C->oz_w;
-    return d > 0.0 ? d : 0.0;
-}
-
 static void medium_at(const pt_ctx *C, double h, double *sR, double *sM, double *st)
 {
-    if (h < 0.0)
-        h = 0.0;
-    double rm = exp(-h / C->HM);
-    *sR = C->bR * exp(-h / C->HR);
+    const ref_atmosphere *a = C->atmo;
+    double rm = ref_density(&a->mie_density, h);
+    *sR = C->bR * ref_density(&a->rayleigh_density, h);
     *sM = C->bMs * rm;
-    *st = *sR + C->bMt * rm + C->bO * ozone_tent(C, h);
+    *st = *sR + C->bMt * rm + C->bO * ref_density(&a->ozone_density, h);
 }
 
-/* Exact max of sigma_t over the altitude range [hmin, hmax] (with a hair of margin for rounding). */
+/* Max of sigma_t over the altitude range [hmin, hmax]: the sum of each species' exact maximum (with a hair of
+ * margin for rounding). */
 static double majorant(const pt_ctx *C, double hmin, double hmax)
 {
-    if (hmin < 0.0)
-        hmin = 0.0;
-    if (hmax < hmin)
-        hmax = hmin;
-    double oz = (hmin <= C->oz_c && hmax >= C->oz_c) ? 1.0 : ozone_tent(C, hmax < C->oz_c ? hmax : hmin);
-    double m = C->bR * exp(-hmin / C->HR) + C->bMt * exp(-hmin / C->HM) + C->bO * oz;
+    const ref_atmosphere *a = C->atmo;
+    double m = C->bR * ref_density_max(&a->rayleigh_density, hmin, hmax) +
+               C->bMt * ref_density_max(&a->mie_density, hmin, hmax) +
+               C->bO * ref_density_max(&a->ozone_density, hmin, hmax);
     return m * (1.0 + 1e-9);
 }
 
@@ -579,10 +569,7 @@ void pt_radiance(const ref_atmosphere *a, double altitude, const double view_dir
         C->Rb = Rb;
         C->Rt = Rt;
         C->top = top;
-        C->HR = a->rayleigh_scale_height;
-        C->HM = a->mie_scale_height;
-        C->oz_c = a->ozone_center;
-        C->oz_w = a->ozone_half_width;
+        C->atmo = a;
         C->bR = a->rayleigh_scattering[c];
         C->bMs = a->mie_scattering[c];
         C->bMt = a->mie_scattering[c] + a->mie_absorption[c];

@@ -33,36 +33,105 @@ void ref_atmosphere_earth(ref_atmosphere *o)
     o->rayleigh_scattering[0] = 5.802e-3;
     o->rayleigh_scattering[1] = 13.558e-3;
     o->rayleigh_scattering[2] = 33.1e-3;
-    o->rayleigh_scale_height = 8.0;
+    o->rayleigh_density = ref_profile_exponential(8.0);
     for (int c = 0; c < 3; ++c) {
         o->mie_scattering[c] = 3.996e-3;
         o->mie_absorption[c] = 0.444e-3;
         o->sun_illuminance[c] = 20.0;
     }
-    o->mie_scale_height = 1.2;
+    o->mie_density = ref_profile_exponential(1.2);
     o->mie_g = 0.8;
     o->ozone_absorption[0] = 0.650e-3;
     o->ozone_absorption[1] = 1.881e-3;
     o->ozone_absorption[2] = 0.085e-3;
-    o->ozone_center = 25.0;
-    o->ozone_half_width = 15.0;
+    o->ozone_density = ref_profile_tent(25.0, 15.0);
+}
+
+ref_density_profile ref_profile_exponential(double scale_height)
+{
+    ref_density_layer l = {.width = 0.0, .exp_term = 1.0, .exp_scale = -1.0 / scale_height};
+    return (ref_density_profile){{l, l}};
+}
+
+ref_density_profile ref_profile_tent(double center, double half_width)
+{
+    /* Rising to 1 at the centre, falling to 0 at center +- half_width (Bruneton's ozone layers). */
+    ref_density_layer rise = {.width = center, .linear_term = 1.0 / half_width,
+                              .constant_term = 1.0 - center / half_width};
+    ref_density_layer fall = {.width = 0.0, .linear_term = -1.0 / half_width,
+                              .constant_term = 1.0 + center / half_width};
+    return (ref_density_profile){{rise, fall}};
+}
+
+bool ref_profile_as_exponential(const ref_density_profile *p, double *scale_height)
+{
+    const ref_density_layer *a = &p->layers[0], *b = &p->layers[1];
+    bool same = a->exp_term == b->exp_term && a->exp_scale == b->exp_scale && a->linear_term == b->linear_term &&
+                a->constant_term == b->constant_term;
+    if (!same || a->exp_term != 1.0 || a->exp_scale >= 0.0 || a->linear_term != 0.0 || a->constant_term != 0.0)
+        return false;
+    *scale_height = -1.0 / a->exp_scale;
+    return true;
+}
+
+bool ref_profile_as_tent(const ref_density_profile *p, double *center, double *half_width)
+{
+    const ref_density_layer *a = &p->layers[0], *b = &p->layers[1];
+    if (a->exp_term != 0.0 || b->exp_term != 0.0 || a->linear_term <= 0.0 || b->linear_term != -a->linear_term)
+        return false;
+    double c = a->width, w = 1.0 / a->linear_term;
+    if (fabs(a->constant_term - (1.0 - c / w)) > 1e-12 || fabs(b->constant_term - (1.0 + c / w)) > 1e-12)
+        return false;
+    *center = c, *half_width = w;
+    return true;
+}
+
+/* One layer's unclamped value at h (the exponent capped as in ref_density). */
+static double layer_value(const ref_density_layer *l, double h)
+{
+    double e = l->exp_scale * h;
+    return (l->exp_term != 0.0 ? l->exp_term * exp(e < 700.0 ? e : 700.0) : 0.0) + l->linear_term * h + l->constant_term;
+}
+
+/* Max of one layer over [lo, hi]: a e^(b h) + c h + d has at most one stationary point, where a b e^(b h) = -c. */
+static double layer_max(const ref_density_layer *l, double lo, double hi)
+{
+    double m = fmax(layer_value(l, lo), layer_value(l, hi));
+    if (l->exp_term != 0.0 && l->exp_scale != 0.0) {
+        double q = -l->linear_term / (l->exp_term * l->exp_scale);
+        if (q > 0.0) {
+            double hs = log(q) / l->exp_scale;
+            if (hs > lo && hs < hi)
+                m = fmax(m, layer_value(l, hs));
+        }
+    }
+    return m;
+}
+
+double ref_density(const ref_density_profile *p, double h)
+{
+    /* Below the ground (reached only by below-horizon transmittance rays, which the model integrates through the
+     * planet) the medium is held at its ground value, as the GPU's sample_medium() does. */
+    if (h < 0.0)
+        h = 0.0;
+    /* Layer 0 below its width, layer 1 above; the clamp to [0, 1] is Bruneton's. */
+    double d = layer_value(h < p->layers[0].width ? &p->layers[0] : &p->layers[1], h);
+    return d < 0.0 ? 0.0 : d > 1.0 ? 1.0 : d;
+}
+
+double ref_density_max(const ref_density_profile *p, double hmin, double hmax)
+{
+    hmin = hmin > 0.0 ? hmin : 0.0; /* below the ground the medium is held at its ground value (ref_density) */
+    hmax = hmax > hmin ? hmax : hmin;
+    double w = p->layers[0].width, m = 0.0;
+    if (hmin < w)
+        m = layer_max(&p->layers[0], hmin, hmax < w ? hmax : w); /* layer 0's limit at w bounds it from above */
+    if (hmax >= w)
+        m = fmax(m, layer_max(&p->layers[1], hmin > w ? hmin : w, hmax));
+    return m < 0.0 ? 0.0 : m > 1.0 ? 1.0 : m;
 }
 
 static double clampd(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
-
-/* exp(-h / H), the exponent capped so that points deep below the ground (reached only by below-horizon
- * transmittance rays, which the model integrates through the planet) stay finite. */
-static double exp_density(double h, double scale_height)
-{
-    double e = -h / scale_height;
-    return exp(e < 700.0 ? e : 700.0);
-}
-
-static double ozone_density(const ref_atmosphere *a, double h)
-{
-    double d = 1.0 - fabs(h - a->ozone_center) / a->ozone_half_width;
-    return d > 0.0 ? d : 0.0;
-}
 
 typedef struct medium {
     double rayleigh, mie; /* densities, for the phase-weighted single scattering */
@@ -71,9 +140,9 @@ typedef struct medium {
 
 static void medium_at(const ref_atmosphere *a, double h, medium *m)
 {
-    double rr = exp_density(h, a->rayleigh_scale_height);
-    double rm = exp_density(h, a->mie_scale_height);
-    double ro = ozone_density(a, h);
+    double rr = ref_density(&a->rayleigh_density, h);
+    double rm = ref_density(&a->mie_density, h);
+    double ro = ref_density(&a->ozone_density, h);
     m->rayleigh = rr;
     m->mie = rm;
     for (int c = 0; c < 3; ++c) {
@@ -385,9 +454,9 @@ static void optical_depth(const ref_atmosphere *a, double h, double mu, int step
     for (int k = 0; k < steps; ++k) {
         double rt, ht;
         ray_point(a, h, r, mu, (k + 0.5) * dt, &rt, &ht);
-        sr += exp_density(ht, a->rayleigh_scale_height);
-        sm += exp_density(ht, a->mie_scale_height);
-        so += ozone_density(a, ht);
+        sr += ref_density(&a->rayleigh_density, ht);
+        sm += ref_density(&a->mie_density, ht);
+        so += ref_density(&a->ozone_density, ht);
     }
     for (int c = 0; c < 3; ++c)
         tau[c] = dt * (sr * a->rayleigh_scattering[c] + sm * (a->mie_scattering[c] + a->mie_absorption[c]) +

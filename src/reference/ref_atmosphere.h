@@ -12,17 +12,35 @@
 #ifndef VKSKY_REF_ATMOSPHERE_H
 #define VKSKY_REF_ATMOSPHERE_H
 
+#include <stdbool.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
+/* A density profile as Bruneton's DensityProfileLayer pair: below layers[0].width (km) layer 0 applies, above it
+ * layer 1; density = clamp(exp_term exp(exp_scale h) + linear_term h + constant_term, 0, 1), h in km. */
+typedef struct ref_density_layer { double width, exp_term, exp_scale, linear_term, constant_term; } ref_density_layer;
+typedef struct ref_density_profile { ref_density_layer layers[2]; } ref_density_profile;
+
 typedef struct ref_atmosphere {
     double bottom_radius, top_radius; /* km */
-    double rayleigh_scattering[3], rayleigh_scale_height;
-    double mie_scattering[3], mie_absorption[3], mie_scale_height, mie_g;
-    double ozone_absorption[3], ozone_center, ozone_half_width;
+    double rayleigh_scattering[3];
+    double mie_scattering[3], mie_absorption[3], mie_g;
+    double ozone_absorption[3];
+    ref_density_profile rayleigh_density, mie_density, ozone_density;
     double sun_illuminance[3];
 } ref_atmosphere;
+
+double ref_density(const ref_density_profile *p, double altitude);
+/* Exact max of ref_density over the altitude range [hmin, hmax] (a path tracer's majorant). */
+double ref_density_max(const ref_density_profile *p, double hmin, double hmax);
+/* exp(-h/H), and the tent max(0, 1 - |h - center| / half_width), as profiles. */
+ref_density_profile ref_profile_exponential(double scale_height);
+ref_density_profile ref_profile_tent(double center, double half_width);
+/* The inverse: true (and the parameters) if the profile is exactly that form. */
+bool ref_profile_as_exponential(const ref_density_profile *p, double *scale_height);
+bool ref_profile_as_tent(const ref_density_profile *p, double *center, double *half_width);
 
 /* Hillaire 2020 Table 1 defaults (docs/model.md "Medium"). */
 void ref_atmosphere_earth(ref_atmosphere *out);

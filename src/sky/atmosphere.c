@@ -42,11 +42,21 @@ void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad,
     /* Rt - Rb in double: the shaders never subtract planet-scale radii themselves. */
     out->radii = (vksky_vec4){(float)a->bottom_radius, (float)a->top_radius,
                               (float)(a->top_radius - a->bottom_radius), 0.0f};
-    out->rayleigh_scattering = v4(a->rayleigh_scattering, a->rayleigh_scale_height);
-    out->mie_scattering = v4(a->mie_scattering, a->mie_scale_height);
+    out->rayleigh_scattering = v4(a->rayleigh_scattering, 0.0);
+    out->mie_scattering = v4(a->mie_scattering, 0.0);
     out->mie_absorption = v4(a->mie_absorption, a->mie_g);
-    out->ozone_absorption = v4(a->ozone_absorption, a->ozone_center);
-    out->ozone_shape = (vksky_vec4){(float)a->ozone_half_width, 0, 0, 0};
+    out->ozone_absorption = v4(a->ozone_absorption, 0.0);
+    const ref_density_profile *profiles[3] = {&a->rayleigh_density, &a->mie_density, &a->ozone_density};
+    float widths[3];
+    for (int s = 0; s < 3; ++s) {
+        widths[s] = (float)profiles[s]->layers[0].width;
+        for (int l = 0; l < 2; ++l) {
+            const ref_density_layer *d = &profiles[s]->layers[l];
+            out->profiles[2 * s + l] = (vksky_vec4){(float)d->exp_term, (float)d->exp_scale, (float)d->linear_term,
+                                                    (float)d->constant_term};
+        }
+    }
+    out->profile_widths = (vksky_vec4){widths[0], widths[1], widths[2], 0.0f};
     out->sun = v4(a->sun_illuminance, sun_angular_radius_rad);
     out->lut_steps = (vksky_vec4){(float)q.transmittance_steps, (float)q.multiscatter_steps,
                                   (float)q.multiscatter_sqrt_dirs, f->multiple_scattering ? 1.0f : 0.0f};
@@ -59,7 +69,8 @@ uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p)
      * (the LUTs use the isotropic phase); the ground albedo counts (the multi-scattering ground bounce). */
     const vksky_vec4 fields[] = {p->radii, p->rayleigh_scattering, p->mie_scattering,
                                  {p->mie_absorption.x, p->mie_absorption.y, p->mie_absorption.z, 0},
-                                 p->ozone_absorption, p->ozone_shape, p->lut_steps,
+                                 p->ozone_absorption, p->profile_widths, p->profiles[0], p->profiles[1],
+                                 p->profiles[2], p->profiles[3], p->profiles[4], p->profiles[5], p->lut_steps,
                                  {p->ground.x, p->ground.y, p->ground.z, 0},
                                  /* the ground-irradiance LUT marches the sky with the Mie phase */
                                  {p->ground.x + p->ground.y + p->ground.z > 0.0f ? p->mie_absorption.w : 0.0f, 0, 0, 0}};
