@@ -2,6 +2,7 @@
  * variant (specialization constants), not just a uniform; LUTs are recomputed only when the atmosphere
  * changes; the features themselves behave (lit ground, no disc, Cornette-Shanks). Validation on throughout. */
 #include "gpu_test.h"
+#include "test_atmospheres.h"
 #include <string.h>
 
 enum { N = 33 };
@@ -135,6 +136,59 @@ int main(void)
     CHECK(fabs(luminance(hg_run.centre) - luminance(cs_run.centre)) > 0.01 * luminance(hg_run.centre), "phase model ignored");
     CHECK(cs_run.variant.mie_phase == VKSKY_MIE_PHASE_CORNETTE_SHANKS, "phase variant");
 
+    /* Density profiles: the shaders get the cheapest exact form as a specialization constant (exponential: one
+     * exp; the ozone tent: linear layers, no exp; anything else: the general layer pair). The same densities
+     * written as general layer pairs (perturbed by 1e-9 and 1e-12, far below half-float precision) take the
+     * general variant and must render the same image. */
+    CHECK(base.variant.profile[0] == VKSKY_PROFILE_EXPONENTIAL && base.variant.profile[1] == VKSKY_PROFILE_EXPONENTIAL &&
+              base.variant.profile[2] == VKSKY_PROFILE_LINEAR,
+          "Earth's profile variant is (%d, %d, %d), expected exponential, exponential, linear", base.variant.profile[0],
+          base.variant.profile[1], base.variant.profile[2]);
+    {
+        ref_atmosphere general = earth;
+        general.mie_density.layers[0].width = 30.0;
+        general.mie_density.layers[1].constant_term = -1e-9;  /* above 30 km (density 1e-11): clamped to 0 */
+        general.ozone_density.layers[0].exp_term = 1e-12;     /* exp_scale 0: a constant 1e-12 below 25 km */
+        run plain = render(&ctx, &earth, &defaults, v, false), gen = render(&ctx, &general, &defaults, v, false);
+        CHECK(gen.variant.profile[0] == VKSKY_PROFILE_EXPONENTIAL && gen.variant.profile[1] == VKSKY_PROFILE_GENERAL &&
+                  gen.variant.profile[2] == VKSKY_PROFILE_GENERAL,
+              "general layer pairs did not select the general variant (%d, %d, %d)", gen.variant.profile[0],
+              gen.variant.profile[1], gen.variant.profile[2]);
+        double worst = 0.0;
+        for (int c = 0; c < 3; ++c) worst = fmax(worst, fabs(gen.centre[c] - plain.centre[c]) / plain.centre[c]);
+        printf("exponential/tent variant vs the general layer pair: centre %.5f %.5f %.5f vs %.5f %.5f %.5f (max rel "
+               "diff %.1e)\n", plain.centre[0], plain.centre[1], plain.centre[2], gen.centre[0], gen.centre[1],
+               gen.centre[2], worst);
+        CHECK(worst < 2e-3, "the general profile path renders %.1e away from the specialised one", worst);
+    }
+
+    /* Extra species (beyond Rayleigh, Mie and ozone): one that copies ozone (absorption, tent) and one that copies
+     * Rayleigh (scattering, exponential, Rayleigh phase) must render what doubling those species renders: the
+     * medium is additive. Zero-coefficient extras are compiled out (variant extra_species 0). */
+    {
+        ref_atmosphere extras, doubled, idle = earth;
+        test_extra_species_pair(&earth, &extras, &doubled);
+        idle.extra_count = 1;
+        idle.extra[0] = (ref_extra_species){.name = "nothing", .density = earth.ozone_density};
+        sky_view low = v;
+        low.pitch_deg = 3.0; /* a long path: the extras matter */
+        run with = render(&ctx, &extras, &defaults, low, false), twice = render(&ctx, &doubled, &defaults, low, false);
+        run plain = render(&ctx, &earth, &defaults, low, false), none = render(&ctx, &idle, &defaults, low, false);
+        double worst = 0.0, change = 0.0;
+        for (int c = 0; c < 3; ++c) {
+            worst = fmax(worst, fabs(with.centre[c] - twice.centre[c]) / twice.centre[c]);
+            change = fmax(change, fabs(twice.centre[c] - plain.centre[c]) / plain.centre[c]);
+        }
+        printf("extra species copying ozone and Rayleigh: %.5f %.5f %.5f vs doubled species %.5f %.5f %.5f (max rel diff "
+               "%.1e; doubling changes the pixel by %.0f %%)\n", with.centre[0], with.centre[1], with.centre[2],
+               twice.centre[0], twice.centre[1], twice.centre[2], worst, 100 * change);
+        CHECK(with.variant.extra_species == 2 && none.variant.extra_species == 0 && base.variant.extra_species == 0,
+              "extra species variant: %d with two, %d with a zero one, %d without", with.variant.extra_species,
+              none.variant.extra_species, base.variant.extra_species);
+        CHECK(change > 0.05 && worst < 2e-3, "extra species render %.1e away from the doubled species", worst);
+        CHECK(memcmp(none.centre, plain.centre, sizeof plain.centre) == 0, "a zero extra species changed the image");
+    }
+
     /* LUTs follow the atmosphere: a changed Rayleigh coefficient recomputes them, a changed Mie g does not. */
     {
         sky_renderer r;
@@ -151,6 +205,17 @@ int main(void)
         thicker.rayleigh_scattering[2] *= 1.1;
         sky_renderer_set_atmosphere(&r, &thicker, SUN_RADIUS_RAD);
         CHECK(sky_renderer_luts_dirty(&r), "a Rayleigh change did not make the LUTs dirty");
+        sky_renderer_render(&r, &fd);
+        ref_atmosphere extra = thicker;
+        extra.extra_count = 1;
+        extra.extra[0] = (ref_extra_species){.name = "no2", .absorption = {1e-4, 4e-4, 9e-4},
+                                             .density = ref_profile_exponential(1.5)};
+        sky_renderer_set_atmosphere(&r, &extra, SUN_RADIUS_RAD);
+        CHECK(sky_renderer_luts_dirty(&r), "an extra species did not make the LUTs dirty");
+        sky_renderer_render(&r, &fd);
+        extra.extra[0].density.layers[1].constant_term = 0.01;
+        sky_renderer_set_atmosphere(&r, &extra, SUN_RADIUS_RAD);
+        CHECK(sky_renderer_luts_dirty(&r), "an extra species' profile change did not make the LUTs dirty");
         sky_renderer_destroy(&r);
     }
     gpu_context_destroy(&ctx);

@@ -14,6 +14,7 @@
  *      (one global majorant, NEE at real collisions only, sun transmittance by quadrature, rejection-sampled phases).
  */
 #include "reference/path_tracer.h"
+#include "test_atmospheres.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -329,17 +330,34 @@ int main(void)
      * and Rayleigh with a linear term. A majorant below the density would bias PT low. */
     printf("-- a2) max_bounces = 1 in a layered medium vs the quadrature\n");
     {
-        ref_atmosphere layered = earth;
-        for (int c = 0; c < 3; ++c)
-            layered.mie_scattering[c] *= 3.0;
-        layered.mie_density = (ref_density_profile){{{.width = 2.0, .constant_term = 1.0},
-                                                     {.exp_term = exp(2.0 / 1.2), .exp_scale = -1.0 / 1.2}}};
-        layered.ozone_density = (ref_density_profile){{{.width = 20.0, .linear_term = 0.2, .constant_term = -2.0},
-                                                       {.linear_term = -1.0 / 15.0, .constant_term = 35.0 / 15.0}}};
-        layered.rayleigh_density = (ref_density_profile){{{.width = 0.0},
-                                                          {.exp_term = 1.0, .exp_scale = -1.0 / 8.0,
-                                                           .linear_term = -0.002, .constant_term = 0.05}}};
+        ref_atmosphere layered = test_layered_atmosphere();
         compare_to_quadrature(&layered, &ss, 1e-5, "layered:");
+    }
+
+    /* a3) extra species: copies of ozone and of Rayleigh (Rayleigh phase) as extra species trace the medium of
+     * doubled ozone and Rayleigh: the two estimates agree within their standard errors (all orders). */
+    printf("-- a3) extra species copying ozone and Rayleigh vs the doubled species (all orders)\n");
+    {
+        ref_atmosphere extras, doubled;
+        test_extra_species_pair(&earth, &extras, &doubled);
+        double v[3], sd[3], A[3], sA[3], B[3], sB[3], P[3], sP[3];
+        ref_dir(180.0 * DEG, 5.0 * DEG, v);
+        ref_dir(0.0, 20.0 * DEG, sd);
+        pt_settings pe = {40000, 11, 0.0, 0, 2}, pd = {40000, 12, 0.0, 0, 2};
+        pt_radiance(&extras, k_cam_alt, v, sd, &pe, A, sA);
+        pt_radiance(&doubled, k_cam_alt, v, sd, &pd, B, sB);
+        pt_radiance(&earth, k_cam_alt, v, sd, &pd, P, sP);
+        int ok = 1;
+        for (int c = 0; c < 3; ++c)
+            if (!(fabs(A[c] - B[c]) <= 3.0 * sqrt(sA[c] * sA[c] + sB[c] * sB[c])) ||
+                !(fabs(B[c] - P[c]) > 3.0 * sqrt(sB[c] * sB[c] + sP[c] * sP[c])))
+                ok = 0;
+        char msg[512];
+        snprintf(msg, sizeof msg,
+                 "extras (%.5g %.5g %.5g) +- (%.2g %.2g %.2g)  doubled (%.5g %.5g %.5g) +- (%.2g %.2g %.2g)  "
+                 "Earth (%.5g %.5g %.5g): extras = doubled, doubled != Earth",
+                 A[0], A[1], A[2], sA[0], sA[1], sA[2], B[0], B[1], B[2], sB[0], sB[1], sB[2], P[0], P[1], P[2]);
+        check(ok, msg);
     }
 
     /* b) optically thin limit */

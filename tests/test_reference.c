@@ -13,6 +13,7 @@
  *    finite, non-negative output at every extreme the model has to survive.
  */
 #include "reference/ref_atmosphere.h"
+#include "test_atmospheres.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -120,6 +121,28 @@ static void test_profiles(void)
         }
         worst_loose = fmax(worst_loose, m - fmax(sampled, lim) - 2.0 * (hi - lo) / 20000.0);
     }
+    /* Extra species are additive: copies of ozone and of Rayleigh as extra species give the radiance and the
+     * transmittance of the doubled species (to rounding), at the view and sun steps the model uses. */
+    {
+        ref_atmosphere e, extras, doubled;
+        ref_atmosphere_earth(&e);
+        test_extra_species_pair(&e, &extras, &doubled);
+        double v[3], s[3], L1[3], L2[3], L0[3], T1[3], T2[3];
+        ref_dir(0.0, 5.0 * 3.14159265358979323846 / 180.0, v);
+        ref_dir(0.5, 20.0 * 3.14159265358979323846 / 180.0, s);
+        ref_quality q = ref_quality_converged();
+        q.view_steps = 64, q.sun_steps = 32, q.ms_sqrt_dirs = 8, q.ms_steps = 16; /* additivity holds at any count */
+        ref_sky_radiance(&extras, 0.001, v, s, q, L1);
+        ref_sky_radiance(&doubled, 0.001, v, s, q, L2);
+        ref_sky_radiance(&e, 0.001, v, s, q, L0);
+        ref_transmittance(&extras, 1.0, 0.05, 500, T1);
+        ref_transmittance(&doubled, 1.0, 0.05, 500, T2);
+        double d = fmax(rel3(L1, L2), rel3(T1, T2)), change = rel3(L2, L0);
+        check(d < 1e-12 && change > 0.05,
+              "extra species copying ozone and Rayleigh = doubled ozone and Rayleigh: radiance and transmittance "
+              "within %.1e (doubling changes the radiance by %.0f %%)", d, 100 * change);
+    }
+
     check(worst_below <= 1e-12 && worst_loose <= 1e-9,
           "ref_density_max over 2000 random layer pairs and ranges: never below the sampled density (by %.1e), "
           "never above it by more than the sampling step allows (%.1e)", worst_below, worst_loose);

@@ -2,6 +2,7 @@
  * exactly on the view axis): physics (blue noon zenith, red sunset horizon, dark twilight, the sun disc and
  * its occlusion), finiteness of every output pixel, and agreement with the CPU reference. */
 #include "gpu_test.h"
+#include "test_atmospheres.h"
 #include <string.h>
 
 enum { N = 33, C = N / 2 };
@@ -127,16 +128,7 @@ int main(void)
      * for the 2 km haze layer's Psi (32^2: up to 1.5 % off near the horizon; 128^2: 0.3 %). */
     sky_lut_quality converged_layered = converged;
     converged_layered.multiscatter_size = 128;
-    ref_atmosphere layered;
-    ref_atmosphere_earth(&layered);
-    for (int c = 0; c < 3; ++c) layered.mie_scattering[c] *= 3.0;
-    layered.mie_density = (ref_density_profile){{{.width = 2.0, .constant_term = 1.0},
-                                                 {.exp_term = exp(2.0 / 1.2), .exp_scale = -1.0 / 1.2}}};
-    layered.ozone_density = (ref_density_profile){{{.width = 20.0, .linear_term = 0.2, .constant_term = -2.0},
-                                                   {.linear_term = -1.0 / 15.0, .constant_term = 35.0 / 15.0}}};
-    layered.rayleigh_density = (ref_density_profile){{{.width = 0.0},
-                                                      {.exp_term = 1.0, .exp_scale = -1.0 / 8.0, .linear_term = -0.002,
-                                                       .constant_term = 0.05}}};
+    ref_atmosphere layered = test_layered_atmosphere();
     double worst_layered = 0.0;
     float hazy_sunward[3] = {0}, clear_sunward[3] = {0};
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {

@@ -14,6 +14,12 @@ layout(constant_id = VKSKY_SPEC_MULTISCATTER) const bool HAS_MULTISCATTER = true
 layout(constant_id = VKSKY_SPEC_SUN_DISC) const bool HAS_SUN_DISC = true;
 layout(constant_id = VKSKY_SPEC_GROUND) const bool HAS_GROUND = false;
 layout(constant_id = VKSKY_SPEC_MIE_PHASE) const int MIE_PHASE = VKSKY_MIE_PHASE_HG;
+layout(constant_id = VKSKY_SPEC_RAYLEIGH_PROFILE) const int RAYLEIGH_PROFILE = VKSKY_PROFILE_GENERAL;
+layout(constant_id = VKSKY_SPEC_MIE_PROFILE) const int MIE_PROFILE = VKSKY_PROFILE_GENERAL;
+layout(constant_id = VKSKY_SPEC_OZONE_PROFILE) const int OZONE_PROFILE = VKSKY_PROFILE_GENERAL;
+layout(constant_id = VKSKY_SPEC_EXTRA_SPECIES) const int EXTRA_SPECIES = 0;
+layout(constant_id = VKSKY_SPEC_EXTRA0_PROFILE) const int EXTRA0_PROFILE = VKSKY_PROFILE_GENERAL;
+layout(constant_id = VKSKY_SPEC_EXTRA1_PROFILE) const int EXTRA1_PROFILE = VKSKY_PROFILE_GENERAL;
 
 const float PI = 3.14159265358979;
 /* The multi-scattering LUT clamps its altitude to 10 m (seed bug 1: no sphere-sampled ray may start exactly on
@@ -72,25 +78,35 @@ struct Medium {
     vec3 mie;               /* sigma_s Mie */
 };
 
-/* Density of species 0 (Rayleigh), 1 (Mie), 2 (ozone) at altitude h: a pair of Bruneton density layers. */
-float profile_density(int species, float h)
+/* Density of species 0 (Rayleigh), 1 (Mie), 2 (ozone) at altitude h >= 0: a pair of Bruneton density layers
+ * {a, b, c, d} = atmo.profiles[2 species + (h < width ? 0 : 1)], clamp(a exp(b h) + c h + d, 0, 1). `kind` (a
+ * specialization constant) compiles the general form down for the common profiles. */
+float profile_density(int species, int kind, float h)
 {
-    vec4 l = atmo.profiles[2 * species + (h < atmo.profile_widths[species] ? 0 : 1)];
-    float e = l.x != 0.0 ? l.x * exp(l.y * h) : 0.0;
+    if (kind == VKSKY_PROFILE_EXPONENTIAL) /* a = 1, b < 0, c = d = 0: in (0, 1] for h >= 0 */
+        return exp(atmo.profiles[2 * species].y * h);
+    vec4 l = atmo.profiles[2 * species + (h < atmo.profile_widths[species / 4][species % 4] ? 0 : 1)];
+    float e = (kind == VKSKY_PROFILE_GENERAL && l.x != 0.0) ? l.x * exp(l.y * h) : 0.0;
     return clamp(e + l.z * h + l.w, 0.0, 1.0);
 }
 
 Medium sample_medium(float h)
 {
     h = max(h, 0.0);
-    float d_r = HAS_RAYLEIGH ? profile_density(0, h) : 0.0;
-    float d_m = HAS_MIE ? profile_density(1, h) : 0.0;
-    float d_o = HAS_OZONE ? profile_density(2, h) : 0.0;
+    float d_r = HAS_RAYLEIGH ? profile_density(0, RAYLEIGH_PROFILE, h) : 0.0;
+    float d_m = HAS_MIE ? profile_density(1, MIE_PROFILE, h) : 0.0;
+    float d_o = HAS_OZONE ? profile_density(2, OZONE_PROFILE, h) : 0.0;
     Medium m;
     m.rayleigh = atmo.rayleigh_scattering.rgb * d_r;
     m.mie = atmo.mie_scattering.rgb * d_m;
+    vec3 absorption = atmo.mie_absorption.rgb * d_m + atmo.ozone_absorption.rgb * d_o;
+    for (int i = 0; i < EXTRA_SPECIES; ++i) { /* extra species scatter with the Rayleigh phase */
+        float d_e = profile_density(3 + i, i == 0 ? EXTRA0_PROFILE : EXTRA1_PROFILE, h);
+        m.rayleigh += atmo.extra_scattering[i].rgb * d_e;
+        absorption += atmo.extra_absorption[i].rgb * d_e;
+    }
     m.scattering = m.rayleigh + m.mie;
-    m.extinction = m.scattering + atmo.mie_absorption.rgb * d_m + atmo.ozone_absorption.rgb * d_o;
+    m.extinction = m.scattering + absorption;
     return m;
 }
 

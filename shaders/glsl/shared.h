@@ -14,6 +14,9 @@ typedef struct vksky_vec4 { float x, y, z, w; } vksky_vec4;
 #define VKSKY_END(name) name;
 #endif
 
+#define VKSKY_MAX_EXTRA 2              /* species beyond Rayleigh, Mie and ozone (REF_MAX_EXTRA_SPECIES) */
+#define VKSKY_SPECIES (3 + VKSKY_MAX_EXTRA)
+
 /* The atmosphere: uniform buffer, set 0 binding 0 of every sky shader. Changes only when the scene does. */
 VKSKY_STRUCT(AtmosphereParams) {
     vec4 radii;                /* x: bottom (ground) radius km, y: top radius km, z: top - bottom (from double) */
@@ -21,10 +24,13 @@ VKSKY_STRUCT(AtmosphereParams) {
     vec4 mie_scattering;       /* rgb: sigma_s /km */
     vec4 mie_absorption;       /* rgb: sigma_a /km, w: Mie phase g */
     vec4 ozone_absorption;     /* rgb: sigma_a /km */
-    vec4 profile_widths;       /* x, y, z: layer 0's top (km) of the Rayleigh, Mie, ozone density profiles */
-    vec4 profiles[6];          /* [2 species + layer]: (exp_term, exp_scale /km, linear_term /km, constant_term):
+    vec4 extra_scattering[VKSKY_MAX_EXTRA];  /* rgb: sigma_s /km of the extra species (Rayleigh phase) */
+    vec4 extra_absorption[VKSKY_MAX_EXTRA];  /* rgb: sigma_a /km of the extra species */
+    vec4 profile_widths[2];    /* [species / 4][species % 4]: layer 0's top (km) of each density profile */
+    vec4 profiles[2 * VKSKY_SPECIES];
+                               /* [2 species + layer]: (exp_term, exp_scale /km, linear_term /km, constant_term):
                                   density = clamp(exp_term exp(exp_scale h) + linear_term h + constant_term, 0, 1),
-                                  Bruneton's DensityProfileLayer; species 0 Rayleigh, 1 Mie, 2 ozone */
+                                  Bruneton's DensityProfileLayer; species 0 Rayleigh, 1 Mie, 2 ozone, 3.. extra */
     vec4 sun;                  /* rgb: illuminance, w: angular radius (rad) */
     vec4 lut_steps;            /* x: transmittance steps, y: multiscatter steps, z: multiscatter sqrt(directions) */
     vec4 ground;               /* rgb: ground albedo (Lambertian), w: sun limb darkening coefficient u */
@@ -62,6 +68,16 @@ VKSKY_STRUCT(TonemapPush) {
 #define VKSKY_SPEC_SUN_DISC 5
 #define VKSKY_SPEC_GROUND 6
 #define VKSKY_SPEC_MIE_PHASE 7
+#define VKSKY_SPEC_RAYLEIGH_PROFILE 8  /* the density profile's form, per species: */
+#define VKSKY_SPEC_MIE_PROFILE 9
+#define VKSKY_SPEC_OZONE_PROFILE 10
+#define VKSKY_PROFILE_EXPONENTIAL 0     /* exp(b h), one layer: one exp, no layer select, no clamp */
+#define VKSKY_PROFILE_LINEAR 1          /* two layers without exponential terms (the ozone tent): no exp */
+#define VKSKY_PROFILE_GENERAL 2         /* any pair of Bruneton layers */
+#define VKSKY_SPEC_EXTRA_SPECIES 11     /* how many extra species (0 .. VKSKY_MAX_EXTRA) */
+#define VKSKY_SPEC_EXTRA0_PROFILE 12
+#define VKSKY_SPEC_EXTRA1_PROFILE 13
+#define VKSKY_SPEC_COUNT 13             /* IDs 1 .. 13 */
 #define VKSKY_MIE_PHASE_HG 0
 #define VKSKY_MIE_PHASE_CORNETTE_SHANKS 1
 

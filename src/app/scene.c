@@ -2,6 +2,7 @@
 #include "app/scene.h"
 #include "app/quality.h"
 #include <cjson/cJSON.h>
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -350,16 +351,51 @@ static int parse_species(const ctx *c, const cJSON *species)
     static const char *const phase_names[] = {"model", "g"};
     ref_atmosphere *a = &c->o->atmosphere;
     range coeff = scene_range(0.0, COEFF_MAX);
+    /* Any other name is an extra species (REF_MAX_EXTRA_SPECIES at most): a gas that absorbs and scatters
+     * with the Rayleigh phase. The scene's list replaces the current one. */
+    static const char *const extra_names[] = {"scattering", "absorption", "density"};
+    int extras = 0;
+    ref_extra_species staged[REF_MAX_EXTRA_SPECIES];
+    memset(staged, 0, sizeof staged);
     for (const cJSON *it = species->child; it; it = it->next) {
         char p[PATH_LEN];
         join(p, "species", it->string);
-        bool ok = false;
-        for (int i = 0; i < COUNT(known); ++i) ok = ok || !strcmp(it->string, known[i]);
-        if (!ok) return fail(c, p, "unknown species; vksky renders rayleigh, mie and ozone");
+        bool known_name = false;
+        for (int i = 0; i < COUNT(known); ++i) known_name = known_name || !strcmp(it->string, known[i]);
         for (const cJSON *prev = species->child; prev != it; prev = prev->next)
             if (!strcmp(prev->string, it->string)) return fail(c, p, "given twice; give each species once");
         if (!cJSON_IsObject(it)) return fail(c, p, "expected an object, got %s", type_of(it));
+        if (known_name) continue;
+        size_t len = strlen(it->string);
+        bool valid = len > 0 && len < sizeof a->extra[0].name && islower((unsigned char)it->string[0]);
+        for (size_t i = 0; i < len; ++i)
+            valid = valid && (islower((unsigned char)it->string[i]) || isdigit((unsigned char)it->string[i]) ||
+                              it->string[i] == '_');
+        if (!valid)
+            return fail(c, p, "not a species name; an extra species is named with a-z, 0-9 and _ (starting with a "
+                              "letter, %d characters at most)", (int)sizeof a->extra[0].name - 1);
+        if (extras == REF_MAX_EXTRA_SPECIES)
+            return fail(c, p, "one species too many; vksky takes %d beyond rayleigh, mie and ozone",
+                        REF_MAX_EXTRA_SPECIES);
+        if (cJSON_GetObjectItemCaseSensitive(it, "phase"))
+            return fail(c, p, "an extra species scatters with the Rayleigh (molecular) phase and takes no phase; "
+                              "put aerosols with a forward lobe in mie");
+        ref_extra_species e = {.density = ref_profile_exponential(8.0)};
+        memcpy(e.name, it->string, len + 1);
+        if (check_fields(c, it, p, extra_names, COUNT(extra_names)) ||
+            get_array(c, it, "scattering", p, coeff, 3, e.scattering, NULL) ||
+            get_array(c, it, "absorption", p, coeff, 3, e.absorption, NULL))
+            return 2;
+        if (!cJSON_GetObjectItemCaseSensitive(it, "density")) {
+            char dp[PATH_LEN];
+            join(dp, p, "density");
+            return fail(c, dp, "missing; an extra species needs a density profile (exponential, tent or layers)");
+        }
+        if (parse_density(c, it, p, &e.density)) return 2;
+        staged[extras++] = e;
     }
+    a->extra_count = extras;
+    memcpy(a->extra, staged, sizeof staged);
     const cJSON *s;
     if (get_object(c, species, "rayleigh", "species", &s)) return 2;
     if (s && (check_fields(c, s, "species.rayleigh", rayleigh_names, COUNT(rayleigh_names)) ||
@@ -749,6 +785,12 @@ int scene_dump(const options *o, FILE *out)
     arr(&b, s, "scattering", zero, 3);
     arr(&b, s, "absorption", a->ozone_absorption, 3);
     dump_density(&b, s, &a->ozone_density);
+    for (int i = 0; i < a->extra_count; ++i) {
+        s = obj(&b, species, a->extra[i].name);
+        arr(&b, s, "scattering", a->extra[i].scattering, 3);
+        arr(&b, s, "absorption", a->extra[i].absorption, 3);
+        dump_density(&b, s, &a->extra[i].density);
+    }
 
     boolean(&b, root, "multiple_scattering", o->multiple_scattering);
 

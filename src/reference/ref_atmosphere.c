@@ -134,7 +134,7 @@ double ref_density_max(const ref_density_profile *p, double hmin, double hmax)
 static double clampd(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
 typedef struct medium {
-    double rayleigh, mie; /* densities, for the phase-weighted single scattering */
+    double sr[3], sm[3]; /* scattering with the Rayleigh phase (Rayleigh and the extra species), with Mie's */
     double scat[3], ext[3];
 } medium;
 
@@ -143,13 +143,21 @@ static void medium_at(const ref_atmosphere *a, double h, medium *m)
     double rr = ref_density(&a->rayleigh_density, h);
     double rm = ref_density(&a->mie_density, h);
     double ro = ref_density(&a->ozone_density, h);
-    m->rayleigh = rr;
-    m->mie = rm;
     for (int c = 0; c < 3; ++c) {
-        double sr = rr * a->rayleigh_scattering[c];
-        double sm = rm * a->mie_scattering[c];
-        m->scat[c] = sr + sm;
-        m->ext[c] = sr + sm + rm * a->mie_absorption[c] + ro * a->ozone_absorption[c];
+        m->sr[c] = rr * a->rayleigh_scattering[c];
+        m->sm[c] = rm * a->mie_scattering[c];
+        m->ext[c] = rm * a->mie_absorption[c] + ro * a->ozone_absorption[c];
+    }
+    for (int i = 0; i < a->extra_count; ++i) {
+        double re = ref_density(&a->extra[i].density, h);
+        for (int c = 0; c < 3; ++c) {
+            m->sr[c] += re * a->extra[i].scattering[c];
+            m->ext[c] += re * a->extra[i].absorption[c];
+        }
+    }
+    for (int c = 0; c < 3; ++c) {
+        m->scat[c] = m->sr[c] + m->sm[c];
+        m->ext[c] += m->scat[c];
     }
 }
 
@@ -450,17 +458,22 @@ static void optical_depth(const ref_atmosphere *a, double h, double mu, int step
     double d = dist_to_top(a, h, mu);
     double r = a->bottom_radius + h;
     double dt = d / steps;
-    double sr = 0.0, sm = 0.0, so = 0.0;
+    double sr = 0.0, sm = 0.0, so = 0.0, se[REF_MAX_EXTRA_SPECIES] = {0.0};
     for (int k = 0; k < steps; ++k) {
         double rt, ht;
         ray_point(a, h, r, mu, (k + 0.5) * dt, &rt, &ht);
         sr += ref_density(&a->rayleigh_density, ht);
         sm += ref_density(&a->mie_density, ht);
         so += ref_density(&a->ozone_density, ht);
+        for (int i = 0; i < a->extra_count; ++i)
+            se[i] += ref_density(&a->extra[i].density, ht);
     }
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < 3; ++c) {
         tau[c] = dt * (sr * a->rayleigh_scattering[c] + sm * (a->mie_scattering[c] + a->mie_absorption[c]) +
                        so * a->ozone_absorption[c]);
+        for (int i = 0; i < a->extra_count; ++i)
+            tau[c] += dt * se[i] * (a->extra[i].scattering[c] + a->extra[i].absorption[c]);
+    }
 }
 
 void ref_transmittance(const ref_atmosphere *a, double altitude, double mu, int steps, double out[3])
@@ -1170,7 +1183,7 @@ static void sky_step(sky_ray *s, double t, double dt)
         psi_table_eval(s->psi, a, ht, mst, ps);
     for (int c = 0; c < 3; ++c) {
         double single =
-            vis * Ts[c] * (m.rayleigh * a->rayleigh_scattering[c] * s->pr + m.mie * a->mie_scattering[c] * s->pm);
+            vis * Ts[c] * (m.sr[c] * s->pr + m.sm[c] * s->pm);
         double S = a->sun_illuminance[c] * (single + ps[c] * m.scat[c]);
         s->L[c] += s->Tv[c] * S * step_integral(m.ext[c], dt);
         s->Tv[c] *= exp(-m.ext[c] * dt);

@@ -23,12 +23,23 @@ extern "C" {
 typedef struct ref_density_layer { double width, exp_term, exp_scale, linear_term, constant_term; } ref_density_layer;
 typedef struct ref_density_profile { ref_density_layer layers[2]; } ref_density_profile;
 
+/* A species beyond Rayleigh, Mie and ozone (scene files: any other name under "species"): a gas that absorbs
+ * and/or scatters with the Rayleigh (molecular) phase, e.g. NO2 or a second absorber layer. */
+#define REF_MAX_EXTRA_SPECIES 2
+typedef struct ref_extra_species {
+    char name[32];
+    double scattering[3], absorption[3]; /* /km at density 1 */
+    ref_density_profile density;
+} ref_extra_species;
+
 typedef struct ref_atmosphere {
     double bottom_radius, top_radius; /* km */
     double rayleigh_scattering[3];
     double mie_scattering[3], mie_absorption[3], mie_g;
     double ozone_absorption[3];
     ref_density_profile rayleigh_density, mie_density, ozone_density;
+    int extra_count;                  /* 0 .. REF_MAX_EXTRA_SPECIES */
+    ref_extra_species extra[REF_MAX_EXTRA_SPECIES];
     double sun_illuminance[3];
 } ref_atmosphere;
 

@@ -15,7 +15,28 @@ sky_features sky_features_default(void)
                           .multiple_scattering = true};
 }
 
+_Static_assert(VKSKY_MAX_EXTRA == REF_MAX_EXTRA_SPECIES, "one limit on extra species for the GPU and the reference");
+
 static bool any3(const double v[3]) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; }
+
+/* Extra species the shaders must evaluate: those with a nonzero coefficient (the rest are compiled out). The
+ * scene loader keeps them in order; a zero one in the middle still counts, to keep the indices. */
+static int extra_count(const ref_atmosphere *a)
+{
+    int n = 0;
+    for (int i = 0; i < a->extra_count && i < VKSKY_MAX_EXTRA; ++i)
+        if (any3(a->extra[i].scattering) || any3(a->extra[i].absorption)) n = i + 1;
+    return n;
+}
+
+/* The cheapest exact form of a profile the shaders have (VKSKY_PROFILE_*). */
+static int32_t profile_kind(const ref_density_profile *p)
+{
+    double H;
+    if (ref_profile_as_exponential(p, &H)) return VKSKY_PROFILE_EXPONENTIAL;
+    if (p->layers[0].exp_term == 0.0 && p->layers[1].exp_term == 0.0) return VKSKY_PROFILE_LINEAR;
+    return VKSKY_PROFILE_GENERAL;
+}
 
 sky_variant sky_variant_of(const ref_atmosphere *a, const sky_features *f)
 {
@@ -27,6 +48,11 @@ sky_variant sky_variant_of(const ref_atmosphere *a, const sky_features *f)
         .sun_disc = f->sun_disc,
         .ground = any3(f->ground_albedo),
         .mie_phase = f->mie_phase,
+        .profile = {profile_kind(&a->rayleigh_density), profile_kind(&a->mie_density),
+                    profile_kind(&a->ozone_density)},
+        .extra_species = extra_count(a),
+        .extra_profile = {extra_count(a) > 0 ? profile_kind(&a->extra[0].density) : VKSKY_PROFILE_GENERAL,
+                          extra_count(a) > 1 ? profile_kind(&a->extra[1].density) : VKSKY_PROFILE_GENERAL},
     };
 }
 
@@ -46,9 +72,15 @@ void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad,
     out->mie_scattering = v4(a->mie_scattering, 0.0);
     out->mie_absorption = v4(a->mie_absorption, a->mie_g);
     out->ozone_absorption = v4(a->ozone_absorption, 0.0);
-    const ref_density_profile *profiles[3] = {&a->rayleigh_density, &a->mie_density, &a->ozone_density};
-    float widths[3];
-    for (int s = 0; s < 3; ++s) {
+    const ref_density_profile *profiles[VKSKY_SPECIES] = {&a->rayleigh_density, &a->mie_density, &a->ozone_density};
+    float widths[8] = {0};
+    int species = 3 + extra_count(a);
+    for (int i = 0; i < species - 3; ++i) {
+        out->extra_scattering[i] = v4(a->extra[i].scattering, 0.0);
+        out->extra_absorption[i] = v4(a->extra[i].absorption, 0.0);
+        profiles[3 + i] = &a->extra[i].density;
+    }
+    for (int s = 0; s < species; ++s) {
         widths[s] = (float)profiles[s]->layers[0].width;
         for (int l = 0; l < 2; ++l) {
             const ref_density_layer *d = &profiles[s]->layers[l];
@@ -56,11 +88,19 @@ void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad,
                                                     (float)d->constant_term};
         }
     }
-    out->profile_widths = (vksky_vec4){widths[0], widths[1], widths[2], 0.0f};
+    out->profile_widths[0] = (vksky_vec4){widths[0], widths[1], widths[2], widths[3]};
+    out->profile_widths[1] = (vksky_vec4){widths[4], widths[5], widths[6], widths[7]};
     out->sun = v4(a->sun_illuminance, sun_angular_radius_rad);
     out->lut_steps = (vksky_vec4){(float)q.transmittance_steps, (float)q.multiscatter_steps,
                                   (float)q.multiscatter_sqrt_dirs, f->multiple_scattering ? 1.0f : 0.0f};
     out->ground = v4(f->ground_albedo, f->limb_darkening);
+}
+
+static uint64_t fnv1a(uint64_t h, const void *data, size_t size)
+{
+    const unsigned char *bytes = data;
+    for (size_t i = 0; i < size; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
+    return h;
 }
 
 uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p)
@@ -69,13 +109,13 @@ uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p)
      * (the LUTs use the isotropic phase); the ground albedo counts (the multi-scattering ground bounce). */
     const vksky_vec4 fields[] = {p->radii, p->rayleigh_scattering, p->mie_scattering,
                                  {p->mie_absorption.x, p->mie_absorption.y, p->mie_absorption.z, 0},
-                                 p->ozone_absorption, p->profile_widths, p->profiles[0], p->profiles[1],
-                                 p->profiles[2], p->profiles[3], p->profiles[4], p->profiles[5], p->lut_steps,
-                                 {p->ground.x, p->ground.y, p->ground.z, 0},
+                                 p->ozone_absorption, p->lut_steps, {p->ground.x, p->ground.y, p->ground.z, 0},
                                  /* the ground-irradiance LUT marches the sky with the Mie phase */
                                  {p->ground.x + p->ground.y + p->ground.z > 0.0f ? p->mie_absorption.w : 0.0f, 0, 0, 0}};
-    const unsigned char *bytes = (const unsigned char *)fields;
     uint64_t h = 1469598103934665603ull;
-    for (size_t i = 0; i < sizeof fields; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
-    return h;
+    h = fnv1a(h, fields, sizeof fields);
+    h = fnv1a(h, p->extra_scattering, sizeof p->extra_scattering);
+    h = fnv1a(h, p->extra_absorption, sizeof p->extra_absorption);
+    h = fnv1a(h, p->profile_widths, sizeof p->profile_widths);
+    return fnv1a(h, p->profiles, sizeof p->profiles);
 }

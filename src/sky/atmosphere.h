@@ -36,6 +36,9 @@ sky_features sky_features_default(void);
 typedef struct sky_variant {
     VkBool32 rayleigh, mie, ozone, multiscatter, sun_disc, ground;
     int32_t mie_phase;
+    int32_t profile[3];           /* VKSKY_PROFILE_* of Rayleigh, Mie, ozone */
+    int32_t extra_species;        /* extra species evaluated (0 .. VKSKY_MAX_EXTRA) */
+    int32_t extra_profile[VKSKY_MAX_EXTRA];
 } sky_variant;
 sky_variant sky_variant_of(const ref_atmosphere *a, const sky_features *f);
 void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,

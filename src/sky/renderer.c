@@ -143,17 +143,23 @@ static void build_variant(sky_renderer *r)
     pass_shared *s = &r->shared;
     r->variant = sky_variant_of(&r->medium, &r->features);
     const sky_variant *v = &r->variant;
-    const struct { uint32_t id; size_t offset, size; } map[7] = {
+    const struct { uint32_t id; size_t offset, size; } map[VKSKY_SPEC_COUNT] = {
         {VKSKY_SPEC_RAYLEIGH, offsetof(sky_variant, rayleigh), sizeof v->rayleigh},
         {VKSKY_SPEC_MIE, offsetof(sky_variant, mie), sizeof v->mie},
         {VKSKY_SPEC_OZONE, offsetof(sky_variant, ozone), sizeof v->ozone},
         {VKSKY_SPEC_MULTISCATTER, offsetof(sky_variant, multiscatter), sizeof v->multiscatter},
         {VKSKY_SPEC_SUN_DISC, offsetof(sky_variant, sun_disc), sizeof v->sun_disc},
         {VKSKY_SPEC_GROUND, offsetof(sky_variant, ground), sizeof v->ground},
-        {VKSKY_SPEC_MIE_PHASE, offsetof(sky_variant, mie_phase), sizeof v->mie_phase}};
-    for (int i = 0; i < 7; ++i)
+        {VKSKY_SPEC_MIE_PHASE, offsetof(sky_variant, mie_phase), sizeof v->mie_phase},
+        {VKSKY_SPEC_RAYLEIGH_PROFILE, offsetof(sky_variant, profile[0]), sizeof v->profile[0]},
+        {VKSKY_SPEC_MIE_PROFILE, offsetof(sky_variant, profile[1]), sizeof v->profile[1]},
+        {VKSKY_SPEC_OZONE_PROFILE, offsetof(sky_variant, profile[2]), sizeof v->profile[2]},
+        {VKSKY_SPEC_EXTRA_SPECIES, offsetof(sky_variant, extra_species), sizeof v->extra_species},
+        {VKSKY_SPEC_EXTRA0_PROFILE, offsetof(sky_variant, extra_profile[0]), sizeof v->extra_profile[0]},
+        {VKSKY_SPEC_EXTRA1_PROFILE, offsetof(sky_variant, extra_profile[1]), sizeof v->extra_profile[1]}};
+    for (int i = 0; i < VKSKY_SPEC_COUNT; ++i)
         r->spec_entries[i] = (VkSpecializationMapEntry){map[i].id, (uint32_t)map[i].offset, map[i].size};
-    r->spec = (VkSpecializationInfo){.mapEntryCount = 7, .pMapEntries = r->spec_entries, .dataSize = sizeof *v, .pData = v};
+    r->spec = (VkSpecializationInfo){.mapEntryCount = VKSKY_SPEC_COUNT, .pMapEntries = r->spec_entries, .dataSize = sizeof *v, .pData = v};
     s->spec = &r->spec;
     luts_create(&r->luts, s, &r->desc.lut, v->multiscatter, v->ground);
     sky_pass_create(&r->sky, s, &r->luts);

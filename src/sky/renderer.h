@@ -58,7 +58,7 @@ typedef struct sky_renderer {
     double sun_angular_radius;
     sky_features features;
     sky_variant variant;         /* of the pipelines built now */
-    VkSpecializationMapEntry spec_entries[7];
+    VkSpecializationMapEntry spec_entries[VKSKY_SPEC_COUNT];
     VkSpecializationInfo spec;
     FILE *pass_trace;            /* non-NULL: print "pass <name>" for every pass a frame records */
     uint64_t lut_hash;           /* of the atmosphere the LUTs hold; 0: never computed */
