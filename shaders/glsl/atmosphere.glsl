@@ -85,7 +85,8 @@ float profile_density(int species, int kind, float h)
 {
     if (kind == VKSKY_PROFILE_EXPONENTIAL) /* a = 1, b < 0, c = d = 0: in (0, 1] for h >= 0 */
         return exp(atmo.profiles[2 * species].y * h);
-    vec4 l = atmo.profiles[2 * species + (h < atmo.profile_widths[species / 4][species % 4] ? 0 : 1)];
+    /* Both layers loaded at constant offsets and selected (no dynamic indexing: lavapipe pays for that). */
+    vec4 l = h < atmo.profile_widths[species / 4][species % 4] ? atmo.profiles[2 * species] : atmo.profiles[2 * species + 1];
     float e = (kind == VKSKY_PROFILE_GENERAL && l.x != 0.0) ? l.x * exp(l.y * h) : 0.0;
     return clamp(e + l.z * h + l.w, 0.0, 1.0);
 }
