@@ -4,7 +4,8 @@
 #     writes its file and prints nothing on stderr; its --dump-scene loads back to the same dump, and the dump
 #     renders the very same image; earth-clear.json is the defaults;
 #  2. flags override scene fields wherever they stand (the dump shows the override); a --quality flag replaces
-#     the scene's quality section; a dump with many overrides round-trips too;
+#     the scene's quality section; a dump with many overrides round-trips too; extra species and layer profiles
+#     round-trip, an extra species copying ozone renders as doubled ozone, extreme profiles render finite pixels;
 #  3. every malformed scene (tests/scenes_bad/*.json, and a few made here) and every bad value of the new flags
 #     exits 2 with exactly one line on stderr naming the field (or file:line:column), and leaves no file behind;
 #  4. the Mars sky (colour only): butterscotch by day (R > B), and bluer near the sun at sunset than at noon.
@@ -112,6 +113,27 @@ awk -v a="$a" -v b="$b" -v c="$c0" 'BEGIN { split(a, x, " "); split(b, y, " "); 
                                q = (y[i] - z[i]) / y[i]; if (q < 0) q = -q; if (q > e) e = q }
     exit !(d < 2e-3 && e > 0.01) }' ||
     fail "an extra species copying ozone does not render as doubled ozone: copy $a, doubled $b, single $c0"
+
+# Extreme layer profiles (overflowing exponentials, steep linear terms, a zero-width layer 0, a profile that is 0
+# everywhere) render finite, non-negative pixels everywhere, validation-clean, from the ground and from space.
+extreme=0
+for prof in '{"layers": [{"exp_term": 1000, "exp_scale_per_km": 1000}]}' \
+            '{"layers": [{"exp_term": -1000, "exp_scale_per_km": 1000, "constant_term": 1000}]}' \
+            '{"layers": [{"width_km": 0, "constant_term": 1}, {"linear_term_per_km": -1000, "constant_term": 1000}]}' \
+            '{"layers": [{"width_km": 1000, "exp_term": 1, "exp_scale_per_km": -1000}, {"constant_term": 5}]}' \
+            '{"layers": [{"constant_term": -1}]}'; do
+    for alt in 0 500; do
+        extreme=$((extreme + 1))
+        printf '{"species": {"mie": {"density": %s}, "gas": {"absorption": [1e-3, 1e-3, 1e-3], "density": %s}},
+                 "camera": {"altitude_km": %s, "pitch_deg": -20}}' "$prof" "$prof" "$alt" >"$work/extreme.json"
+        "$VKSKY" --scene "$work/extreme.json" --width 16 --height 9 --validate --render "$work/extreme.exr" 2>"$work/err" ||
+            { fail "extreme profile $prof at $alt km: $(head -c 300 "$work/err")"; continue; }
+        "$PROBE" "$work/extreme.exr" $(for y in $(seq 0 8); do for x in $(seq 0 15); do echo "$x $y"; done; done) |
+            awk '{ for (i = 1; i <= 3; ++i) if (!($i + 0 == $i && $i >= 0 && $i < 1e30)) bad = 1 } END { exit bad }' ||
+            fail "extreme profile $prof at $alt km: a NaN, Inf or negative pixel"
+    done
+done
+[ $extreme -eq 10 ] || fail "extreme profiles: $extreme renders"
 
 # Quality: the scene's knobs override its preset; --quality replaces both; knob flags override everything.
 # (Compared with the same choice made by flags alone, so that the test does not copy the preset table.)
