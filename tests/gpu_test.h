@@ -39,26 +39,48 @@ typedef struct test_frame {
     unsigned char *display;
 } test_frame;
 
-/* `lut` NULL: the default LUT quality; `atmosphere` NULL: Earth (ref_atmosphere_earth). */
+/* A renderer kept across frames (its LUTs are computed once: only the view changes between frames).
+ * `lut` NULL: the default LUT quality; `atmosphere` NULL: Earth (ref_atmosphere_earth). */
+typedef struct test_renderer {
+    sky_renderer r;
+    int width, height;
+} test_renderer;
+
+static inline void test_renderer_create(test_renderer *t, gpu_context *ctx, int width, int height, bool bloom,
+                                        const sky_lut_quality *lut, const ref_atmosphere *atmosphere)
+{
+    sky_renderer_desc desc = {.width = (uint32_t)width, .height = (uint32_t)height, .bloom = bloom,
+                              .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
+    desc.lut = lut ? *lut : sky_lut_quality_default();
+    t->width = width, t->height = height;
+    sky_renderer_create(&t->r, ctx, &desc);
+    ref_atmosphere a;
+    ref_atmosphere_earth(&a);
+    sky_renderer_set_atmosphere(&t->r, atmosphere ? atmosphere : &a, SUN_RADIUS_RAD);
+}
+
+static inline test_frame test_renderer_frame(test_renderer *t, const sky_view *view)
+{
+    frame_desc f = {.view = view};
+    sky_renderer_render(&t->r, &f);
+    size_t n = (size_t)t->width * t->height;
+    test_frame out = {t->width, t->height, malloc(sizeof(float) * 4 * n), malloc(4 * n)};
+    const uint16_t *half = t->r.readback_linear.mapped;
+    for (size_t i = 0; i < 4 * n; ++i) out.linear[i] = io_half_to_float(half[i]);
+    memcpy(out.display, t->r.readback_display.mapped, 4 * n);
+    return out;
+}
+
+static inline void test_renderer_destroy(test_renderer *t) { sky_renderer_destroy(&t->r); }
+
+/* One frame from a fresh renderer. */
 static inline test_frame test_render_atmosphere(gpu_context *ctx, const sky_view *view, int width, int height,
                                                 const sky_lut_quality *lut, const ref_atmosphere *atmosphere)
 {
-    sky_renderer r;
-    sky_renderer_desc desc = {.width = (uint32_t)width, .height = (uint32_t)height, .bloom = view->bloom,
-                              .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
-    desc.lut = lut ? *lut : sky_lut_quality_default();
-    sky_renderer_create(&r, ctx, &desc);
-    ref_atmosphere a;
-    ref_atmosphere_earth(&a);
-    sky_renderer_set_atmosphere(&r, atmosphere ? atmosphere : &a, SUN_RADIUS_RAD);
-    frame_desc f = {.view = view};
-    sky_renderer_render(&r, &f);
-    test_frame out = {width, height, malloc(sizeof(float) * 4 * (size_t)width * height),
-                      malloc(4 * (size_t)width * height)};
-    const uint16_t *half = r.readback_linear.mapped;
-    for (size_t i = 0; i < 4 * (size_t)width * height; ++i) out.linear[i] = io_half_to_float(half[i]);
-    memcpy(out.display, r.readback_display.mapped, 4 * (size_t)width * height);
-    sky_renderer_destroy(&r);
+    test_renderer t;
+    test_renderer_create(&t, ctx, width, height, view->bloom, lut, atmosphere);
+    test_frame out = test_renderer_frame(&t, view);
+    test_renderer_destroy(&t);
     return out;
 }
 

@@ -38,16 +38,16 @@ static double rel_err(double gpu, double ref) { return fabs(gpu - ref) / fmax(re
 
 typedef struct view_case { double sun_el, yaw, pitch; } view_case;
 
-/* Renders view case k of atmosphere `a` (NULL: Earth) and returns the centre pixel in gpu, the converged CPU
- * reference in ref and the luminance error; prints a line tagged `tag`. steps 0: the default. */
-static double versus_reference(gpu_context *ctx, const char *tag, view_case k, int steps, const sky_lut_quality *lut,
-                               const ref_atmosphere *a, float gpu[3])
+/* Renders view case k with renderer t (of atmosphere `a`, NULL: Earth) and returns the centre pixel in gpu and
+ * the luminance error against the converged CPU reference; prints a line tagged `tag`. steps 0: the default. */
+static double versus_reference(test_renderer *t, const char *tag, view_case k, int steps, const ref_atmosphere *a,
+                               float gpu[3])
 {
     sky_view v = scene(k.sun_el, false);
     v.yaw_deg = k.yaw;
     v.pitch_deg = k.pitch;
     if (steps) v.steps = steps;
-    test_frame f = test_render_atmosphere(ctx, &v, N, N, lut, a);
+    test_frame f = test_renderer_frame(t, &v);
     CHECK(count_bad_pixels(&f) == 0, "NaN/Inf/negative pixels (%s)", tag);
     memcpy(gpu, test_pixel(&f, C, C), 3 * sizeof(float));
     test_frame_free(&f);
@@ -111,13 +111,15 @@ int main(void)
     converged.multiscatter_steps = 64;
     for (int quality = 0; quality < 2; ++quality) {
         double worst = 0.0, tol = quality ? 0.01 : 0.05;
+        test_renderer t;
+        test_renderer_create(&t, &ctx, N, N, false, quality ? &converged : NULL, NULL);
         for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
             float gpu[3];
-            double e = versus_reference(&ctx, quality ? "converged" : "default", cases[i], quality ? 256 : 0,
-                                        quality ? &converged : NULL, NULL, gpu);
+            double e = versus_reference(&t, quality ? "converged" : "default", cases[i], quality ? 256 : 0, NULL, gpu);
             worst = fmax(worst, e);
             CHECK(e <= tol, "luminance error %.2f%% > %.0f%%", 100 * e, 100 * tol);
         }
+        test_renderer_destroy(&t);
         printf("%s settings: max luminance error %.2f%% (bound %.0f%%)\n", quality ? "converged" : "default", 100 * worst, 100 * tol);
     }
     /* A layered medium (Bruneton layer pairs, not the named forms): a 2 km well-mixed haze under an exponential
@@ -129,18 +131,24 @@ int main(void)
     sky_lut_quality converged_layered = converged;
     converged_layered.multiscatter_size = 128;
     ref_atmosphere layered = test_layered_atmosphere();
+    test_renderer layered_renderer;
+    test_renderer_create(&layered_renderer, &ctx, N, N, false, &converged_layered, &layered);
     double worst_layered = 0.0;
     float hazy_sunward[3] = {0}, clear_sunward[3] = {0};
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         float gpu[3];
-        double e = versus_reference(&ctx, "layered", cases[i], 256, &converged_layered, &layered, gpu);
+        double e = versus_reference(&layered_renderer, "layered", cases[i], 256, &layered, gpu);
         worst_layered = fmax(worst_layered, e);
         CHECK(e <= 0.01, "layered medium: luminance error %.2f%% > 1%%", 100 * e);
         if (i == 2) { /* sun 20, 25 deg up toward the sun (Mie's forward lobe): against Earth's clear sky */
             memcpy(hazy_sunward, gpu, sizeof gpu);
-            versus_reference(&ctx, "clear", cases[i], 256, &converged_layered, NULL, clear_sunward);
+            test_renderer clear;
+            test_renderer_create(&clear, &ctx, N, N, false, &converged_layered, NULL);
+            versus_reference(&clear, "clear", cases[i], 256, NULL, clear_sunward);
+            test_renderer_destroy(&clear);
         }
     }
+    test_renderer_destroy(&layered_renderer);
     printf("layered medium, converged settings: max luminance error %.2f%% (bound 1%%); toward the sun: hazy %.4f, "
            "clear %.4f\n", 100 * worst_layered, luminance(hazy_sunward), luminance(clear_sunward));
     CHECK(luminance(hazy_sunward) > 2.0 * luminance(clear_sunward), "the haze layer does not brighten the sky toward the sun");
