@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Bad scene files never crash vksky, and what it accepts it can write back: every shipped scene mutated N times
+# (tests/scene_mutate.c, seeds 1..N) and loaded with --dump-scene must
+#  - exit 0 or 2, never by a signal or another status;
+#  - on 2: print exactly one line on stderr, "vksky: ...", and nothing on stdout;
+#  - on 0: print a dump that loads back (exit 0) to the very same dump (accepted scenes round-trip).
+# Every 25th accepted mutant is also rendered (16x9, --validate): exit 0, or 2 with one line, and no file left
+# behind on 2.
+# Usage: scene_fuzz.sh VKSKY SCENE_MUTATE SCENES_DIR [N]
+set -u
+VKSKY=${1:?usage: scene_fuzz.sh VKSKY SCENE_MUTATE SCENES_DIR [N]}
+MUTATE=${2:?}
+SCENES=${3:?}
+N=${4:-300}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0 accepted=0 rejected=0 rendered=0
+# (a failing mutant is reproduced by: scene_mutate SCENE SEED > m.json)
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+for scene in "$SCENES"/*.json; do
+    for seed in $(seq 1 "$N"); do
+        "$MUTATE" "$scene" "$seed" >"$work/m.json" || { fail "scene_mutate $scene $seed"; continue; }
+        "$VKSKY" --scene "$work/m.json" --dump-scene >"$work/d1.json" 2>"$work/err"
+        rc=$?
+        what="$(basename "$scene") seed $seed"
+        if [ $rc -eq 2 ]; then
+            rejected=$((rejected + 1))
+            [ "$(wc -l <"$work/err")" -eq 1 ] && grep -q '^vksky: ' "$work/err" ||
+                fail "$what: exit 2 without exactly one 'vksky: ' line: $(head -c 300 "$work/err")"
+            [ ! -s "$work/d1.json" ] || fail "$what: exit 2 but printed on stdout"
+        elif [ $rc -eq 0 ]; then
+            accepted=$((accepted + 1))
+            "$VKSKY" --scene "$work/d1.json" --dump-scene >"$work/d2.json" 2>"$work/err" ||
+                fail "$what: the dump of an accepted scene does not load: $(head -c 300 "$work/err")"
+            cmp -s "$work/d1.json" "$work/d2.json" || fail "$what: accepted scene does not round-trip"
+            if [ $((accepted % 25)) -eq 0 ]; then
+                rendered=$((rendered + 1))
+                rm -f "$work/out.exr"
+                "$VKSKY" --scene "$work/m.json" --width 16 --height 9 --validate --render "$work/out.exr" 2>"$work/err"
+                r=$?
+                if [ $r -eq 2 ]; then
+                    [ "$(wc -l <"$work/err")" -eq 1 ] || fail "$what: render exit 2 without one line"
+                    [ -z "$(ls -A "$work" | grep out)" ] || fail "$what: render exit 2 left a file"
+                elif [ $r -ne 0 ]; then
+                    fail "$what: render exited $r: $(head -c 300 "$work/err")"
+                fi
+            fi
+        else
+            fail "$what: exit status $rc (a crash or an unexpected status): $(head -c 300 "$work/err")"
+        fi
+    done
+done
+echo "scene_fuzz: $accepted accepted (round-tripped), $rejected rejected with one line, $rendered rendered"
+[ $accepted -gt 0 ] && [ $rejected -gt 0 ] || fail "the mutants are all accepted or all rejected: the fuzzer is broken"
+if [ $fails -ne 0 ]; then echo "scene_fuzz: $fails failure(s)"; exit 1; fi
+echo "scene_fuzz: ok"
