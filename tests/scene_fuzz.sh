@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Bad scene files never crash vksky, and what it accepts it can write back: every shipped scene mutated N times
+# Bad scene files and command lines never crash vksky, and what it accepts it can write back: every shipped scene
+# mutated N times
 # (tests/scene_mutate.c, seeds 1..N) and loaded with --dump-scene must
 #  - exit 0 or 2, never by a signal or another status;
 #  - on 2: print exactly one line on stderr, "vksky: ...", and nothing on stdout;
@@ -52,5 +53,34 @@ for scene in "$SCENES"/*.json; do
 done
 echo "scene_fuzz: $accepted accepted (round-tripped), $rejected rejected with one line, $rendered rendered"
 [ $accepted -gt 0 ] && [ $rejected -gt 0 ] || fail "the mutants are all accepted or all rejected: the fuzzer is broken"
+# The command line, fuzzed the same way: 1 to 4 flags from --help with hostile values (or none), then
+# --dump-scene (which runs nothing else): exit 0 with a dump that round-trips, or 2 with one line.
+flags=($("$VKSKY" --help | grep -oE '^  --[a-z0-9-]+' | tr -d ' ' | grep -vE '^--(help|version|list-devices|dump-scene)$'))
+values=(0 -0 1 -1 2 3 10 45 0.5 64 medium skyview 1e309 -1e309 nan inf 1e-320 0x10 1,2,3 1,2 "" " " x 99999999999999999999 16384 16385
+        fragment compute auto low ultra f32 aces hg cornette-shanks 1,nan,1 "$work/none/x.exr" "$work/o.exr" --width)
+argv_accepted=0 argv_rejected=0
+RANDOM=2020
+for i in $(seq 1 "$N"); do
+    args=()
+    for k in $(seq 1 $((RANDOM % 4 + 1))); do
+        args+=("${flags[RANDOM % ${#flags[@]}]}")
+        [ $((RANDOM % 5)) -eq 0 ] || args+=("${values[RANDOM % ${#values[@]}]}")
+    done
+    "$VKSKY" "${args[@]}" --dump-scene >"$work/d1.json" 2>"$work/err"
+    rc=$?
+    if [ $rc -eq 2 ]; then
+        argv_rejected=$((argv_rejected + 1))
+        [ "$(wc -l <"$work/err")" -eq 1 ] && grep -q '^vksky: ' "$work/err" ||
+            fail "argv ${args[*]}: exit 2 without exactly one 'vksky: ' line: $(head -c 300 "$work/err")"
+    elif [ $rc -eq 0 ]; then
+        argv_accepted=$((argv_accepted + 1))
+        "$VKSKY" --scene "$work/d1.json" --dump-scene >"$work/d2.json" 2>/dev/null && cmp -s "$work/d1.json" "$work/d2.json" ||
+            fail "argv ${args[*]}: the dump does not round-trip"
+    else
+        fail "argv ${args[*]}: exit status $rc: $(head -c 300 "$work/err")"
+    fi
+done
+echo "scene_fuzz: command lines: $argv_accepted accepted, $argv_rejected rejected with one line"
+[ $argv_accepted -gt 0 ] && [ $argv_rejected -gt 0 ] || fail "the command lines are all accepted or all rejected"
 if [ $fails -ne 0 ]; then echo "scene_fuzz: $fails failure(s)"; exit 1; fi
 echo "scene_fuzz: ok"
