@@ -1,12 +1,11 @@
 #!/usr/bin/env bash
 # Bad scene files and command lines never crash vksky, and what it accepts it can write back: every shipped scene
-# mutated N times
-# (tests/scene_mutate.c, seeds 1..N) and loaded with --dump-scene must
+# mutated N times (tests/scene_mutate.c, seeds 1..N) and loaded with --dump-scene must
 #  - exit 0 or 2, never by a signal or another status;
 #  - on 2: print exactly one line on stderr, "vksky: ...", and nothing on stdout;
 #  - on 0: print a dump that loads back (exit 0) to the very same dump (accepted scenes round-trip).
 # Every 25th accepted mutant is also rendered (16x9, --validate): exit 0, or 2 with one line, and no file left
-# behind on 2.
+# behind on 2. Then N random command lines (flags from --help, hostile values) with --dump-scene, the same way.
 # Usage: scene_fuzz.sh VKSKY SCENE_MUTATE SCENES_DIR [N]
 set -u
 VKSKY=${1:?usage: scene_fuzz.sh VKSKY SCENE_MUTATE SCENES_DIR [N]}
