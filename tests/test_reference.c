@@ -158,7 +158,7 @@ static void test_mappings(const ref_atmosphere *a)
     printf("\n== 1. LUT mappings (transmittance %dx%d Bruneton; multi-scattering per docs/model.md) ==\n", W, H);
 
     /* Texel-centre sub-UV, seen through the multi-scattering mapping: texel k <-> x = k/(N-1) exactly, then
-     * h = x (Rt - Rb) and mu_s = sign(2x - 1) (2x - 1)^2 (docs/model.md). */
+     * h = x^2 (Rt - Rb) and mu_s = sign(2x - 1) (2x - 1)^2 (docs/model.md). */
     double e_sub = 0.0;
     for (int n = 2; n <= 256; n *= 2)
         for (int k = 0; k < n; ++k) {
@@ -166,9 +166,9 @@ static void test_mappings(const ref_atmosphere *a)
             ref_multiscatter_texel_params(a, k, k, n, n, &h, &mus);
             double x = (double)k / (n - 1), y = 2.0 * x - 1.0;
             double mus_expect = y < 0.0 ? -y * y : y * y;
-            e_sub = fmax(e_sub, fmax(fabs(mus - mus_expect), fabs(h - x * top) / top));
+            e_sub = fmax(e_sub, fmax(fabs(mus - mus_expect), fabs(h - x * x * top) / top));
         }
-    check(e_sub < 1e-12, "Ms texel k -> x = k/(N-1) -> (h = x top, mu_s = sign(2x-1)(2x-1)^2) for N = 2..256 "
+    check(e_sub < 1e-12, "Ms texel k -> x = k/(N-1) -> (h = x^2 top, mu_s = sign(2x-1)(2x-1)^2) for N = 2..256 "
                          "(max err %.1e)",
           e_sub);
 

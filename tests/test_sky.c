@@ -126,8 +126,8 @@ int main(void)
      * tail, an ozone layer with a flat top, Rayleigh with a linear term and the [0, 1] clamp. The GPU's
      * profile_density() and the reference's ref_density() are separate implementations of the same layers:
      * converged settings must agree within 1 % again, and the haze must brighten the sky toward the sun.
-     * Converged here includes a 128^2 multi-scattering LUT: at 32^2 a texel spans 3.2 km of altitude, too coarse
-     * for the 2 km haze layer's Psi (32^2: up to 1.5 % off near the horizon; 128^2: 0.3 %). */
+     * Converged here includes a 128^2 multi-scattering LUT: the 2 km haze layer's Psi needs the texels (32^2: up
+     * to 1.2 % off near the horizon; 64^2: 0.30 %; 128^2: 0.24 %). */
     sky_lut_quality converged_layered = converged;
     converged_layered.multiscatter_size = 128;
     ref_atmosphere layered = test_layered_atmosphere();

@@ -197,10 +197,16 @@ float multiscatter_mu_s_of_x(float x)
     return sign(y) * y * y;
 }
 
+/* Multi-scattering LUT y <-> altitude: h = y^2 top. Psi changes fastest near the ground (the densest air, thin
+ * aerosol layers, optically thick media), so the texels crowd there (32 texels: the first 0.1 km apart, 6.5 km
+ * at the top; a linear mapping spends 3.2 km on every texel). */
+float multiscatter_y_of_h(float h) { return sqrt(clamp(h / top_altitude(), 0.0, 1.0)); }
+float multiscatter_h_of_y(float y) { return y * y * top_altitude(); }
+
 vec2 multiscatter_uv(float h, float mu_s, vec2 size)
 {
     return vec2(unit_to_sub_uv(clamp(multiscatter_x_of_mu_s(mu_s), 0.0, 1.0), size.x),
-                unit_to_sub_uv(clamp(h / top_altitude(), 0.0, 1.0), size.y));
+                unit_to_sub_uv(multiscatter_y_of_h(h), size.y));
 }
 
 /* Hillaire's sky-view LUT parameterisation, with the exact texel-centre sub-UV. x: azimuth from the sun,

@@ -26,7 +26,7 @@ void main()
     vec2 uv = (vec2(texel) + 0.5) / size;
     float mu_s = multiscatter_mu_s_of_x(sub_uv_to_unit(uv.x, size.x));
     /* Seed bug 1: clamp 10 m above the ground so no direction starts exactly on the sphere. */
-    float h = clamp(sub_uv_to_unit(uv.y, size.y) * top_altitude(), MULTISCATTER_MIN_ALTITUDE, top_altitude());
+    float h = clamp(multiscatter_h_of_y(sub_uv_to_unit(uv.y, size.y)), MULTISCATTER_MIN_ALTITUDE, top_altitude());
     vec3 sun = vec3(sqrt(max(0.0, 1.0 - mu_s * mu_s)), mu_s, 0.0);
 
     int sqrt_dirs = int(atmo.lut_steps.z);

@@ -446,7 +446,7 @@ void ref_multiscatter_texel_params(const ref_atmosphere *a, int i, int j, int wi
     /* x = 0.5 + 0.5 sign(mu_s) sqrt(|mu_s|): texels crowd at the terminator (docs/model.md). */
     double y = 2.0 * xu - 1.0;
     *mu_s = y < 0.0 ? -y * y : y * y;
-    *altitude = xv * atmo_height(a);
+    *altitude = xv * xv * atmo_height(a); /* y = sqrt(h / top): texels crowd near the ground */
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */
