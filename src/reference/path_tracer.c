@@ -102,7 +102,7 @@ typedef struct pt_ctx {
     double Rb, Rt, top;
     const ref_atmosphere *atmo; /* the density profiles */
     double bR, bMs, bMt, bO; /* Rayleigh scattering, Mie scattering, Mie extinction, ozone absorption */
-    double bEs[REF_MAX_EXTRA_SPECIES], bEt[REF_MAX_EXTRA_SPECIES]; /* extra species: scattering, extinction */
+    double bEs[REF_MAX_EXTRA_SPECIES], bEa[REF_MAX_EXTRA_SPECIES]; /* extra species: scattering, absorption */
     double g, E, albedo;
     double sun[3];
     int max_bounces;
@@ -116,13 +116,13 @@ static void medium_at(const pt_ctx *C, double h, double *sR, double *sM, double 
     double rm = ref_density(&a->mie_density, h);
     *sR = C->bR * ref_density(&a->rayleigh_density, h);
     *sM = C->bMs * rm;
-    *st = C->bMt * rm + C->bO * ref_density(&a->ozone_density, h);
+    double absorbed = C->bO * ref_density(&a->ozone_density, h);
     for (int i = 0; i < a->extra_count; ++i) { /* extra species scatter with the Rayleigh phase */
         double re = ref_density(&a->extra[i].density, h);
         *sR += C->bEs[i] * re;
-        *st += (C->bEt[i] - C->bEs[i]) * re;
+        absorbed += C->bEa[i] * re;
     }
-    *st += *sR;
+    *st = *sR + C->bMt * rm + absorbed;
 }
 
 /* Max of sigma_t over the altitude range [hmin, hmax]: the sum of each species' exact maximum (with a hair of
@@ -134,7 +134,7 @@ static double majorant(const pt_ctx *C, double hmin, double hmax)
                C->bMt * ref_density_max(&a->mie_density, hmin, hmax) +
                C->bO * ref_density_max(&a->ozone_density, hmin, hmax);
     for (int i = 0; i < a->extra_count; ++i)
-        m += C->bEt[i] * ref_density_max(&a->extra[i].density, hmin, hmax);
+        m += (C->bEs[i] + C->bEa[i]) * ref_density_max(&a->extra[i].density, hmin, hmax);
     return m * (1.0 + 1e-9);
 }
 
@@ -585,7 +585,7 @@ void pt_radiance(const ref_atmosphere *a, double altitude, const double view_dir
         C->bO = a->ozone_absorption[c];
         for (int i = 0; i < a->extra_count; ++i) {
             C->bEs[i] = a->extra[i].scattering[c];
-            C->bEt[i] = a->extra[i].scattering[c] + a->extra[i].absorption[c];
+            C->bEa[i] = a->extra[i].absorption[c];
         }
         C->g = a->mie_g;
         C->E = a->sun_illuminance[c];

@@ -458,22 +458,17 @@ static void optical_depth(const ref_atmosphere *a, double h, double mu, int step
     double d = dist_to_top(a, h, mu);
     double r = a->bottom_radius + h;
     double dt = d / steps;
-    double sr = 0.0, sm = 0.0, so = 0.0, se[REF_MAX_EXTRA_SPECIES] = {0.0};
+    double sum[3] = {0.0, 0.0, 0.0};
     for (int k = 0; k < steps; ++k) {
         double rt, ht;
+        medium m;
         ray_point(a, h, r, mu, (k + 0.5) * dt, &rt, &ht);
-        sr += ref_density(&a->rayleigh_density, ht);
-        sm += ref_density(&a->mie_density, ht);
-        so += ref_density(&a->ozone_density, ht);
-        for (int i = 0; i < a->extra_count; ++i)
-            se[i] += ref_density(&a->extra[i].density, ht);
+        medium_at(a, ht, &m); /* the one definition of sigma_t, extra species included */
+        for (int c = 0; c < 3; ++c)
+            sum[c] += m.ext[c];
     }
-    for (int c = 0; c < 3; ++c) {
-        tau[c] = dt * (sr * a->rayleigh_scattering[c] + sm * (a->mie_scattering[c] + a->mie_absorption[c]) +
-                       so * a->ozone_absorption[c]);
-        for (int i = 0; i < a->extra_count; ++i)
-            tau[c] += dt * se[i] * (a->extra[i].scattering[c] + a->extra[i].absorption[c]);
-    }
+    for (int c = 0; c < 3; ++c)
+        tau[c] = dt * sum[c];
 }
 
 void ref_transmittance(const ref_atmosphere *a, double altitude, double mu, int steps, double out[3])

@@ -40,6 +40,7 @@ static int32_t profile_kind(const ref_density_profile *p)
 
 sky_variant sky_variant_of(const ref_atmosphere *a, const sky_features *f)
 {
+    int extras = extra_count(a);
     return (sky_variant){
         .rayleigh = any3(a->rayleigh_scattering),
         .mie = any3(a->mie_scattering) || any3(a->mie_absorption),
@@ -50,9 +51,9 @@ sky_variant sky_variant_of(const ref_atmosphere *a, const sky_features *f)
         .mie_phase = f->mie_phase,
         .profile = {profile_kind(&a->rayleigh_density), profile_kind(&a->mie_density),
                     profile_kind(&a->ozone_density)},
-        .extra_species = extra_count(a),
-        .extra_profile = {extra_count(a) > 0 ? profile_kind(&a->extra[0].density) : VKSKY_PROFILE_GENERAL,
-                          extra_count(a) > 1 ? profile_kind(&a->extra[1].density) : VKSKY_PROFILE_GENERAL},
+        .extra_species = extras,
+        .extra_profile = {extras > 0 ? profile_kind(&a->extra[0].density) : VKSKY_PROFILE_GENERAL,
+                          extras > 1 ? profile_kind(&a->extra[1].density) : VKSKY_PROFILE_GENERAL},
     };
 }
 
