@@ -3,6 +3,7 @@
 #ifndef VKSKY_GPU_TEST_H
 #define VKSKY_GPU_TEST_H
 #include "io/image_io.h"
+#include "reference/ref_atmosphere.h"
 #include "sky/renderer.h"
 #include <math.h>
 #include <stdio.h>
@@ -40,22 +41,22 @@ typedef struct test_frame {
 } test_frame;
 
 /* A renderer kept across frames (its LUTs are computed once: only the view changes between frames).
- * `lut` NULL: the default LUT quality; `atmosphere` NULL: Earth (ref_atmosphere_earth). */
+ * `lut` NULL: the default LUT quality; `atmosphere` NULL: Earth (model_atmosphere_earth). */
 typedef struct test_renderer {
     sky_renderer r;
     int width, height;
 } test_renderer;
 
 static inline void test_renderer_create(test_renderer *t, gpu_context *ctx, int width, int height, bool bloom,
-                                        const sky_lut_quality *lut, const ref_atmosphere *atmosphere)
+                                        const sky_lut_quality *lut, const model_atmosphere *atmosphere)
 {
     sky_renderer_desc desc = {.width = (uint32_t)width, .height = (uint32_t)height, .bloom = bloom,
                               .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
     desc.lut = lut ? *lut : sky_lut_quality_default();
     t->width = width, t->height = height;
     sky_renderer_create(&t->r, ctx, &desc);
-    ref_atmosphere a;
-    ref_atmosphere_earth(&a);
+    model_atmosphere a;
+    model_atmosphere_earth(&a);
     sky_renderer_set_atmosphere(&t->r, atmosphere ? atmosphere : &a, SUN_RADIUS_RAD);
 }
 
@@ -75,7 +76,7 @@ static inline void test_renderer_destroy(test_renderer *t) { sky_renderer_destro
 
 /* One frame from a fresh renderer. */
 static inline test_frame test_render_atmosphere(gpu_context *ctx, const sky_view *view, int width, int height,
-                                                const sky_lut_quality *lut, const ref_atmosphere *atmosphere)
+                                                const sky_lut_quality *lut, const model_atmosphere *atmosphere)
 {
     test_renderer t;
     test_renderer_create(&t, ctx, width, height, view->bloom, lut, atmosphere);

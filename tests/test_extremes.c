@@ -27,9 +27,9 @@ typedef struct result {
 static FILE *md;
 static double noon_luminance;              /* scale of the absolute error floor */
 
-static void atmosphere_of(const extreme_case *c, ref_atmosphere *a)
+static void atmosphere_of(const extreme_case *c, model_atmosphere *a)
 {
-    ref_atmosphere_earth(a);
+    model_atmosphere_earth(a);
     a->mie_g = c->mie_g;
     for (int i = 0; i < 3; ++i) {
         a->rayleigh_scattering[i] *= c->scale_r;
@@ -42,7 +42,7 @@ static void atmosphere_of(const extreme_case *c, ref_atmosphere *a)
 /* Renders the case (a renderer per case keeps the LUTs of its own atmosphere) and compares the centre pixel. */
 static result run_case(gpu_context *ctx, const extreme_case *c)
 {
-    ref_atmosphere a;
+    model_atmosphere a;
     atmosphere_of(c, &a);
     sky_view v = sky_view_default();
     v.altitude_km = c->altitude;
@@ -124,8 +124,8 @@ static extreme_case base(const char *group, const char *label)
 /* The view pitch that is exactly tangent to the ground from altitude h (the horizon's dip). */
 static double tangent_pitch(double h)
 {
-    ref_atmosphere a;
-    ref_atmosphere_earth(&a);
+    model_atmosphere a;
+    model_atmosphere_earth(&a);
     return -acos(a.bottom_radius / (a.bottom_radius + h)) / TEST_DEG;
 }
 
@@ -146,8 +146,8 @@ int main(int argc, char **argv)
     gpu_context ctx;
     test_context(&ctx);
     {
-        ref_atmosphere a;
-        ref_atmosphere_earth(&a);
+        model_atmosphere a;
+        model_atmosphere_earth(&a);
         double up[3] = {0, 1, 0}, sun[3], ref[3];
         ref_dir(0.0, 70.0 * TEST_DEG, sun);
         ref_sky_radiance(&a, 0.001, up, sun, ref_quality_converged(), ref);

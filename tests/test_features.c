@@ -17,7 +17,7 @@ typedef struct run {
 } run;
 
 /* Renders two frames (the second shows what a steady frame records) and returns the second's pass list. */
-static run render(gpu_context *ctx, const ref_atmosphere *a, const sky_features *f, sky_view v, bool bloom_alloc)
+static run render(gpu_context *ctx, const model_atmosphere *a, const sky_features *f, sky_view v, bool bloom_alloc)
 {
     run out;
     memset(&out, 0, sizeof out);
@@ -49,8 +49,8 @@ int main(void)
 {
     gpu_context ctx;
     test_context(&ctx);
-    ref_atmosphere earth;
-    ref_atmosphere_earth(&earth);
+    model_atmosphere earth;
+    model_atmosphere_earth(&earth);
     sky_features defaults = sky_features_default();
     sky_view v = sky_view_default();
     v.fov_deg = 10.0;
@@ -84,7 +84,7 @@ int main(void)
     CHECK(!bloom_off.bloom_allocated && base.bloom_allocated, "bloom mip chain allocated with bloom off");
 
     /* A species with zero coefficients is compiled out. */
-    ref_atmosphere no_ozone = earth;
+    model_atmosphere no_ozone = earth;
     for (int i = 0; i < 3; ++i) no_ozone.ozone_absorption[i] = 0.0;
     run ozone_off = render(&ctx, &no_ozone, &defaults, v, true);
     CHECK(ozone_off.variant.ozone == VK_FALSE && base.variant.ozone == VK_TRUE, "ozone not compiled out");
@@ -145,7 +145,7 @@ int main(void)
           "Earth's profile variant is (%d, %d, %d), expected exponential, exponential, linear", base.variant.profile[0],
           base.variant.profile[1], base.variant.profile[2]);
     {
-        ref_atmosphere general = earth;
+        model_atmosphere general = earth;
         general.mie_density.layers[0].width = 30.0;
         general.mie_density.layers[1].constant_term = -1e-9;  /* above 30 km (density 1e-11): clamped to 0 */
         general.ozone_density.layers[0].exp_term = 1e-12;     /* exp_scale 0: a constant 1e-12 below 25 km */
@@ -166,10 +166,10 @@ int main(void)
      * Rayleigh (scattering, exponential, Rayleigh phase) must render what doubling those species renders: the
      * medium is additive. Zero-coefficient extras are compiled out (variant extra_species 0). */
     {
-        ref_atmosphere extras, doubled, idle = earth;
+        model_atmosphere extras, doubled, idle = earth;
         test_extra_species_pair(&earth, &extras, &doubled);
         idle.extra_count = 1;
-        idle.extra[0] = (ref_extra_species){.name = "nothing", .density = earth.ozone_density};
+        idle.extra[0] = (model_extra_species){.name = "nothing", .density = earth.ozone_density};
         sky_view low = v;
         low.pitch_deg = 3.0; /* a long path: the extras matter */
         run with = render(&ctx, &extras, &defaults, low, false), twice = render(&ctx, &doubled, &defaults, low, false);
@@ -197,19 +197,19 @@ int main(void)
         sky_renderer_set_atmosphere(&r, &earth, SUN_RADIUS_RAD);
         frame_desc fd = {.view = &v};
         sky_renderer_render(&r, &fd);
-        ref_atmosphere g = earth;
+        model_atmosphere g = earth;
         g.mie_g = 0.5;
         sky_renderer_set_atmosphere(&r, &g, SUN_RADIUS_RAD);
         CHECK(!sky_renderer_luts_dirty(&r), "Mie g made the LUTs dirty");
-        ref_atmosphere thicker = earth;
+        model_atmosphere thicker = earth;
         thicker.rayleigh_scattering[2] *= 1.1;
         sky_renderer_set_atmosphere(&r, &thicker, SUN_RADIUS_RAD);
         CHECK(sky_renderer_luts_dirty(&r), "a Rayleigh change did not make the LUTs dirty");
         sky_renderer_render(&r, &fd);
-        ref_atmosphere extra = thicker;
+        model_atmosphere extra = thicker;
         extra.extra_count = 1;
-        extra.extra[0] = (ref_extra_species){.name = "no2", .absorption = {1e-4, 4e-4, 9e-4},
-                                             .density = ref_profile_exponential(1.5)};
+        extra.extra[0] = (model_extra_species){.name = "no2", .absorption = {1e-4, 4e-4, 9e-4},
+                                             .density = model_profile_exponential(1.5)};
         sky_renderer_set_atmosphere(&r, &extra, SUN_RADIUS_RAD);
         CHECK(sky_renderer_luts_dirty(&r), "an extra species did not make the LUTs dirty");
         sky_renderer_render(&r, &fd);

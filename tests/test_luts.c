@@ -13,8 +13,8 @@ int main(void)
     sky_renderer r;
     sky_renderer_desc desc = {.width = 32, .height = 32, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
     sky_renderer_create(&r, &ctx, &desc);
-    ref_atmosphere a;
-    ref_atmosphere_earth(&a);
+    model_atmosphere a;
+    model_atmosphere_earth(&a);
     sky_renderer_set_atmosphere(&r, &a, SUN_RADIUS_RAD);
     frame_desc f = {.view = &view};
     sky_renderer_render(&r, &f);

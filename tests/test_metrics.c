@@ -255,8 +255,8 @@ static void test_tonemap(void)
 static void test_sky_mask(void)
 {
     printf("-- sky mask\n");
-    ref_atmosphere a;
-    ref_atmosphere_earth(&a);
+    model_atmosphere a;
+    model_atmosphere_earth(&a);
     const int W = 64, H = 48;
     unsigned char *m = malloc((size_t)W * H);
     if (!m) {

@@ -38,10 +38,10 @@ static void check(int ok, const char *what)
 
 static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static void coeffs(const ref_atmosphere *a, double h, double sR[3], double sM[3], double st[3])
+static void coeffs(const model_atmosphere *a, double h, double sR[3], double sM[3], double st[3])
 {
-    double rr = ref_density(&a->rayleigh_density, h), rm = ref_density(&a->mie_density, h);
-    double ro = ref_density(&a->ozone_density, h);
+    double rr = model_density(&a->rayleigh_density, h), rm = model_density(&a->mie_density, h);
+    double ro = model_density(&a->ozone_density, h);
     if (ro < 0.0)
         ro = 0.0;
     for (int c = 0; c < 3; ++c) {
@@ -51,10 +51,10 @@ static void coeffs(const ref_atmosphere *a, double h, double sR[3], double sM[3]
     }
 }
 
-static double altitude_of(const ref_atmosphere *a, const double p[3]) { return sqrt(dot(p, p)) - a->bottom_radius; }
+static double altitude_of(const model_atmosphere *a, const double p[3]) { return sqrt(dot(p, p)) - a->bottom_radius; }
 
 /* Distance to the exit of the atmosphere from inside along d; *ground = 1 if the ray hits the planet first. */
-static double exit_distance(const ref_atmosphere *a, const double p[3], const double d[3], int *ground)
+static double exit_distance(const model_atmosphere *a, const double p[3], const double d[3], int *ground)
 {
     double b = dot(p, d), pp = dot(p, p);
     double dg = b * b - (pp - a->bottom_radius * a->bottom_radius);
@@ -69,7 +69,7 @@ static double exit_distance(const ref_atmosphere *a, const double p[3], const do
 
 /* Optical depth along p + t d, t in [0, tend], n midpoint steps in u on each side of the lowest point (t = u^2
  * grading toward it). */
-static void optical_depth(const ref_atmosphere *a, const double p[3], const double d[3], double tend, int n,
+static void optical_depth(const model_atmosphere *a, const double p[3], const double d[3], double tend, int n,
                           double tau[3])
 {
     double tl = -dot(p, d);
@@ -94,7 +94,7 @@ static void optical_depth(const ref_atmosphere *a, const double p[3], const doub
 
 /* Single scattering along the view ray of an UPWARD view from altitude h (camera inside the atmosphere):
  * n_out steps along the view ray (graded toward the camera), n_in per side for each sun transmittance. */
-static void single_scattering(const ref_atmosphere *a, double h, const double v[3], const double s[3], int n_out,
+static void single_scattering(const model_atmosphere *a, double h, const double v[3], const double s[3], int n_out,
                               int n_in, double out[3])
 {
     double cam[3] = {0.0, a->bottom_radius + h, 0.0};
@@ -180,7 +180,7 @@ static double reject_cos(lcg *g, double gm, int mie)
     }
 }
 
-static double sun_T_quad(const ref_atmosphere *a, const double x[3], const double s[3], int c)
+static double sun_T_quad(const model_atmosphere *a, const double x[3], const double s[3], int c)
 {
     int gs;
     double ts = exit_distance(a, x, s, &gs), tau[3];
@@ -190,7 +190,7 @@ static double sun_T_quad(const ref_atmosphere *a, const double x[3], const doubl
     return exp(-tau[c]);
 }
 
-static double analog_path(const ref_atmosphere *a, double h, const double v[3], const double s[3], double albedo,
+static double analog_path(const model_atmosphere *a, double h, const double v[3], const double s[3], double albedo,
                           int c, lcg *g)
 {
     const double maj = a->rayleigh_scattering[c] + a->mie_scattering[c] + a->mie_absorption[c] +
@@ -246,7 +246,7 @@ static double analog_path(const ref_atmosphere *a, double h, const double v[3], 
     return L;
 }
 
-static void analog_radiance(const ref_atmosphere *a, double h, const double v[3], const double s[3], double albedo,
+static void analog_radiance(const model_atmosphere *a, double h, const double v[3], const double s[3], double albedo,
                             long n, unsigned long long seed, double out[3], double se[3])
 {
     lcg g = {seed * 0x9E3779B97F4A7C15ull + 1};
@@ -286,7 +286,7 @@ static const double k_cam_alt = 0.001; /* 1 m */
 
 /* Compares PT (with settings s) against the quadrature on atmosphere a; rel_floor covers the quadrature error
  * and (for the thin limit) the neglected higher orders. */
-static void compare_to_quadrature(const ref_atmosphere *a, const pt_settings *s, double rel_floor, const char *tag)
+static void compare_to_quadrature(const model_atmosphere *a, const pt_settings *s, double rel_floor, const char *tag)
 {
     for (int i = 0; i < N_VIEWS; ++i) {
         const view_case *vc = &k_views[i];
@@ -317,8 +317,8 @@ int main(void)
 {
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    ref_atmosphere earth;
-    ref_atmosphere_earth(&earth);
+    model_atmosphere earth;
+    model_atmosphere_earth(&earth);
 
     /* a) single scattering */
     printf("-- a) max_bounces = 1 vs independent single-scattering quadrature\n");
@@ -326,11 +326,11 @@ int main(void)
     compare_to_quadrature(&earth, &ss, 1e-5, "single:");
 
     /* a2) single scattering in a layered medium: Bruneton layer pairs the segment majorants must bound exactly
-     * (ref_density_max): a 2 km well-mixed haze layer under an exponential tail, an ozone layer with a flat top
+     * (model_density_max): a 2 km well-mixed haze layer under an exponential tail, an ozone layer with a flat top
      * and Rayleigh with a linear term. A majorant below the density would bias PT low. */
     printf("-- a2) max_bounces = 1 in a layered medium vs the quadrature\n");
     {
-        ref_atmosphere layered = test_layered_atmosphere();
+        model_atmosphere layered = test_layered_atmosphere();
         compare_to_quadrature(&layered, &ss, 1e-5, "layered:");
     }
 
@@ -338,7 +338,7 @@ int main(void)
      * doubled ozone and Rayleigh: the two estimates agree within their standard errors (all orders). */
     printf("-- a3) extra species copying ozone and Rayleigh vs the doubled species (all orders)\n");
     {
-        ref_atmosphere extras, doubled;
+        model_atmosphere extras, doubled;
         test_extra_species_pair(&earth, &extras, &doubled);
         double v[3], sd[3], A[3], sA[3], B[3], sB[3], P[3], sP[3];
         ref_dir(180.0 * DEG, 5.0 * DEG, v);
@@ -362,7 +362,7 @@ int main(void)
 
     /* b) optically thin limit */
     printf("-- b) optically thin limit (coefficients x 1e-3): all orders vs single-scattering quadrature\n");
-    ref_atmosphere thin = earth;
+    model_atmosphere thin = earth;
     for (int c = 0; c < 3; ++c) {
         thin.rayleigh_scattering[c] *= 1e-3;
         thin.mie_scattering[c] *= 1e-3;

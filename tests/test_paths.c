@@ -39,8 +39,8 @@ int main(void)
 {
     gpu_context ctx;
     test_context(&ctx);
-    ref_atmosphere a;
-    ref_atmosphere_earth(&a);
+    model_atmosphere a;
+    model_atmosphere_earth(&a);
     unsigned char mask[W * H];
     for (int i = 0; i < 6; ++i) {
         const quality_scene *s = &quality_scenes[i];

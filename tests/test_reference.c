@@ -78,22 +78,22 @@ static void test_profiles(void)
 {
     printf("\n== 0. Density profiles ==\n");
     /* The named forms against their closed forms, and recognised back. */
-    ref_density_profile e = ref_profile_exponential(8.0), t = ref_profile_tent(25.0, 15.0);
+    model_density_profile e = model_profile_exponential(8.0), t = model_profile_tent(25.0, 15.0);
     double err_e = 0.0, err_t = 0.0;
     for (double h = 0.0; h <= 100.0; h += 0.37) {
-        err_e = fmax(err_e, fabs(ref_density(&e, h) - exp(-h / 8.0)));
-        err_t = fmax(err_t, fabs(ref_density(&t, h) - fmax(0.0, 1.0 - fabs(h - 25.0) / 15.0)));
+        err_e = fmax(err_e, fabs(model_density(&e, h) - exp(-h / 8.0)));
+        err_t = fmax(err_t, fabs(model_density(&t, h) - fmax(0.0, 1.0 - fabs(h - 25.0) / 15.0)));
     }
     double H = 0.0, c = 0.0, w = 0.0;
-    check(err_e < 1e-15 && err_t < 1e-14 && ref_profile_as_exponential(&e, &H) && H == 8.0 &&
-              ref_profile_as_tent(&t, &c, &w) && fabs(c - 25.0) < 1e-12 && fabs(w - 15.0) < 1e-12 &&
-              !ref_profile_as_tent(&e, &c, &w) && !ref_profile_as_exponential(&t, &H),
+    check(err_e < 1e-15 && err_t < 1e-14 && model_profile_as_exponential(&e, &H) && H == 8.0 &&
+              model_profile_as_tent(&t, &c, &w) && fabs(c - 25.0) < 1e-12 && fabs(w - 15.0) < 1e-12 &&
+              !model_profile_as_tent(&e, &c, &w) && !model_profile_as_exponential(&t, &H),
           "exponential and tent layer pairs equal exp(-h/H) and max(0, 1-|h-c|/w) (max err %.1e, %.1e) and are "
           "recognised back", err_e, err_t);
-    check(ref_density(&e, -3.0) == 1.0 && ref_density(&t, -3.0) == 0.0,
+    check(model_density(&e, -3.0) == 1.0 && model_density(&t, -3.0) == 0.0,
           "below the ground the density is the ground's (exponential 1, tent 0)");
 
-    /* ref_density_max (the path tracer's majorant) against dense sampling, on random layer pairs with
+    /* model_density_max (the path tracer's majorant) against dense sampling, on random layer pairs with
      * exponential, linear and constant terms, discontinuities at the layer boundary and the [0, 1] clamp. */
     unsigned long long x = 88172645463325252ULL;
     double worst_below = 0.0, worst_loose = 0.0;
@@ -103,20 +103,20 @@ static void test_profiles(void)
             x ^= x << 13, x ^= x >> 7, x ^= x << 17;
             r[i] = (double)(x >> 11) / 9007199254740992.0;
         }
-        ref_density_profile p = {{{.width = 40.0 * r[0], .exp_term = 3.0 * r[1] - 1.0, .exp_scale = 0.6 * r[2] - 0.4,
+        model_density_profile p = {{{.width = 40.0 * r[0], .exp_term = 3.0 * r[1] - 1.0, .exp_scale = 0.6 * r[2] - 0.4,
                                    .linear_term = 0.2 * r[3] - 0.1, .constant_term = 2.0 * r[4] - 0.5},
                                   {.exp_term = 3.0 * r[5] - 1.0, .exp_scale = 0.6 * r[6] - 0.4,
                                    .linear_term = 0.2 * r[7] - 0.1, .constant_term = 2.0 * r[8] - 0.5}}};
         double lo = 60.0 * r[9] - 5.0, hi = lo + 50.0 * r[10] * r[11];
-        double m = ref_density_max(&p, lo, hi), sampled = 0.0;
+        double m = model_density_max(&p, lo, hi), sampled = 0.0;
         for (int i = 0; i <= 20000; ++i)
-            sampled = fmax(sampled, ref_density(&p, lo + (hi - lo) * i / 20000.0));
+            sampled = fmax(sampled, model_density(&p, lo + (hi - lo) * i / 20000.0));
         worst_below = fmax(worst_below, sampled - m);
         /* The sampled max approaches the true one from below: within the slope bound times half a sample step
          * (the only exception, a discontinuity at the boundary, is bounded by the layer 0 limit, counted too). */
         double w = p.layers[0].width, lim = 0.0;
         if (lo < w && hi >= w) {
-            const ref_density_layer *l0 = &p.layers[0];
+            const model_density_layer *l0 = &p.layers[0];
             lim = fmin(1.0, fmax(0.0, l0->exp_term * exp(l0->exp_scale * w) + l0->linear_term * w + l0->constant_term));
         }
         worst_loose = fmax(worst_loose, m - fmax(sampled, lim) - 2.0 * (hi - lo) / 20000.0);
@@ -124,8 +124,8 @@ static void test_profiles(void)
     /* Extra species are additive: copies of ozone and of Rayleigh as extra species give the radiance and the
      * transmittance of the doubled species (to rounding), at the view and sun steps the model uses. */
     {
-        ref_atmosphere e, extras, doubled;
-        ref_atmosphere_earth(&e);
+        model_atmosphere e, extras, doubled;
+        model_atmosphere_earth(&e);
         test_extra_species_pair(&e, &extras, &doubled);
         double v[3], s[3], L1[3], L2[3], L0[3], T1[3], T2[3];
         ref_dir(0.0, 5.0 * 3.14159265358979323846 / 180.0, v);
@@ -144,14 +144,14 @@ static void test_profiles(void)
     }
 
     check(worst_below <= 1e-12 && worst_loose <= 1e-9,
-          "ref_density_max over 2000 random layer pairs and ranges: never below the sampled density (by %.1e), "
+          "model_density_max over 2000 random layer pairs and ranges: never below the sampled density (by %.1e), "
           "never above it by more than the sampling step allows (%.1e)", worst_below, worst_loose);
 }
 
 /* --------------------------------------------------------------------------------------------------------- */
 /* 1. Mappings                                                                                               */
 
-static void test_mappings(const ref_atmosphere *a)
+static void test_mappings(const model_atmosphere *a)
 {
     const int W = 256, H = 64;
     const double top = a->top_radius - a->bottom_radius;
@@ -247,13 +247,13 @@ static double tent_cdf(double x, double c, double w)
 }
 
 /* Closed-form optical depth straight up (mu = 1) from h0 to the top. */
-static void tau_vertical_exact(const ref_atmosphere *a, double h0, double tau[3])
+static void tau_vertical_exact(const model_atmosphere *a, double h0, double tau[3])
 {
     double top = a->top_radius - a->bottom_radius;
     double HR, HM, oz_c, oz_w;
-    ref_profile_as_exponential(&a->rayleigh_density, &HR);
-    ref_profile_as_exponential(&a->mie_density, &HM);
-    ref_profile_as_tent(&a->ozone_density, &oz_c, &oz_w);
+    model_profile_as_exponential(&a->rayleigh_density, &HR);
+    model_profile_as_exponential(&a->mie_density, &HM);
+    model_profile_as_tent(&a->ozone_density, &oz_c, &oz_w);
     double iR = HR * (exp(-h0 / HR) - exp(-top / HR));
     double iM = HM * (exp(-h0 / HM) - exp(-top / HM));
     double iO = tent_cdf(top, oz_c, oz_w) - tent_cdf(h0, oz_c, oz_w);
@@ -262,7 +262,7 @@ static void tau_vertical_exact(const ref_atmosphere *a, double h0, double tau[3]
                  a->ozone_absorption[c] * iO;
 }
 
-static void test_transmittance(const ref_atmosphere *a)
+static void test_transmittance(const model_atmosphere *a)
 {
     printf("\n== 2. Transmittance ==\n");
     const double h0s[] = {0.0, 1e-3, 1.0, 7.3, 12.5, 25.0, 33.3, 60.0, 99.5};
@@ -357,7 +357,7 @@ typedef struct psi_point {
     const char *what;
 } psi_point;
 
-static void test_multiscatter(const ref_atmosphere *a, ref_quality cq)
+static void test_multiscatter(const model_atmosphere *a, ref_quality cq)
 {
     printf("\n== 3a. Multi-scattering Psi(h, mu_s) ==\n");
     const psi_point pts[] = {
@@ -495,7 +495,7 @@ static void ray_dirs(const ray_case *rc, double v[3], double s[3])
     ref_dir(rc->sun_az * DEG, rc->sun_el * DEG, s);
 }
 
-static void radiance_set(const ref_atmosphere *a, ref_quality q, double out[NRAYS][3])
+static void radiance_set(const model_atmosphere *a, ref_quality q, double out[NRAYS][3])
 {
     for (int i = 0; i < NRAYS; ++i) {
         double v[3], s[3];
@@ -519,7 +519,7 @@ static double max_change(double x[NRAYS][3], double y[NRAYS][3], int *which)
 
 /* One count doubled from `lo` to `hi` around the converged quality; returns 1 if the changes shrink and the last
  * one (converged -> 2 x converged) is < 1e-3. field: 0 view, 1 sun, 2 ms dirs, 3 ms steps. */
-static int radiance_study(const ref_atmosphere *a, ref_quality cq, int field, int lo, int hi, int last_is_beyond)
+static int radiance_study(const model_atmosphere *a, ref_quality cq, int field, int lo, int hi, int last_is_beyond)
 {
     static const char *names[] = {"view_steps", "sun_steps", "ms_sqrt_dirs", "ms_steps"};
     static double prev[NRAYS][3], cur[NRAYS][3];
@@ -553,7 +553,7 @@ static int radiance_study(const ref_atmosphere *a, ref_quality cq, int field, in
     return ok;
 }
 
-static void test_radiance_convergence(const ref_atmosphere *a, ref_quality cq)
+static void test_radiance_convergence(const model_atmosphere *a, ref_quality cq)
 {
     printf("\n== 3b. Sky radiance convergence (%d rays: day, twilight, shadow crossing, grazing, top, space) ==\n",
            NRAYS);
@@ -587,7 +587,7 @@ static void test_radiance_convergence(const ref_atmosphere *a, ref_quality cq)
 /* --------------------------------------------------------------------------------------------------------- */
 /* 4. Physics and robustness                                                                                 */
 
-static void test_physics(const ref_atmosphere *a, ref_quality q)
+static void test_physics(const model_atmosphere *a, ref_quality q)
 {
     printf("\n== 4. Physics and robustness ==\n");
     double up[3], sun[3], noon[3], dusk[3];
@@ -706,8 +706,8 @@ int main(void)
 {
     double t0 = wall_now();
     clock_t c0 = clock();
-    ref_atmosphere a;
-    ref_atmosphere_earth(&a);
+    model_atmosphere a;
+    model_atmosphere_earth(&a);
     ref_quality cq = ref_quality_converged();
     printf("vksky CPU reference test. Converged quality: view_steps %d, sun_steps %d, ms_sqrt_dirs %d, ms_steps %d\n",
            cq.view_steps, cq.sun_steps, cq.ms_sqrt_dirs, cq.ms_steps);

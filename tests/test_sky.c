@@ -40,7 +40,7 @@ typedef struct view_case { double sun_el, yaw, pitch; } view_case;
 
 /* Renders view case k with renderer t (of atmosphere `a`, NULL: Earth) and returns the centre pixel in gpu and
  * the luminance error against the converged CPU reference; prints a line tagged `tag`. steps 0: the default. */
-static double versus_reference(test_renderer *t, const char *tag, view_case k, int steps, const ref_atmosphere *a,
+static double versus_reference(test_renderer *t, const char *tag, view_case k, int steps, const model_atmosphere *a,
                                float gpu[3])
 {
     sky_view v = scene(k.sun_el, false);
@@ -52,8 +52,8 @@ static double versus_reference(test_renderer *t, const char *tag, view_case k, i
     memcpy(gpu, test_pixel(&f, C, C), 3 * sizeof(float));
     test_frame_free(&f);
     ++frames_rendered;
-    ref_atmosphere earth;
-    ref_atmosphere_earth(&earth);
+    model_atmosphere earth;
+    model_atmosphere_earth(&earth);
     double view_dir[3], sun_dir[3], ref[3];
     ref_dir(k.yaw * TEST_DEG, k.pitch * TEST_DEG, view_dir);
     ref_dir(v.sun_azimuth_deg * TEST_DEG, v.sun_elevation_deg * TEST_DEG, sun_dir);
@@ -124,13 +124,13 @@ int main(void)
     }
     /* A layered medium (Bruneton layer pairs, not the named forms): a 2 km well-mixed haze under an exponential
      * tail, an ozone layer with a flat top, Rayleigh with a linear term and the [0, 1] clamp. The GPU's
-     * profile_density() and the reference's ref_density() are separate implementations of the same layers:
+     * profile_density() and the reference's model_density() are separate implementations of the same layers:
      * converged settings must agree within 1 % again, and the haze must brighten the sky toward the sun.
      * Converged here includes a 128^2 multi-scattering LUT: the 2 km haze layer's Psi needs the texels (32^2: up
      * to 1.2 % off near the horizon; 64^2: 0.30 %; 128^2: 0.24 %). */
     sky_lut_quality converged_layered = converged;
     converged_layered.multiscatter_size = 128;
-    ref_atmosphere layered = test_layered_atmosphere();
+    model_atmosphere layered = test_layered_atmosphere();
     test_renderer layered_renderer;
     test_renderer_create(&layered_renderer, &ctx, N, N, false, &converged_layered, &layered);
     double worst_layered = 0.0;

@@ -43,10 +43,10 @@ static double lum_se(const double s[3])
  * multiple-scattering approximation (model - SS_fade vs PT - SS). Same scheme as tests/test_path_tracer.c. */
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static void coeffs(const ref_atmosphere *a, double h, double sR[3], double sM[3], double st[3])
+static void coeffs(const model_atmosphere *a, double h, double sR[3], double sM[3], double st[3])
 {
-    double rr = ref_density(&a->rayleigh_density, h), rm = ref_density(&a->mie_density, h);
-    double ro = ref_density(&a->ozone_density, h);
+    double rr = model_density(&a->rayleigh_density, h), rm = model_density(&a->mie_density, h);
+    double ro = model_density(&a->ozone_density, h);
     for (int c = 0; c < 3; ++c) {
         sR[c] = a->rayleigh_scattering[c] * rr;
         sM[c] = a->mie_scattering[c] * rm;
@@ -54,7 +54,7 @@ static void coeffs(const ref_atmosphere *a, double h, double sR[3], double sM[3]
     }
 }
 
-static double exit_distance(const ref_atmosphere *a, const double p[3], const double d[3], int *ground)
+static double exit_distance(const model_atmosphere *a, const double p[3], const double d[3], int *ground)
 {
     double b = dot3(p, d), pp = dot3(p, p);
     double dg = b * b - (pp - a->bottom_radius * a->bottom_radius);
@@ -66,7 +66,7 @@ static double exit_distance(const ref_atmosphere *a, const double p[3], const do
     return -b + sqrt(fmax(0.0, b * b - (pp - a->top_radius * a->top_radius)));
 }
 
-static void optical_depth(const ref_atmosphere *a, const double p[3], const double d[3], double tend, int n,
+static void optical_depth(const model_atmosphere *a, const double p[3], const double d[3], double tend, int n,
                           double tau[3])
 {
     double tl = fmin(fmax(-dot3(p, d), 0.0), tend);
@@ -84,7 +84,7 @@ static void optical_depth(const ref_atmosphere *a, const double p[3], const doub
         }
 }
 
-static void single_scattering(const ref_atmosphere *a, double h, const double v[3], const double s[3], int fade,
+static void single_scattering(const model_atmosphere *a, double h, const double v[3], const double s[3], int fade,
                               double out[3])
 {
     const int n_out = 4000, n_in = 200;
@@ -165,8 +165,8 @@ int main(int argc, char **argv)
     const int n_sun = (int)(sizeof sun_els / sizeof sun_els[0]), n_view = (int)(sizeof views / sizeof views[0]);
     const double altitude = 0.001;
 
-    ref_atmosphere a;
-    ref_atmosphere_earth(&a);
+    model_atmosphere a;
+    model_atmosphere_earth(&a);
     ref_quality q = ref_quality_converged();
     double t_start = now_s();
 

@@ -57,7 +57,7 @@ static sky_view scene_view(const quality_scene *s)
 
 /* --- The converged reference image of a scene (CPU, two threads) --- */
 typedef struct ref_job {
-    const ref_atmosphere *a;
+    const model_atmosphere *a;
     const quality_scene *s;
     int w, h, next;
     float *rgba;
@@ -84,7 +84,7 @@ static void *ref_rows(void *arg)
     }
 }
 
-static float *reference_image(const ref_atmosphere *a, const quality_scene *s, int w, int h)
+static float *reference_image(const model_atmosphere *a, const quality_scene *s, int w, int h)
 {
     ref_job j = {.a = a, .s = s, .w = w, .h = h, .rgba = malloc(sizeof(float) * 4 * (size_t)w * h)};
     pthread_mutex_init(&j.lock, NULL);
@@ -101,7 +101,7 @@ static float *reference_image(const ref_atmosphere *a, const quality_scene *s, i
 }
 
 /* Sky pixels, minus the sun's disc and its immediate surroundings (the reference excludes the disc). */
-static void error_mask(const ref_atmosphere *a, const quality_scene *s, int w, int h, unsigned char *mask)
+static void error_mask(const model_atmosphere *a, const quality_scene *s, int w, int h, unsigned char *mask)
 {
     metrics_sky_mask(a, s->altitude_km, w, h, s->yaw_deg * DEG, s->pitch_deg * DEG, s->fov_deg * DEG, mask);
     double sun[3];
@@ -115,7 +115,7 @@ static void error_mask(const ref_atmosphere *a, const quality_scene *s, int w, i
 }
 
 static sky_renderer make_renderer(gpu_context *ctx, const quality_config *q, sky_view *v, int w, int h, bool readback,
-                                  const ref_atmosphere *a)
+                                  const model_atmosphere *a)
 {
     sky_renderer_desc desc = {.width = (uint32_t)w, .height = (uint32_t)h, .bloom = v->bloom, .readback = readback,
                               .display_format = VK_FORMAT_R8G8B8A8_SRGB};
@@ -130,7 +130,7 @@ static sky_renderer make_renderer(gpu_context *ctx, const quality_config *q, sky
 }
 
 static void measure_time(gpu_context *ctx, const quality_config *q, const quality_scene *s, int w, int h, int frames,
-                         const ref_atmosphere *a, row *out)
+                         const model_atmosphere *a, row *out)
 {
     sky_view v = scene_view(s);
     sky_renderer r = make_renderer(ctx, q, &v, w, h, false, a);
@@ -155,7 +155,7 @@ static void measure_time(gpu_context *ctx, const quality_config *q, const qualit
 }
 
 static void measure_error(gpu_context *ctx, const quality_config *q, const quality_scene *s, int w, int h,
-                          const ref_atmosphere *a, const float *ref, const unsigned char *mask, row *out)
+                          const model_atmosphere *a, const float *ref, const unsigned char *mask, row *out)
 {
     sky_view v = scene_view(s);
     v.bloom = false;
@@ -210,8 +210,8 @@ int main(int argc, char **argv)
     if (gpu_context_create(&ctx, &desc) != 0) return 1;
     fprintf(stderr, "tradeoff: device %s, timing at %dx%d (%d frames), error at %dx%d\n", ctx.props.deviceName, tw, th,
             frames, ew, eh);
-    ref_atmosphere a;
-    ref_atmosphere_earth(&a);
+    model_atmosphere a;
+    model_atmosphere_earth(&a);
     int nconf = 4 + quality_sweep_count;
     row *rows = calloc((size_t)nconf * 6, sizeof *rows);
     int count = 0;

@@ -14,7 +14,7 @@ typedef struct vksky_vec4 { float x, y, z, w; } vksky_vec4;
 #define VKSKY_END(name) name;
 #endif
 
-#define VKSKY_MAX_EXTRA 2              /* species beyond Rayleigh, Mie and ozone (REF_MAX_EXTRA_SPECIES) */
+#define VKSKY_MAX_EXTRA 2              /* species beyond Rayleigh, Mie and ozone (MODEL_MAX_EXTRA_SPECIES) */
 #define VKSKY_SPECIES (3 + VKSKY_MAX_EXTRA)
 
 /* The atmosphere: uniform buffer, set 0 binding 0 of every sky shader. Changes only when the scene does. */

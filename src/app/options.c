@@ -324,7 +324,7 @@ int options_parse(options *o, int argc, char **argv)
                    .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5,
                    .scales = {1.0, 1.0, 1.0}, .path_samples = 4096, .sun_angular_radius_deg = 0.265,
                    .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true};
-    ref_atmosphere_earth(&o->atmosphere);
+    model_atmosphere_earth(&o->atmosphere);
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
     /* Three passes: --scene first (pass -1), wherever it stands; then the quality preset (or --max-error's choice)

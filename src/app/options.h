@@ -11,7 +11,7 @@ typedef struct options {
     sky_view view;
     int width, height;
     sky_lut_quality lut;                        /* LUT sizes, steps, format */
-    ref_atmosphere atmosphere;                  /* the medium (Hillaire Table 1 unless flags change it) */
+    model_atmosphere atmosphere;                  /* the medium (Hillaire Table 1 unless flags change it) */
     bool reference;                             /* --reference: CPU ground truth instead of the GPU */
     bool path_trace;                            /* --path-trace: the Monte Carlo path tracer as the ground truth */
     int path_samples;                           /* paths per pixel / direction */

@@ -227,7 +227,7 @@ static int get_word(const ctx *c, const cJSON *obj, const char *key, const char 
 static int parse_planet(const ctx *c, const cJSON *planet)
 {
     static const char *const names[] = {"ground_radius_km", "atmosphere_top_km", "ground_albedo"};
-    ref_atmosphere *a = &c->o->atmosphere;
+    model_atmosphere *a = &c->o->atmosphere;
     if (check_fields(c, planet, "planet", names, COUNT(names))) return 2;
     range radius = scene_range(RADIUS_MIN, RADIUS_MAX);
     if (get_number(c, planet, "ground_radius_km", "planet", radius, &a->bottom_radius) ||
@@ -244,7 +244,7 @@ static int parse_planet(const ctx *c, const cJSON *planet)
 }
 
 /* One Bruneton layer: {"width_km", "exp_term", "exp_scale_per_km", "linear_term_per_km", "constant_term"}. */
-static int parse_layer(const ctx *c, const cJSON *layer, const char *path, ref_density_layer *out)
+static int parse_layer(const ctx *c, const cJSON *layer, const char *path, model_density_layer *out)
 {
     static const char *const names[] = {"width_km", "exp_term", "exp_scale_per_km", "linear_term_per_km",
                                         "constant_term"};
@@ -263,7 +263,7 @@ static int parse_layer(const ctx *c, const cJSON *layer, const char *path, ref_d
  *   layers: [layer] or [layer 0, layer 1] (Bruneton's DensityProfileLayer pair; one layer applies everywhere).
  * Without "profile" the form follows from the parameters given. Parameters not given keep the current profile's
  * values when it has that form. */
-static int parse_density(const ctx *c, const cJSON *species, const char *parent, ref_density_profile *out)
+static int parse_density(const ctx *c, const cJSON *species, const char *parent, model_density_profile *out)
 {
     static const char *const profiles[] = {"exponential", "tent", "layers"};
     static const char *const names[] = {"profile", "scale_height_km", "center_km", "half_width_km", "layers"};
@@ -301,18 +301,18 @@ static int parse_density(const ctx *c, const cJSON *species, const char *parent,
     range h = scene_range(HEIGHT_MIN, HEIGHT_MAX);
     if (form == 0) {
         double H = 8.0;
-        ref_profile_as_exponential(out, &H);
+        model_profile_as_exponential(out, &H);
         if (get_number(c, d, "scale_height_km", path, h, &H)) return 2;
-        *out = ref_profile_exponential(H);
+        *out = model_profile_exponential(H);
         return 0;
     }
     if (form == 1) {
         double center = 25.0, half_width = 15.0;
-        ref_profile_as_tent(out, &center, &half_width);
+        model_profile_as_tent(out, &center, &half_width);
         if (get_number(c, d, "center_km", path, scene_range(0.0, HEIGHT_MAX), &center) ||
             get_number(c, d, "half_width_km", path, h, &half_width))
             return 2;
-        *out = ref_profile_tent(center, half_width);
+        *out = model_profile_tent(center, half_width);
         return 0;
     }
     const cJSON *layers = field(d, "layers", path, p);
@@ -320,7 +320,7 @@ static int parse_density(const ctx *c, const cJSON *species, const char *parent,
     if (!layers) return fail(c, p, "missing; the layers profile needs an array of 1 or 2 layer objects");
     if (n < 0) return fail(c, p, "expected an array of 1 or 2 layer objects, got %s", type_of(layers));
     if (n != 1 && n != 2) return fail(c, p, "%d layers; expected 1 or 2 (Bruneton's layer pair)", n);
-    ref_density_profile result = {{{0}}};
+    model_density_profile result = {{{0}}};
     for (int i = 0; i < n; ++i) {
         char lp[PATH_LEN];
         if (snprintf(lp, sizeof lp, "%s[%d]", p, i) >= (int)sizeof lp) lp[sizeof lp - 1] = '\0';
@@ -349,13 +349,13 @@ static int parse_species(const ctx *c, const cJSON *species)
     static const char *const mie_names[] = {"scattering", "absorption", "density", "phase"};
     static const char *const ozone_names[] = {"scattering", "absorption", "density"};
     static const char *const phase_names[] = {"model", "g"};
-    ref_atmosphere *a = &c->o->atmosphere;
+    model_atmosphere *a = &c->o->atmosphere;
     range coeff = scene_range(0.0, COEFF_MAX);
-    /* Any other name is an extra species (REF_MAX_EXTRA_SPECIES at most): a gas that absorbs and scatters
+    /* Any other name is an extra species (MODEL_MAX_EXTRA_SPECIES at most): a gas that absorbs and scatters
      * with the Rayleigh phase. The scene's list replaces the current one. */
     static const char *const extra_names[] = {"scattering", "absorption", "density"};
     int extras = 0;
-    ref_extra_species staged[REF_MAX_EXTRA_SPECIES];
+    model_extra_species staged[MODEL_MAX_EXTRA_SPECIES];
     memset(staged, 0, sizeof staged);
     for (const cJSON *it = species->child; it; it = it->next) {
         char p[PATH_LEN];
@@ -374,13 +374,13 @@ static int parse_species(const ctx *c, const cJSON *species)
         if (!valid)
             return fail(c, p, "not a species name; an extra species is named with a-z, 0-9 and _ (starting with a "
                               "letter, %d characters at most)", (int)sizeof a->extra[0].name - 1);
-        if (extras == REF_MAX_EXTRA_SPECIES)
+        if (extras == MODEL_MAX_EXTRA_SPECIES)
             return fail(c, p, "one species too many; vksky takes %d beyond rayleigh, mie and ozone",
-                        REF_MAX_EXTRA_SPECIES);
+                        MODEL_MAX_EXTRA_SPECIES);
         if (cJSON_GetObjectItemCaseSensitive(it, "phase"))
             return fail(c, p, "an extra species scatters with the Rayleigh (molecular) phase and takes no phase; "
                               "put aerosols with a forward lobe in mie");
-        ref_extra_species e = {.density = ref_profile_exponential(8.0)};
+        model_extra_species e = {.density = model_profile_exponential(8.0)};
         memcpy(e.name, it->string, len + 1);
         if (check_fields(c, it, p, extra_names, COUNT(extra_names)) ||
             get_array(c, it, "scattering", p, coeff, 3, e.scattering, NULL) ||
@@ -715,15 +715,15 @@ static void arr(builder *b, cJSON *parent, const char *key, const double *v, int
 }
 
 /* The simplest form that is exactly the profile: exponential, tent, or the two layers. */
-static void dump_density(builder *b, cJSON *species, const ref_density_profile *p)
+static void dump_density(builder *b, cJSON *species, const model_density_profile *p)
 {
     cJSON *d = obj(b, species, "density");
     double x, y;
     if (!d) return;
-    if (ref_profile_as_exponential(p, &x)) {
+    if (model_profile_as_exponential(p, &x)) {
         str(b, d, "profile", "exponential");
         num(b, d, "scale_height_km", x);
-    } else if (ref_profile_as_tent(p, &x, &y)) {
+    } else if (model_profile_as_tent(p, &x, &y)) {
         str(b, d, "profile", "tent");
         num(b, d, "center_km", x);
         num(b, d, "half_width_km", y);
@@ -735,7 +735,7 @@ static void dump_density(builder *b, cJSON *species, const ref_density_profile *
             cJSON *l = cJSON_CreateObject();
             b->ok = b->ok && l && cJSON_AddItemToArray(layers, l);
             if (!l) break;
-            const ref_density_layer *q = &p->layers[i];
+            const model_density_layer *q = &p->layers[i];
             num(b, l, "width_km", q->width);
             num(b, l, "exp_term", q->exp_term);
             num(b, l, "exp_scale_per_km", q->exp_scale);
@@ -752,7 +752,7 @@ static const char *word(const char *const *words, int count, int i)
 
 int scene_dump(const options *o, FILE *out)
 {
-    const ref_atmosphere *a = &o->atmosphere;
+    const model_atmosphere *a = &o->atmosphere;
     const sky_view *v = &o->view;
     const sky_lut_quality *lut = &o->lut;
     builder b = {.ok = true};

@@ -220,7 +220,7 @@ void metrics_tonemap_srgb8(const float *rgba, int w, int h, double exposure_ev, 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Sky mask                                                                                                   */
 
-void metrics_sky_mask(const ref_atmosphere *a, double altitude, int w, int h, double yaw_rad, double pitch_rad,
+void metrics_sky_mask(const model_atmosphere *a, double altitude, int w, int h, double yaw_rad, double pitch_rad,
                       double fov_y_rad, unsigned char *mask)
 {
     if (!a || !mask || w <= 0 || h <= 0)

@@ -54,7 +54,7 @@ void metrics_tonemap_srgb8(const float *rgba, int w, int h, double exposure_ev, 
 
 /* Sky mask: 1 where the view ray of pixel (x, y) (docs/model.md image convention, ref_pixel_dir) does NOT hit the
  * ground from the camera altitude (the inclusive ground test of docs/model.md, cancellation-free), else 0. */
-void metrics_sky_mask(const ref_atmosphere *a, double altitude, int w, int h, double yaw_rad, double pitch_rad,
+void metrics_sky_mask(const model_atmosphere *a, double altitude, int w, int h, double yaw_rad, double pitch_rad,
                       double fov_y_rad, unsigned char *mask);
 
 #ifdef __cplusplus

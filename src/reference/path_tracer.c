@@ -25,7 +25,7 @@
  * descending and an altitude-ascending part, and each part into segments of at most dh(h) = 1.5 km + 0.3 h of
  * altitude change (so ~12 segments from the ground to the top, ~140 km long near a tangent point). Altitude is
  * monotone on a segment, and its majorant is the sum of each species' exact density maximum over the segment's
- * altitude range (ref_density_max: any Bruneton layer pair), so it is tight where the density is.
+ * altitude range (model_density_max: any Bruneton layer pair), so it is tight where the density is.
  * On a ray whose total majorant optical depth is below PT_MIN_EVENTS all its majorants are scaled up so that it
  * gets PT_MIN_EVENTS tentative points on average (still unbiased; it keeps the direct term's variance bounded in
  * the optically thin limit).
@@ -100,9 +100,9 @@ static double exp1(pt_rng *g) { return -log(1.0 - u01(g)); }
 
 typedef struct pt_ctx {
     double Rb, Rt, top;
-    const ref_atmosphere *atmo; /* the density profiles */
+    const model_atmosphere *atmo; /* the density profiles */
     double bR, bMs, bMt, bO; /* Rayleigh scattering, Mie scattering, Mie extinction, ozone absorption */
-    double bEs[REF_MAX_EXTRA_SPECIES], bEa[REF_MAX_EXTRA_SPECIES]; /* extra species: scattering, absorption */
+    double bEs[MODEL_MAX_EXTRA_SPECIES], bEa[MODEL_MAX_EXTRA_SPECIES]; /* extra species: scattering, absorption */
     double g, E, albedo;
     double sun[3];
     int max_bounces;
@@ -112,13 +112,13 @@ static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + 
 
 static void medium_at(const pt_ctx *C, double h, double *sR, double *sM, double *st)
 {
-    const ref_atmosphere *a = C->atmo;
-    double rm = ref_density(&a->mie_density, h);
-    *sR = C->bR * ref_density(&a->rayleigh_density, h);
+    const model_atmosphere *a = C->atmo;
+    double rm = model_density(&a->mie_density, h);
+    *sR = C->bR * model_density(&a->rayleigh_density, h);
     *sM = C->bMs * rm;
-    double absorbed = C->bO * ref_density(&a->ozone_density, h);
+    double absorbed = C->bO * model_density(&a->ozone_density, h);
     for (int i = 0; i < a->extra_count; ++i) { /* extra species scatter with the Rayleigh phase */
-        double re = ref_density(&a->extra[i].density, h);
+        double re = model_density(&a->extra[i].density, h);
         *sR += C->bEs[i] * re;
         absorbed += C->bEa[i] * re;
     }
@@ -129,12 +129,12 @@ static void medium_at(const pt_ctx *C, double h, double *sR, double *sM, double 
  * margin for rounding). */
 static double majorant(const pt_ctx *C, double hmin, double hmax)
 {
-    const ref_atmosphere *a = C->atmo;
-    double m = C->bR * ref_density_max(&a->rayleigh_density, hmin, hmax) +
-               C->bMt * ref_density_max(&a->mie_density, hmin, hmax) +
-               C->bO * ref_density_max(&a->ozone_density, hmin, hmax);
+    const model_atmosphere *a = C->atmo;
+    double m = C->bR * model_density_max(&a->rayleigh_density, hmin, hmax) +
+               C->bMt * model_density_max(&a->mie_density, hmin, hmax) +
+               C->bO * model_density_max(&a->ozone_density, hmin, hmax);
     for (int i = 0; i < a->extra_count; ++i)
-        m += (C->bEs[i] + C->bEa[i]) * ref_density_max(&a->extra[i].density, hmin, hmax);
+        m += (C->bEs[i] + C->bEa[i]) * model_density_max(&a->extra[i].density, hmin, hmax);
     return m * (1.0 + 1e-9);
 }
 
@@ -553,7 +553,7 @@ static void normalize3(const double in[3], double out[3])
         out[i] = l > 0.0 ? in[i] / l : 0.0;
 }
 
-void pt_radiance(const ref_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
+void pt_radiance(const model_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
                  const pt_settings *s, double out_rgb[3], double out_stderr[3])
 {
     double v[3], sd[3];

@@ -1,6 +1,6 @@
 /* vksky Monte Carlo volumetric path tracer: the physical ground truth the model (docs/model.md) is measured against.
  *
- * Same medium as ref_atmosphere (spherical planet, Rayleigh + Mie (Henyey-Greenstein, g = mie_g) + ozone
+ * Same medium as model_atmosphere (spherical planet, Rayleigh + Mie (Henyey-Greenstein, g = mie_g) + ozone
  * (absorption only), the density profiles of docs/model.md, RGB), but real physics instead of the model's
  * approximations: ALL scattering orders with the true phase functions, no horizon fade, a binary earth shadow,
  * Lambertian ground (albedo a parameter, 0 by default). The sun is a directional light of per-channel illuminance
@@ -46,7 +46,7 @@ typedef struct pt_settings {
 /* Radiance along view_dir (unit, camera frame up = +Y) from camera altitude (km, >= 0; above the top the ray
  * enters the atmosphere first, 0 if it misses it), sun disc excluded, in the units of ref_sky_radiance.
  * out_stderr (may be NULL): the standard error of each channel's estimate (sample standard deviation / sqrt(N)). */
-void pt_radiance(const ref_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
+void pt_radiance(const model_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
                  const pt_settings *s, double out_rgb[3], double out_stderr[3]);
 
 #ifdef __cplusplus

@@ -22,115 +22,6 @@
 
 #define REF_PI 3.14159265358979323846
 
-/* ---------------------------------------------------------------------------------------------------------- */
-/* Medium                                                                                                     */
-
-void ref_atmosphere_earth(ref_atmosphere *o)
-{
-    memset(o, 0, sizeof *o);
-    o->bottom_radius = 6360.0;
-    o->top_radius = 6460.0;
-    o->rayleigh_scattering[0] = 5.802e-3;
-    o->rayleigh_scattering[1] = 13.558e-3;
-    o->rayleigh_scattering[2] = 33.1e-3;
-    o->rayleigh_density = ref_profile_exponential(8.0);
-    for (int c = 0; c < 3; ++c) {
-        o->mie_scattering[c] = 3.996e-3;
-        o->mie_absorption[c] = 0.444e-3;
-        o->sun_illuminance[c] = 20.0;
-    }
-    o->mie_density = ref_profile_exponential(1.2);
-    o->mie_g = 0.8;
-    o->ozone_absorption[0] = 0.650e-3;
-    o->ozone_absorption[1] = 1.881e-3;
-    o->ozone_absorption[2] = 0.085e-3;
-    o->ozone_density = ref_profile_tent(25.0, 15.0);
-}
-
-ref_density_profile ref_profile_exponential(double scale_height)
-{
-    ref_density_layer l = {.width = 0.0, .exp_term = 1.0, .exp_scale = -1.0 / scale_height};
-    return (ref_density_profile){{l, l}};
-}
-
-ref_density_profile ref_profile_tent(double center, double half_width)
-{
-    /* Rising to 1 at the centre, falling to 0 at center +- half_width (Bruneton's ozone layers). */
-    ref_density_layer rise = {.width = center, .linear_term = 1.0 / half_width,
-                              .constant_term = 1.0 - center / half_width};
-    ref_density_layer fall = {.width = 0.0, .linear_term = -1.0 / half_width,
-                              .constant_term = 1.0 + center / half_width};
-    return (ref_density_profile){{rise, fall}};
-}
-
-bool ref_profile_as_exponential(const ref_density_profile *p, double *scale_height)
-{
-    const ref_density_layer *a = &p->layers[0], *b = &p->layers[1];
-    bool same = a->exp_term == b->exp_term && a->exp_scale == b->exp_scale && a->linear_term == b->linear_term &&
-                a->constant_term == b->constant_term;
-    if (!same || a->exp_term != 1.0 || a->exp_scale >= 0.0 || a->linear_term != 0.0 || a->constant_term != 0.0)
-        return false;
-    *scale_height = -1.0 / a->exp_scale;
-    return true;
-}
-
-bool ref_profile_as_tent(const ref_density_profile *p, double *center, double *half_width)
-{
-    const ref_density_layer *a = &p->layers[0], *b = &p->layers[1];
-    if (a->exp_term != 0.0 || b->exp_term != 0.0 || a->linear_term <= 0.0 || b->linear_term != -a->linear_term)
-        return false;
-    double c = a->width, w = 1.0 / a->linear_term;
-    if (fabs(a->constant_term - (1.0 - c / w)) > 1e-12 || fabs(b->constant_term - (1.0 + c / w)) > 1e-12)
-        return false;
-    *center = c, *half_width = w;
-    return true;
-}
-
-/* One layer's unclamped value at h (the exponent capped as in ref_density). */
-static double layer_value(const ref_density_layer *l, double h)
-{
-    double e = l->exp_scale * h;
-    return (l->exp_term != 0.0 ? l->exp_term * exp(e < 700.0 ? e : 700.0) : 0.0) + l->linear_term * h + l->constant_term;
-}
-
-/* Max of one layer over [lo, hi]: a e^(b h) + c h + d has at most one stationary point, where a b e^(b h) = -c. */
-static double layer_max(const ref_density_layer *l, double lo, double hi)
-{
-    double m = fmax(layer_value(l, lo), layer_value(l, hi));
-    if (l->exp_term != 0.0 && l->exp_scale != 0.0) {
-        double q = -l->linear_term / (l->exp_term * l->exp_scale);
-        if (q > 0.0) {
-            double hs = log(q) / l->exp_scale;
-            if (hs > lo && hs < hi)
-                m = fmax(m, layer_value(l, hs));
-        }
-    }
-    return m;
-}
-
-double ref_density(const ref_density_profile *p, double h)
-{
-    /* Below the ground (reached only by below-horizon transmittance rays, which the model integrates through the
-     * planet) the medium is held at its ground value, as the GPU's sample_medium() does. */
-    if (h < 0.0)
-        h = 0.0;
-    /* Layer 0 below its width, layer 1 above; the clamp to [0, 1] is Bruneton's. */
-    double d = layer_value(h < p->layers[0].width ? &p->layers[0] : &p->layers[1], h);
-    return d < 0.0 ? 0.0 : d > 1.0 ? 1.0 : d;
-}
-
-double ref_density_max(const ref_density_profile *p, double hmin, double hmax)
-{
-    hmin = hmin > 0.0 ? hmin : 0.0; /* below the ground the medium is held at its ground value (ref_density) */
-    hmax = hmax > hmin ? hmax : hmin;
-    double w = p->layers[0].width, m = 0.0;
-    if (hmin < w)
-        m = layer_max(&p->layers[0], hmin, hmax < w ? hmax : w); /* layer 0's limit at w bounds it from above */
-    if (hmax >= w)
-        m = fmax(m, layer_max(&p->layers[1], hmin > w ? hmin : w, hmax));
-    return m < 0.0 ? 0.0 : m > 1.0 ? 1.0 : m;
-}
-
 static double clampd(double x, double lo, double hi) { return x < lo ? lo : (x > hi ? hi : x); }
 
 typedef struct medium {
@@ -138,18 +29,18 @@ typedef struct medium {
     double scat[3], ext[3];
 } medium;
 
-static void medium_at(const ref_atmosphere *a, double h, medium *m)
+static void medium_at(const model_atmosphere *a, double h, medium *m)
 {
-    double rr = ref_density(&a->rayleigh_density, h);
-    double rm = ref_density(&a->mie_density, h);
-    double ro = ref_density(&a->ozone_density, h);
+    double rr = model_density(&a->rayleigh_density, h);
+    double rm = model_density(&a->mie_density, h);
+    double ro = model_density(&a->ozone_density, h);
     for (int c = 0; c < 3; ++c) {
         m->sr[c] = rr * a->rayleigh_scattering[c];
         m->sm[c] = rm * a->mie_scattering[c];
         m->ext[c] = rm * a->mie_absorption[c] + ro * a->ozone_absorption[c];
     }
     for (int i = 0; i < a->extra_count; ++i) {
-        double re = ref_density(&a->extra[i].density, h);
+        double re = model_density(&a->extra[i].density, h);
         for (int c = 0; c < 3; ++c) {
             m->sr[c] += re * a->extra[i].scattering[c];
             m->ext[c] += re * a->extra[i].absorption[c];
@@ -183,10 +74,10 @@ static double step_integral(double sigma, double dt)
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Geometry (docs/model.md "Numerics")                                                                        */
 
-static double atmo_height(const ref_atmosphere *a) { return a->top_radius - a->bottom_radius; }
+static double atmo_height(const model_atmosphere *a) { return a->top_radius - a->bottom_radius; }
 
 /* r^2 - Rb^2 = h (2 Rb + h) */
-static double rho2_of(const ref_atmosphere *a, double h) { return h * (2.0 * a->bottom_radius + h); }
+static double rho2_of(const model_atmosphere *a, double h) { return h * (2.0 * a->bottom_radius + h); }
 
 /* Distance to the top from inside, -r mu + sqrt(r^2 (mu^2 - 1) + Rt^2), with Rt^2 - r^2 = c = (top - h)(Rt + r)
  * and, for mu > 0, the root rationalised (c / (r mu + sqrt(..))) so that nothing cancels near mu = 1. */
@@ -203,14 +94,14 @@ static inline double dist_top_rc(double r, double c, double mu)
     return d > 0.0 ? d : 0.0;
 }
 
-static double dist_to_top(const ref_atmosphere *a, double h, double mu)
+static double dist_to_top(const model_atmosphere *a, double h, double mu)
 {
     double r = a->bottom_radius + h;
     return dist_top_rc(r, (atmo_height(a) - h) * (a->top_radius + r), mu);
 }
 
 /* Inclusive ground test (mu < 0 and h (2 Rb + h) <= r^2 mu^2) and its near root. */
-static int hit_ground(const ref_atmosphere *a, double h, double mu, double *t)
+static int hit_ground(const model_atmosphere *a, double h, double mu, double *t)
 {
     if (!(mu < 0.0))
         return 0;
@@ -225,7 +116,7 @@ static int hit_ground(const ref_atmosphere *a, double h, double mu, double *t)
 }
 
 /* Point at distance t along a ray from (h, r = Rb + h, mu): its radius r_t and altitude h_t. */
-static void ray_point(const ref_atmosphere *a, double h, double r, double mu, double t, double *rt, double *ht)
+static void ray_point(const model_atmosphere *a, double h, double r, double mu, double t, double *rt, double *ht)
 {
     double q = rho2_of(a, h) + t * t + 2.0 * r * mu * t; /* r_t^2 - Rb^2 */
     double r2 = r * r + t * t + 2.0 * r * mu * t;
@@ -246,7 +137,7 @@ static double sun_visibility_rho2(double rho2, double r, double mus)
  * shadow, i.e. where the inclusive ground test toward the sun flips. With p(t) the point, the shadow is
  * p.s < 0 and |p|^2 - (p.s)^2 <= Rb^2, i.e. (1 - nu^2) t^2 + 2 r (mu - mu_s nu) t + (rho^2 - r^2 mu_s^2) <= 0
  * (rho^2 = r^2 - Rb^2, no cancellation) on the anti-sun side. Returns the number of crossings in (0, tend). */
-static int shadow_crossings(const ref_atmosphere *a, double h, double mu, double mus, double nu, double tend,
+static int shadow_crossings(const model_atmosphere *a, double h, double mu, double mus, double nu, double tend,
                             double out[2])
 {
     double r = a->bottom_radius + h;
@@ -279,7 +170,7 @@ static int shadow_crossings(const ref_atmosphere *a, double h, double mu, double
 
 /* Distances along a ray where mu_s at the point, (r mu_s + t nu) / r_t, equals c: (r mu_s + t nu)^2 =
  * c^2 (r^2 + 2 r mu t + t^2) on the side where r mu_s + t nu has the sign of c. Appends those in (0, tend). */
-static int mus_crossings(const ref_atmosphere *a, double h, double mu, double mus, double nu, double tend, double c,
+static int mus_crossings(const model_atmosphere *a, double h, double mu, double mus, double nu, double tend, double c,
                          double *out)
 {
     double r = a->bottom_radius + h;
@@ -310,7 +201,7 @@ static int mus_crossings(const ref_atmosphere *a, double h, double mu, double mu
  * piece separately keeps the midpoint rule second-order (a jump inside a step makes it first order, a kink
  * makes its error erratic). */
 #define MAX_CUTS 6
-static int ray_cuts(const ref_atmosphere *a, double h, double mu, double mus, double nu, double tend, double *cuts)
+static int ray_cuts(const model_atmosphere *a, double h, double mu, double mus, double nu, double tend, double *cuts)
 {
     int n = shadow_crossings(a, h, mu, mus, nu, tend, cuts);
     n += mus_crossings(a, h, mu, mus, nu, tend, -0.05, cuts + n);
@@ -330,7 +221,7 @@ static int ray_cuts(const ref_atmosphere *a, double h, double mu, double mus, do
  * ground hits, the tangent point t = -r mu otherwise). Same integral, 4-8x smaller error at equal counts. */
 static double grade(double u) { return u * u; }
 
-static void ray_step(const ref_atmosphere *a, double h, double mu, double tend, int ground, int graded, int steps,
+static void ray_step(const model_atmosphere *a, double h, double mu, double tend, int ground, int graded, int steps,
                      int k, double *t, double *dt)
 {
     double t0, t1;
@@ -390,13 +281,13 @@ static double uv_from_x(double x, int n)
     return 0.5 / n + clampd(x, 0.0, 1.0) * (n - 1.0) / n;
 }
 
-static double bruneton_H(const ref_atmosphere *a)
+static double bruneton_H(const model_atmosphere *a)
 {
     return sqrt((a->top_radius - a->bottom_radius) * (a->top_radius + a->bottom_radius));
 }
 
 /* (h, mu) -> (x_mu, x_r), both clamped to [0, 1]. */
-static void bruneton_x(const ref_atmosphere *a, double h, double mu, double *x_mu, double *x_r)
+static void bruneton_x(const model_atmosphere *a, double h, double mu, double *x_mu, double *x_r)
 {
     double H = bruneton_H(a);
     h = clampd(h, 0.0, atmo_height(a));
@@ -408,7 +299,7 @@ static void bruneton_x(const ref_atmosphere *a, double h, double mu, double *x_m
 }
 
 /* (x_mu, x_r) -> (h, mu). */
-static void bruneton_params(const ref_atmosphere *a, double x_mu, double x_r, double *h_out, double *mu_out)
+static void bruneton_params(const model_atmosphere *a, double x_mu, double x_r, double *h_out, double *mu_out)
 {
     double Rb = a->bottom_radius, H = bruneton_H(a);
     double rho = H * x_r;
@@ -423,13 +314,13 @@ static void bruneton_params(const ref_atmosphere *a, double x_mu, double x_r, do
     *mu_out = d == 0.0 ? 1.0 : clampd((c - d * d) / (2.0 * r * d), -1.0, 1.0);
 }
 
-void ref_transmittance_uv_to_params(const ref_atmosphere *a, double u, double v, int width, int height,
+void ref_transmittance_uv_to_params(const model_atmosphere *a, double u, double v, int width, int height,
                                     double *altitude, double *mu)
 {
     bruneton_params(a, x_from_uv(u, width), x_from_uv(v, height), altitude, mu);
 }
 
-void ref_transmittance_params_to_uv(const ref_atmosphere *a, double altitude, double mu, int width, int height,
+void ref_transmittance_params_to_uv(const model_atmosphere *a, double altitude, double mu, int width, int height,
                                     double *u, double *v)
 {
     double x_mu, x_r;
@@ -438,7 +329,7 @@ void ref_transmittance_params_to_uv(const ref_atmosphere *a, double altitude, do
     *v = uv_from_x(x_r, height);
 }
 
-void ref_multiscatter_texel_params(const ref_atmosphere *a, int i, int j, int width, int height, double *altitude,
+void ref_multiscatter_texel_params(const model_atmosphere *a, int i, int j, int width, int height, double *altitude,
                                    double *mu_s)
 {
     double xu = x_from_uv((i + 0.5) / width, width);
@@ -453,7 +344,7 @@ void ref_multiscatter_texel_params(const ref_atmosphere *a, int i, int j, int wi
 /* Transmittance                                                                                              */
 
 /* Optical depth to the top (no ground test), `steps` uniform midpoint steps. */
-static void optical_depth(const ref_atmosphere *a, double h, double mu, int steps, double tau[3])
+static void optical_depth(const model_atmosphere *a, double h, double mu, int steps, double tau[3])
 {
     double d = dist_to_top(a, h, mu);
     double r = a->bottom_radius + h;
@@ -471,7 +362,7 @@ static void optical_depth(const ref_atmosphere *a, double h, double mu, int step
         tau[c] = dt * sum[c];
 }
 
-void ref_transmittance(const ref_atmosphere *a, double altitude, double mu, int steps, double out[3])
+void ref_transmittance(const model_atmosphere *a, double altitude, double mu, int steps, double out[3])
 {
     double tau[3];
     if (steps < 1)
@@ -555,7 +446,7 @@ typedef struct sun_table {
     double T[SUN_TABLE_NY][SUN_TABLE_NX][3];
 } sun_table;
 
-static sun_table *sun_table_build(const ref_atmosphere *a)
+static sun_table *sun_table_build(const model_atmosphere *a)
 {
     sun_table *t = malloc(sizeof *t);
     if (!t)
@@ -572,7 +463,7 @@ static sun_table *sun_table_build(const ref_atmosphere *a)
 }
 
 /* Bicubic lookup of the sun table at (h, mu), clamped to [0, 1]. */
-static void sun_table_eval(const sun_table *t, const ref_atmosphere *a, double h, double mu, double T[3])
+static void sun_table_eval(const sun_table *t, const model_atmosphere *a, double h, double mu, double T[3])
 {
     double x_mu, x_r, wx[4], wy[4];
     int ix[4], iy[4];
@@ -638,7 +529,7 @@ static void gauss_legendre01(int m, double *x, double *w)
 /* Horizon-split rule: n/2 Gauss-Legendre nodes above and n/2 below the horizon mu_h = -rho/r, each side in s with
  * mu = mu_h +- (1 -+ mu_h) s^2. The ground/sky jump sits on the split and the substitution removes the
  * sqrt(mu_h - mu) behaviour of the ground distance at grazing. */
-static int polar_horizon(const ref_atmosphere *a, double h, int n, polar_rule *p)
+static int polar_horizon(const model_atmosphere *a, double h, int n, polar_rule *p)
 {
     int m = n / 2 > 0 ? n / 2 : 1;
     p->count = 2 * m;
@@ -660,7 +551,7 @@ static int polar_horizon(const ref_atmosphere *a, double h, int n, polar_rule *p
 }
 
 /* Sun transmittance at a point: direct (sun_steps) or from the sun table. */
-static void sun_T(const ref_atmosphere *a, const sun_table *st, int sun_steps, double h, double mu, double T[3])
+static void sun_T(const model_atmosphere *a, const sun_table *st, int sun_steps, double h, double mu, double T[3])
 {
     if (st) {
         sun_table_eval(st, a, h, mu, T);
@@ -674,7 +565,7 @@ static void sun_T(const ref_atmosphere *a, const sun_table *st, int sun_steps, d
 
 /* Lit part of the step [t0, t1] of the ray (h, r, mu) for a sun at (mus, nu), cut at the earth-shadow crossings
  * `cut` (sorted): sum over its pieces of (piece / step length) * visibility * T_sun at the piece's midpoint. */
-static void ms_split_step(const ref_atmosphere *a, const sun_table *st, int sun_steps, double h, double r,
+static void ms_split_step(const model_atmosphere *a, const sun_table *st, int sun_steps, double h, double r,
                           double mu, double mus, double nu, double t0, double t1, const double *cut, int ncut,
                           double out[3])
 {
@@ -705,7 +596,7 @@ static void ms_split_step(const ref_atmosphere *a, const sun_table *st, int sun_
  * do not depend on the sun, so they are computed once per (polar node, step) and shared by all azimuths and sun
  * cosines; azimuths theta and 2 pi - theta (i and n_az - 1 - i) are mirror images about the sun's plane and
  * contribute equally, so only half of them are evaluated. Returns 0 when out of memory (out = 0). */
-static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus, int count, int n_az,
+static int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int count, int n_az,
                             const polar_rule *pr, int steps, int graded, int sun_steps, const sun_table *st,
                             double (*out)[3])
 {
@@ -856,9 +747,9 @@ static int multiscatter_row(const ref_atmosphere *a, double h, const double *mus
     return 1;
 }
 
-static double ms_altitude(const ref_atmosphere *a, double h) { return clampd(h, 0.01, atmo_height(a)); }
+static double ms_altitude(const model_atmosphere *a, double h) { return clampd(h, 0.01, atmo_height(a)); }
 
-void ref_multiscatter(const ref_atmosphere *a, double altitude, double mu_s, int sqrt_dirs, int steps,
+void ref_multiscatter(const model_atmosphere *a, double altitude, double mu_s, int sqrt_dirs, int steps,
                       int sun_steps, double out[3])
 {
     double ms = clampd(mu_s, -1.0, 1.0);
@@ -887,7 +778,7 @@ static int ms_azimuths(int sqrt_dirs) { return sqrt_dirs / 2 > 2 ? sqrt_dirs / 2
  * light then comes from lit air far along the rays, where the graded steps are longest). */
 static int ms_steps_for(int steps, double mus) { return mus < -0.05 ? 2 * steps : steps; }
 
-void ref_multiscatter_converged(const ref_atmosphere *a, double altitude, double mu_s, int sqrt_dirs, int steps,
+void ref_multiscatter_converged(const model_atmosphere *a, double altitude, double mu_s, int sqrt_dirs, int steps,
                                 int sun_steps, double out[3])
 {
     double ms = clampd(mu_s, -1.0, 1.0), h = ms_altitude(a, altitude);
@@ -970,7 +861,7 @@ static int psi_seg_u(double mus, double *u)
     return 2;
 }
 
-static double psi_row_h(const ref_atmosphere *a, int j)
+static double psi_row_h(const model_atmosphere *a, int j)
 {
     double y = (double)j / (PSI_ROWS - 1);
     return j == PSI_ROWS - 1 ? atmo_height(a) : 0.01 + (atmo_height(a) - 0.01) * y * y;
@@ -978,9 +869,9 @@ static double psi_row_h(const ref_atmosphere *a, int j)
 
 /* The sun table of the last atmosphere a Psi table was built for (Psi tables of other counts reuse it). */
 static sun_table *g_sun_table;
-static ref_atmosphere g_sun_table_atmo;
+static model_atmosphere g_sun_table_atmo;
 
-static const sun_table *sun_table_get(const ref_atmosphere *a)
+static const sun_table *sun_table_get(const model_atmosphere *a)
 {
     if (g_sun_table && memcmp(&g_sun_table_atmo, a, sizeof *a) == 0)
         return g_sun_table;
@@ -990,7 +881,7 @@ static const sun_table *sun_table_get(const ref_atmosphere *a)
     return g_sun_table;
 }
 
-static psi_table *psi_table_build(const ref_atmosphere *a, int sqrt_dirs, int steps)
+static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int steps)
 {
     psi_table *t = malloc(sizeof *t);
     const sun_table *st = sun_table_get(a);
@@ -1030,7 +921,7 @@ static psi_table *psi_table_build(const ref_atmosphere *a, int sqrt_dirs, int st
     return t;
 }
 
-static void psi_table_eval(const psi_table *t, const ref_atmosphere *a, double h, double mus, double out[3])
+static void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3])
 {
     double u;
     h = ms_altitude(a, h);
@@ -1061,7 +952,7 @@ static void psi_table_eval(const psi_table *t, const ref_atmosphere *a, double h
 #define PSI_CACHE_SLOTS 8
 
 typedef struct psi_cache_slot {
-    ref_atmosphere atmo;
+    model_atmosphere atmo;
     int sqrt_dirs, steps;
     unsigned long long used;
     psi_table *table;
@@ -1070,10 +961,10 @@ typedef struct psi_cache_slot {
 static psi_cache_slot g_psi_cache[PSI_CACHE_SLOTS];
 static unsigned long long g_psi_clock;
 
-static const psi_table *psi_cache_get(const ref_atmosphere *a_in, int sqrt_dirs, int steps)
+static const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps)
 {
     /* Psi is per unit sun illuminance and isotropic: the key leaves out E and g. */
-    ref_atmosphere a = *a_in;
+    model_atmosphere a = *a_in;
     a.mie_g = 0.0;
     a.sun_illuminance[0] = a.sun_illuminance[1] = a.sun_illuminance[2] = 0.0;
     psi_cache_slot *victim = &g_psi_cache[0];
@@ -1108,7 +999,7 @@ ref_quality ref_quality_converged(void)
 
 /* Camera (altitude, view, sun) -> start point (h, mu, mu_s, nu) of the march; 0 when the ray misses the
  * atmosphere (or the input is unusable). */
-static int sky_start(const ref_atmosphere *a, double altitude, const double v_in[3], const double s_in[3],
+static int sky_start(const model_atmosphere *a, double altitude, const double v_in[3], const double s_in[3],
                      double *h, double *mu, double *mus, double *nu)
 {
     double v[3], s[3];
@@ -1147,7 +1038,7 @@ static int sky_start(const ref_atmosphere *a, double altitude, const double v_in
 }
 
 typedef struct sky_ray {
-    const ref_atmosphere *a;
+    const model_atmosphere *a;
     double h, r, mu, mus, nu, pr, pm;
     int sun_steps;
     const psi_table *psi;
@@ -1157,7 +1048,7 @@ typedef struct sky_ray {
 /* One midpoint step [t - dt/2, t + dt/2] of the view march (per-step analytic integration). */
 static void sky_step(sky_ray *s, double t, double dt)
 {
-    const ref_atmosphere *a = s->a;
+    const model_atmosphere *a = s->a;
     double rt, ht;
     medium m;
     if (!(dt > 0.0))
@@ -1188,7 +1079,7 @@ static void sky_step(sky_ray *s, double t, double dt)
 /* March from (h, mu) with the sun at mu_s and nu = dot(view, sun): view_steps steps graded toward the lowest
  * point, a step that contains a crossing of the earth's shadow or a kink of the horizon fade split there
  * (ray_cuts), direct sun transmittance, Psi from the table. */
-static void sky_march(const ref_atmosphere *a, double h, double mu, double mus, double nu, int view_steps,
+static void sky_march(const model_atmosphere *a, double h, double mu, double mus, double nu, int view_steps,
                       int sun_steps, const psi_table *psi, double out[3])
 {
     sky_ray s = {a, h, a->bottom_radius + h, mu, mus, nu, phase_rayleigh(nu), phase_hg(a->mie_g, nu),
@@ -1216,7 +1107,7 @@ static void sky_march(const ref_atmosphere *a, double h, double mu, double mus, 
         out[c] = (s.L[c] > 0.0 && isfinite(s.L[c])) ? s.L[c] : 0.0;
 }
 
-void ref_sky_radiance(const ref_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
+void ref_sky_radiance(const model_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
                       ref_quality q, double out_rgb[3])
 {
     double h, mu, mus, nu;

@@ -12,49 +12,12 @@
 #ifndef VKSKY_REF_ATMOSPHERE_H
 #define VKSKY_REF_ATMOSPHERE_H
 
+#include "model/medium.h"
 #include <stdbool.h>
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* A density profile as Bruneton's DensityProfileLayer pair: below layers[0].width (km) layer 0 applies, above it
- * layer 1; density = clamp(exp_term exp(exp_scale h) + linear_term h + constant_term, 0, 1), h in km. */
-typedef struct ref_density_layer { double width, exp_term, exp_scale, linear_term, constant_term; } ref_density_layer;
-typedef struct ref_density_profile { ref_density_layer layers[2]; } ref_density_profile;
-
-/* A species beyond Rayleigh, Mie and ozone (scene files: any other name under "species"): a gas that absorbs
- * and/or scatters with the Rayleigh (molecular) phase, e.g. NO2 or a second absorber layer. */
-#define REF_MAX_EXTRA_SPECIES 2
-typedef struct ref_extra_species {
-    char name[32];
-    double scattering[3], absorption[3]; /* /km at density 1 */
-    ref_density_profile density;
-} ref_extra_species;
-
-typedef struct ref_atmosphere {
-    double bottom_radius, top_radius; /* km */
-    double rayleigh_scattering[3];
-    double mie_scattering[3], mie_absorption[3], mie_g;
-    double ozone_absorption[3];
-    ref_density_profile rayleigh_density, mie_density, ozone_density;
-    int extra_count;                  /* 0 .. REF_MAX_EXTRA_SPECIES */
-    ref_extra_species extra[REF_MAX_EXTRA_SPECIES];
-    double sun_illuminance[3];
-} ref_atmosphere;
-
-double ref_density(const ref_density_profile *p, double altitude);
-/* Exact max of ref_density over the altitude range [hmin, hmax] (a path tracer's majorant). */
-double ref_density_max(const ref_density_profile *p, double hmin, double hmax);
-/* exp(-h/H), and the tent max(0, 1 - |h - center| / half_width), as profiles. */
-ref_density_profile ref_profile_exponential(double scale_height);
-ref_density_profile ref_profile_tent(double center, double half_width);
-/* The inverse: true (and the parameters) if the profile is exactly that form. */
-bool ref_profile_as_exponential(const ref_density_profile *p, double *scale_height);
-bool ref_profile_as_tent(const ref_density_profile *p, double *center, double *half_width);
-
-/* Hillaire 2020 Table 1 defaults (docs/model.md "Medium"). */
-void ref_atmosphere_earth(ref_atmosphere *out);
 
 /* dir(az, el) = (cos el cos az, sin el, cos el sin az). */
 void ref_dir(double azimuth_rad, double elevation_rad, double out[3]);
@@ -62,15 +25,15 @@ void ref_dir(double azimuth_rad, double elevation_rad, double out[3]);
 /* Bruneton transmittance-LUT mapping with the texel-centre sub-UV (docs/model.md). width/height = LUT size
  * (u <-> x_mu over width, v <-> x_r over height). x is clamped to [0, 1] on both sides (what a clamp-to-edge
  * sampler does), so rays below the horizon map to the last u texel centre. */
-void ref_transmittance_uv_to_params(const ref_atmosphere *a, double u, double v, int width, int height,
+void ref_transmittance_uv_to_params(const model_atmosphere *a, double u, double v, int width, int height,
                                     double *altitude, double *mu);
-void ref_transmittance_params_to_uv(const ref_atmosphere *a, double altitude, double mu, int width, int height,
+void ref_transmittance_params_to_uv(const model_atmosphere *a, double altitude, double mu, int width, int height,
                                     double *u, double *v);
 
 /* T(h, mu) to the top boundary, no ground test, `steps` uniform midpoint steps (4000: relative error ~2e-7). The
  * altitude is clamped to [0, top - bottom]. Rays below the horizon pass through the planet (as the model says)
  * and give ~0 (the GPU's LUT holds the horizon value there; only shadowed points ever ask for it). */
-void ref_transmittance(const ref_atmosphere *a, double altitude, double mu, int steps, double out[3]);
+void ref_transmittance(const model_atmosphere *a, double altitude, double mu, int steps, double out[3]);
 
 /* Psi(h, mu_s), per unit sun illuminance, exactly the model's quadrature but with the nested transmittance
  * integrated directly: sqrt_dirs x sqrt_dirs stratified directions (8 = the GPU's 64), `steps` uniform midpoint
@@ -78,7 +41,7 @@ void ref_transmittance(const ref_atmosphere *a, double altitude, double mu, int 
  * For checking the GPU's LUT texel by texel. It is NOT a way to converged values: its integrand jumps at the
  * horizon, so it converges O(1/n) and erratically in sqrt_dirs (~5 % off at 64x64; the GPU's 8x8 is 2-22 % off
  * in daylight). Converged Psi: ref_multiscatter_converged(). */
-void ref_multiscatter(const ref_atmosphere *a, double altitude, double mu_s, int sqrt_dirs, int steps,
+void ref_multiscatter(const model_atmosphere *a, double altitude, double mu_s, int sqrt_dirs, int steps,
                       int sun_steps, double out[3]);
 
 /* The same Psi integral (the model's, over the whole sphere and every ray) by a quadrature that converges fast
@@ -92,12 +55,12 @@ void ref_multiscatter(const ref_atmosphere *a, double altitude, double mu_s, int
  *  - nested transmittance direct with `sun_steps`. Applies the 10 m altitude clamp.
  * ref_sky_radiance() tabulates exactly this (with ms_sqrt_dirs, ms_steps; its nested transmittance from a fine
  * table, 1e-5 from direct). At (48, 64, 128): < 0.1 % change when any count is doubled (tests/test_reference.c). */
-void ref_multiscatter_converged(const ref_atmosphere *a, double altitude, double mu_s, int sqrt_dirs, int steps,
+void ref_multiscatter_converged(const model_atmosphere *a, double altitude, double mu_s, int sqrt_dirs, int steps,
                                 int sun_steps, double out[3]);
 
 /* Ms LUT texel (i, j) of a W x H LUT -> (altitude, mu_s): mu_s = sign(2x - 1) (2x - 1)^2 (u, i), h = x (top - bottom) (v, j) with
  * x = k / (N - 1) (texel-centre sub-UV). The altitude is NOT clamped to 10 m here (ref_multiscatter does it). */
-void ref_multiscatter_texel_params(const ref_atmosphere *a, int i, int j, int width, int height, double *altitude,
+void ref_multiscatter_texel_params(const model_atmosphere *a, int i, int j, int width, int height, double *altitude,
                                    double *mu_s);
 
 typedef struct ref_quality {
@@ -120,7 +83,7 @@ ref_quality ref_quality_converged(void);
  * Psi at each view sample is interpolated from a double-precision table of ref_multiscatter_converged values,
  * built lazily and cached per atmosphere (less sun illuminance and g, which Psi does not depend on) and per
  * (ms_sqrt_dirs, ms_steps). Error the table adds: <= 4e-5 in daylight, <= 2e-4 down to sun -6 deg. */
-void ref_sky_radiance(const ref_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
+void ref_sky_radiance(const model_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
                       ref_quality q, double out_rgb[3]);
 
 /* View direction of pixel (x, y) (y = 0 at the top) of a width x height image, docs/model.md "Conventions of the

@@ -15,13 +15,13 @@ sky_features sky_features_default(void)
                           .multiple_scattering = true};
 }
 
-_Static_assert(VKSKY_MAX_EXTRA == REF_MAX_EXTRA_SPECIES, "one limit on extra species for the GPU and the reference");
+_Static_assert(VKSKY_MAX_EXTRA == MODEL_MAX_EXTRA_SPECIES, "one limit on extra species for the GPU and the reference");
 
 static bool any3(const double v[3]) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; }
 
 /* Extra species the shaders must evaluate: those with a nonzero coefficient (the rest are compiled out). The
  * scene loader keeps them in order; a zero one in the middle still counts, to keep the indices. */
-static int extra_count(const ref_atmosphere *a)
+static int extra_count(const model_atmosphere *a)
 {
     int n = 0;
     for (int i = 0; i < a->extra_count && i < VKSKY_MAX_EXTRA; ++i)
@@ -30,15 +30,15 @@ static int extra_count(const ref_atmosphere *a)
 }
 
 /* The cheapest exact form of a profile the shaders have (VKSKY_PROFILE_*). */
-static int32_t profile_kind(const ref_density_profile *p)
+static int32_t profile_kind(const model_density_profile *p)
 {
     double H;
-    if (ref_profile_as_exponential(p, &H)) return VKSKY_PROFILE_EXPONENTIAL;
+    if (model_profile_as_exponential(p, &H)) return VKSKY_PROFILE_EXPONENTIAL;
     if (p->layers[0].exp_term == 0.0 && p->layers[1].exp_term == 0.0) return VKSKY_PROFILE_LINEAR;
     return VKSKY_PROFILE_GENERAL;
 }
 
-sky_variant sky_variant_of(const ref_atmosphere *a, const sky_features *f)
+sky_variant sky_variant_of(const model_atmosphere *a, const sky_features *f)
 {
     int extras = extra_count(a);
     return (sky_variant){
@@ -62,7 +62,7 @@ static vksky_vec4 v4(const double rgb[3], double w)
     return (vksky_vec4){(float)rgb[0], (float)rgb[1], (float)rgb[2], (float)w};
 }
 
-void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,
+void sky_atmosphere_pack(const model_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,
                          const sky_features *f, AtmosphereParams *out)
 {
     memset(out, 0, sizeof *out);
@@ -73,7 +73,7 @@ void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad,
     out->mie_scattering = v4(a->mie_scattering, 0.0);
     out->mie_absorption = v4(a->mie_absorption, a->mie_g);
     out->ozone_absorption = v4(a->ozone_absorption, 0.0);
-    const ref_density_profile *profiles[VKSKY_SPECIES] = {&a->rayleigh_density, &a->mie_density, &a->ozone_density};
+    const model_density_profile *profiles[VKSKY_SPECIES] = {&a->rayleigh_density, &a->mie_density, &a->ozone_density};
     float widths[8] = {0};
     int species = 3 + extra_count(a);
     for (int i = 0; i < species - 3; ++i) {
@@ -84,7 +84,7 @@ void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad,
     for (int s = 0; s < species; ++s) {
         widths[s] = (float)profiles[s]->layers[0].width;
         for (int l = 0; l < 2; ++l) {
-            const ref_density_layer *d = &profiles[s]->layers[l];
+            const model_density_layer *d = &profiles[s]->layers[l];
             out->profiles[2 * s + l] = (vksky_vec4){(float)d->exp_term, (float)d->exp_scale, (float)d->linear_term,
                                                     (float)d->constant_term};
         }

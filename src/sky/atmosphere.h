@@ -1,8 +1,8 @@
-/* Atmosphere parameters on the CPU (the model's ref_atmosphere, in double) packed into the uniform block the
+/* Atmosphere parameters on the CPU (the model's model_atmosphere, in double) packed into the uniform block the
  * shaders read (AtmosphereParams in shaders/glsl/shared.h). */
 #ifndef VKSKY_SKY_ATMOSPHERE_H
 #define VKSKY_SKY_ATMOSPHERE_H
-#include "reference/ref_atmosphere.h"
+#include "model/medium.h"
 #include "shared.h"
 #include <stdbool.h>
 #include <volk.h>
@@ -40,8 +40,8 @@ typedef struct sky_variant {
     int32_t extra_species;        /* extra species evaluated (0 .. VKSKY_MAX_EXTRA) */
     int32_t extra_profile[VKSKY_MAX_EXTRA];
 } sky_variant;
-sky_variant sky_variant_of(const ref_atmosphere *a, const sky_features *f);
-void sky_atmosphere_pack(const ref_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,
+sky_variant sky_variant_of(const model_atmosphere *a, const sky_features *f);
+void sky_atmosphere_pack(const model_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,
                          const sky_features *f, AtmosphereParams *out);
 /* FNV-1a of the packed block's LUT-relevant part: LUTs are recomputed only when it changes. */
 uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p);

@@ -199,7 +199,7 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
 
     VkDescriptorPoolCreateInfo size_info = pinfo;
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &size_info, NULL, &r->size_pool));
-    ref_atmosphere_earth(&r->medium);
+    model_atmosphere_earth(&r->medium);
     r->features = sky_features_default();
     r->sun_angular_radius = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
     build_variant(r);
@@ -239,7 +239,7 @@ static void upload_atmosphere(sky_renderer *r)
     }
 }
 
-void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad)
+void sky_renderer_set_atmosphere(sky_renderer *r, const model_atmosphere *a, double sun_angular_radius_rad)
 {
     r->medium = *a;
     r->sun_angular_radius = sun_angular_radius_rad;

@@ -54,7 +54,7 @@ typedef struct sky_renderer {
     gpu_timer timer;
     gpu_timer *active_timer;     /* the timer of the frame being recorded */
     AtmosphereParams atmosphere;
-    ref_atmosphere medium;       /* as last set */
+    model_atmosphere medium;       /* as last set */
     double sun_angular_radius;
     sky_features features;
     sky_variant variant;         /* of the pipelines built now */
@@ -69,7 +69,7 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
 void sky_renderer_destroy(sky_renderer *r);
 /* Set the atmosphere (writes the uniform buffer: call only while no frame is in flight). LUTs are recomputed
  * by the next frame if their inputs changed. */
-void sky_renderer_set_atmosphere(sky_renderer *r, const ref_atmosphere *a, double sun_angular_radius_rad);
+void sky_renderer_set_atmosphere(sky_renderer *r, const model_atmosphere *a, double sun_angular_radius_rad);
 /* Ground albedo, Mie phase model, limb darkening, sun disc, multi-scattering. A change of what the scene needs
  * (species present, multi-scattering, disc, ground, phase model) rebuilds the pipelines for the new variant. */
 void sky_renderer_set_features(sky_renderer *r, const sky_features *f);
