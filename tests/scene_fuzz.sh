@@ -11,7 +11,7 @@ set -u
 VKSKY=${1:?usage: scene_fuzz.sh VKSKY SCENE_MUTATE SCENES_DIR [N]}
 MUTATE=${2:?}
 SCENES=${3:?}
-N=${4:-300}
+N=${VKSKY_SCENE_FUZZ_MUTANTS:-${4:-300}}   # the sanitizer run (tests/sanitize.sh) asks for fewer
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fails=0 accepted=0 rejected=0 rendered=0

@@ -11,7 +11,9 @@
  * that synchronization validation reports the hazard it prevents. */
 #ifndef VKSKY_GPU_BARRIER_H
 #define VKSKY_GPU_BARRIER_H
-#include "gpu/context.h"
+#include <volk.h>
+#include <stdbool.h>
+#include <stdio.h>
 
 typedef enum gpu_usage {
     GPU_USAGE_NONE,                     /* not used yet / contents not needed */

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The layout, checked (docs/architecture.md): each module of src/ includes only the modules below it, no two
+# source units include each other (directly or around a circle), and no file in src/ is longer than a newcomer
+# reads in one sitting (600 lines).
+#
+#   app -> sky -> gpu          app -> io        app -> reference -> model        sky -> model
+#
+# A unit is a .c file and its .h (src/app/scene.c and src/app/scene.h are the unit app/scene); a unit includes
+# another when either of its files names the other's header. Usage: layering_test.sh SRC_DIR
+set -u
+SRC=${1:?usage: layering_test.sh path/to/src}
+cd "$SRC" || exit 2
+fail=0
+
+# What each module may include besides itself (module names are the directories under src/).
+allowed() {
+  case $1 in
+    model) echo "" ;;
+    gpu) echo "" ;;
+    io) echo "" ;;
+    reference) echo "model" ;;
+    sky) echo "gpu model" ;;
+    app) echo "sky gpu io reference model" ;;
+    *) echo "UNKNOWN" ;;
+  esac
+}
+
+# Every quoted include of every file: "file included" (system <...> includes are not layering).
+edges=$(mktemp)
+trap 'rm -f "$edges"' EXIT
+for f in */*.c */*.h; do
+  sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f" | while read -r inc; do
+    echo "$f $inc"
+  done
+done >"$edges"
+
+while read -r f inc; do
+  mod=${f%%/*}
+  [ "$(allowed "$mod")" = UNKNOWN ] && { echo "layering: $f: module '$mod' is not in the layering table"; fail=1; continue; }
+  case $inc in
+    */*) target=${inc%%/*} ;;
+    # Unqualified names: the C/GLSL shared layout (shaders/glsl/shared.h) and the SPIR-V headers generated at
+    # build time (build/shaders/*_{comp,frag,vert}.h), both for the renderer only.
+    shared.h|*_comp.h|*_frag.h|*_vert.h) target=shaders ;;
+    *) target=UNQUALIFIED ;;
+  esac
+  if [ "$target" = shaders ]; then
+    [ "$mod" = sky ] || [ "$mod" = app ] || { echo "layering: $f includes $inc: shader layouts are the renderer's"; fail=1; }
+    continue
+  fi
+  [ "$target" = "$mod" ] && continue
+  case " $(allowed "$mod") " in
+    *" $target "*) ;;
+    *) echo "layering: $f includes $inc: $mod may include only: $mod $(allowed "$mod")"; fail=1 ;;
+  esac
+done <"$edges"
+
+# Circles between units: tsort reports a loop in the unit graph.
+loops=$(awk '{ a = $1; sub(/\.[ch]$/, "", a); b = $2; sub(/\.[ch]$/, "", b); if (b ~ /\// && a != b) print a, b }' "$edges" \
+        | tsort 2>&1 >/dev/null | grep -v '^tsort: -: input contains a loop:$')
+if [ -n "$loops" ]; then
+  echo "layering: include circle between units:"; echo "$loops" | sed 's/^tsort: /  /'
+  fail=1
+fi
+
+# File length.
+for f in */*.c */*.h; do
+  n=$(wc -l <"$f")
+  [ "$n" -le 600 ] || { echo "layering: $f has $n lines (at most 600: split it along its seams)"; fail=1; }
+done
+
+[ $fail -eq 0 ] && echo "layering: $(wc -l <"$edges") includes in $(ls */*.c */*.h | wc -l) files follow the layering; no circles; no file over 600 lines"
+exit $fail

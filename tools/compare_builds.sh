@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# tools/compare_builds.sh OLD_VKSKY NEW_VKSKY: render the same list of frames with two builds and compare the files
+# byte for byte. A change that must not change behaviour (a refactor, a file split) passes only if every output is
+# identical: the default frame, each quality preset, each shipped scene, the window's screenshot (under Xvfb, when
+# xvfb-run is present), the CPU reference and the path tracer (images and printed values), and the traces.
+#
+#   cmake -S . -B build-old ... (at the old commit); cmake -S . -B build ... (now)
+#   tools/compare_builds.sh build-old/vksky build/vksky
+#
+# Exit 0: all identical; 1: some output differs (listed); 2: usage.
+set -u
+OLD=${1:?usage: compare_builds.sh OLD_VKSKY NEW_VKSKY}
+NEW=${2:?usage: compare_builds.sh OLD_VKSKY NEW_VKSKY}
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+size=(--width 96 --height 54)
+
+# name | arguments (FILE stands for the output path without extension; outputs are FILE.exr and FILE.png)
+cases=(
+  "default|--render FILE.exr --render FILE.png ${size[*]}"
+  "sunset|--render FILE.exr --render FILE.png ${size[*]} --sun-elevation 1 --sun-azimuth 30 --yaw 30"
+  "space|--render FILE.exr ${size[*]} --altitude 400 --pitch -60"
+  "fragment|--render FILE.exr ${size[*]} --sky-pass fragment"
+  "nobloom|--render FILE.exr ${size[*]} --no-bloom --tonemap reinhard"
+  "scale|--render FILE.exr ${size[*]} --render-scale 0.5"
+  "reference|--reference --render FILE.exr --width 24 --height 14 --sun-elevation -2"
+  "path_trace|--path-trace --samples 16 --render FILE.exr --width 16 --height 9"
+  "reference_print|--reference --sun-elevation 3"
+)
+for q in low medium high ultra; do cases+=("quality_$q|--render FILE.exr ${size[*]} --quality $q"); done
+for s in "$ROOT"/scenes/*.json; do
+  n=$(basename "$s" .json)
+  cases+=("scene_$n|--scene $s --render FILE.exr ${size[*]}")
+  cases+=("dump_$n|--scene $s --dump-scene")
+done
+cases+=("trace|--render FILE.exr ${size[*]} --trace-barriers --trace-passes")
+
+fail=0
+run_case() { # build tag name args
+  local bin=$1 tag=$2 name=$3 args=$4 out=$work/$2/$3
+  mkdir -p "$work/$tag"
+  # shellcheck disable=SC2086 # the argument list is word-split on purpose
+  "$bin" ${args//FILE/$out} >"$out.stdout" 2>"$out.stderr"
+  echo $? >"$out.status"
+}
+for c in "${cases[@]}"; do
+  name=${c%%|*} args=${c#*|}
+  run_case "$OLD" old "$name" "$args"
+  run_case "$NEW" new "$name" "$args"
+done
+
+# The window: a few frames and a screenshot (skipped without Xvfb).
+if command -v xvfb-run >/dev/null; then
+  for tag in old new; do
+    bin=$OLD; [ $tag = new ] && bin=$NEW
+    "$ROOT/tests/xvfb_run.sh" 640x480x24 "$bin" --frames 3 --width 160 --height 90 \
+      --screenshot "$work/$tag/window.png" >"$work/$tag/window.stdout" 2>/dev/null
+    echo $? >"$work/$tag/window.status"
+  done
+else
+  echo "compare_builds: no xvfb-run, window screenshot skipped"
+fi
+
+# Timing lines (the path tracer's seconds, bench medians) are not outputs: drop lines that carry a time.
+for f in "$work"/old/* ; do
+  b=$(basename "$f")
+  g=$work/new/$b
+  case $b in
+    *.stdout|*.stderr) cmp -s <(grep -v -E 'time|seconds| s$|ms' "$f") <(grep -v -E 'time|seconds| s$|ms' "$g") ;;
+    *) cmp -s "$f" "$g" ;;
+  esac || { echo "DIFFERS: $b"; fail=1; }
+done
+n=$(ls "$work"/old | wc -l)
+[ $fail -eq 0 ] && echo "compare_builds: all $n outputs identical"
+exit $fail
