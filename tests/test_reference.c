@@ -1,8 +1,9 @@
-/* tests/test_reference.c: proves the CPU reference (src/reference/ref_atmosphere.c) right where it can be checked
+/* tests/test_reference.c: proves the CPU reference (src/reference/, ref_atmosphere.h) right where it can be checked
  * independently, and converged where it cannot. Standalone: returns non-zero on failure, prints every check.
  *
  *   gcc -std=c11 -O2 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -Isrc tests/test_reference.c \
- *       src/reference/ref_atmosphere.c -lm -o /tmp/test_reference && /tmp/test_reference
+ *       src/reference/{medium_eval,geometry,mappings,multiscatter,psi_table,radiance}.c src/model/medium.c -lm \
+ *       -o /tmp/test_reference && /tmp/test_reference
  *
  * 1. LUT mappings: sub-UV and the Bruneton mapping are exact inverses; first/last texels sit on the bounds.
  * 2. Transmittance: straight up against the closed form (exponentials + the ozone tent integrated analytically);

@@ -6,7 +6,7 @@
  * Lambertian ground (albedo a parameter, 0 by default). The sun is a directional light of per-channel illuminance
  * a->sun_illuminance whose disc is EXCLUDED: light reaches the camera only after >= 1 scattering event.
  *
- * Method (unbiased; see path_tracer.c for the details):
+ * Method (unbiased; see pt_paths.c for the details):
  *  - each colour channel is traced monochromatically (its own path, its own sigma_t), so no spectral MIS is needed;
  *  - free paths are sampled with delta tracking against piecewise-constant majorants: every ray is cut into
  *    segments that are monotone in altitude (split at the tangent point), each at most a few km of altitude

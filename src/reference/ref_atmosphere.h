@@ -8,6 +8,8 @@
  * Threads: ref_sky_radiance() builds a multi-scattering table lazily (per atmosphere and Psi counts, in a small
  * static cache, ~2 s at the converged counts). Building is not thread-safe; once the table exists (one call made),
  * concurrent calls with the same atmosphere and counts are. Everything else is reentrant.
+ *
+ * The implementation is split by what it computes; ref_internal.h lists which file holds what.
  */
 #ifndef VKSKY_REF_ATMOSPHERE_H
 #define VKSKY_REF_ATMOSPHERE_H
