@@ -11,7 +11,7 @@
  *            [--configs a,b,...] [--device N]
  */
 #include "app/quality.h"
-#include "io/image_io.h"
+#include "io/half_float.h"
 #include "reference/metrics.h"
 #include <math.h>
 #include <pthread.h>

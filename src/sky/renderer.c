@@ -1,6 +1,5 @@
 #include "sky/renderer.h"
 #include "sky/shaders.h"
-#include "io/image_io.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -283,11 +282,11 @@ VkExtent2D sky_renderer_lut_extent(const sky_renderer *r, int which)
     return which == 0 ? r->luts.transmittance.extent : r->luts.multiscatter.extent;
 }
 
-void sky_renderer_read_lut(sky_renderer *r, int which, float *rgba_out)
+VkFormat sky_renderer_read_lut(sky_renderer *r, int which, void *texels_out)
 {
     const gpu_context *ctx = r->ctx;
     const gpu_image *img = which == 0 ? &r->luts.transmittance : &r->luts.multiscatter;
-    if (!img->image) return;   /* no multi-scattering LUT in this variant */
+    if (!img->image) return VK_FORMAT_UNDEFINED;   /* no multi-scattering LUT in this variant */
     const char *name = which == 0 ? "transmittance_lut" : "multiscatter_lut";
     size_t count = (size_t)img->extent.width * img->extent.height * 4;
     bool f32 = img->format == VK_FORMAT_R32G32B32A32_SFLOAT;
@@ -312,11 +311,7 @@ void sky_renderer_read_lut(sky_renderer *r, int which, float *rgba_out)
     gpu_barrier_flush(cmd, &b);
     gpu_submit_and_wait(ctx, cmd);
     gpu_buffer_invalidate(ctx, &buf);
-    if (f32) {
-        memcpy(rgba_out, buf.mapped, count * sizeof(float));
-    } else {
-        const uint16_t *h = buf.mapped;
-        for (size_t i = 0; i < count; ++i) rgba_out[i] = io_half_to_float(h[i]);
-    }
+    memcpy(texels_out, buf.mapped, count * (f32 ? sizeof(float) : sizeof(uint16_t)));
     gpu_buffer_destroy(ctx, &buf);
+    return img->format;
 }

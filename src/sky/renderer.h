@@ -108,8 +108,10 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 
 /* Records a frame, submits it, waits. Returns wall milliseconds from submit to fence. */
 double sky_renderer_render(sky_renderer *r, const frame_desc *f);
-/* Copy a LUT to the host as floats RGBA (tests): which 0 transmittance, 1 multiscatter; rgba_out holds
- * 4 x the extent's pixels. */
+/* Copy a LUT's texels to the host as stored (tests): which 0 transmittance, 1 multiscatter; texels_out holds
+ * 16 bytes x the extent's pixels (enough for either format). Returns the LUT's format: R32G32B32A32_SFLOAT (floats)
+ * or R16G16B16A16_SFLOAT (half floats, in the first half of texels_out; converting them is the caller's business,
+ * the renderer does no image I/O), VK_FORMAT_UNDEFINED when this variant has no such LUT (texels_out untouched). */
 VkExtent2D sky_renderer_lut_extent(const sky_renderer *r, int which);
-void sky_renderer_read_lut(sky_renderer *r, int which, float *rgba_out);
+VkFormat sky_renderer_read_lut(sky_renderer *r, int which, void *texels_out);
 #endif
