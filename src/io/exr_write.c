@@ -82,14 +82,7 @@ int io_write_exr(const char *path, int width, int height, const io_exr_layer *la
                  size_t err_size)
 {
     const char *p = io_safe_path(path);
-    if (!path || !path[0]) {
-        io_set_err(err, err_size, "cannot write '%s': empty path", p);
-        return -1;
-    }
-    if (width <= 0 || height <= 0 || width > IO_MAX_DIM || height > IO_MAX_DIM) {
-        io_set_err(err, err_size, "cannot write '%s': invalid image size %dx%d", p, width, height);
-        return -1;
-    }
+    if (io_check_image_target(path, width, height, err, err_size) != 0) return -1;
     if (!layers || layer_count <= 0 || layer_count > 1000) {
         io_set_err(err, err_size, "cannot write '%s': invalid layer list (%d layers)", p, layer_count);
         return -1;

@@ -56,3 +56,17 @@ int io_check_readable(const char *path, char *err, size_t err_size)
     }
     return 0;
 }
+
+int io_check_image_target(const char *path, int width, int height, char *err, size_t err_size)
+{
+    const char *p = io_safe_path(path);
+    if (!path || !path[0]) {
+        io_set_err(err, err_size, "cannot write '%s': empty path", p);
+        return -1;
+    }
+    if (width <= 0 || height <= 0 || width > IO_MAX_DIM || height > IO_MAX_DIM) {
+        io_set_err(err, err_size, "cannot write '%s': invalid image size %dx%d", p, width, height);
+        return -1;
+    }
+    return 0;
+}

@@ -20,4 +20,7 @@ const char *io_safe_path(const char *path);
    readable regular file, else -1 + "cannot read '<path>': <reason>". */
 int io_check_readable(const char *path, char *err, size_t err_size);
 
+/* The arguments every writer checks first: a non-empty path and a size in [1, IO_MAX_DIM]^2. 0, or -1 + err. */
+int io_check_image_target(const char *path, int width, int height, char *err, size_t err_size);
+
 #endif /* VKSKY_IO_IO_ERROR_H */

@@ -60,14 +60,7 @@ static void png_flush_fn(png_structp png)
 int io_write_png(const char *path, int width, int height, const uint8_t *rgba8, int srgb, char *err, size_t err_size)
 {
     const char *p = io_safe_path(path);
-    if (!path || !path[0]) {
-        io_set_err(err, err_size, "cannot write '%s': empty path", p);
-        return -1;
-    }
-    if (width <= 0 || height <= 0 || width > IO_MAX_DIM || height > IO_MAX_DIM) {
-        io_set_err(err, err_size, "cannot write '%s': invalid image size %dx%d", p, width, height);
-        return -1;
-    }
+    if (io_check_image_target(path, width, height, err, err_size) != 0) return -1;
     if (!rgba8) {
         io_set_err(err, err_size, "cannot write '%s': no pixels", p);
         return -1;
