@@ -4,7 +4,7 @@
 #define VKSKY_GPU_TEST_H
 #include "io/image_io.h"
 #include "reference/ref_atmosphere.h"
-#include "sky/renderer.h"
+#include "sky/submit.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -70,6 +70,20 @@ static inline test_frame test_renderer_frame(test_renderer *t, const sky_view *v
     for (size_t i = 0; i < 4 * n; ++i) out.linear[i] = io_half_to_float(half[i]);
     memcpy(out.display, t->r.readback_display.mapped, 4 * n);
     return out;
+}
+
+/* A LUT as floats RGBA (rgba_out holds 4 x the extent's pixels); half LUTs converted by io's half -> float. */
+static inline void test_read_lut(sky_renderer *r, int which, float *rgba_out)
+{
+    VkExtent2D e = sky_renderer_lut_extent(r, which);
+    size_t count = (size_t)e.width * e.height * 4;
+    uint16_t *half = malloc(count * sizeof(float));
+    VkFormat format = sky_renderer_read_lut(r, which, half);
+    if (format == VK_FORMAT_R32G32B32A32_SFLOAT)
+        memcpy(rgba_out, half, count * sizeof(float));
+    else if (format != VK_FORMAT_UNDEFINED)   /* half bits */
+        for (size_t i = 0; i < count; ++i) rgba_out[i] = io_half_to_float(half[i]);
+    free(half);
 }
 
 static inline void test_renderer_destroy(test_renderer *t) { sky_renderer_destroy(&t->r); }

@@ -13,6 +13,7 @@
 #include "app/quality.h"
 #include "io/image_io.h"
 #include "reference/metrics.h"
+#include "sky/submit.h"
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>

@@ -1,5 +1,6 @@
 #include "app/headless.h"
 #include "io/image_io.h"
+#include "sky/submit.h"
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>

@@ -20,6 +20,7 @@
 #include "app/camera.h"
 #include "app/window.h"
 #include "io/image_io.h"
+#include "sky/frame.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
