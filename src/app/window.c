@@ -38,6 +38,7 @@ static void on_glfw_error(int code, const char *text)
     snprintf(glfw_error, sizeof glfw_error, "GLFW error 0x%x: %s", code, text ? text : "");
 }
 
+/* The framebuffer changed size: the loop recreates the swapchain before its next frame. */
 static void on_framebuffer_size(GLFWwindow *w, int width, int height)
 {
     (void)width, (void)height;
@@ -45,7 +46,7 @@ static void on_framebuffer_size(GLFWwindow *w, int width, int height)
     a->swapchain_dirty = true;
 }
 
-/* --- Swapchain --------------------------------------------------------------------------------------------- */
+/* --- Swapchain recreation (swapchain.c) and the renderer's size -------------------------------------------- */
 
 /* Resize, OUT_OF_DATE or SUBOPTIMAL: a new swapchain and a renderer of the new size. Waiting for the device
  * first keeps it simple: nothing in flight still uses the old swapchain or the old-size render targets. */
