@@ -6,7 +6,7 @@
 #include "gpu/timing.h"
 #include "sky/atmosphere.h"
 #include "sky/passes.h"
-/* The renderer never reads a view; this include gives the renderer's users (options, camera) the view type. */
+/* The renderer never reads a view; this include gives the renderer's users (options, quality) the view type. */
 #include "sky/view_params.h"
 
 typedef struct sky_renderer_desc {
