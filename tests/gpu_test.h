@@ -4,7 +4,7 @@
 #define VKSKY_GPU_TEST_H
 #include "io/half_float.h"
 #include "reference/ref_atmosphere.h"
-#include "sky/renderer.h"
+#include "sky/submit.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

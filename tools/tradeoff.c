@@ -13,6 +13,7 @@
 #include "app/quality.h"
 #include "io/half_float.h"
 #include "reference/metrics.h"
+#include "sky/submit.h"
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>

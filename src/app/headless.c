@@ -2,6 +2,7 @@
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/png_io.h"
+#include "sky/submit.h"
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
