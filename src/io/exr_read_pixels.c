@@ -195,8 +195,16 @@ static int read_part(exr_context_t ctxt, const io_exr_src *src, int part, int wi
             else
                 rc = exr_read_tile_chunk_info(ctxt, part, cx, cy, 0, 0, &cinfo);
             if (rc != EXR_ERR_SUCCESS) {
-                io_exr_read_err(err, err_size, src, "truncated or corrupt chunk table: part %d, rows from %d: %s", part,
-                                y0, io_exr_read_msg(rc));
+                exr_compression_t comp = EXR_COMPRESSION_NONE;
+                exr_get_compression(ctxt, part, &comp);
+                /* 3.1's C library refuses a chunk whose packed size exceeds its unpacked size; B44 pads HALF data to
+                   4x4 blocks, so a small edge tile of a valid file can be refused (the C++ library reads it). */
+                int b44 = comp == EXR_COMPRESSION_B44 || comp == EXR_COMPRESSION_B44A;
+                io_exr_read_err(err, err_size, src, "truncated or corrupt chunk in part %d at rows from %d: %s%s", part,
+                                y0, io_exr_read_msg(rc),
+                                b44 ? " (OpenEXR 3.1's C library refuses some valid B44 edge tiles: re-save with ZIP "
+                                      "or PIZ if other programs read this file)"
+                                    : "");
                 return -1;
             }
             if (storage == EXR_STORAGE_SCANLINE) { /* scanline chunks state their own rows */
