@@ -30,7 +30,7 @@ typedef struct tw_part {
     float w2c[16], w2n[16];
 } tw_part;
 
-static uint32_t tw_hash(uint32_t a, uint32_t b, uint32_t c, uint32_t d)
+static inline uint32_t tw_hash(uint32_t a, uint32_t b, uint32_t c, uint32_t d)
 {
     uint32_t h = a * 0x9E3779B1u ^ (b + 0x7F4A7C15u) * 0x85EBCA77u ^ (c + 0x165667B1u) * 0xC2B2AE3Du ^ d * 0x27D4EB2Fu;
     h ^= h >> 15, h *= 0x2C1B3C6Du, h ^= h >> 12, h *= 0x297A2D39u, h ^= h >> 15;
@@ -38,7 +38,7 @@ static uint32_t tw_hash(uint32_t a, uint32_t b, uint32_t c, uint32_t d)
 }
 
 /* The stored bits of channel c of part p at data-window pixel (x, y) (x, y from 0). */
-static uint32_t tw_bits(int p, int c, int x, int y, int type, int smooth)
+static inline uint32_t tw_bits(int p, int c, int x, int y, int type, int smooth)
 {
     uint32_t h = tw_hash((uint32_t)p, (uint32_t)c, (uint32_t)x, (uint32_t)y);
     if (smooth) { /* a gentle ramp in half/float: lossy codecs keep it close */
@@ -65,7 +65,7 @@ static uint32_t tw_bits(int p, int c, int x, int y, int type, int smooth)
 }
 
 /* The value the reader must return for those bits (decoded here by the definition, not by any library). */
-static float tw_expect(uint32_t bits, int type)
+static inline float tw_expect(uint32_t bits, int type)
 {
     if (type == EXR_PIXEL_UINT) return (float)bits;
     if (type == EXR_PIXEL_FLOAT) {
@@ -78,9 +78,9 @@ static float tw_expect(uint32_t bits, int type)
     return (float)(s ? -v : v);
 }
 
-static int tw_bpe(int type) { return type == EXR_PIXEL_HALF ? 2 : 4; }
+static inline int tw_bpe(int type) { return type == EXR_PIXEL_HALF ? 2 : 4; }
 
-static int tw_write(const char *path, const tw_part *parts, int nparts)
+static inline int tw_write(const char *path, const tw_part *parts, int nparts)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_context_t ctxt = NULL;
