@@ -2,14 +2,16 @@
  * compositor: camera 218.8 m above the ground at (-3.5, -8.5, 218.8) m (world Z up, metres), 960x540, a ground
  * plane (z = 0) and spheres standing on it 1, 5, 10 and 20 km from the camera, sky above.
  *
- *   gen_composite_scene DIR [WIDTH HEIGHT]
+ *   gen_composite_scene DIR [WIDTH HEIGHT [sky]]
  *     DIR/render.exr    one Blender-style multilayer file: ViewLayer.Combined.R,G,B,A (half) and
  *                       ViewLayer.Position.X,Y,Z (float), worldToCamera and worldToNDC attributes; sky pixels have
  *                       alpha 0 and position (0, 0, 0), as Blender writes them
  *     DIR/beauty.exr    the beauty alone: R, G, B, A (half)
  *     DIR/position.exr  the position alone as R, G, B (float; sky: NaN), no camera attributes
- *     DIR/camera.txt    the flags that describe the camera without the attributes:
+ *     DIR/camera.txt    the flags that describe the camera without the attributes (the surfaces are lit by a
+ *                       sun at azimuth -70, elevation 12 degrees: composite with --sun-azimuth -70 --sun-elevation 12):
  *                       --camera-position -3.5,-8.5,218.8 --yaw -90 --pitch -3 --fov 40
+ *   "sky": the camera looks 60 degrees up: no pixel has geometry (a bad input for the composite).
  *
  * The pixel rays follow vksky's image convention (docs/model.md: yaw/pitch like the sun's azimuth/elevation, in the
  * world turned so that Z is up: (x, y_up, z) -> (x, -z, y_up)) but are computed here on their own; the files are
@@ -24,7 +26,8 @@
 
 static const double PI = 3.14159265358979323846;
 static const double CAMERA[3] = {-3.5, -8.5, 218.8};
-static const double YAW = -90.0, PITCH = -3.0, FOV = 40.0;
+static const double YAW = -90.0, FOV = 40.0;
+static double PITCH = -3.0;   /* "sky": 60 (nothing but sky in view) */
 
 typedef struct sphere { double centre[3], radius, albedo[3]; } sphere;
 
@@ -122,11 +125,12 @@ static int write_exr(const char *path, int w, int h, const channel *ch, int coun
 
 int main(int argc, char **argv)
 {
-    if (argc != 2 && argc != 4) {
-        fprintf(stderr, "usage: gen_composite_scene DIR [WIDTH HEIGHT]\n");
+    if (argc != 2 && argc != 4 && !(argc == 5 && !strcmp(argv[4], "sky"))) {
+        fprintf(stderr, "usage: gen_composite_scene DIR [WIDTH HEIGHT [sky]]\n");
         return 2;
     }
-    int W = argc == 4 ? atoi(argv[2]) : 960, H = argc == 4 ? atoi(argv[3]) : 540;
+    if (argc == 5) PITCH = 60.0;
+    int W = argc >= 4 ? atoi(argv[2]) : 960, H = argc >= 4 ? atoi(argv[3]) : 540;
     if (W < 8 || H < 8 || W > 8192 || H > 8192) {
         fprintf(stderr, "gen_composite_scene: WIDTH and HEIGHT in [8, 8192]\n");
         return 2;
@@ -137,7 +141,7 @@ int main(int argc, char **argv)
     world_dir(YAW + 90.0, 0.0, right);
     up[0] = right[1] * f[2] - right[2] * f[1], up[1] = right[2] * f[0] - right[0] * f[2],
     up[2] = right[0] * f[1] - right[1] * f[0];
-    world_dir(-60.0, 35.0, sun);
+    world_dir(-70.0, 12.0, sun);   /* the sun of the composite's --sun-azimuth -70 --sun-elevation 12 */
     double ty = tan(0.5 * FOV * PI / 180.0), tx = ty * W / H;
     /* Spheres standing on the ground, 1, 5, 10, 20 km away, spread across the view, ~3 degrees across. */
     sphere spheres[4];

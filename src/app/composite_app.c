@@ -2,7 +2,6 @@
  * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
  * stderr and exit status 2, before any output file exists. */
 #include "app/composite_app.h"
-#include "io/exr_layers.h"
 #include "io/exr_read.h"
 #include "io/image_io.h"
 #include "sky/composite.h"
@@ -69,16 +68,16 @@ typedef struct layer_pick {
     const char *letters;      /* "RGBA", "RGB", "XYZ" */
 } layer_pick;
 
-static int pick_beauty(const io_exr_info *info, const char *path, const char *asked, bool own_file, layer_pick *p)
+static int pick_beauty(const io_exr_info *info, const char *path, const char *asked, layer_pick *p)
 {
     char have[600];
     if (asked) {
         snprintf(p->prefix, sizeof p->prefix, "%s", asked);
     } else if (!find_layer(info, ".Combined.R", p->prefix, sizeof p->prefix)) {
-        if (!own_file || !has_layer(info, "", "RGB")) {
+        if (!has_layer(info, "", "RGB")) {
             list_channels(info, have, sizeof have);
-            fprintf(stderr, "vksky: --composite: %s: no beauty layer: expected <ViewLayer>.Combined.R,G,B,A%s (or "
-                            "--beauty-layer NAME); the file has %s\n", path, own_file ? " or R,G,B,A" : "", have);
+            fprintf(stderr, "vksky: --composite: %s: no beauty layer: expected <ViewLayer>.Combined.R,G,B,A or "
+                            "R,G,B,A (or --beauty-layer NAME); the file has %s\n", path, have);
             return 2;
         }
         p->prefix[0] = '\0';
@@ -237,26 +236,26 @@ static int gpu_end(gpu_context *ctx, sky_renderer *r, int status)
     return status;
 }
 
-/* The layers in io_exr_out_layer form: the composite RGBA at the top level (or `top` when given), the AOVs RGB. */
+/* The composite RGBA at the top level (or `top` when given) and the AOV layers. Written through io_write_exr for
+ * now (half RGBA layers: each AOV carries an A of 1); exrio's io_write_exr_layers (RGB AOVs) replaces it when it
+ * lands. */
 static int write_layers(const char *path, const sky_composite *c, const float *top, char *err, size_t err_size)
 {
     size_t n = (size_t)c->width * c->height;
-    float *rgb = malloc(n * 3 * sizeof(float) * (VKSKY_AOV_COUNT - 1));
-    if (!rgb) {
+    uint16_t *half = malloc(n * 4 * sizeof(uint16_t) * VKSKY_AOV_COUNT);
+    if (!half) {
         snprintf(err, err_size, "out of memory");
         return -1;
     }
-    io_exr_out_layer layers[VKSKY_AOV_COUNT];
-    layers[0] = (io_exr_out_layer){"", 4, top ? top : sky_composite_layer(c, VKSKY_AOV_COMPOSITE)};
-    for (int k = 1; k < VKSKY_AOV_COUNT; ++k) {
-        float *dst = rgb + (size_t)(k - 1) * 3 * n;
-        const float *src = sky_composite_layer(c, k);
-        for (size_t i = 0; i < n; ++i)
-            for (int ch = 0; ch < 3; ++ch) dst[3 * i + ch] = src[4 * i + ch];
-        layers[k] = (io_exr_out_layer){AOV_NAMES[k], 3, dst};
+    io_exr_layer layers[VKSKY_AOV_COUNT];
+    for (int k = 0; k < VKSKY_AOV_COUNT; ++k) {
+        uint16_t *dst = half + (size_t)k * 4 * n;
+        const float *src = k == 0 && top ? top : sky_composite_layer(c, k);
+        for (size_t i = 0; i < 4 * n; ++i) dst[i] = io_float_to_half(k > 0 && i % 4 == 3 ? 1.0f : src[i]);
+        layers[k] = (io_exr_layer){AOV_NAMES[k], dst};
     }
-    int rc = io_write_exr_layers(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, err, err_size);
-    free(rgb);
+    int rc = io_write_exr(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, err, err_size);
+    free(half);
     return rc;
 }
 
@@ -302,7 +301,7 @@ int composite_run(const options *o, const composite_options *co)
     }
     const io_exr_info *pinfo = co->position ? &pi : &bi;
     layer_pick bp, pp;
-    if (pick_beauty(&bi, beauty_path, co->beauty_layer, co->position != NULL, &bp) ||
+    if (pick_beauty(&bi, beauty_path, co->beauty_layer, &bp) ||
         pick_position(pinfo, position_path, co->position_layer, co->position != NULL, &pp)) {
         status = 2;
         goto done_info;
