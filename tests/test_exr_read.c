@@ -497,6 +497,21 @@ static void test_bad_files(void)
     spit(p = tmp_path("scrambled.exr"), m, n);
     expect_bad(p, "corrupt ZIPS-compressed chunk", NULL, 1);
 
+    /* A subsampled channel (4:2:0 chroma style) is refused by name; the full-resolution ones beside it read. */
+    tw_part sub = {.name = "s", .compression = EXR_COMPRESSION_ZIP, .w = 16, .h = 8, .nch = 2, .sampling = 2,
+                   .ch = {{"Y", EXR_PIXEL_HALF}, {"BY", EXR_PIXEL_HALF}}};
+    p = tmp_path("subsampled.exr");
+    CHECK(tw_write(p, &sub, 1) == 0, "write %s", p);
+    {
+        char e3[512] = "";
+        const char *by[1] = {"BY"}, *y[1] = {"Y"};
+        float o[16 * 8];
+        CHECK(io_exr_read_channels(p, by, 1, o, e3, sizeof e3) != 0 && strstr(e3, "'BY' is subsampled (2x2)"), "%s", e3);
+        CHECK(io_exr_read_channels(p, y, 1, o, e3, sizeof e3) == 0, "%s", e3);
+        for (int i = 0; i < 16 * 8; ++i)
+            CHECK(o[i] == tw_expect(tw_bits(0, 0, i % 16, i / 16, EXR_PIXEL_HALF, 0), EXR_PIXEL_HALF), "Y %d", i);
+    }
+
     /* A channel that is not there: the message lists what is. */
     char err[512] = "";
     const char *names[2] = {"G", "ViewLayer.Position.X"};
