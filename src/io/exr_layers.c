@@ -8,13 +8,12 @@
 
 #include "io/exr_layers.h"
 
-#include "io/atomic_file.h"
-#include "io/exr_common.h"
-#include "io/half_float.h"
-#include "io/io_error.h"
+#include "io/image_io.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <limits.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +22,83 @@
 #include <unistd.h>
 
 #include <openexr.h>
+
+/* INTERIM, until the layout split (issue 11) lands its io_error.h, atomic_file.h and exr_common.h: minimal local
+   stand-ins with the same names and behaviour, removed by the merge that switches to them. */
+#define IO_EXR_MAX_LAYER_NAME 200
+typedef struct io_exr_write_layer {
+    const char *name;
+    int channels;
+    const uint16_t *half;
+    const float *f32;
+} io_exr_write_layer;
+static int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
+                                    int layer_count, char *err, size_t err_size);
+static const char *io_safe_path(const char *path) { return path ? path : "(null)"; }
+__attribute__((format(printf, 3, 4))) static void io_set_err(char *err, size_t err_size, const char *fmt, ...)
+{
+    if (!err || err_size == 0) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err, err_size, fmt, ap);
+    va_end(ap);
+    for (char *q = err; *q; ++q)
+        if (*q == '\n' || *q == '\r') *q = ' ';
+}
+static int io_check_image_target(const char *path, int width, int height, char *err, size_t err_size)
+{
+    if (!path || !path[0]) {
+        io_set_err(err, err_size, "cannot write '%s': empty path", io_safe_path(path));
+        return -1;
+    }
+    if (width <= 0 || height <= 0 || width > (1 << 16) || height > (1 << 16)) {
+        io_set_err(err, err_size, "cannot write '%s': invalid image size %dx%d", path, width, height);
+        return -1;
+    }
+    return 0;
+}
+static int io_atomic_open(const char *path, char *tmp, size_t tmp_size, char *err, size_t err_size)
+{
+    const char *slash = strrchr(path, '/');
+    size_t plen = slash ? (size_t)(slash - path) + 1 : 0;
+    int n = snprintf(tmp, tmp_size, "%.*s.%s.tmp.%ld", (int)plen, path, path + plen, (long)getpid());
+    int fd = (n < 0 || (size_t)n >= tmp_size) ? -1 : open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+    if (fd < 0) io_set_err(err, err_size, "cannot write '%s': %s", path, strerror(errno));
+    return fd;
+}
+static int io_atomic_commit(int fd, const char *tmp, const char *path, char *err, size_t err_size)
+{
+    int ok = fsync(fd) == 0;
+    ok = (close(fd) == 0) && ok;
+    if (!ok || rename(tmp, path) != 0) {
+        io_set_err(err, err_size, "cannot write '%s': %s", path, strerror(errno));
+        unlink(tmp);
+        return -1;
+    }
+    return 0;
+}
+static void io_atomic_abort(int fd, const char *tmp)
+{
+    if (fd >= 0) close(fd);
+    unlink(tmp);
+}
+static _Thread_local char g_msg[256];
+static void io_exr_error_handler(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    (void)ctxt;
+    snprintf(g_msg, sizeof g_msg, "%s", msg ? msg : exr_get_default_error_message(code));
+}
+static void io_exr_clear_msg(void) { g_msg[0] = '\0'; }
+static const char *io_exr_msg(exr_result_t rc) { return g_msg[0] ? g_msg : exr_get_default_error_message(rc); }
+static void io_exr_channel_name(char *out, size_t out_size, const char *layer, int c)
+{
+    static const char comp[4] = {'R', 'G', 'B', 'A'};
+    if (layer[0])
+        snprintf(out, out_size, "%s.%c", layer, comp[c]);
+    else
+        snprintf(out, out_size, "%c", comp[c]);
+}
+/* END INTERIM */
 
 typedef struct out_stream {
     int fd;
@@ -119,10 +195,49 @@ static void feed_channel(exr_coding_channel_info_t *ci, const io_exr_write_layer
     ci->user_bytes_per_element = (int16_t)sizeof(uint16_t);
 }
 
-int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
-                             int layer_count, char *err, size_t err_size)
+/* Everything a writer is given, checked before a file is opened. 0, or -1 + err. */
+static int check_layers(const char *path, int width, int height, const io_exr_write_layer *layers, int layer_count,
+                        char *err, size_t err_size)
 {
     const char *p = io_safe_path(path);
+    if (io_check_image_target(path, width, height, err, err_size) != 0) return -1;
+    if (!layers || layer_count <= 0 || layer_count > 1000) {
+        io_set_err(err, err_size, "cannot write '%s': invalid layer list (%d layers; 1 to 1000 accepted)", p,
+                   layer_count);
+        return -1;
+    }
+    for (int i = 0; i < layer_count; ++i) {
+        const io_exr_write_layer *L = &layers[i];
+        size_t len = L->name ? strlen(L->name) : 0;
+        if (!L->name || (!L->half && !L->f32)) {
+            io_set_err(err, err_size, "cannot write '%s': layer %d has no %s", p, i, L->name ? "pixels" : "name");
+            return -1;
+        }
+        if (L->channels != 3 && L->channels != 4) {
+            io_set_err(err, err_size, "cannot write '%s': layer '%s' has %d channels (3 or 4 accepted)", p, L->name,
+                       L->channels);
+            return -1;
+        }
+        if (len > IO_EXR_MAX_LAYER_NAME || (len && (L->name[0] == '.' || L->name[len - 1] == '.'))) {
+            io_set_err(err, err_size, "cannot write '%s': layer %d name '%.40s' %s", p, i, L->name,
+                       len > IO_EXR_MAX_LAYER_NAME ? "too long" : "starts or ends with '.'");
+            return -1;
+        }
+        for (int j = 0; j < i; ++j) {
+            if (strcmp(L->name, layers[j].name) == 0) {
+                io_set_err(err, err_size, "cannot write '%s': duplicate layer name '%s'", p, L->name);
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+static int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
+                                    int layer_count, char *err, size_t err_size)
+{
+    const char *p = io_safe_path(path);
+    if (check_layers(path, width, height, layers, layer_count, err, err_size) != 0) return -1;
     char tmp[PATH_MAX + 64];
     int fd = io_atomic_open(path, tmp, sizeof tmp, err, err_size);
     if (fd < 0) return -1;
@@ -247,48 +362,15 @@ fail:
 int io_write_exr_layers(const char *path, int width, int height, const io_exr_out_layer *layers, int layer_count,
                         char *err, size_t err_size)
 {
-    const char *p = io_safe_path(path);
-    if (io_check_image_target(path, width, height, err, err_size) != 0) return -1;
-    if (!layers || layer_count <= 0 || layer_count > 1000) {
-        io_set_err(err, err_size, "cannot write '%s': invalid layer list (%d layers; 1 to 1000 accepted)", p,
-                   layer_count);
-        return -1;
-    }
+    if (!layers || layer_count <= 0 || layer_count > 1000)
+        return check_layers(path, width, height, NULL, layer_count, err, err_size);
     io_exr_write_layer *w = (io_exr_write_layer *)calloc((size_t)layer_count, sizeof *w);
     if (!w) {
-        io_set_err(err, err_size, "cannot write '%s': out of memory", p);
+        io_set_err(err, err_size, "cannot write '%s': out of memory", io_safe_path(path));
         return -1;
     }
-    int r = -1;
-    for (int i = 0; i < layer_count; ++i) {
-        const io_exr_out_layer *L = &layers[i];
-        size_t len = L->name ? strlen(L->name) : 0;
-        if (!L->name || !L->pixels) {
-            io_set_err(err, err_size, "cannot write '%s': layer %d has no %s", p, i, L->name ? "pixels" : "name");
-            goto done;
-        }
-        if (L->channels != 3 && L->channels != 4) {
-            io_set_err(err, err_size, "cannot write '%s': layer '%s' has %d channels (3 or 4 accepted)", p, L->name,
-                       L->channels);
-            goto done;
-        }
-        if (len > IO_EXR_MAX_LAYER_NAME || (len && (L->name[0] == '.' || L->name[len - 1] == '.'))) {
-            io_set_err(err, err_size, "cannot write '%s': layer name '%.40s' %s", p, L->name,
-                       len > IO_EXR_MAX_LAYER_NAME ? "is too long" : "starts or ends with '.'");
-            goto done;
-        }
-        for (int j = 0; j < i; ++j) {
-            if (strcmp(L->name, layers[j].name) == 0) {
-                io_set_err(err, err_size, "cannot write '%s': duplicate layer name '%s'", p, L->name);
-                goto done;
-            }
-        }
-        w[i].name = L->name;
-        w[i].channels = L->channels;
-        w[i].f32 = L->pixels;
-    }
-    r = io_exr_write_layers_half(path, width, height, w, layer_count, err, err_size);
-done:
+    for (int i = 0; i < layer_count; ++i) w[i] = (io_exr_write_layer){layers[i].name, layers[i].channels, NULL, layers[i].pixels};
+    int r = io_exr_write_layers_half(path, width, height, w, layer_count, err, err_size);
     free(w);
     return r;
 }
