@@ -26,6 +26,7 @@ typedef struct tw_part {
     int nch;
     tw_channel ch[8];
     int smooth;                      /* 1: smooth values (for lossy codecs), 0: random bits */
+    int sampling;                    /* x and y sampling of the last channel (0 or 1: none) */
     int has_w2c, has_w2n;
     float w2c[16], w2n[16];
 } tw_part;
@@ -99,8 +100,11 @@ static inline int tw_write(const char *path, const tw_part *parts, int nparts)
             rc = exr_set_tile_descriptor(ctxt, idx, (uint32_t)P->tile_w, (uint32_t)P->tile_h, EXR_TILE_ONE_LEVEL,
                                          EXR_TILE_ROUND_DOWN);
         for (int c = 0; c < P->nch && !rc; ++c)
+        {
+            int smp = c == P->nch - 1 && P->sampling > 1 ? P->sampling : 1;
             rc = exr_add_channel(ctxt, idx, P->ch[c].name, (exr_pixel_type_t)P->ch[c].type,
-                                 EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+                                 EXR_PERCEPTUALLY_LOGARITHMIC, smp, smp);
+        }
         if (!rc && P->has_w2c) {
             exr_attr_m44f_t m;
             memcpy(m.m, P->w2c, sizeof m.m);
@@ -135,14 +139,14 @@ static inline int tw_write(const char *path, const tw_part *parts, int nparts)
                 if (rc) break;
                 rc = exr_encoding_initialize(ctxt, p, &ci, &enc);
                 if (rc) break;
-                int x0 = cx * sx, y0 = cy * sy, cw = ci.width, chh = ci.height;
+                int x0 = cx * sx, y0 = cy * sy;
                 uint8_t *bufs[8] = {0};
                 for (int c = 0; c < enc.channel_count && !rc; ++c) {
                     exr_coding_channel_info_t *e = &enc.channels[c];
                     int k = 0; /* the channel list is sorted: find ours by name */
                     while (k < P->nch && strcmp(P->ch[k].name, e->channel_name) != 0) ++k;
-                    int bpe = tw_bpe(P->ch[k].type);
-                    bufs[c] = (uint8_t *)malloc((size_t)cw * (size_t)chh * (size_t)bpe);
+                    int bpe = tw_bpe(P->ch[k].type), cw = e->width, chh = e->height; /* subsampled: fewer */
+                    bufs[c] = (uint8_t *)malloc((size_t)(cw ? cw : 1) * (size_t)(chh ? chh : 1) * (size_t)bpe);
                     if (!bufs[c]) {
                         rc = EXR_ERR_OUT_OF_MEMORY;
                         break;

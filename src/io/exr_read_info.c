@@ -210,6 +210,14 @@ int io_exr_read_info_src(const io_exr_src *src, io_exr_info *info, char *err, si
             goto fail;
         }
         total += chl->num_channels;
+        /* Every chunk has an 8-byte entry in the offset table: a file too short for the table cannot hold the
+           image its header claims, and is refused before a caller sizes buffers by it. */
+        int32_t chunks = 0;
+        if (exr_get_chunk_count(ctxt, p, &chunks) == EXR_ERR_SUCCESS && (uint64_t)chunks * 8u > src->size) {
+            io_exr_read_err(err, err_size, src, "truncated: part %d's chunk table needs %lld bytes, the file has %llu",
+                            p, (long long)chunks * 8, (unsigned long long)src->size);
+            goto fail;
+        }
     }
     info->channels = (io_exr_channel *)calloc((size_t)total, sizeof *info->channels);
     if (!info->channels) {

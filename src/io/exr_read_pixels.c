@@ -53,13 +53,17 @@ static exr_result_t unpack_to_float(exr_decode_pipeline_t *dec)
     for (int ly = 0; ly < dec->chunk.height; ++ly) {
         for (int c = 0; c < dec->channel_count; ++c) {
             const exr_coding_channel_info_t *ci = &dec->channels[c];
-            if (ci->width != dec->chunk.width || ci->height != dec->chunk.height) return EXR_ERR_CORRUPT_CHUNK;
+            /* A subsampled channel (never one we read: refused up front) has ci->width values on every
+               y_samples-th line of the image only. */
+            if (ci->y_samples > 1 && (dec->chunk.start_y + ly) % ci->y_samples != 0) continue;
+            if (ci->width < 0 || ci->width > dec->chunk.width) return EXR_ERR_CORRUPT_CHUNK;
             int bpe = ci->bytes_per_element;
             if (bpe != (ci->data_type == EXR_PIXEL_HALF ? 2 : 4)) return EXR_ERR_CORRUPT_CHUNK;
             uint64_t nbytes = (uint64_t)ci->width * (uint64_t)bpe;
             if (pos + nbytes > avail) return EXR_ERR_CORRUPT_CHUNK;
             for (int k = 0; k < t->count; ++k) {
                 if (t->slot_of[k] != c) continue;
+                if (ci->width != dec->chunk.width || ci->height != dec->chunk.height) return EXR_ERR_CORRUPT_CHUNK;
                 const uint8_t *s = src + pos;
                 float *dst = t->out + ((size_t)(t->y0 + ly) * (size_t)t->width + (size_t)t->x0) * (size_t)t->count +
                              (size_t)k;

@@ -42,5 +42,9 @@ int main(int argc, char **argv)
                     .h = 5, .nch = 2, .smooth = 1, .ch = {{"R", EXR_PIXEL_HALF}, {"Z", EXR_PIXEL_FLOAT}}};
     snprintf(path, sizeof path, "%s/tiled_b44_edge.exr", argv[1]);
     fails += tw_write(path, &edge, 1) != 0;
+    tw_part sub = {.name = "s", .compression = EXR_COMPRESSION_RLE, .w = 8, .h = 4, .nch = 2, .sampling = 2,
+                   .ch = {{"Y", EXR_PIXEL_HALF}, {"RY", EXR_PIXEL_HALF}}};
+    snprintf(path, sizeof path, "%s/scan_subsampled.exr", argv[1]);
+    fails += tw_write(path, &sub, 1) != 0;
     return fails ? 1 : 0;
 }
