@@ -2,6 +2,7 @@
  * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
  * stderr and exit status 2, before any output file exists. */
 #include "app/composite_app.h"
+#include "io/exr_layers.h"
 #include "io/exr_read.h"
 #include "io/image_io.h"
 #include "sky/composite.h"
@@ -236,26 +237,27 @@ static int gpu_end(gpu_context *ctx, sky_renderer *r, int status)
     return status;
 }
 
-/* The composite RGBA at the top level (or `top` when given) and the AOV layers. Written through io_write_exr for
- * now (half RGBA layers: each AOV carries an A of 1); exrio's io_write_exr_layers (RGB AOVs) replaces it when it
- * lands. */
+/* The composite RGBA at the top level (or `top` when given), the AOVs as RGB layers (io/exr_layers.h: half, the
+ * layer.channel names). */
 static int write_layers(const char *path, const sky_composite *c, const float *top, char *err, size_t err_size)
 {
     size_t n = (size_t)c->width * c->height;
-    uint16_t *half = malloc(n * 4 * sizeof(uint16_t) * VKSKY_AOV_COUNT);
-    if (!half) {
+    float *rgb = malloc(n * 3 * sizeof(float) * (VKSKY_AOV_COUNT - 1));
+    if (!rgb) {
         snprintf(err, err_size, "out of memory");
         return -1;
     }
-    io_exr_layer layers[VKSKY_AOV_COUNT];
-    for (int k = 0; k < VKSKY_AOV_COUNT; ++k) {
-        uint16_t *dst = half + (size_t)k * 4 * n;
-        const float *src = k == 0 && top ? top : sky_composite_layer(c, k);
-        for (size_t i = 0; i < 4 * n; ++i) dst[i] = io_float_to_half(k > 0 && i % 4 == 3 ? 1.0f : src[i]);
-        layers[k] = (io_exr_layer){AOV_NAMES[k], dst};
+    io_exr_out_layer layers[VKSKY_AOV_COUNT];
+    layers[0] = (io_exr_out_layer){"", 4, top ? top : sky_composite_layer(c, VKSKY_AOV_COMPOSITE)};
+    for (int k = 1; k < VKSKY_AOV_COUNT; ++k) {
+        float *dst = rgb + (size_t)(k - 1) * 3 * n;
+        const float *src = sky_composite_layer(c, k);
+        for (size_t i = 0; i < n; ++i)
+            for (int ch = 0; ch < 3; ++ch) dst[3 * i + ch] = src[4 * i + ch];
+        layers[k] = (io_exr_out_layer){AOV_NAMES[k], 3, dst};
     }
-    int rc = io_write_exr(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, err, err_size);
-    free(half);
+    int rc = io_write_exr_layers(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, err, err_size);
+    free(rgb);
     return rc;
 }
 
