@@ -43,6 +43,12 @@ if command -v oiiotool >/dev/null; then
     # The camera from the EXR's matrices and from the flags: the same image to fp16 (the matrices are float).
     oiiotool "$work/out/multi.exr" "$work/out/two.exr" --fail 0.01 --diff >"$work/diff" 2>&1 ||
         fail "multilayer vs two-file composite differ: $(tail -n 3 "$work/diff")"
+    # The same render as one tiled, float file (oiiotool keeps the camera attributes): the same composite.
+    oiiotool "$S/render.exr" -d float --tile 32 32 -o "$work/tiled.exr" &&
+        "$VKSKY" --composite "$work/tiled.exr" --render "$work/out/tiled.exr" "${SUN[@]}" --validate 2>"$work/err" ||
+        fail "tiled float composite: exit $? ($(cat "$work/err"))"
+    oiiotool "$work/out/multi.exr" "$work/out/tiled.exr" --fail 0.001 --diff >"$work/diff" 2>&1 ||
+        fail "tiled float input vs scanline half input: $(tail -n 3 "$work/diff")"
     # A plain sky render with --aovs carries the same layers.
     "$VKSKY" --render "$work/out/aovs.exr" --width 64 --height 36 --aovs --validate 2>"$work/err" ||
         fail "--aovs render: exit $? ($(cat "$work/err"))"
