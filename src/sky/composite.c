@@ -231,6 +231,10 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     /* 1. LUTs, only when the atmosphere changed (frame.c): afterwards readable by compute shaders. */
     frame_record_luts(r, cmd, force_luts);
 
+    /* (--aerial-perspective volume plugs in here: the froxel volume's compute pass, after the LUTs it reads and
+     * before the composite pass samples it, with its own named barriers; composite.comp then takes the camera ->
+     * point values from it instead of aerial_march, see aerial.glsl.) */
+
     /* 2. Upload. The previous frame's composite pass sampled the input image (WAR); it is fully rewritten:
      * UNDEFINED -> TRANSFER_DST. (The host wrote the upload buffer before the submit: the submit makes that
      * visible, no barrier.) */
