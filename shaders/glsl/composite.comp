@@ -21,9 +21,12 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 bool finite3(vec3 x) { return !any(isnan(x)) && !any(isinf(x)); }
 
+/* Every layer within the finite fp16 range; the composite keeps a negative beauty's sign (filters ring), the
+ * atmosphere's layers are never negative. */
 void store(ivec2 p, int height, int layer, vec4 value)
 {
-    imageStore(composite_out, ivec2(p.x, p.y + layer * height), clamp(value, vec4(0.0), vec4(FP16_MAX)));
+    vec4 lo = vec4(layer == VKSKY_AOV_COMPOSITE ? -FP16_MAX : 0.0);
+    imageStore(composite_out, ivec2(p.x, p.y + layer * height), clamp(value, lo, vec4(FP16_MAX)));
 }
 
 void main()
@@ -33,6 +36,9 @@ void main()
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (p.x >= size.x || p.y >= height) return;
     vec4 beauty = texelFetch(composite_in, p, 0);
+    /* A non-finite beauty value (a renderer's firefly gone to Inf) would make the whole pixel NaN: read as 0. */
+    for (int c = 0; c < 4; ++c)
+        if (isnan(beauty[c]) || isinf(beauty[c])) beauty[c] = 0.0;
     vec3 position = texelFetch(composite_in, ivec2(p.x, p.y + height), 0).xyz;
     float h = push.forward.w;
     vec3 s = push.sun_dir.xyz;
