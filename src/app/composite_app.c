@@ -270,6 +270,35 @@ static composite_view view_from_options(const options *o)
                             .step_distribution = o->view.step_distribution};
 }
 
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* --bench N with --composite: per-pass GPU medians of N composite frames after warm-up (the LUTs are not in them:
+ * built once by the first frame), one line per pass like the sky's benchmark. */
+static void bench(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames)
+{
+    enum { PASSES = 3 };
+    static const char *const names[PASSES] = {"composite_upload", "composite", "composite_readback"};
+    double *ms = calloc((size_t)frames * PASSES, sizeof *ms), read[GPU_TIMER_MAX];
+    if (!ms) return;
+    for (int i = 0; i < 3; ++i) sky_composite_render(r, c, push, 1);   /* warm-up: LUTs, shader compiles, clocks */
+    for (int i = 0; i < frames; ++i) {
+        sky_composite_render(r, c, push, 1);
+        uint32_t count = gpu_timer_read(r->ctx, &r->timer, read);
+        for (uint32_t k = 0; k < count; ++k)
+            for (int p = 0; p < PASSES; ++p)
+                if (!strcmp(r->timer.names[k], names[p])) ms[p * frames + i] = read[k];
+    }
+    for (int p = 0; p < PASSES && r->timer.enabled; ++p) {
+        qsort(ms + p * frames, (size_t)frames, sizeof *ms, compare_double);
+        printf("pass %s gpu_ms %.4f (%ux%u)\n", names[p], ms[p * frames + frames / 2], c->width, c->height);
+    }
+    free(ms);
+}
+
 static bool is_exr(const char *path)
 {
     size_t n = strlen(path);
@@ -387,6 +416,7 @@ int composite_run(const options *o, const composite_options *co)
     float *in = sky_composite_inputs(&c);
     memcpy(in, beauty, n * 4 * sizeof(float));
     memcpy(in + 4 * n, position, n * 4 * sizeof(float));
+    if (o->bench_frames > 0) bench(&r, &c, &push, o->bench_frames);
     sky_composite_render(&r, &c, &push, frames_from_env());
     if (write_layers(out_path, &c, NULL, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --render: %s\n", err);

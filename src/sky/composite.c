@@ -215,10 +215,18 @@ const float *sky_composite_layer(const sky_composite *c, int k)
 
 /* --- The composite frame -------------------------------------------------------------------------------- */
 
-static void pass_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
+/* A pass: trace line, debug label, GPU timestamps (as frame.c's passes). */
+static uint32_t pass_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
 {
     if (r->pass_trace) fprintf(r->pass_trace, "pass %s\n", pass);
     gpu_label_begin(r->ctx, cmd, pass);
+    return gpu_timer_begin(&r->timer, cmd, pass);
+}
+
+static void pass_end(sky_renderer *r, VkCommandBuffer cmd, uint32_t slot)
+{
+    gpu_timer_end(&r->timer, cmd, slot);
+    gpu_label_end(r->ctx, cmd);
 }
 
 void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer cmd, const CompositePush *push,
@@ -242,11 +250,11 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     gpu_barrier_add_image(&b, "composite_in.to_upload", "composite_in", c->input.image, one,
                           GPU_USAGE_COMPUTE_SAMPLED, GPU_USAGE_TRANSFER_DST, true);
     gpu_barrier_flush(cmd, &b);
-    pass_begin(r, cmd, "composite_upload");
+    uint32_t t = pass_begin(r, cmd, "composite_upload");
     VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                 .imageExtent = {c->width, 2 * c->height, 1}};
     vkCmdCopyBufferToImage(cmd, c->upload.buffer, c->input.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-    gpu_label_end(r->ctx, cmd);
+    pass_end(r, cmd, t);
 
     /* 3. The copy wrote the inputs; the composite shader samples them: RAW + layout. The previous frame's
      * readback copy read the layer image (WAR); every texel is rewritten: UNDEFINED -> GENERAL. */
@@ -256,22 +264,22 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     gpu_barrier_add_image(&b, "aovs.to_storage", "aovs", c->output.image, one, GPU_USAGE_TRANSFER_SRC,
                           GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
     gpu_barrier_flush(cmd, &b);
-    pass_begin(r, cmd, "composite");
+    t = pass_begin(r, cmd, "composite");
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c->pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, c->layout, 0, 1, &c->set, 0, NULL);
     vkCmdPushConstants(cmd, c->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
     vkCmdDispatch(cmd, (c->width + 7) / 8, (c->height + 7) / 8, 1);
-    gpu_label_end(r->ctx, cmd);
+    pass_end(r, cmd, t);
 
     /* 4. The composite shader wrote every layer; the readback copy reads them: RAW + GENERAL -> TRANSFER_SRC. */
     b = gpu_barrier_batch_begin("after composite");
     gpu_barrier_add_image(&b, "aovs.write_to_copy", "aovs", c->output.image, one, GPU_USAGE_COMPUTE_STORAGE_WRITE,
                           GPU_USAGE_TRANSFER_SRC, false);
     gpu_barrier_flush(cmd, &b);
-    pass_begin(r, cmd, "composite_readback");
+    t = pass_begin(r, cmd, "composite_readback");
     region.imageExtent = (VkExtent3D){c->width, VKSKY_AOV_COUNT * c->height, 1};
     vkCmdCopyImageToBuffer(cmd, c->output.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, c->readback.buffer, 1, &region);
-    gpu_label_end(r->ctx, cmd);
+    pass_end(r, cmd, t);
 
     /* 5. The copy wrote the readback buffer; the CPU reads it after the fence: RAW (the fence alone does not
      * make device writes visible to the host). */
