@@ -2,7 +2,8 @@
 # vksky --composite (issue 12): seed 004's scene (tests/gen_composite_scene.c) composited from one Blender-style
 # multilayer file (camera from its worldToCamera/worldToNDC) and from two files (camera from flags): both exit 0
 # under validation, agree with each other, and their layers satisfy composite = beauty * T + rayleigh + mie
-# (composite_check); OpenImageIO lists every layer. Every bad input: exit 2, one line on stderr naming the
+# (composite_check), and their sky pixels are a plain sky render of the same camera; OpenImageIO lists every
+# layer. Every bad input: exit 2, one line on stderr naming the
 # problem, no output file (and no temporary) left.
 #
 #   composite_test.sh VKSKY GEN_COMPOSITE_SCENE COMPOSITE_CHECK
@@ -29,6 +30,10 @@ read -r -a CAMERA <"$S/camera.txt"
 "$CHECK" "$work/out/multi.exr" "$S/render.exr" || fail "multilayer composite: layers do not add up"
 "$VKSKY" --composite "$S/beauty.exr" --position "$S/position.exr" "${CAMERA[@]}" --render "$work/out/two.exr" \
     "${SUN[@]}" --validate 2>"$work/err" || fail "two-file composite: exit $? ($(cat "$work/err"))"
+# Its sky pixels are vksky's sky along each pixel's ray: a plain sky render of the same camera, without bloom.
+"$VKSKY" --render "$work/out/sky.exr" --width 240 --height 135 --altitude 0.2188 --yaw -90 --pitch -3 --fov 40 \
+    --no-bloom "${SUN[@]}" --validate || fail "plain sky render: exit $?"
+"$CHECK" "$work/out/two.exr" "$S/render.exr" "$work/out/sky.exr" || fail "two-file composite: layers or sky pixels"
 # Without an orientation: geometry composited, sky pixels keep the beauty, one note on stderr.
 "$VKSKY" --composite "$S/beauty.exr" --position "$S/position.exr" --camera-position -3.5,-8.5,218.8 \
     --render "$work/out/noorient.exr" --validate 2>"$work/err" || fail "composite without orientation: exit $?"
