@@ -39,6 +39,11 @@ read -r -a CAMERA <"$S/camera.txt"
     --render "$work/out/noorient.exr" --validate 2>"$work/err" || fail "composite without orientation: exit $?"
 [ "$(wc -l <"$work/err")" -eq 1 ] && grep -q "orientation is unknown" "$work/err" ||
     fail "composite without orientation: expected one note on stderr, got: $(cat "$work/err")"
+# An orientation without a field of view: composited, with one note that the sky pixels assume the default fov.
+"$VKSKY" --composite "$S/beauty.exr" --position "$S/position.exr" --camera-position -3.5,-8.5,218.8 --yaw -90 \
+    --render "$work/out/nofov.exr" --validate 2>"$work/err" || fail "composite without --fov: exit $?"
+[ "$(wc -l <"$work/err")" -eq 1 ] && grep -q "no --fov given" "$work/err" ||
+    fail "composite without --fov: expected one note on stderr, got: $(cat "$work/err")"
 if command -v oiiotool >/dev/null; then
     info=$(oiiotool --info -v "$work/out/multi.exr")
     for ch in R G B A sky.R sky.G sky.B sun_disk.R sun_disk.G sun_disk.B transmittance.R transmittance.G \

@@ -363,6 +363,11 @@ int composite_run(const options *o, const composite_options *co)
     }
     if (co->has_orientation) {
         composite_view_orient_yaw_pitch(&v, o->view.yaw_deg, o->view.pitch_deg);
+        if (!co->has_fov && !(from_matrix && matrix_fov > 0.0))
+            fprintf(stderr, "vksky: --composite: no --fov given: the sky pixels assume %g degrees (vertical); give the "
+                            "render's field of view\n", o->view.fov_deg);
+        else if (!co->has_fov)
+            v.fov_y_deg = matrix_fov;
     } else if (from_matrix && (matrix_fov > 0.0 || co->has_fov)) {
         v.oriented = true;
         if (!co->has_fov) v.fov_y_deg = matrix_fov;
