@@ -4,7 +4,13 @@
 #include "app/composite_app.h"
 #include "io/exr_layers.h"
 #include "io/exr_read.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr_write.h"
+#include "io/half_float.h"
+#include "io/png_io.h"
+#include "sky/frame.h"
+#include "sky/submit.h"
+#include "sky/view_params.h"
 #include "sky/composite.h"
 #include <math.h>
 #include <stdlib.h>

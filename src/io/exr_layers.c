@@ -8,12 +8,13 @@
 
 #include "io/exr_layers.h"
 
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr_common.h"
+#include "io/half_float.h"
+#include "io/io_error.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <limits.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,83 +23,6 @@
 #include <unistd.h>
 
 #include <openexr.h>
-
-/* INTERIM, until the layout split (issue 11) lands its io_error.h, atomic_file.h and exr_common.h: minimal local
-   stand-ins with the same names and behaviour, removed by the merge that switches to them. */
-#define IO_EXR_MAX_LAYER_NAME 200
-typedef struct io_exr_write_layer {
-    const char *name;
-    int channels;
-    const uint16_t *half;
-    const float *f32;
-} io_exr_write_layer;
-static int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
-                                    int layer_count, char *err, size_t err_size);
-static const char *io_safe_path(const char *path) { return path ? path : "(null)"; }
-__attribute__((format(printf, 3, 4))) static void io_set_err(char *err, size_t err_size, const char *fmt, ...)
-{
-    if (!err || err_size == 0) return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, err_size, fmt, ap);
-    va_end(ap);
-    for (char *q = err; *q; ++q)
-        if (*q == '\n' || *q == '\r') *q = ' ';
-}
-static int io_check_image_target(const char *path, int width, int height, char *err, size_t err_size)
-{
-    if (!path || !path[0]) {
-        io_set_err(err, err_size, "cannot write '%s': empty path", io_safe_path(path));
-        return -1;
-    }
-    if (width <= 0 || height <= 0 || width > (1 << 16) || height > (1 << 16)) {
-        io_set_err(err, err_size, "cannot write '%s': invalid image size %dx%d", path, width, height);
-        return -1;
-    }
-    return 0;
-}
-static int io_atomic_open(const char *path, char *tmp, size_t tmp_size, char *err, size_t err_size)
-{
-    const char *slash = strrchr(path, '/');
-    size_t plen = slash ? (size_t)(slash - path) + 1 : 0;
-    int n = snprintf(tmp, tmp_size, "%.*s.%s.tmp.%ld", (int)plen, path, path + plen, (long)getpid());
-    int fd = (n < 0 || (size_t)n >= tmp_size) ? -1 : open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-    if (fd < 0) io_set_err(err, err_size, "cannot write '%s': %s", path, strerror(errno));
-    return fd;
-}
-static int io_atomic_commit(int fd, const char *tmp, const char *path, char *err, size_t err_size)
-{
-    int ok = fsync(fd) == 0;
-    ok = (close(fd) == 0) && ok;
-    if (!ok || rename(tmp, path) != 0) {
-        io_set_err(err, err_size, "cannot write '%s': %s", path, strerror(errno));
-        unlink(tmp);
-        return -1;
-    }
-    return 0;
-}
-static void io_atomic_abort(int fd, const char *tmp)
-{
-    if (fd >= 0) close(fd);
-    unlink(tmp);
-}
-static _Thread_local char g_msg[256];
-static void io_exr_error_handler(exr_const_context_t ctxt, exr_result_t code, const char *msg)
-{
-    (void)ctxt;
-    snprintf(g_msg, sizeof g_msg, "%s", msg ? msg : exr_get_default_error_message(code));
-}
-static void io_exr_clear_msg(void) { g_msg[0] = '\0'; }
-static const char *io_exr_msg(exr_result_t rc) { return g_msg[0] ? g_msg : exr_get_default_error_message(rc); }
-static void io_exr_channel_name(char *out, size_t out_size, const char *layer, int c)
-{
-    static const char comp[4] = {'R', 'G', 'B', 'A'};
-    if (layer[0])
-        snprintf(out, out_size, "%s.%c", layer, comp[c]);
-    else
-        snprintf(out, out_size, "%c", comp[c]);
-}
-/* END INTERIM */
 
 typedef struct out_stream {
     int fd;
@@ -233,8 +157,8 @@ static int check_layers(const char *path, int width, int height, const io_exr_wr
     return 0;
 }
 
-static int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
-                                    int layer_count, char *err, size_t err_size)
+int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
+                             int layer_count, char *err, size_t err_size)
 {
     const char *p = io_safe_path(path);
     if (check_layers(path, width, height, layers, layer_count, err, err_size) != 0) return -1;

@@ -49,6 +49,13 @@ void io_exr_info_free(io_exr_info *info); /* frees the channel list and zeroes *
 int io_exr_read_channels(const char *path, const char *const *names, int count, float *out, char *err,
                          size_t err_size);
 
+/* Readers for tests/tools: read layer `layer_name` ("" = default R,G,B,A; a missing A reads as 1) from an EXR (any
+   compression OpenEXRCore supports, HALF or FLOAT channels, scanline or tiled (level 0) parts, first part that has
+   the layer) into a malloc'd float RGBA array (interleaved, row-major, top row of the data window first; free() it).
+   Channels are matched by name. R, G and B must exist. Errors follow io_error.h ("cannot read 'PATH': ..."). */
+int io_read_exr(const char *path, const char *layer_name, int *width, int *height, float **rgba, char *err,
+                size_t err_size);
+
 #ifdef __cplusplus
 }
 #endif

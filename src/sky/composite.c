@@ -4,6 +4,9 @@
  * layer: one upload, one dispatch writing every layer, one copy back, and one barrier per hazard. */
 #include "sky/composite.h"
 #include "composite_comp.h"
+#include "sky/frame.h"
+#include "sky/submit.h"
+#include "sky/view_params.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
