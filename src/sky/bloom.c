@@ -11,7 +11,7 @@ void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, ui
     while (fit < BLOOM_MAX_MIPS && (w >> fit) >= 2 && (h >> fit) >= 2) ++fit;
     b->mip_count = mips < fit ? mips : fit;
     gpu_image_create(ctx, &b->mips, "bloom mips", HDR_FORMAT, w ? w : 1, h ? h : 1, b->mip_count,
-                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
 
     VkDescriptorType types[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
     b->set_layout = gpu_set_layout(ctx, types, 1, VK_SHADER_STAGE_FRAGMENT_BIT, "bloom set layout");

@@ -4,6 +4,7 @@
 #include "gpu/timing.h"
 #include "sky/atmosphere.h"
 #include "sky/passes.h"
+#include "sky/post.h"
 
 typedef enum sky_mode_choice { SKY_CHOICE_MARCH, SKY_CHOICE_SKYVIEW, SKY_CHOICE_AUTO, SKY_CHOICE_FILL } sky_mode_choice;
 
@@ -36,6 +37,7 @@ typedef struct sky_renderer_desc {
     bool readback;               /* keep the linear composite + display image and copy them to host buffers */
     bool external_display;       /* the tone map writes a frame_target (swapchain), no own display image */
     VkFormat display_format;     /* the 8-bit target's format (headless: R8G8B8A8_SRGB) */
+    post_pass_kind post_pass;    /* bloom + tone map as fragment passes or compute dispatches (auto: by device) */
 } sky_renderer_desc;
 
 typedef struct sky_renderer {
@@ -46,6 +48,8 @@ typedef struct sky_renderer {
     sky_pass sky;
     bloom_chain bloom;
     tonemap_pass tonemap;
+    post_compute post;           /* the compute post chain (post_kind compute) */
+    post_pass_kind post_kind;    /* desc.post_pass resolved for the device: fragment or compute */
     sky_renderer_desc desc;
     gpu_image hdr;               /* sky pass output, RGBA16F, render_scale x the output size */
     gpu_image display;           /* tone-mapped, 8-bit (headless) */
