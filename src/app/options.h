@@ -30,6 +30,7 @@ typedef struct options {
     double max_error;                           /* --max-error (0: off) */                           /* density scales given so far: Rayleigh, Mie, ozone */
     double render_scale;
     int bloom_mips;
+    post_pass_kind post_pass;                   /* --post-pass: bloom + tone map as draws or dispatches (default auto) */
     const char *outputs[OPTIONS_MAX_OUTPUTS];   /* --render, .exr or .png */
     int output_count;
     int bench_frames;                           /* --bench N (0: off) */

@@ -212,9 +212,11 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
             t = timed_begin(r, cmd, "bloom_upsample");
             post_record_upsample(pc, bl, cmd, (uint32_t)i);
             timed_end(r, cmd, t);
-            /* Upsample wrote mip i; the next upsample (or the tone map) samples it: RAW. */
-            mip_barrier(cmd, bl, "bloom upsample chain (compute)", "up_to_read", i, GPU_USAGE_COMPUTE_STORAGE_RW,
-                        GPU_USAGE_COMPUTE_STORAGE_RW);
+            /* Upsample wrote mip i; the next upsample (or the tone map) samples it: RAW. (Mip 0, written only for
+             * the fragment tone map: bloom.mip0.storage_to_fragment below is its barrier.) */
+            if (i > 0)
+                mip_barrier(cmd, bl, "bloom upsample chain (compute)", "up_to_read", i, GPU_USAGE_COMPUTE_STORAGE_RW,
+                            GPU_USAGE_COMPUTE_STORAGE_RW);
         }
     }
 
