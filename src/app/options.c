@@ -351,7 +351,7 @@ int options_parse(options *o, int argc, char **argv)
         /* auto: named, or the default of a headless run that names no quality (no --quality, --max-error or scene
          * file quality section). It is no preset a scene file can name, so a dump lists its knobs instead. */
         bool automatic = o->quality ? !strcmp(o->quality, "auto")
-                                    : !window && o->max_error <= 0.0 && !scene_quality && !o->scene_path;
+                                    : !window && o->max_error <= 0.0 && !o->scene_quality;
         const quality_config *q = o->quality && !automatic ? quality_preset(o->quality) : NULL;
         double measured = 0.0;
         const char *scene = NULL;

@@ -19,6 +19,7 @@ typedef struct options {
     const char *quality;                        /* --quality preset name (NULL: none) */
     /* Scene features (scene files and their flags). */
     const char *scene_path;                     /* --scene FILE.json (NULL: none) */
+    bool scene_quality;                         /* the scene file has a quality section (no --quality auto then) */
     bool dump_scene;                            /* --dump-scene: print the effective scene as JSON and exit */
     double ground_albedo[3];                    /* --ground-albedo R,G,B (default 0) */
     int mie_phase;                              /* 0 Henyey-Greenstein, 1 Cornette-Shanks (--mie-phase) */

@@ -35,7 +35,7 @@ static const char *const mode_words[] = {"march", "skyview", "auto", "fill"};   
 static const char *const pass_words[] = {"fragment", "compute", "auto"};            /* sky_pass_kind order */
 static const char *const lut_format_words[] = {"f16", "f32"};
 static const char *const phase_words[] = {"henyey-greenstein", "cornette-shanks"};  /* options.mie_phase */
-static const char *const preset_words[] = {"low", "medium", "high", "ultra"};
+static const char *const preset_words[] = {"low", "medium", "high", "ultra", "lesson"};
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
 /* The description of the scene loaded last: --dump-scene keeps it (a dump of mars.json still says what it is and
@@ -486,6 +486,7 @@ static int parse_quality(const ctx *c, const cJSON *q)
     sky_view *v = &o->view;
     sky_lut_quality *lut = &o->lut;
     if (check_fields(c, q, "quality", names, COUNT(names))) return 2;
+    o->scene_quality = true;
     /* The preset first: the knob fields override it. */
     int preset = -1;
     if (get_word(c, q, "preset", "quality", preset_words, COUNT(preset_words), &preset)) return 2;
