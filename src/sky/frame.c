@@ -178,8 +178,9 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     if (bloom) {
         gpu_barrier_add_image(&b, "bloom.to_storage", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
                               CHAIN_LAST_USE_COMPUTE, GPU_USAGE_COMPUTE_STORAGE_RW, true);
-        gpu_barrier_add_image(&b, "spd_counters.to_clear", "spd_counters", pc->counters.image, one,
-                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_CLEAR_DST, true);
+        if (r->desc.bloom_downsample == BLOOM_DOWN_SINGLE_PASS)
+            gpu_barrier_add_image(&b, "spd_counters.to_clear", "spd_counters", pc->counters.image, one,
+                                  GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_CLEAR_DST, true);
     } else if (r->desc.bloom) {
         /* Bloom switched off at run time: the tone map's descriptors still name mips 0 and 1 in GENERAL, never
          * sampled (strength 0): a layout-only transition (WAR on the previous frame's reads). */
@@ -188,7 +189,24 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     }
     gpu_barrier_flush(cmd, &b);
 
-    if (bloom) {
+    if (bloom && r->desc.bloom_downsample == BLOOM_DOWN_LEVELS) {
+        /* One dispatch per level (the fragment chain's structure, compute shaders): level k wrote mip k; level
+         * k+1 samples it: RAW. */
+        for (uint32_t k = 0; k < bl->mip_count; ++k) {
+            t = timed_begin(r, cmd, "bloom_downsample");
+            post_record_downsample_level(pc, bl, cmd, k, r->hdr.extent, (float)v->bloom_threshold);
+            timed_end(r, cmd, t);
+            if (k + 1 < bl->mip_count)
+                mip_barrier(cmd, bl, "bloom downsample chain (compute)", "down_to_read", (int)k,
+                            GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW);
+        }
+        /* The last level wrote its mip (RAW for the first upsample); and the upsamples rewrite mips the later
+         * levels sampled (WAR): one barrier over the chain. */
+        b = gpu_barrier_batch_begin("bloom downsample chain (compute)");
+        gpu_barrier_add_image(&b, "bloom.down_to_upsample", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
+                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, false);
+        gpu_barrier_flush(cmd, &b);
+    } else if (bloom) {
         t = timed_begin(r, cmd, "bloom_spd");
         post_record_clear_counters(pc, cmd);
         /* The clear wrote the counters; the single pass's atomics read and write them: RAW. */
@@ -205,6 +223,8 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
         gpu_barrier_add_image(&b, "bloom.spd_to_upsample", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
                               GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, false);
         gpu_barrier_flush(cmd, &b);
+    }
+    if (bloom) {
         /* Upsamples down to mip 1 (mip 0's is fused into the compute tone map; a swapchain target's fragment
          * tone map needs it done: down to mip 0). */
         uint32_t last = compute_tonemap ? 1 : 0;

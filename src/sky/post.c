@@ -64,6 +64,15 @@ static void create_bloom(post_compute *p, const pass_shared *s, const gpu_image 
     p->up_set_layout = gpu_set_layout(ctx, up_types, 2, VK_SHADER_STAGE_COMPUTE_BIT, "bloom up set layout");
     p->up_layout = gpu_pipeline_layout(ctx, p->up_set_layout, sizeof(PostPush), VK_SHADER_STAGE_COMPUTE_BIT, "bloom up layout");
     p->up_pipeline = compute_pipeline(ctx, p->up_layout, &spirv_bloom_up_comp, "bloom upsample (compute)");
+    p->down_pipeline = compute_pipeline(ctx, p->up_layout, &spirv_bloom_down_comp, "bloom downsample (compute)");
+    for (uint32_t k = 0; k < b->mip_count; ++k) {
+        p->down_sets[k] = gpu_alloc_set(ctx, p->pool, p->up_set_layout, "bloom down set");
+        if (k == 0)
+            write_image(ctx, p->down_sets[k], 0, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        else
+            write_image(ctx, p->down_sets[k], 0, SAMPLED, b->mips.mip_views[k - 1], s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
+        write_image(ctx, p->down_sets[k], 1, STORAGE, b->mips.mip_views[k], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+    }
     for (uint32_t i = 0; i + 1 < b->mip_count; ++i) {
         p->up_sets[i] = gpu_alloc_set(ctx, p->pool, p->up_set_layout, "bloom up set");
         write_image(ctx, p->up_sets[i], 0, SAMPLED, b->mips.mip_views[i + 1], s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
@@ -77,9 +86,9 @@ void post_compute_create(post_compute *p, const pass_shared *s, const gpu_image 
     const gpu_context *ctx = s->ctx;
     *p = (post_compute){.tonemap = display != VK_NULL_HANDLE, .composite = composite != VK_NULL_HANDLE,
                         .mip_count = bloom ? bloom->mip_count : 0};
-    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 24}};
-    VkDescriptorPoolCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 12,
+    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 24},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 32}};
+    VkDescriptorPoolCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 20,
                                        .poolSizeCount = 2, .pPoolSizes = sizes};
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &info, NULL, &p->pool));
     if (bloom) create_bloom(p, s, hdr, bloom);
@@ -111,6 +120,7 @@ void post_compute_create(post_compute *p, const pass_shared *s, const gpu_image 
 void post_compute_destroy(post_compute *p, const pass_shared *s)
 {
     VkDevice d = s->ctx->device;
+    if (p->down_pipeline) vkDestroyPipeline(d, p->down_pipeline, NULL);
     VkPipeline pipelines[3] = {p->spd_pipeline, p->up_pipeline, p->tonemap_pipeline};
     VkPipelineLayout layouts[3] = {p->spd_layout, p->up_layout, p->tonemap_layout};
     VkDescriptorSetLayout set_layouts[3] = {p->spd_set_layout, p->up_set_layout, p->tonemap_set_layout};
@@ -140,14 +150,29 @@ void post_record_downsample(const post_compute *p, VkCommandBuffer cmd, float th
     vkCmdDispatch(cmd, p->level0_tiles.width, p->level0_tiles.height, 1);
 }
 
+/* One thread per texel of a mip (8x8 groups), the per-level pipelines' shared layout. */
+static void dispatch_mip(const post_compute *p, VkCommandBuffer cmd, VkPipeline pipeline, VkDescriptorSet set,
+                         const PostPush *push, VkExtent2D size)
+{
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->up_layout, 0, 1, &set, 0, NULL);
+    vkCmdPushConstants(cmd, p->up_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
+    vkCmdDispatch(cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
+}
+
+void post_record_downsample_level(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, uint32_t dst,
+                                  VkExtent2D hdr_extent, float threshold)
+{
+    VkExtent2D src = dst == 0 ? hdr_extent : gpu_mip_extent(bloom->mips.extent, dst - 1);
+    PostPush push = {.params = {1.0f / (float)src.width, 1.0f / (float)src.height, dst == 0 ? 1.0f : 0.0f, threshold}};
+    dispatch_mip(p, cmd, p->down_pipeline, p->down_sets[dst], &push, gpu_mip_extent(bloom->mips.extent, dst));
+}
+
 void post_record_upsample(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, uint32_t dst)
 {
-    VkExtent2D src = gpu_mip_extent(bloom->mips.extent, dst + 1), size = gpu_mip_extent(bloom->mips.extent, dst);
+    VkExtent2D src = gpu_mip_extent(bloom->mips.extent, dst + 1);
     PostPush push = {.params = {1.0f / (float)src.width, 1.0f / (float)src.height, 0.0f, 0.0f}};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->up_pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->up_layout, 0, 1, &p->up_sets[dst], 0, NULL);
-    vkCmdPushConstants(cmd, p->up_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    vkCmdDispatch(cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
+    dispatch_mip(p, cmd, p->up_pipeline, p->up_sets[dst], &push, gpu_mip_extent(bloom->mips.extent, dst));
 }
 
 void post_record_tonemap(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, VkExtent2D extent,

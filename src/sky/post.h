@@ -9,6 +9,8 @@
 
 /* AUTO: like the sky pass, compute on GPUs, fragment on a CPU implementation. */
 typedef enum post_pass_kind { POST_PASS_FRAGMENT = 0, POST_PASS_COMPUTE = 1, POST_PASS_AUTO = 2 } post_pass_kind;
+/* The compute chain's downsample: every level in one dispatch (single pass), or one dispatch per level. */
+typedef enum bloom_downsample_kind { BLOOM_DOWN_SINGLE_PASS = 0, BLOOM_DOWN_LEVELS = 1 } bloom_downsample_kind;
 
 /* AUTO resolved for the device (fragment on a CPU implementation, compute otherwise). */
 post_pass_kind post_pass_resolve(post_pass_kind k, const gpu_context *ctx);
@@ -23,6 +25,8 @@ typedef struct post_compute {
     VkPipeline spd_pipeline, up_pipeline, tonemap_pipeline;
     VkDescriptorSet spd_set, tonemap_set;
     VkDescriptorSet up_sets[BLOOM_MAX_MIPS]; /* up_sets[i]: mip i += tent(mip i + 1) */
+    VkPipeline down_pipeline;                /* per-level downsample (bloom_down.comp), same layout as the upsample */
+    VkDescriptorSet down_sets[BLOOM_MAX_MIPS]; /* down_sets[k]: mip k from mip k - 1 (the HDR image for k = 0) */
     bool tonemap, composite;                 /* a compute tone map (own display image), writing the composite */
     uint32_t mip_count;                      /* 0: no bloom chain */
 } post_compute;
@@ -37,11 +41,14 @@ void post_compute_destroy(post_compute *p, const pass_shared *s);
 void post_record_clear_counters(const post_compute *p, VkCommandBuffer cmd);
 /* Every bloom level in one dispatch. */
 void post_record_downsample(const post_compute *p, VkCommandBuffer cmd, float threshold);
+/* One level: mip dst from mip dst - 1 (the HDR image for 0), as the fragment chain does it. */
+void post_record_downsample_level(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, uint32_t dst,
+                                  VkExtent2D hdr_extent, float threshold);
 /* mip dst += tent(mip dst + 1). */
 void post_record_upsample(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, uint32_t dst);
 /* HDR + bloom (mip 0 + the tent of mip 1: the last upsample, fused) -> display (+ composite). */
 void post_record_tonemap(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, VkExtent2D extent,
                          const TonemapPush *tm);
 
-extern const sky_spirv spirv_bloom_spd, spirv_bloom_up_comp, spirv_tonemap_comp, spirv_tonemap_composite_comp;
+extern const sky_spirv spirv_bloom_spd, spirv_bloom_up_comp, spirv_bloom_down_comp, spirv_tonemap_comp, spirv_tonemap_composite_comp;
 #endif

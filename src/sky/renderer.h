@@ -38,6 +38,7 @@ typedef struct sky_renderer_desc {
     bool external_display;       /* the tone map writes a frame_target (swapchain), no own display image */
     VkFormat display_format;     /* the 8-bit target's format (headless: R8G8B8A8_SRGB) */
     post_pass_kind post_pass;    /* bloom + tone map as fragment passes or compute dispatches (auto: by device) */
+    bloom_downsample_kind bloom_downsample;  /* compute chain: the downsample in one dispatch, or one per level */
 } sky_renderer_desc;
 
 typedef struct sky_renderer {
