@@ -31,7 +31,7 @@ static const flag flags[] = {
     {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
     {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
     {"--quality", ARG_STRING, 0, 0, "P   low | medium | high | ultra | lesson | auto: a preset of the knobs below (later flags override it); auto (the default of --render/--bench): the measured front's point for the scene kind; lesson: the 32-step march of the guide"},
-    {"--bloom-downsample", ARG_STRING, 0, 0, "D single-pass | levels: with --post-pass compute, the bloom downsample as one dispatch (tile counters, the last workgroup continues) or one dispatch per level (default single-pass)"},
+    {"--bloom-downsample", ARG_STRING, 0, 0, "D levels | single-pass: with --post-pass compute, the bloom downsample as one dispatch per level (default: faster on an H100) or all levels in one dispatch (tile counters, the last workgroup continues)"},
     {"--post-pass", ARG_STRING, 0, 0, "K fragment | compute | auto: bloom and the tone map as draws or compute dispatches (one dispatch for the whole bloom downsample); auto: fragment on a CPU device, compute on a GPU (default auto)"},
     {"--max-error", ARG_DOUBLE, 1e-4, 1, "E the cheapest measured configuration whose mean relative luminance error on this kind of scene is <= E"},
     {"--max-steps", ARG_INT, 1, 4096, "N  variable step count (Hillaire): from --steps up to N as the path grows (default: = --steps)"},
@@ -236,7 +236,7 @@ static int apply(options *o, const flag *f, const char *value)
         if (k < 0) return 2;
         o->quality = w[k];
     } else if (!strcmp(n, "--bloom-downsample")) {
-        static const char *const w[] = {"single-pass", "levels"};
+        static const char *const w[] = {"levels", "single-pass"};
         int k = parse_word(n, value, w, 2);
         if (k < 0) return 2;
         o->bloom_downsample = (bloom_downsample_kind)k;

@@ -9,8 +9,9 @@
 
 /* AUTO: like the sky pass, compute on GPUs, fragment on a CPU implementation. */
 typedef enum post_pass_kind { POST_PASS_FRAGMENT = 0, POST_PASS_COMPUTE = 1, POST_PASS_AUTO = 2 } post_pass_kind;
-/* The compute chain's downsample: every level in one dispatch (single pass), or one dispatch per level. */
-typedef enum bloom_downsample_kind { BLOOM_DOWN_SINGLE_PASS = 0, BLOOM_DOWN_LEVELS = 1 } bloom_downsample_kind;
+/* The compute chain's downsample: one dispatch per level (the default: measured faster on an H100, docs/perf/),
+ * or every level in one dispatch (the single pass, SPD-style). */
+typedef enum bloom_downsample_kind { BLOOM_DOWN_LEVELS = 0, BLOOM_DOWN_SINGLE_PASS = 1 } bloom_downsample_kind;
 
 /* AUTO resolved for the device (fragment on a CPU implementation, compute otherwise). */
 post_pass_kind post_pass_resolve(post_pass_kind k, const gpu_context *ctx);
