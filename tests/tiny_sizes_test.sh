@@ -74,5 +74,23 @@ for preset in "${presets[@]}"; do
     done
 done
 [ $count -eq $((${#presets[@]} * ${#sizes[@]} * 2)) ] || fail "ran $count renders"
+
+# The compute post chain (issue 16) at the sizes where its chain is shortest: one-level chains, single-tile
+# levels, thin images; both of its downsamples.
+for size in "1 1" "2 2" "7 3" "15 15" "2 600" "1 9"; do
+    read -r w h <<<"$size"
+    for down in levels single-pass; do
+        what="${w}x${h} --post-pass compute --bloom-downsample $down"
+        out="$work/t.exr"
+        rm -f "$out"
+        "$VKSKY" --validate --render "$out" --width "$w" --height "$h" --quality low --post-pass compute \
+            --bloom-downsample "$down" >"$work/stdout" 2>"$work/stderr"
+        rc=$?
+        count=$((count + 1))
+        if [ $rc -ne 0 ] || [ -s "$work/stderr" ]; then fail "$what: exit $rc: $(head -c 600 "$work/stderr")"; continue; fi
+        "$PROBE" "$out" "$w" 0 >/dev/null 2>"$work/probe.err"
+        grep -qF "is not in the ${w}x${h} image" "$work/probe.err" || fail "$what: EXR is not ${w}x${h}: $(cat "$work/probe.err")"
+    done
+done
 if [ $fails -ne 0 ]; then echo "tiny_sizes: $fails failures in $count renders" >&2; exit 1; fi
 echo "tiny_sizes: $count renders validation-clean, sizes exact, centre pixels within $TOL of the CPU reference"
