@@ -24,7 +24,8 @@ fails=0
 # pass's tiles are partial), a size with many tiles per level (levels 0-2 of 25x16, 13x8, 7x4 tiles: counters
 # complete in every order), the low preset (render scale 0.5: the tone map upsamples the sky); the compute chain
 # with its default per-level downsample, and with the single-pass one (--bloom-downsample single-pass, ignored
-# by the fragment path) on an odd and a many-tile frame.
+# by the fragment path) on an odd and a many-tile frame; and the bloom chain from a quarter-size mip 0
+# (--bloom-res quarter).
 cases=(
   "sunset   --width 320 --height 180 --sun-elevation 3 --quality lesson"
   "odd      --width 97 --height 61 --sun-elevation 5 --pitch 2 --quality lesson"
@@ -32,6 +33,7 @@ cases=(
   "low      --width 200 --height 120 --sun-elevation 4 --quality low"
   "spd      --width 97 --height 61 --sun-elevation 5 --pitch 2 --quality lesson --bloom-downsample single-pass"
   "spdtiles --width 800 --height 512 --sun-elevation 8 --pitch 5 --quality medium --bloom-downsample single-pass"
+  "quarter  --width 320 --height 180 --sun-elevation 3 --quality medium --bloom-res quarter"
 )
 for c in "${cases[@]}"; do
     read -r name args <<<"$c"

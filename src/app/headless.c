@@ -154,7 +154,8 @@ int headless_run(const options *o)
     sky_renderer_desc rdesc = {.width = (uint32_t)o->width, .height = (uint32_t)o->height, .bloom = o->view.bloom,
                                .readback = o->output_count > 0, .display_format = VK_FORMAT_R8G8B8A8_SRGB,
                                .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
-                               .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample};
+                               .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample,
+                               .bloom_quarter = o->bloom_quarter};
     sky_renderer_create(&r, &ctx, &rdesc);
     sky_renderer_set_atmosphere(&r, &o->atmosphere, options_sun_radius_rad(o));
     sky_features features = options_features(o);

@@ -31,6 +31,7 @@ static const flag flags[] = {
     {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
     {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
     {"--quality", ARG_STRING, 0, 0, "P   low | medium | high | ultra | lesson | auto: a preset of the knobs below (later flags override it); auto (the default of --render/--bench): the measured front's point for the scene kind; lesson: the 32-step march of the guide"},
+    {"--bloom-res", ARG_STRING, 0, 0, "R    half | quarter: the bloom chain's first mip at half or a quarter of the sky's size (default half; quarter: a quarter of the bloom's cost, for CPU devices)"},
     {"--bloom-downsample", ARG_STRING, 0, 0, "D levels | single-pass: with --post-pass compute, the bloom downsample as one dispatch per level (default: faster on an H100) or all levels in one dispatch (tile counters, the last workgroup continues)"},
     {"--post-pass", ARG_STRING, 0, 0, "K fragment | compute | auto: bloom and the tone map as draws or compute dispatches (one dispatch for the whole bloom downsample); auto: fragment on a CPU device, compute on a GPU (default auto)"},
     {"--max-error", ARG_DOUBLE, 1e-4, 1, "E the cheapest measured configuration whose mean relative luminance error on this kind of scene is <= E"},
@@ -235,6 +236,11 @@ static int apply(options *o, const flag *f, const char *value)
         int k = parse_word(n, value, w, 6);
         if (k < 0) return 2;
         o->quality = w[k];
+    } else if (!strcmp(n, "--bloom-res")) {
+        static const char *const w[] = {"half", "quarter"};
+        int k = parse_word(n, value, w, 2);
+        if (k < 0) return 2;
+        o->bloom_quarter = k == 1;
     } else if (!strcmp(n, "--bloom-downsample")) {
         static const char *const w[] = {"levels", "single-pass"};
         int k = parse_word(n, value, w, 2);

@@ -33,6 +33,7 @@ typedef struct options {
     int bloom_mips;
     post_pass_kind post_pass;                   /* --post-pass: bloom + tone map as draws or dispatches (default auto) */
     bloom_downsample_kind bloom_downsample;     /* --bloom-downsample: the compute chain's downsample */
+    bool bloom_quarter;                         /* --bloom-res quarter: the bloom chain from a quarter-size mip 0 */
     const char *outputs[OPTIONS_MAX_OUTPUTS];   /* --render, .exr or .png */
     int output_count;
     int bench_frames;                           /* --bench N (0: off) */

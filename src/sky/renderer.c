@@ -113,7 +113,8 @@ static void create_sized(sky_renderer *r)
         gpu_buffer_create(ctx, &r->readback_linear, "readback linear", pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         gpu_buffer_create(ctx, &r->readback_display, "readback display", pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     }
-    if (desc->bloom) bloom_create(&r->bloom, &sized, &r->hdr, desc->bloom_mips ? desc->bloom_mips : 5);
+    if (desc->bloom)
+        bloom_create(&r->bloom, &sized, &r->hdr, desc->bloom_mips ? desc->bloom_mips : 5, desc->bloom_quarter ? 1 : 0);
     tonemap_create(&r->tonemap, &sized, r->hdr.view, desc->bloom ? r->bloom.mips.mip_views[0] : r->hdr.view,
                    desc->display_format, desc->readback);
     if (r->post_kind == POST_PASS_COMPUTE)

@@ -39,6 +39,7 @@ typedef struct sky_renderer_desc {
     VkFormat display_format;     /* the 8-bit target's format (headless: R8G8B8A8_SRGB) */
     post_pass_kind post_pass;    /* bloom + tone map as fragment passes or compute dispatches (auto: by device) */
     bloom_downsample_kind bloom_downsample;  /* compute chain: the downsample in one dispatch, or one per level */
+    bool bloom_quarter;          /* the bloom chain starts at a quarter of the HDR size (default: half) */
 } sky_renderer_desc;
 
 typedef struct sky_renderer {
