@@ -10,7 +10,8 @@
  *    the half-float rounding of the four composites;
  *  - tone-mapped pixels: the 8-bit PNGs differ by at most LEVELS in any channel and MEAN on average.
  * Prints the measured figures; exit 0 within bounds, 1 outside, 2 unreadable input. */
-#include "io/image_io.h"
+#include "io/exr_read.h"
+#include "io/png_io.h"
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
