@@ -3,6 +3,7 @@
 #include "app/options.h"
 #include "app/window.h"
 #include "app/reference_run.h"
+#include "app/scene_find.h"
 #include <stdlib.h>
 
 int main(int argc, char **argv)
@@ -17,6 +18,7 @@ int main(int argc, char **argv)
         printf("vksky %s\n", VKSKY_VERSION);
         return 0;
     }
+    if (o.list_scenes) return scene_list(stdout);
     if (o.list_devices) return gpu_list_devices(stdout) == 0 ? 0 : 1;
     if (o.path_trace && !o.reference) {
         fprintf(stderr, "vksky: --path-trace: only with --reference\n");

@@ -1,6 +1,7 @@
 #include "app/options.h"
 #include "app/quality.h"
 #include "app/scene.h"
+#include "app/options_tooling.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -21,7 +22,13 @@ static const flag flags[] = {
     {"--width", ARG_INT, 1, 16384, "N      image width in pixels (default 1280)"},
     {"--height", ARG_INT, 1, 16384, "N      image height in pixels (default 720)"},
     {"--sun-elevation", ARG_DOUBLE, -90, 90, "DEG   sun elevation above the horizon (default 20)"},
-    {"--sun-azimuth", ARG_DOUBLE, -360, 360, "DEG   sun azimuth (default 0)"},
+    {"--sun-azimuth", ARG_DOUBLE, -360, 360, "DEG   sun azimuth, clockwise seen from above: with --yaw 0 as north, 90 is east (default 0)"},
+    {"--date", ARG_STRING, 0, 0, "YYYY-MM-DD  the sun by date and place (NREL SPA): local date; needs --time, --latitude, --longitude; not with --sun-elevation/--sun-azimuth"},
+    {"--time", ARG_STRING, 0, 0, "HH:MM[:SS]  local clock time (24 h) for --date"},
+    {"--utc-offset", ARG_DOUBLE, -18, 18, "H  local time minus UTC in hours for --date, e.g. -7 for UTC-7 (default 0)"},
+    {"--latitude", ARG_DOUBLE, -90, 90, "DEG  observer latitude for --date, north positive"},
+    {"--longitude", ARG_DOUBLE, -180, 180, "DEG  observer longitude for --date, east positive"},
+    {"--elevation-m", ARG_DOUBLE, -500, 100000, "M  observer height above sea level for --date (default 0)"},
     {"--altitude", ARG_DOUBLE, 0, 1e6, "KM    camera altitude above the ground (default 0.001 = 1 m)"},
     {"--yaw", ARG_DOUBLE, -360, 360, "DEG    view azimuth, same convention as --sun-azimuth (default 0)"},
     {"--pitch", ARG_DOUBLE, -90, 90, "DEG    view elevation, same convention as --sun-elevation (default 10)"},
@@ -52,7 +59,8 @@ static const flag flags[] = {
     {"--rayleigh-scale", ARG_DOUBLE, 0, 1000, "S Rayleigh density scale (default 1)"},
     {"--mie-scale", ARG_DOUBLE, 0, 1000, "S      Mie (aerosol) density scale (default 1)"},
     {"--ozone-scale", ARG_DOUBLE, 0, 1000, "S    ozone density scale (default 1)"},
-    {"--scene", ARG_STRING, 0, 0, "FILE.json  load a scene file first (schema: scenes/README.md); every other flag overrides it"},
+    {"--scene", ARG_STRING, 0, 0, "FILE.json|NAME  load a scene file, or a shipped scene by name (--list-scenes), first (schema: scenes/README.md); every other flag overrides it"},
+    {"--list-scenes", ARG_NONE, 0, 0, "list the shipped scenes (names for --scene) with a line each, and exit"},
     {"--dump-scene", ARG_NONE, 0, 0, "      print the effective scene (after all overrides) as scene JSON and exit"},
     {"--ground-albedo", ARG_TRIPLE, 0, 1, "R,G,B ground albedo (default 0,0,0)"},
     {"--mie-phase", ARG_STRING, 0, 0, "M    hg | cornette-shanks: the Mie phase function (default hg = Henyey-Greenstein)"},
@@ -203,6 +211,8 @@ static int apply(options *o, const flag *f, const char *value)
     const char *n = f->name;
     double x = 0;
     if ((f->kind == ARG_INT || f->kind == ARG_DOUBLE) && parse_number(f, value, &x) != 0) return 2;
+    int handled = options_tooling_apply(o, n, value, x);   /* the sun by date and place, --list-scenes */
+    if (handled >= 0) return handled;
     if (!strcmp(n, "--render")) {
         if (!has_extension(value, ".exr") && !has_extension(value, ".png"))
             return bad(n, "unknown output type; expected a file name ending in .exr or .png");
@@ -273,8 +283,8 @@ static int apply(options *o, const flag *f, const char *value)
     else if (!strcmp(n, "--ozone-scale")) o->scales[2] = x;
     else if (!strcmp(n, "--scene")) {
         if (o->scene_path) return bad(n, "given twice; expected one scene (later flags override its fields)");
-        o->scene_path = value;
-        if (scene_load(value, o) != 0) return 2;
+        o->scene_path = options_tooling_scene_path(value);   /* a shipped scene's name -> its file */
+        if (!o->scene_path || scene_load(o->scene_path, o) != 0) return 2;
     } else if (!strcmp(n, "--dump-scene")) o->dump_scene = true;
     else if (!strcmp(n, "--ground-albedo")) {
         if (parse_triple(f, value, o->ground_albedo)) return 2;
@@ -311,7 +321,7 @@ static int apply(options *o, const flag *f, const char *value)
 static bool window_mode(int argc, char **argv)
 {
     static const char *const headless[] = {"--render", "--bench", "--reference", "--help", "--version",
-                                           "--list-devices", "--dump-scene"};
+                                           "--list-devices", "--dump-scene", "--list-scenes"};
     for (int i = 1; i < argc; ++i)
         for (size_t k = 0; k < sizeof headless / sizeof headless[0]; ++k)
             if (!strncmp(argv[i], headless[k], strlen(headless[k]))) return false;
@@ -336,6 +346,7 @@ int options_parse(options *o, int argc, char **argv)
     for (int pass = -1; pass < 2; ++pass) {
     if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
     if (pass == 1) {
+        if (options_tooling_resolve(o)) return 2;   /* the sun from a date and place, before --max-error reads it */
         if (o->quality && o->max_error > 0.0) return bad("--max-error", "not with --quality; give one or the other");
         const quality_config *q = o->quality ? quality_preset(o->quality) : NULL;
         if (o->max_error > 0.0) {
@@ -381,7 +392,7 @@ int options_parse(options *o, int argc, char **argv)
         bool scene_flag = !strcmp(f->name, "--scene");
         bool first_pass_flag = !strcmp(f->name, "--quality") || !strcmp(f->name, "--max-error") ||
                                !strcmp(f->name, "--altitude") || !strcmp(f->name, "--sun-elevation") ||
-                               !strcmp(f->name, "--dump-scene");
+                               !strcmp(f->name, "--dump-scene") || options_tooling_first_pass(f->name);
         /* Pass -1 loads the scene; pass 0 reads only what the choice depends on; pass 1 applies every flag except the
          * scene and the choice. */
         if (pass < 0 ? scene_flag
@@ -389,6 +400,7 @@ int options_parse(options *o, int argc, char **argv)
             if (apply(o, f, value) != 0) return 2;
     }
     }
+    if (options_tooling_resolve(o)) return 2;
     scale3(o->atmosphere.rayleigh_scattering, o->scales[0]);
     scale3(o->atmosphere.mie_scattering, o->scales[1]);
     scale3(o->atmosphere.mie_absorption, o->scales[1]);

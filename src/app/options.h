@@ -2,6 +2,7 @@
  * accepted values; the caller exits with status 2. */
 #ifndef VKSKY_APP_OPTIONS_H
 #define VKSKY_APP_OPTIONS_H
+#include "app/sun_place.h"
 #include "sky/renderer.h"
 #include <stdbool.h>
 
@@ -40,6 +41,10 @@ typedef struct options {
     int device_index;                           /* -1: pick */
     bool trace_barriers;
     bool help, version;
+    /* tooling (issue 14) */
+    sun_place place;                            /* --date, --time, ... or the scene's sun.date ...: the sun by SPA */
+    const char *sun_angles_flag;                /* --sun-elevation or --sun-azimuth on the command line (NULL: neither) */
+    bool list_scenes;                           /* --list-scenes */
 } options;
 
 /* The options' scene features for the renderer. */

@@ -4,11 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-void sun_place_init(sun_place *p)
-{
-    *p = (sun_place){.when = {.delta_t_s = SOLAR_DELTA_T_DEFAULT_S},
-                     .where = {.pressure_mbar = 1010.0, .temperature_c = 10.0}};
-}
+void sun_place_init(sun_place *p) { *p = (sun_place){0}; }
 
 bool sun_place_any(const sun_place *p) { return p->has_date || p->has_time || p->has_latitude || p->has_longitude; }
 
@@ -92,8 +88,13 @@ int sun_place_resolve(const sun_place *p, double *elevation_deg, double *azimuth
                 p->has_date ? "--date" : p->has_time ? "--time" : p->has_latitude ? "--latitude" : "--longitude", missing);
         return 2;
     }
+    /* Standard refraction (1010 mbar, 10 C: the SPA's reference atmosphere) and today's delta T. */
+    solar_moment when = p->when;
+    solar_place where = p->where;
+    when.delta_t_s = SOLAR_DELTA_T_DEFAULT_S;
+    where.pressure_mbar = 1010.0, where.temperature_c = 10.0;
     solar_position s;
-    if (!solar_position_compute(&p->when, &p->where, &s)) {
+    if (!solar_position_compute(&when, &where, &s)) {
         fprintf(stderr, "vksky: --date: the date, time or place is outside the solar position algorithm's range\n");
         return 2;
     }

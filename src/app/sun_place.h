@@ -14,8 +14,8 @@
 typedef struct sun_place {
     bool has_date, has_time, has_latitude, has_longitude;   /* all four are needed; offset and elevation default 0 */
     bool from_flags;             /* some of it came from the command line (not only a scene) */
-    solar_moment when;           /* date and local clock time; utc_offset_h; delta_t_s = SOLAR_DELTA_T_DEFAULT_S */
-    solar_place where;           /* latitude, longitude, elevation; standard pressure and temperature */
+    solar_moment when;           /* date, local clock time, utc_offset_h (delta_t_s: unused, the default is taken) */
+    solar_place where;           /* latitude, longitude, elevation (pressure, temperature: unused, standard taken) */
 } sun_place;
 
 /* The accepted ranges (also the flags' table ranges). */
@@ -23,7 +23,7 @@ typedef struct sun_place {
 #define SUN_PLACE_ELEVATION_MIN_M -500.0
 #define SUN_PLACE_ELEVATION_MAX_M 100000.0
 
-void sun_place_init(sun_place *p);
+void sun_place_init(sun_place *p);   /* empty (a zeroed sun_place is empty too) */
 bool sun_place_any(const sun_place *p);
 /* "YYYY-MM-DD" (a real Gregorian date, years 1583-6000) and "HH:MM" or "HH:MM:SS" (00:00:00-23:59:59). On bad text:
  * one line on stderr naming `what` (a flag or a scene field) and what is accepted; returns 2. */
