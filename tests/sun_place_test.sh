@@ -20,11 +20,11 @@ GOLDEN=(--date 2003-10-17 --time 12:30:30 --utc-offset -7 --latitude 39.742476 -
 
 # 1. The published case via --dump-scene.
 "$VKSKY" "${GOLDEN[@]}" --dump-scene >"$work/dump.json" 2>"$work/err" || fail "--dump-scene with a date failed: $(cat "$work/err")"
-el=$(grep -o '"computed_elevation_deg": *[-0-9.e]*' "$work/dump.json" | awk -F: '{print $2}')
-az=$(grep -o '"computed_azimuth_deg": *[-0-9.e]*' "$work/dump.json" | awk -F: '{print $2}')
+el=$(grep -o '"computed_elevation_deg":[[:space:]]*[-0-9.e]*' "$work/dump.json" | awk -F: '{print $2}')
+az=$(grep -o '"computed_azimuth_deg":[[:space:]]*[-0-9.e]*' "$work/dump.json" | awk -F: '{print $2}')
 awk -v el="$el" -v az="$az" 'BEGIN { exit !(el != "" && (el - (90 - 50.11162))^2 < 0.02^2 && (az - 194.34024)^2 < 0.02^2) }' \
     || fail "dumped sun elevation '$el' azimuth '$az'; expected 39.88838 and 194.34024 (+-0.02)"
-grep -q '"date": *"2003-10-17"' "$work/dump.json" && grep -q '"time": *"12:30:30"' "$work/dump.json" \
+grep -q '"date":[[:space:]]*"2003-10-17"' "$work/dump.json" && grep -q '"time":[[:space:]]*"12:30:30"' "$work/dump.json" \
     || fail "--dump-scene does not show the date and time"
 # The dump loads back and gives the same sun (its computed_* fields are recomputed, not read).
 "$VKSKY" --scene "$work/dump.json" --dump-scene >"$work/dump2.json" 2>"$work/err" || fail "the dump does not load: $(cat "$work/err")"
@@ -59,9 +59,9 @@ cat >"$work/golden.json" <<'JSON'
          "longitude_deg": -105.1786, "elevation_m": 1830.14}}
 JSON
 "$VKSKY" --scene "$work/golden.json" --dump-scene >"$work/scene.json" 2>"$work/err" || fail "scene with a date: $(cat "$work/err")"
-grep -q "\"computed_azimuth_deg\": *$az" "$work/scene.json" || fail "the scene's date gives another sun than the flags'"
+grep -q "\"computed_azimuth_deg\":[[:space:]]*$az" "$work/scene.json" || fail "the scene's date gives another sun than the flags'"
 "$VKSKY" --scene "$work/golden.json" --time 06:00 --dump-scene >"$work/night.json" 2>"$work/err" || fail "flag over scene: $(cat "$work/err")"
-night=$(grep -o '"computed_elevation_deg": *[-0-9.e]*' "$work/night.json" | awk -F: '{print $2}')
+night=$(grep -o '"computed_elevation_deg":[[:space:]]*[-0-9.e]*' "$work/night.json" | awk -F: '{print $2}')
 awk -v e="$night" 'BEGIN { exit !(e != "" && e < 0) }' || fail "--time 06:00 over the scene: elevation '$night', expected below the horizon"
 
 # 4. Bad values.

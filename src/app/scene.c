@@ -1,6 +1,7 @@
 /* Scene files (schema and rules in scene.h): read, parsed by cJSON, validated field by field onto the options. */
 #include "app/scene.h"
 #include "app/quality.h"
+#include "app/scene_sun.h"
 #include <cjson/cJSON.h>
 #include <ctype.h>
 #include <errno.h>
@@ -432,9 +433,9 @@ static int parse_species(const ctx *c, const cJSON *species)
 static int parse_sun(const ctx *c, const cJSON *sun)
 {
     static const char *const names[] = {"elevation_deg", "azimuth_deg", "illuminance", "angular_radius_deg",
-                                        "limb_darkening", "disc"};
+                                        "limb_darkening", "disc", SCENE_SUN_PLACE_FIELDS};
     options *o = c->o;
-    return check_fields(c, sun, "sun", names, COUNT(names)) ||
+    return check_fields(c, sun, "sun", names, COUNT(names)) || scene_sun_parse(c->file, sun, o) ||
            get_number(c, sun, "elevation_deg", "sun", flag_range("--sun-elevation", false), &o->view.sun_elevation_deg) ||
            get_number(c, sun, "azimuth_deg", "sun", flag_range("--sun-azimuth", false), &o->view.sun_azimuth_deg) ||
            get_array(c, sun, "illuminance", "sun", flag_range("--sun-illuminance", false), 3,
@@ -795,8 +796,11 @@ int scene_dump(const options *o, FILE *out)
     boolean(&b, root, "multiple_scattering", o->multiple_scattering);
 
     cJSON *sun = obj(&b, root, "sun");
-    num(&b, sun, "elevation_deg", v->sun_elevation_deg);
-    num(&b, sun, "azimuth_deg", v->sun_azimuth_deg);
+    if (!scene_sun_by_place(o)) {   /* else the date and place give them (scene_sun_dump) */
+        num(&b, sun, "elevation_deg", v->sun_elevation_deg);
+        num(&b, sun, "azimuth_deg", v->sun_azimuth_deg);
+    }
+    b.ok = b.ok && scene_sun_dump(sun, o);
     arr(&b, sun, "illuminance", a->sun_illuminance, 3);
     num(&b, sun, "angular_radius_deg", o->sun_angular_radius_deg);
     num(&b, sun, "limb_darkening", o->limb_darkening);
