@@ -18,7 +18,7 @@ cols=$(echo "$help" | awk '
     /^  --/ { head = $0; sub(/^  --[^ ]+( [^ ]+)?/, "", head)
               if (head == "") { pending = 1; next }
               match(head, /^ +/); print length($0) - length(head) + RLENGTH + 1; next }
-    pending || /^ {10,}[^ ]/ { match($0, /^ +/); print RLENGTH + 1; pending = 0 }' | sort -u)
+    pending || /^          +[^ ]/ { match($0, /^ +/); print RLENGTH + 1; pending = 0 }' | sort -u)
 [ "$(echo "$cols" | wc -l)" -eq 1 ] || fail "descriptions start in columns: $(echo $cols)"
 flags=$(echo "$help" | grep -oE '^  --[a-z0-9-]+' | tr -d ' ' | sort -u)
 [ "$(echo "$flags" | wc -l)" -ge 60 ] || fail "--help lists only $(echo "$flags" | wc -l) flags"

@@ -38,7 +38,7 @@ EOF2
         entry = n > 1 ? ".TP\n.BI " esc(parts[1]) " \" \" " esc(parts[2]) : ".TP\n.B " esc(parts[1])
         next
     }
-    /^ {10,}/ && entry != "" { t = $0; sub(/^ +/, "", t); text = text " " t; next }
+    /^          +/ && entry != "" { t = $0; sub(/^ +/, "", t); text = text " " t; next }
     END { flush() }'
 cat <<'EOF2'
 .SH EXAMPLES

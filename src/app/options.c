@@ -2,6 +2,7 @@
 #include "app/quality.h"
 #include "app/scene.h"
 #include "app/options_tooling.h"
+#include "app/help.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -99,10 +100,10 @@ double options_sun_radius_rad(const options *o) { return o->sun_angular_radius_d
 
 void options_print_help(FILE *out)
 {
-    fprintf(out, "usage: vksky [options]                               interactive window (see F1 for controls)\n"
-                 "       vksky --render FILE.exr|FILE.png [options]    headless render\n"
-                 "       vksky --bench N [options]                       benchmark\n\noptions:\n");
-    for (size_t i = 0; i < sizeof flags / sizeof flags[0]; ++i) fprintf(out, "  %s %s\n", flags[i].name, flags[i].help);
+    help_entry entries[sizeof flags / sizeof flags[0]];
+    for (size_t i = 0; i < sizeof flags / sizeof flags[0]; ++i)
+        entries[i] = (help_entry){flags[i].name, flags[i].kind != ARG_NONE, flags[i].help};
+    help_print(out, entries, (int)(sizeof flags / sizeof flags[0]));
 }
 
 static int bad(const char *flag_name, const char *what)
