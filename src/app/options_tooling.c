@@ -2,6 +2,7 @@
 #include "app/options_tooling.h"
 #include "app/scene_find.h"
 #include <limits.h>
+#include <stdio.h>
 #include <string.h>
 
 int options_tooling_apply(options *o, const char *n, const char *value, double x)
