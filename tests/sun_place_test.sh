@@ -64,6 +64,12 @@ grep -q "\"computed_azimuth_deg\":[[:space:]]*$az" "$work/scene.json" || fail "t
 night=$(grep -o '"computed_elevation_deg":[[:space:]]*[-0-9.e]*' "$work/night.json" | awk -F: '{print $2}')
 awk -v e="$night" 'BEGIN { exit !(e != "" && e < 0) }' || fail "--time 06:00 over the scene: elevation '$night', expected below the horizon"
 
+# An angle flag overrides its angle of the scene's dated sun; the other angle stays the date's, and the dump gives
+# the sun by angles (so that it loads back to the same sun).
+"$VKSKY" --scene "$work/golden.json" --sun-azimuth 10 --dump-scene >"$work/az.json" 2>"$work/err" || fail "--sun-azimuth over a dated scene: $(cat "$work/err")"
+grep -q '"azimuth_deg":[[:space:]]*10,' "$work/az.json" && grep -q "\"elevation_deg\":[[:space:]]*$el," "$work/az.json" \
+    && ! grep -q '"date"' "$work/az.json" || fail "--sun-azimuth over a dated scene: $(grep -A3 '"sun"' "$work/az.json")"
+
 # 4. Bad values.
 expect_bad() {   # expect_bad WHAT NEEDLE ARGS...
     local what=$1 needle=$2; shift 2

@@ -44,6 +44,7 @@ typedef struct options {
     /* tooling (issue 14) */
     sun_place place;                            /* --date, --time, ... or the scene's sun.date ...: the sun by SPA */
     const char *sun_angles_flag;                /* --sun-elevation or --sun-azimuth on the command line (NULL: neither) */
+    bool sun_elevation_flag, sun_azimuth_flag;  /* which of them */
     bool list_scenes;                           /* --list-scenes */
 } options;
 

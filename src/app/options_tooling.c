@@ -10,6 +10,8 @@ int options_tooling_apply(options *o, const char *n, const char *value, double x
     sun_place *p = &o->place;
     if (!strcmp(n, "--sun-elevation") || !strcmp(n, "--sun-azimuth")) {
         if (!o->sun_angles_flag) o->sun_angles_flag = n;
+        if (!strcmp(n, "--sun-elevation")) o->sun_elevation_flag = true;
+        else o->sun_azimuth_flag = true;
         return -1;
     }
     bool place_flag = true;
@@ -42,9 +44,14 @@ int options_tooling_resolve(options *o)
                         "date and place\n", o->sun_angles_flag);
         return 2;
     }
-    if (o->sun_angles_flag && sun_place_any(&o->place)) sun_place_init(&o->place);   /* the flag overrides the scene */
     if (!sun_place_any(&o->place)) return 0;
-    return sun_place_resolve(&o->place, &o->view.sun_elevation_deg, &o->view.sun_azimuth_deg);
+    double elevation, azimuth;
+    if (sun_place_resolve(&o->place, &elevation, &azimuth)) return 2;
+    if (!o->sun_elevation_flag) o->view.sun_elevation_deg = elevation;
+    if (!o->sun_azimuth_flag) o->view.sun_azimuth_deg = azimuth;
+    /* An angle flag overrides its angle of the scene's dated sun; the sun is then given by angles (and dumped so). */
+    if (o->sun_angles_flag) sun_place_init(&o->place);
+    return 0;
 }
 
 const char *options_tooling_scene_path(const char *value)
