@@ -11,8 +11,9 @@
  *            [--configs a,b,...] [--device N]
  */
 #include "app/quality.h"
-#include "io/image_io.h"
+#include "io/half_float.h"
 #include "reference/metrics.h"
+#include "sky/submit.h"
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>

@@ -3,7 +3,7 @@
  * Hooks called by options.c; kept here so the shared parser changes by a few lines. */
 #ifndef VKSKY_APP_OPTIONS_TOOLING_H
 #define VKSKY_APP_OPTIONS_TOOLING_H
-#include "app/options.h"
+#include "app/options_struct.h"
 
 /* Apply one of these flags (x: its parsed number, for numeric ones): 0 ok, 2 bad value (message printed), -1 not one
  * of them (the caller applies it). Also notes --sun-elevation/--sun-azimuth (and returns -1 for them). */

@@ -3,7 +3,7 @@
  * sun.computed_elevation_deg / computed_azimuth_deg that --dump-scene writes (accepted as numbers, recomputed). */
 #ifndef VKSKY_APP_SCENE_SUN_H
 #define VKSKY_APP_SCENE_SUN_H
-#include "app/options.h"
+#include "app/options_struct.h"
 #include <cjson/cJSON.h>
 
 /* The field names this adds to the sun object's accepted list. */
