@@ -13,7 +13,8 @@ typedef struct help_group {
 } help_group;
 
 static const char *const output_flags[] = {"--render", "--width", "--height", "--exposure", "--tonemap", "--no-bloom",
-                                           "--bloom-mips", "--scene", "--list-scenes", "--dump-scene", NULL};
+                                           "--bloom-mips", "--scene", "--list-scenes", "--dump-scene",
+                                           "--animate", "--frame-count", "--frame-range", NULL};
 static const char *const camera_flags[] = {"--altitude", "--yaw", "--pitch", "--fov", NULL};
 static const char *const sun_flags[] = {"--sun-elevation", "--sun-azimuth", "--date", "--time", "--utc-offset",
                                         "--latitude", "--longitude", "--elevation-m", "--sun-illuminance",

@@ -3,6 +3,7 @@
 #include "app/quality.h"
 #include "app/scene.h"
 #include "app/options_tooling.h"
+#include "app/options_sequence.h"
 #include "app/help.h"
 #include "app/scene_dump.h"
 #include <errno.h>
@@ -131,6 +132,8 @@ static int apply(options *o, const flag *f, const char *value)
     if ((f->kind == ARG_INT || f->kind == ARG_DOUBLE) && parse_number(f, value, &x) != 0) return 2;
     int handled = options_tooling_apply(o, n, value, x);   /* the sun by date and place, --list-scenes */
     if (handled >= 0) return handled;
+    handled = options_sequence_apply(o, n, value, x);   /* --animate, --frame-count, --frame-range */
+    if (handled >= 0) return handled;
     if (!strcmp(n, "--render")) {
         if (!has_extension(value, ".exr") && !has_extension(value, ".png"))
             return bad(n, "unknown output type; expected a file name ending in .exr or .png");
@@ -251,7 +254,7 @@ int options_parse(options *o, int argc, char **argv)
     *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
                    .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5,
                    .scales = {1.0, 1.0, 1.0}, .path_samples = 4096, .sun_angular_radius_deg = 0.265,
-                   .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true};
+                   .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true, .argc = argc, .argv = argv};
     model_atmosphere_earth(&o->atmosphere);
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
@@ -316,7 +319,7 @@ int options_parse(options *o, int argc, char **argv)
             if (apply(o, f, value) != 0) return 2;
     }
     }
-    if (options_tooling_resolve(o)) return 2;
+    if (options_tooling_resolve(o) || options_sequence_resolve(o)) return 2;
     scale3(o->atmosphere.rayleigh_scattering, o->scales[0]);
     scale3(o->atmosphere.mie_scattering, o->scales[1]);
     scale3(o->atmosphere.mie_absorption, o->scales[1]);

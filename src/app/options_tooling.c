@@ -31,7 +31,8 @@ int options_tooling_apply(options *o, const char *n, const char *value, double x
 
 bool options_tooling_first_pass(const char *n)
 {
-    static const char *const names[] = {"--date", "--time", "--utc-offset", "--latitude", "--longitude", "--elevation-m"};
+    static const char *const names[] = {"--date", "--time", "--utc-offset", "--latitude", "--longitude", "--elevation-m",
+                                        "--animate" /* time=FROM:TO gives the first frame's time */};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
         if (!strcmp(n, names[i])) return true;
     return false;

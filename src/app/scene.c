@@ -4,12 +4,15 @@
 #include "app/quality.h"
 #include "app/scene_sun.h"
 #include "app/scene_validate.h"
+#include "app/exr_names.h"
+#include "io/exr_meta.h"
 #include <cjson/cJSON.h>
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #define SCENE_MAX_BYTES (1 << 20)
 
@@ -374,6 +377,25 @@ static int read_all(const char *path, const char *shown, char **text, size_t *le
     return 0;
 }
 
+static bool exr_file(const char *path)
+{
+    size_t n = strlen(path);
+    return n >= 4 && !strcasecmp(path + n - 4, ".exr");
+}
+
+/* The scene an EXR made by vksky carries in its header (app/exr_header.h): the effective scene of its render. */
+static int read_exr_scene(const char *path, const char *shown, char **text, size_t *len)
+{
+    char err[512];
+    int rc = io_exr_read_string_attr(path, EXR_HEADER_SCENE, text, err, sizeof err);
+    if (rc < 0) fprintf(stderr, "vksky: --scene: %s\n", err);
+    if (rc > 0) fprintf(stderr, "vksky: --scene: '%s' has no '%s' attribute; expected an EXR written by vksky (or a "
+                                "scene .json file)\n", shown, EXR_HEADER_SCENE);
+    if (rc != 0) return 2;
+    *len = strlen(*text);
+    return 0;
+}
+
 static bool blank(char ch)
 {
     return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n';
@@ -427,7 +449,7 @@ int scene_load(const char *path, options *o)
     scene_printable(c.file, sizeof c.file, path);
     char *text = NULL;
     size_t len = 0;
-    if (read_all(path, c.file, &text, &len)) return 2;
+    if (exr_file(path) ? read_exr_scene(path, c.file, &text, &len) : read_all(path, c.file, &text, &len)) return 2;
     int rc = 2;
     cJSON *root = NULL;
     size_t first = 0;

@@ -6,6 +6,7 @@
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -47,7 +48,8 @@ bool scene_is_name(const char *value)
 {
     size_t n = strlen(value);
     struct stat st;
-    return n > 0 && !strchr(value, '/') && !(n >= 5 && !strcmp(value + n - 5, ".json")) && stat(value, &st) != 0;
+    return n > 0 && !strchr(value, '/') && !(n >= 5 && !strcmp(value + n - 5, ".json")) &&
+           !(n >= 4 && !strcasecmp(value + n - 4, ".exr")) && stat(value, &st) != 0;
 }
 
 static int compare_names(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }

@@ -1,7 +1,9 @@
 /* --date/--time/--latitude/...: parsing and the SPA call (see sun_place.h for the azimuth mapping). */
 #include "app/sun_place.h"
 #include <ctype.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 void sun_place_init(sun_place *p) { *p = (sun_place){0}; }
@@ -55,12 +57,14 @@ int sun_place_parse_date(sun_place *p, const char *what, const char *text)
 int sun_place_parse_time(sun_place *p, const char *what, const char *text)
 {
     int h, m, s = 0;
-    size_t n = strlen(text);
-    if ((n != 5 && n != 8) || !digits(text, 2, &h) || text[2] != ':' || !digits(text + 3, 2, &m) ||
-        (n == 8 && (text[5] != ':' || !digits(text + 6, 2, &s))))
-        return bad(what, text, "is not a time; expected HH:MM or HH:MM:SS, 24-hour local clock (e.g. 06:30)");
+    size_t n = strlen(text), fraction = 0;   /* "HH:MM:SS.ffffff": up to 6 decimals (--animate time's frames) */
+    while (n > 9 && fraction < n - 9 && isdigit((unsigned char)text[9 + fraction])) ++fraction;
+    bool fractional = n > 9 && text[8] == '.' && fraction >= 1 && fraction <= 6 && 9 + fraction == n;
+    if ((n != 5 && n != 8 && !fractional) || !digits(text, 2, &h) || text[2] != ':' || !digits(text + 3, 2, &m) ||
+        (n >= 8 && (text[5] != ':' || !digits(text + 6, 2, &s))))
+        return bad(what, text, "is not a time; expected HH:MM or HH:MM:SS[.ffffff], 24-hour local clock (e.g. 06:30)");
     if (h > 23 || m > 59 || s > 59) return bad(what, text, "is not a time of day; expected 00:00:00 to 23:59:59");
-    p->when.hour = h, p->when.minute = m, p->when.second = s;
+    p->when.hour = h, p->when.minute = m, p->when.second = n >= 8 ? strtod(text + 6, NULL) : 0.0;
     p->has_time = true;
     return 0;
 }
@@ -72,7 +76,18 @@ void sun_place_format_date(const sun_place *p, char out[16])
 
 void sun_place_format_time(const sun_place *p, char out[16])
 {
-    snprintf(out, 16, "%02d:%02d:%02d", p->when.hour % 100, p->when.minute % 100, (int)p->when.second % 100);
+    double s = p->when.second >= 0.0 && p->when.second < 60.0 ? p->when.second : 0.0;
+    if (s == floor(s)) {
+        snprintf(out, 16, "%02d:%02d:%02d", p->when.hour % 100, p->when.minute % 100, (int)s);
+        return;
+    }
+    /* Six decimals read back as the same double: the parser reads at most six, and a double holds 15 digits. */
+    unsigned long us = (unsigned long)lround(s * 1e6);
+    if (us > 59999999ul) us = 59999999ul;
+    snprintf(out, 16, "%02u:%02u:%02lu.%06lu", (unsigned)p->when.hour % 100u, (unsigned)p->when.minute % 100u,
+             us / 1000000ul % 100ul, us % 1000000ul);
+    size_t n = strlen(out);
+    while (out[n - 1] == '0') out[--n] = '\0';
 }
 
 int sun_place_resolve(const sun_place *p, double *elevation_deg, double *azimuth_deg)

@@ -19,4 +19,8 @@ const char *io_exr_msg(exr_result_t rc);
 /* Channel name for layer `layer` ("" = the default layer) and component index c (0..3 = R,G,B,A). */
 void io_exr_channel_name(char *out, size_t out_size, const char *layer, int c);
 
+/* The attributes of an io_exr_meta (exr_meta.h) onto a part being written, before its header is written. */
+struct io_exr_meta;
+exr_result_t io_exr_set_meta(exr_context_t ctxt, int part, const struct io_exr_meta *meta);
+
 #endif /* VKSKY_IO_EXR_COMMON_H */

@@ -81,6 +81,12 @@ static exr_result_t exr_compress_no_expand(exr_encode_pipeline_t *enc)
 int io_write_exr(const char *path, int width, int height, const io_exr_layer *layers, int layer_count, char *err,
                  size_t err_size)
 {
+    return io_write_exr_meta(path, width, height, layers, layer_count, NULL, err, err_size);
+}
+
+int io_write_exr_meta(const char *path, int width, int height, const io_exr_layer *layers, int layer_count,
+                      const struct io_exr_meta *meta, char *err, size_t err_size)
+{
     const char *p = io_safe_path(path);
     if (io_check_image_target(path, width, height, err, err_size) != 0) return -1;
     if (!layers || layer_count <= 0 || layer_count > 1000) {
@@ -139,6 +145,12 @@ int io_write_exr(const char *path, int width, int height, const io_exr_layer *la
     stage = "header";
     rc = exr_initialize_required_attr_simple(ctxt, part, width, height, EXR_COMPRESSION_ZIP);
     if (rc != EXR_ERR_SUCCESS) goto fail;
+
+    if (meta) {
+        stage = "attributes";
+        rc = io_exr_set_meta(ctxt, part, meta);
+        if (rc != EXR_ERR_SUCCESS) goto fail;
+    }
 
     stage = "add channel";
     for (int l = 0; l < layer_count; ++l) {
