@@ -18,11 +18,19 @@ vksky \\- a physically based sky (Hillaire 2020) rendered with Vulkan
 .br
 .B vksky \\-\\-scene
 \\fINAME\\fR|\\fIFILE\\fR.json [\\fIoptions\\fR]
+.br
+.B vksky \\-\\-frame\\-count
+\\fIN\\fR \\fB\\-\\-animate\\fR \\fIPARAM\\fR=\\fIFROM\\fR:\\fITO\\fR \\fB\\-\\-render\\fR \\fIsky_%04d\\fR.exr [\\fB\\-\\-frame\\-range\\fR \\fIA\\fR:\\fIB\\fR] [\\fIoptions\\fR]
 .SH DESCRIPTION
 Renders the sky of a planet's atmosphere (Rayleigh, Mie and ozone, multiple scattering) with the LUTs of
 Hillaire's 2020 model, in an interactive window or headless into an OpenEXR (scene-linear) or PNG file.
 Shipped scenes (\\fBvksky \\-\\-list-scenes\\fR) are found by name; the sun can be placed by angles or by a
 date, a time and a place (NREL's Solar Position Algorithm).
+A sequence (\\fB\\-\\-animate\\fR, \\fB\\-\\-frame\\-count\\fR) renders its frames in one process and
+recomputes the LUTs only when their inputs change; \\fB\\-\\-frame\\-range\\fR splits it across render-farm
+jobs with the same files as a whole run. An EXR's header records the camera (worldToCamera, worldToNDC), the
+colour space (chromaticities), the scene and the command line: \\fBvksky \\-\\-scene\\fR \\fIFRAME\\fR.exr
+renders it again.
 Bad input prints one line naming the flag and what it accepts, and exits with status 2.
 .SH OPTIONS
 EOF2

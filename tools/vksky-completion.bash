@@ -23,6 +23,9 @@ _vksky()
         --mie-phase) COMPREPLY=($(compgen -W "hg cornette-shanks henyey-greenstein" -- "$cur")); return ;;
         --date) COMPREPLY=($(compgen -W "$(date +%F)" -- "$cur")); return ;;
         --time) COMPREPLY=($(compgen -W "$(date +%H:%M)" -- "$cur")); return ;;
+        --animate)   # PARAM= of the common ones (any numeric flag works); the user types FROM:TO
+            COMPREPLY=($(compgen -W "time= sun-elevation= sun-azimuth= yaw= pitch= fov= altitude= exposure= mie-g= mie-scale= rayleigh-scale=" -- "$cur"))
+            compopt -o nospace 2>/dev/null; return ;;
     esac
     # A flag that takes a value: nothing sensible to offer beyond what the user types.
     if [[ $prev == --* ]] && "$exe" --help 2>/dev/null | grep -qE "^ +$prev +[A-Z]"; then

@@ -3,7 +3,7 @@
 #include <string.h>
 
 const flag flags_table[] = {
-    {"--render", ARG_STRING, 0, 0, "FILE   write the frame: .exr (scene-linear half RGBA, ZIP) or .png (tone-mapped 8-bit sRGB); repeatable"},
+    {"--render", ARG_STRING, 0, 0, "FILE   write the frame: .exr (scene-linear half RGBA, ZIP; the header records the scene, camera and command line) or .png (tone-mapped 8-bit sRGB); repeatable; a %d in FILE is the frame number"},
     {"--animate", ARG_STRING, 0, 0, "PARAM=FROM:TO  animate a numeric flag (sun-elevation, yaw, altitude, exposure, mie-g, ...) or time (local clock, decimal hours, with --date) linearly over the frames; repeatable"},
     {"--frame-count", ARG_INT, 1, 1000000, "N  frames of the sequence (default 1); with N > 1 each --render needs one %d (e.g. sky_%04d.exr), the frame number"},
     {"--frame-range", ARG_STRING, 0, 0, "A:B  render only frames A to B (inclusive, from 0) of the sequence: split it across jobs"},
@@ -47,7 +47,7 @@ const flag flags_table[] = {
     {"--rayleigh-scale", ARG_DOUBLE, 0, 1000, "S Rayleigh density scale (default 1)"},
     {"--mie-scale", ARG_DOUBLE, 0, 1000, "S      Mie (aerosol) density scale (default 1)"},
     {"--ozone-scale", ARG_DOUBLE, 0, 1000, "S    ozone density scale (default 1)"},
-    {"--scene", ARG_STRING, 0, 0, "FILE.json|NAME  load a scene file, or a shipped scene by name (--list-scenes), first (schema: scenes/README.md); every other flag overrides it"},
+    {"--scene", ARG_STRING, 0, 0, "FILE.json|FILE.exr|NAME  load a scene file, the scene an EXR made by vksky was rendered from, or a shipped scene by name (--list-scenes), first (schema: scenes/README.md); every other flag overrides it"},
     {"--list-scenes", ARG_NONE, 0, 0, "list the shipped scenes (names for --scene) with a line each, and exit"},
     {"--dump-scene", ARG_NONE, 0, 0, "      print the effective scene (after all overrides) as scene JSON and exit"},
     {"--ground-albedo", ARG_TRIPLE, 0, 1, "R,G,B ground albedo (default 0,0,0)"},

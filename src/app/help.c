@@ -89,7 +89,9 @@ void help_print(FILE *out, const help_entry *flags, int count)
     fprintf(out, "usage: vksky [options]                             interactive window (F1 lists the keys)\n"
                  "       vksky --render FILE.exr|FILE.png [options]  headless render\n"
                  "       vksky --bench N [options]                   benchmark\n"
-                 "       vksky --scene NAME|FILE.json [options]      a shipped scene (--list-scenes) or a file\n");
+                 "       vksky --scene NAME|FILE.json [options]      a shipped scene (--list-scenes) or a file\n"
+                 "       vksky --scene FRAME.exr [options]           the scene an EXR by vksky was made from\n"
+                 "       vksky --frame-count N --animate PARAM=FROM:TO --render 'f_%%04d.exr'  a sequence\n");
     for (int g = 0; g <= GROUP_COUNT; ++g) {
         bool any = false;
         for (int i = 0; i < count; ++i) {
