@@ -6,8 +6,11 @@
  *                                        brighter than half the brightest (the sun's disc)
  *   exr_pixels project A.exr AZ EL       print "x y" (pixels) where worldToNDC puts the direction of azimuth AZ and
  *                                        elevation EL (degrees; (cos el cos az, sin el, cos el sin az), +Y up: vksky's
- *                                        documented convention), and "cam X Y Z": worldToCamera's image of it */
+ *                                        documented convention), and "cam X Y Z": worldToCamera's image of it
+ *   exr_pixels plain OUT.exr             write a 2x2 grey EXR with no header attributes beyond the required ones */
 #include "io/exr_read.h"
+#include "io/exr_write.h"
+#include "io/half_float.h"
 #include <math.h>
 #include <openexr.h>
 #include <stdio.h>
@@ -109,6 +112,17 @@ int main(int argc, char **argv)
         printf("%.3f %.3f\ncam %.6f %.6f %.6f\n", q[0] / q[3] * w, q[1] / q[3] * h, c[0], c[1], c[2]);
         return 0;
     }
-    fprintf(stderr, "usage: exr_pixels same A B | attr A NAME | sun A | project A AZ EL\n");
+    if (argc == 3 && !strcmp(argv[1], "plain")) {
+        uint16_t px[16];
+        for (int i = 0; i < 16; ++i) px[i] = io_float_to_half(0.5f);
+        io_exr_layer layer = {.name = "", .rgba_half = px};
+        char err[512];
+        if (io_write_exr(argv[2], 2, 2, &layer, 1, err, sizeof err) != 0) {
+            fprintf(stderr, "exr_pixels: %s\n", err);
+            return 1;
+        }
+        return 0;
+    }
+    fprintf(stderr, "usage: exr_pixels same A B | attr A NAME | sun A | project A AZ EL | plain OUT\n");
     return 2;
 }
