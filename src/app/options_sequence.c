@@ -1,5 +1,6 @@
 /* --animate, --frame-count, --frame-range (options_sequence.h). */
 #include "app/options_sequence.h"
+#include "app/bad_value.h"
 #include "app/flags.h"
 #include "app/sun_place.h"
 #include <errno.h>
@@ -7,16 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int bad(const char *flag_name, const char *text, const char *why)
-{
-    char shown[64];
-    size_t k = 0;
-    for (; text[k] && k + 1 < sizeof shown; ++k) shown[k] = (unsigned char)text[k] < 0x20 ? '?' : text[k];
-    shown[k] = '\0';
-    fprintf(stderr, "vksky: %s: '%s' %s\n", flag_name, shown, why);
-    return 2;
-}
 
 /* Flags whose value sizes the renderer's images or LUTs (made once for the whole sequence), picks the quality, or is
  * not about the picture: numeric, but not animatable. */
@@ -51,11 +42,11 @@ static int parse_animate(options *o, const char *value)
     const char *n = "--animate";
     static const char *const form = "is not PARAM=FROM:TO; expected e.g. sun-elevation=-2:30 or time=5.5:8";
     const char *eq = strchr(value, '=');
-    if (!eq || eq == value) return bad(n, value, form);
+    if (!eq || eq == value) return bad_value(n, value, form);
     char name[64] = "--";
     const char *param = !strncmp(value, "--", 2) ? value + 2 : value;
     size_t param_len = (size_t)(eq - param);
-    if (eq < param || param_len + 3 > sizeof name) return bad(n, value, form);
+    if (eq < param || param_len + 3 > sizeof name) return bad_value(n, value, form);
     memcpy(name + 2, param, param_len);
     name[2 + param_len] = '\0';
     bool time = !strcmp(name, "--time");
@@ -66,26 +57,26 @@ static int parse_animate(options *o, const char *value)
                  "yaw, pitch, fov, exposure, mie-g, ...) or time", !f ? "names no flag"
                  : (f->kind != ARG_INT && f->kind != ARG_DOUBLE) ? "is not a numeric flag" : "is fixed for a sequence "
                  "(it sizes the renderer or is not about the picture)");
-        return bad(n, value, why);
+        return bad_value(n, value, why);
     }
     const char *colon = strchr(eq + 1, ':');
     double from, to;
     if (!colon || strchr(colon + 1, ':') || !number(eq + 1, (size_t)(colon - eq - 1), &from) ||
         !number(colon + 1, strlen(colon + 1), &to))
-        return bad(n, value, form);
+        return bad_value(n, value, form);
     double lo = time ? 0.0 : f->min, hi = time ? 24.0 : f->max;
     if (from < lo || to < lo || from > hi || to > hi || (time && (from >= 24.0 || to >= 24.0))) {
         char why[160];
         snprintf(why, sizeof why, time ? "is outside the day; expected hours FROM and TO in [0, 24) (e.g. time=5.5:8 "
                  "for 05:30 to 08:00)" : "is out of range; expected FROM and TO in [%g, %g]", lo, hi);
-        return bad(n, value, why);
+        return bad_value(n, value, why);
     }
     /* A PARAM given again replaces its animation (a later flag overrides, as everywhere; the parser's first pass also
      * applies --animate, for an animated time). */
     int slot = o->animate_count;
     for (int i = 0; i < o->animate_count; ++i)
         if (!strcmp(o->animate[i].flag_name, time ? "--time" : f->name)) slot = i;
-    if (slot == OPTIONS_MAX_ANIMATE) return bad(n, value, "is one too many; at most 16 parameters");
+    if (slot == OPTIONS_MAX_ANIMATE) return bad_value(n, value, "is one too many; at most 16 parameters");
     if (slot == o->animate_count) ++o->animate_count;
     o->animate[slot] = (options_animation){time ? "--time" : f->name, !time && f->kind == ARG_INT,
                                                          from, to};
@@ -108,12 +99,12 @@ static int parse_range(options *o, const char *value)
     const char *second = end + 1;
     long b = strtol(second, &end, 10);
     if (end == second || *end != '\0' || second[0] == '-' || second[0] == '+' || errno == ERANGE) goto malformed;
-    if (a > b) return bad(n, value, "is empty; expected A:B with A <= B (frames A to B, inclusive, from 0)");
-    if (b > 1000000) return bad(n, value, "is out of range; expected frames from 0 to --frame-count - 1");
+    if (a > b) return bad_value(n, value, "is empty; expected A:B with A <= B (frames A to B, inclusive, from 0)");
+    if (b > 1000000) return bad_value(n, value, "is out of range; expected frames from 0 to --frame-count - 1");
     o->frame_first = (int)a, o->frame_last = (int)b, o->frame_range_set = true;
     return 0;
 malformed:
-    return bad(n, value, "is not a frame range; expected A:B, frames A to B inclusive, from 0 (e.g. 0:99)");
+    return bad_value(n, value, "is not a frame range; expected A:B, frames A to B inclusive, from 0 (e.g. 0:99)");
 }
 
 int options_sequence_apply(options *o, const char *n, const char *value, double x)
@@ -140,15 +131,15 @@ int options_sequence_resolve(options *o)
         snprintf(text, sizeof text, "%d:%d", o->frame_first, o->frame_last);
         snprintf(why, sizeof why, "is outside the sequence; expected frames within 0:%d (--frame-count %d)", count - 1,
                  count);
-        return bad("--frame-range", text, why);
+        return bad_value("--frame-range", text, why);
     }
     for (int i = 0; i < o->output_count; ++i) {
         int kind = sequence_pattern_kind(o->outputs[i]);
         if (kind < 0 && sequence)
-            return bad("--render", o->outputs[i], "has a '%' other than one %d (e.g. %04d) for the frame number; "
+            return bad_value("--render", o->outputs[i], "has a '%' other than one %d (e.g. %04d) for the frame number; "
                                                   "write %% for a literal '%'");
         if (kind == 0 && count > 1)
-            return bad("--render", o->outputs[i], "has no frame number; with --frame-count > 1 expected a pattern with "
+            return bad_value("--render", o->outputs[i], "has no frame number; with --frame-count > 1 expected a pattern with "
                                                   "one %d, e.g. sky_%04d.exr");
     }
     return 0;

@@ -1,5 +1,6 @@
 /* --date/--time/--latitude/...: parsing and the SPA call (see sun_place.h for the azimuth mapping). */
 #include "app/sun_place.h"
+#include "app/bad_value.h"
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -22,16 +23,6 @@ static bool digits(const char *s, int n, int *out)
     return true;
 }
 
-static int bad(const char *what, const char *text, const char *why)
-{
-    char shown[40];
-    size_t k = 0;
-    for (; text[k] && k + 1 < sizeof shown; ++k) shown[k] = (unsigned char)text[k] < 0x20 ? '?' : text[k];
-    shown[k] = '\0';
-    fprintf(stderr, "vksky: %s: '%s' %s\n", what, shown, why);
-    return 2;
-}
-
 int sun_place_parse_date(sun_place *p, const char *what, const char *text)
 {
     static const char *const months[12] = {"January", "February", "March", "April", "May", "June", "July",
@@ -39,15 +30,15 @@ int sun_place_parse_date(sun_place *p, const char *what, const char *text)
     int y, m, d;
     if (strlen(text) != 10 || !digits(text, 4, &y) || text[4] != '-' || !digits(text + 5, 2, &m) || text[7] != '-' ||
         !digits(text + 8, 2, &d))
-        return bad(what, text, "is not a date; expected YYYY-MM-DD (e.g. 2026-06-21)");
-    if (y < 1583 || y > 6000) return bad(what, text, "is outside the years 1583 to 6000 (Gregorian calendar, SPA's range)");
-    if (m < 1 || m > 12) return bad(what, text, "has no such month; expected a month 01 to 12");
+        return bad_value(what, text, "is not a date; expected YYYY-MM-DD (e.g. 2026-06-21)");
+    if (y < 1583 || y > 6000) return bad_value(what, text, "is outside the years 1583 to 6000 (Gregorian calendar, SPA's range)");
+    if (m < 1 || m > 12) return bad_value(what, text, "has no such month; expected a month 01 to 12");
     if (!solar_date_valid(y, m, d)) {
         char why[120];
         int last = 28;
         while (last < 31 && solar_date_valid(y, m, last + 1)) ++last;
         snprintf(why, sizeof why, "is not a calendar date: %s %d has days 01 to %02d", months[m - 1], y, last);
-        return bad(what, text, why);
+        return bad_value(what, text, why);
     }
     p->when.year = y, p->when.month = m, p->when.day = d;
     p->has_date = true;
@@ -62,8 +53,8 @@ int sun_place_parse_time(sun_place *p, const char *what, const char *text)
     bool fractional = n > 9 && text[8] == '.' && fraction >= 1 && fraction <= 6 && 9 + fraction == n;
     if ((n != 5 && n != 8 && !fractional) || !digits(text, 2, &h) || text[2] != ':' || !digits(text + 3, 2, &m) ||
         (n >= 8 && (text[5] != ':' || !digits(text + 6, 2, &s))))
-        return bad(what, text, "is not a time; expected HH:MM or HH:MM:SS[.ffffff], 24-hour local clock (e.g. 06:30)");
-    if (h > 23 || m > 59 || s > 59) return bad(what, text, "is not a time of day; expected 00:00:00 to 23:59:59");
+        return bad_value(what, text, "is not a time; expected HH:MM or HH:MM:SS[.ffffff], 24-hour local clock (e.g. 06:30)");
+    if (h > 23 || m > 59 || s > 59) return bad_value(what, text, "is not a time of day; expected 00:00:00 to 23:59:59");
     p->when.hour = h, p->when.minute = m, p->when.second = n >= 8 ? strtod(text + 6, NULL) : 0.0;
     p->has_time = true;
     return 0;
