@@ -1,7 +1,5 @@
 #include "app/headless.h"
-#include "app/options_sequence.h"
 #include "app/sequence.h"
-#include "io/atomic_file.h"
 #include "sky/submit.h"
 #include <stdlib.h>
 #include <string.h>
@@ -112,14 +110,9 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
 
 int headless_run(const options *o)
 {
-    char err[512];
-    /* Refuse unwritable outputs before any expensive work (exit 2, nothing written). */
-    for (int i = 0; i < o->output_count; ++i)
-        if (sequence_pattern_kind(o->outputs[i]) != 1 && io_check_writable(o->outputs[i], err, sizeof err) != 0) {
-            fprintf(stderr, "vksky: --render: %s\n", err);
-            return 2;
-        }
-    if (sequence_check(o)) return 2;   /* every frame's options and files (a sequence) */
+    /* Refuse bad frames and unwritable outputs before any expensive work (exit 2, nothing written): every frame's
+     * options and files, one frame's or a sequence's. */
+    if (sequence_check(o)) return 2;
     gpu_context ctx;
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(&ctx, &desc);

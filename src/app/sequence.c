@@ -65,6 +65,13 @@ int sequence_frame_options(const options *base, int frame, options *out)
     return rc;
 }
 
+/* A --render value's file for a frame: the pattern filled in, or a value without one %d as it is. */
+static bool frame_path(const char *output, int frame, char *path, size_t size)
+{
+    if (sequence_pattern_kind(output) == 1) return sequence_output_path(output, frame, path, size);
+    return (size_t)snprintf(path, size, "%s", output) < size;
+}
+
 static bool same_luts(const sky_lut_quality *a, const sky_lut_quality *b)
 {
     return a->transmittance_width == b->transmittance_width && a->transmittance_height == b->transmittance_height &&
@@ -75,7 +82,6 @@ static bool same_luts(const sky_lut_quality *a, const sky_lut_quality *b)
 
 int sequence_check(const options *base)
 {
-    if (!sequence_active(base)) return 0;
     for (int i = base->frame_first; i <= base->frame_last; ++i) {
         options f;
         if (sequence_frame_options(base, i, &f)) return 2;
@@ -88,7 +94,7 @@ int sequence_check(const options *base)
         }
         for (int k = 0; k < base->output_count; ++k) {
             char path[PATH_MAX], err[512];
-            if (!sequence_output_path(base->outputs[k], i, path, sizeof path)) {
+            if (!frame_path(base->outputs[k], i, path, sizeof path)) {
                 fprintf(stderr, "vksky: --render: '%s' makes a file name longer than %d bytes\n", base->outputs[k],
                         PATH_MAX - 1);
                 return 2;
@@ -115,8 +121,7 @@ static int write_outputs(const options *o, const sky_renderer *r, int frame, boo
     char err[512];
     for (int i = 0; i < o->output_count; ++i) {
         char path[PATH_MAX];
-        if (sequence_pattern_kind(o->outputs[i]) != 1) snprintf(path, sizeof path, "%s", o->outputs[i]);
-        else if (!sequence_output_path(o->outputs[i], frame, path, sizeof path)) return 1;   /* checked before */
+        if (!frame_path(o->outputs[i], frame, path, sizeof path)) return 1;   /* checked before */
         if (i == 0) snprintf(first, sizeof first, "%s", path), *first_path = first;
         int rc;
         if (is_exr(path)) {
