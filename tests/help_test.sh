@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# tests/help_test.sh VKSKY MAN_PAGE: --help is grouped (output, camera, sun, atmosphere, quality, diagnostics, and
-# every flag in one of them), no line is over 100 columns, every flag's description starts in the same column; and
+# tests/help_test.sh VKSKY MAN_PAGE: --help is grouped (output, camera, sun, atmosphere, quality, diagnostics, then
+# the compositing mode's own flags; every flag in one of them), no line is over 100 columns, every flag's
+# description starts in the same column; and
 # the man page lists every flag that --help lists (and no flag --help does not).
 set -u
 VKSKY=${1:?usage: help_test.sh VKSKY MAN_PAGE}
@@ -9,7 +10,7 @@ fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 help=$("$VKSKY" --help) || fail "--help exited non-zero"
 groups=$(echo "$help" | grep -E '^[a-z]+:$' | tr -d ':' | tr '\n' ' ')
-[ "$groups" = "output camera sun atmosphere quality diagnostics " ] || fail "groups are '$groups'"
+[ "$groups" = "output camera sun atmosphere quality diagnostics compositing " ] || fail "groups are '$groups'"
 long=$(echo "$help" | awk 'length($0) > 100')
 [ -z "$long" ] || fail "lines over 100 columns: $long"
 # The description column: where the text after "  --flag [METAVAR]" starts on each flag line (or on the next line

@@ -103,3 +103,9 @@ void help_print(FILE *out, const help_entry *flags, int count)
         }
     }
 }
+
+void help_print_section(FILE *out, const char *title, const char *preamble, const help_entry *flags, int count)
+{
+    fprintf(out, "\n%s:\n%s", title, preamble ? preamble : "");
+    for (int i = 0; i < count; ++i) print_flag(out, &flags[i]);
+}

@@ -16,6 +16,9 @@ typedef struct help_entry {
 } help_entry;
 
 void help_print(FILE *out, const help_entry *flags, int count);
+/* Flags outside the table (a mode's own, e.g. compositing) in the same columns: "\nTITLE:\n", the preamble as it is
+ * (usage lines, or NULL), then the flags in the order given. */
+void help_print_section(FILE *out, const char *title, const char *preamble, const help_entry *flags, int count);
 /* The group a flag is listed under; NULL for a flag no group names (tests/help_test.sh fails on "other:"). */
 const char *help_group_of(const char *flag_name);
 #endif
