@@ -8,7 +8,8 @@
 #  4. The header: chromaticities (Rec.709, D65), owner/software with the version, the command line, the frame number;
 #     worldToNDC puts the sun's direction where the rendered disc is (within 1 px) and worldToCamera maps the view
 #     axis to +z.
-#  5. `--scene FRAME.exr` renders the same pixels (an angle sun and a date sun animated over fractional seconds).
+#  5. `--scene FRAME.exr` renders the same pixels (Earth with an angle sun, Mars, a date sun animated over fractional
+#     seconds).
 #  6. Bad values: one line on stderr, exit 2, no file.
 set -u
 VKSKY=${1:?usage: sequences_test.sh VKSKY EXR_PIXELS}
@@ -83,6 +84,9 @@ awk -v x="$cx" -v y="$cy" 'BEGIN { exit !(x > 0 && y > 0) }' || fail "the sun ri
 # 5. Round trips.
 "$VKSKY" --scene whole/f_004.exr --render rt.exr 2>rt.err || fail "--scene whole/f_004.exr failed: $(cat rt.err)"
 "$PIX" same rt.exr whole/f_004.exr || fail "--scene f_004.exr renders other pixels"
+"$VKSKY" --scene mars --width 40 --height 24 --yaw 100 --render mars.exr 2>/dev/null || fail "--scene mars failed"
+"$VKSKY" --scene mars.exr --render mars_again.exr 2>/dev/null || fail "--scene mars.exr failed"
+"$PIX" same mars.exr mars_again.exr || fail "--scene mars.exr renders other pixels than the Mars render it came from"
 PLACE=(--date 2026-06-21 --utc-offset 2 --latitude 46.2 --longitude 6.1 --yaw 60 --pitch 5)
 "$VKSKY" "${PLACE[@]}" --width 40 --height 24 --animate time=5.123:5.9 --frame-count 3 --render 'd_%d.exr' 2>d.err \
     || fail "time animation failed: $(cat d.err)"
