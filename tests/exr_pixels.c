@@ -51,18 +51,24 @@ int main(int argc, char **argv)
     if (argc == 4 && !strcmp(argv[1], "same")) {
         int w[2], h[2];
         float *px[2] = {NULL, NULL};
-        if (read_pixels(argv[2], &w[0], &h[0], &px[0]) || read_pixels(argv[3], &w[1], &h[1], &px[1])) return 1;
-        if (w[0] != w[1] || h[0] != h[1]) {
-            printf("sizes differ: %dx%d and %dx%d\n", w[0], h[0], w[1], h[1]);
+        if (read_pixels(argv[2], &w[0], &h[0], &px[0]) || read_pixels(argv[3], &w[1], &h[1], &px[1])) {
+            free(px[0]);
             return 1;
         }
-        size_t n = (size_t)w[0] * (size_t)h[0] * 4;
-        for (size_t i = 0; i < n; ++i)
+        int rc = 0;
+        if (w[0] != w[1] || h[0] != h[1]) {
+            printf("sizes differ: %dx%d and %dx%d\n", w[0], h[0], w[1], h[1]);
+            rc = 1;
+        }
+        size_t n = rc ? 0 : (size_t)w[0] * (size_t)h[0] * 4;
+        for (size_t i = 0; i < n && rc == 0; ++i)
             if (memcmp(&px[0][i], &px[1][i], sizeof(float)) != 0) {
                 printf("pixel %zu channel %zu differs: %.9g and %.9g\n", i / 4, i % 4, px[0][i], px[1][i]);
-                return 1;
+                rc = 1;
             }
-        return 0;
+        free(px[0]);
+        free(px[1]);
+        return rc;
     }
     if (argc == 4 && !strcmp(argv[1], "attr")) {
         exr_context_t ctxt = NULL;
@@ -88,6 +94,7 @@ int main(int argc, char **argv)
                 if (v > 0.5 * top) sx += v * (x + 0.5), sy += v * (y + 0.5), sw += v;
             }
         printf("%.3f %.3f\n", sx / sw, sy / sw);
+        free(px);
         return 0;
     }
     if (argc == 5 && !strcmp(argv[1], "project")) {
