@@ -134,6 +134,7 @@ bad "time without a date" --animate time=5:6 --frame-count 2 --render 'x_%d.exr'
 bad "angle animation with a date" --animate sun-elevation=1:2 --time 06:00 --frame-count 2 --render 'x_%d.exr' "${PLACE[@]}"
 bad "frame count 0" --frame-count 0 --render 'x_%d.exr'
 bad "animate without --render" --animate yaw=1:2 --frame-count 2 --bench 2
+bad "a sequence of AOV renders" --aovs --frame-count 2 --render 'x_%d.exr'
 "$PIX" plain plain.exr || fail "exr_pixels cannot write an EXR"
 echo "not an image" >fake.exr
 bad "--scene of an EXR without a scene" --scene "$work/plain.exr" --render x.exr
