@@ -393,6 +393,13 @@ static int read_exr_scene(const char *path, const char *shown, char **text, size
                                 "scene .json file)\n", shown, EXR_HEADER_SCENE);
     if (rc != 0) return 2;
     *len = strlen(*text);
+    if (*len > SCENE_MAX_BYTES) {
+        fprintf(stderr, "vksky: --scene: '%s' carries a scene larger than %d bytes; expected a scene (a small JSON "
+                        "text)\n", shown, SCENE_MAX_BYTES);
+        free(*text);
+        *text = NULL;
+        return 2;
+    }
     return 0;
 }
 
