@@ -1,4 +1,5 @@
 #include "app/headless.h"
+#include "app/cpu_time.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/png_io.h"
@@ -6,7 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/resource.h>
 
 static bool is_exr(const char *path)
 {
@@ -44,15 +44,6 @@ static int write_outputs(const options *o, sky_renderer *r)
         }
     }
     return 0;
-}
-
-/* User + system CPU time of the whole process (every thread: a CPU device's workers too), in ms. */
-static double process_cpu_ms(void)
-{
-    struct rusage u;
-    getrusage(RUSAGE_SELF, &u);
-    return 1e3 * ((double)u.ru_utime.tv_sec + (double)u.ru_stime.tv_sec) +
-           1e-3 * ((double)u.ru_utime.tv_usec + (double)u.ru_stime.tv_usec);
 }
 
 /* Per-pass GPU medians, then the frame: the benchmark's output format (one line per pass). */

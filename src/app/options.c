@@ -153,8 +153,8 @@ static int apply(options *o, const flag *f, const char *value)
     } else if (!strcmp(n, "--no-bloom")) o->view.bloom = false;
     else if (!strcmp(n, "--steps")) o->view.steps = (int)x;
     else if (!strcmp(n, "--quality")) {
-        static const char *const w[] = {"low", "medium", "high", "ultra", "lesson", "auto"};
-        int k = parse_word(n, value, w, 6);
+        static const char *const w[] = {"low", "medium", "high", "ultra", "lesson", "cpu", "auto"};
+        int k = parse_word(n, value, w, 7);
         if (k < 0) return 2;
         o->quality = w[k];
     } else if (!strcmp(n, "--bloom-res")) {
@@ -257,7 +257,9 @@ static bool window_mode(int argc, char **argv)
     return true;
 }
 
-int options_parse(options *o, int argc, char **argv)
+int options_parse(options *o, int argc, char **argv) { return options_parse_for_device(o, argc, argv, false); }
+
+int options_parse_for_device(options *o, int argc, char **argv, bool cpu_device)
 {
     *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
                    .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5,
@@ -289,8 +291,9 @@ int options_parse(options *o, int argc, char **argv)
         double measured = 0.0;
         const char *scene = NULL;
         if (automatic) {
-            q = quality_auto(o->view.altitude_km, o->view.sun_elevation_deg, &measured, &scene);
+            q = quality_auto(o->view.altitude_km, o->view.sun_elevation_deg, cpu_device, &measured, &scene);
             o->quality = NULL;
+            o->quality_auto = true;
         } else if (o->max_error > 0.0) {
             q = quality_pick(o->max_error, o->view.altitude_km, o->view.sun_elevation_deg, &measured, &scene);
             if (!q) {

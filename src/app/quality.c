@@ -87,6 +87,9 @@ const quality_config *quality_preset(const char *name)
     for (int i = 0; i < 4; ++i)
         if (!strcmp(quality_presets[i].name, name)) return &quality_presets[i];
     if (!strcmp(name, "lesson")) return &quality_lesson;
+    if (!strcmp(name, "cpu"))      /* the CPU device's point: a sweep configuration under a short name */
+        for (int k = 0; k < quality_sweep_count; ++k)
+            if (!strcmp(quality_sweep[k].name, QUALITY_CPU_CONFIG)) return &quality_sweep[k];
     return NULL;
 }
 
@@ -133,16 +136,16 @@ int quality_scene_class(double altitude_km, double sun_elevation_deg)
 }
 
 #include "app/quality_table.h"
+#include "app/quality_table_cpu.h"
 
-const quality_config *quality_pick(double max_error, double altitude_km, double sun_elevation_deg, double *measured,
-                                   const char **scene_name)
+/* The cheapest configuration of a measured table whose error on the scene class is <= max_error. */
+static const quality_config *pick_from(const quality_measurement *table, int count, double max_error, int scene,
+                                       double *measured)
 {
-    int scene = quality_scene_class(altitude_km, sun_elevation_deg);
-    *scene_name = quality_scenes[scene].name;
     const quality_config *best = NULL;
     double best_ms = INFINITY;
-    for (int i = 0; i < quality_table_count; ++i) {
-        const quality_measurement *m = &quality_table[i];
+    for (int i = 0; i < count; ++i) {
+        const quality_measurement *m = &table[i];
         if (m->scene != scene || !(m->err_mean <= max_error) || m->gpu_ms >= best_ms) continue;
         for (int k = 0; k < quality_sweep_count; ++k)
             if (!strcmp(quality_sweep[k].name, m->config)) best = &quality_sweep[k];
@@ -154,13 +157,24 @@ const quality_config *quality_pick(double max_error, double altitude_km, double 
     return best;
 }
 
-const quality_config *quality_auto(double altitude_km, double sun_elevation_deg, double *measured,
+const quality_config *quality_pick(double max_error, double altitude_km, double sun_elevation_deg, double *measured,
                                    const char **scene_name)
 {
     int scene = quality_scene_class(altitude_km, sun_elevation_deg);
+    *scene_name = quality_scenes[scene].name;
+    return pick_from(quality_table, quality_table_count, max_error, scene, measured);
+}
+
+const quality_config *quality_auto(double altitude_km, double sun_elevation_deg, bool cpu_device, double *measured,
+                                   const char **scene_name)
+{
+    const quality_measurement *table = cpu_device ? quality_table_cpu : quality_table;
+    int count = cpu_device ? quality_table_cpu_count : quality_table_count;
+    int scene = quality_scene_class(altitude_km, sun_elevation_deg);
+    *scene_name = quality_scenes[scene].name;
     double best = INFINITY;
-    for (int i = 0; i < quality_table_count; ++i)
-        if (quality_table[i].scene == scene && quality_table[i].err_mean < best) best = quality_table[i].err_mean;
+    for (int i = 0; i < count; ++i)
+        if (table[i].scene == scene && table[i].err_mean < best) best = table[i].err_mean;
     double budget = fmax(QUALITY_AUTO_FLOOR, QUALITY_AUTO_SLACK * best);
-    return quality_pick(budget, altitude_km, sun_elevation_deg, measured, scene_name);
+    return pick_from(table, count, budget, scene, measured);
 }

@@ -18,12 +18,16 @@ typedef struct quality_config {
     int bloom_mips;
 } quality_config;
 
-/* low, medium, high, ultra, lesson (NULL if unknown; "auto" is not a fixed configuration: quality_auto). */
+/* low, medium, high, ultra, lesson, cpu (NULL if unknown; "auto" is not a fixed configuration: quality_auto). */
 const quality_config *quality_preset(const char *name);
 extern const quality_config quality_presets[4];
 /* The lesson's configuration (the defaults before --quality auto: the 32-step march, the lesson's LUTs), kept
  * for comparison and for the guide: --quality lesson. The same knobs as the sweep's "march32". */
 extern const quality_config quality_lesson;
+/* --quality cpu: the measured point for a CPU device (lavapipe 1280x720, quality_table_cpu.h): medium's LUTs, a
+ * 96x54 sky-view LUT, the sky at half size (at 1280x720 the half-size sky adds < 0.05 % to the mean error: the
+ * sky-view LUT is coarser than a half-size pixel). */
+#define QUALITY_CPU_CONFIG "medium-skyview96-scale0.5"
 /* The configurations tools/tradeoff sweeps (presets included). */
 extern const quality_config quality_sweep[];
 extern const int quality_sweep_count;
@@ -47,9 +51,10 @@ const quality_config *quality_pick(double max_error, double altitude_km, double 
 
 /* --quality auto (the default of a headless render): a point on the measured front for the view's scene class,
  * the cheapest measured configuration whose mean error is within max(1 %, 1.25 x the best measured error on
- * that class). *measured, *scene_name: as quality_pick. */
+ * that class), in the table of the device kind: GPU (quality_table.h, sky GPU ms on an H200) or CPU
+ * (quality_table_cpu.h, CPU ms per whole frame on lavapipe). *measured, *scene_name: as quality_pick. */
 #define QUALITY_AUTO_FLOOR 0.01
 #define QUALITY_AUTO_SLACK 1.25
-const quality_config *quality_auto(double altitude_km, double sun_elevation_deg, double *measured,
+const quality_config *quality_auto(double altitude_km, double sun_elevation_deg, bool cpu_device, double *measured,
                                    const char **scene_name);
 #endif

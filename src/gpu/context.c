@@ -223,7 +223,8 @@ int gpu_list_devices(FILE *out)
     return n ? 0 : -1;
 }
 
-static int pick_device(gpu_context *ctx, int index)
+/* quiet: no message (a probe; the context that follows reports what is wrong). */
+static int pick_device(gpu_context *ctx, int index, bool quiet)
 {
     uint32_t n = 0;
     vkEnumeratePhysicalDevices(ctx->instance, &n, NULL);
@@ -231,16 +232,16 @@ static int pick_device(gpu_context *ctx, int index)
     if (n > 16) n = 16;
     vkEnumeratePhysicalDevices(ctx->instance, &n, pds);
     if (n == 0) {
-        fprintf(stderr, "vksky: no Vulkan device found; install a driver (mesa-vulkan-drivers provides lavapipe)\n");
+        if (!quiet) fprintf(stderr, "vksky: no Vulkan device found; install a driver (mesa-vulkan-drivers provides lavapipe)\n");
         return -1;
     }
     if (index >= 0) {
         if ((uint32_t)index >= n) {
-            fprintf(stderr, "vksky: --device %d: there are %u devices (0..%u); see --list-devices\n", index, n, n - 1);
+            if (!quiet) fprintf(stderr, "vksky: --device %d: there are %u devices (0..%u); see --list-devices\n", index, n, n - 1);
             return -2;
         }
         if (!device_is_usable(pds[index])) {
-            fprintf(stderr, "vksky: --device %d does not support Vulkan 1.3 with a graphics+compute queue\n", index);
+            if (!quiet) fprintf(stderr, "vksky: --device %d does not support Vulkan 1.3 with a graphics+compute queue\n", index);
             return -2;
         }
         ctx->physical = pds[index];
@@ -256,18 +257,33 @@ static int pick_device(gpu_context *ctx, int index)
         }
     }
     if (best < 0) {
-        fprintf(stderr, "vksky: no Vulkan 1.3 device with a graphics+compute queue\n");
+        if (!quiet) fprintf(stderr, "vksky: no Vulkan 1.3 device with a graphics+compute queue\n");
         return -1;
     }
     ctx->physical = pds[best];
     return 0;
 }
 
+int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
+{
+    gpu_context ctx = {0};
+    gpu_context_desc desc = {.device_index = device_index};
+    if (create_instance(&ctx, &desc, false) != 0) return -1;
+    int picked = pick_device(&ctx, device_index, true);
+    if (picked == 0) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(ctx.physical, &p);
+        *type = p.deviceType;
+    }
+    vkDestroyInstance(ctx.instance, NULL);
+    return picked == 0 ? 0 : -1;
+}
+
 int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
 {
     *ctx = (gpu_context){0};
     if (create_instance(ctx, desc, false) != 0) return -1;
-    int picked = pick_device(ctx, desc->device_index);
+    int picked = pick_device(ctx, desc->device_index, false);
     if (picked != 0) {
         gpu_context_destroy(ctx);
         return picked;
