@@ -3,7 +3,6 @@
 #include "app/options.h"
 #include "app/window.h"
 #include "app/reference_run.h"
-#include "gpu/context.h"
 #include <stdlib.h>
 
 int main(int argc, char **argv)
@@ -30,12 +29,6 @@ int main(int argc, char **argv)
         }
         return reference_run(&o);
     }
-    /* --quality auto chose from the GPU table; on a CPU device choose again from the CPU device's (the device is
-     * known only now: a bare instance names it, the run creates its own context). */
-    VkPhysicalDeviceType device_type;
-    if (o.quality_auto && gpu_device_type(o.device_index, &device_type) == 0 && device_type == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-        options_parse_for_device(&o, argc, argv, true) != 0)
-        return 2;
     if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);
     if (o.frames || o.screenshot) {
         fprintf(stderr, "vksky: %s: only for the interactive window (not with --render or --bench)\n",

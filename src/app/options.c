@@ -3,6 +3,7 @@
 #include "app/quality.h"
 #include "app/scene.h"
 #include "app/scene_dump.h"
+#include "gpu/context.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -257,9 +258,17 @@ static bool window_mode(int argc, char **argv)
     return true;
 }
 
-int options_parse(options *o, int argc, char **argv) { return options_parse_for_device(o, argc, argv, false); }
+/* Will the run's device (--device N, or the default choice) be a CPU implementation? Asked of a bare instance,
+ * only when --quality auto chooses: its measured tables differ by device kind. No device: the GPU table (the run
+ * reports the missing device itself). */
+static bool device_is_cpu(const options *o)
+{
+    if (o->reference || o->help || o->version || o->list_devices) return false;   /* no device in this run */
+    VkPhysicalDeviceType type;
+    return gpu_device_type(o->device_index, &type) == 0 && type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
 
-int options_parse_for_device(options *o, int argc, char **argv, bool cpu_device)
+int options_parse(options *o, int argc, char **argv)
 {
     *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
                    .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5,
@@ -291,7 +300,7 @@ int options_parse_for_device(options *o, int argc, char **argv, bool cpu_device)
         double measured = 0.0;
         const char *scene = NULL;
         if (automatic) {
-            q = quality_auto(o->view.altitude_km, o->view.sun_elevation_deg, cpu_device, &measured, &scene);
+            q = quality_auto(o->view.altitude_km, o->view.sun_elevation_deg, device_is_cpu(o), &measured, &scene);
             o->quality = NULL;
             o->quality_auto = true;
         } else if (o->max_error > 0.0) {
@@ -331,7 +340,9 @@ int options_parse_for_device(options *o, int argc, char **argv, bool cpu_device)
         bool scene_flag = !strcmp(f->name, "--scene");
         bool first_pass_flag = !strcmp(f->name, "--quality") || !strcmp(f->name, "--max-error") ||
                                !strcmp(f->name, "--altitude") || !strcmp(f->name, "--sun-elevation") ||
-                               !strcmp(f->name, "--dump-scene");
+                               !strcmp(f->name, "--dump-scene") || !strcmp(f->name, "--device") ||
+                               !strcmp(f->name, "--reference") || !strcmp(f->name, "--help") ||
+                               !strcmp(f->name, "--version") || !strcmp(f->name, "--list-devices");
         /* Pass -1 loads the scene; pass 0 reads only what the choice depends on; pass 1 applies every flag except the
          * scene and the choice. */
         if (pass < 0 ? scene_flag

@@ -13,8 +13,6 @@ double options_sun_radius_rad(const options *o);
 
 /* 0: ok; 2: bad input (message printed). */
 int options_parse(options *o, int argc, char **argv);
-/* The same for a known device kind: --quality auto chooses from the CPU device's measured table when cpu_device
- * (main re-parses with it once the device is known; options_parse assumes a GPU). */
-int options_parse_for_device(options *o, int argc, char **argv, bool cpu_device);
+
 void options_print_help(FILE *out);
 #endif

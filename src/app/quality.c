@@ -59,16 +59,17 @@ const quality_config quality_sweep[] = {
      .step_distribution = 2, .sample_offset = 0.5, .skyview_width = 192, .skyview_height = 108, .skyview_steps = 30,
      DEFAULT_LUTS, .render_scale = 1, .bloom_mips = 5},
     /* Candidates for a CPU device's window (lavapipe, issue 16): medium's LUTs (multi-scattering with 1024
-     * directions, computed once) with low's sky-view LUT, at full size and at 0.75. */
-    {.name = "medium-skyview96", .mode = SKY_CHOICE_AUTO, .steps = 32, .step_distribution = 2, .sample_offset = 0.5,
+     * directions, computed once) with low's sky-view LUT, at full size, 0.75 and 0.5 (--quality cpu). The sky pass
+     * kind by device, as the presets. */
+    {.name = "medium-skyview96", .mode = SKY_CHOICE_AUTO, .pass_kind = SKY_PASS_AUTO, .steps = 32, .step_distribution = 2, .sample_offset = 0.5,
      .skyview_width = 96, .skyview_height = 54, .skyview_steps = 16, .transmittance_width = 256,
      .transmittance_height = 64, .transmittance_steps = 40, .multiscatter_size = 32, .multiscatter_sqrt_dirs = 32,
      .multiscatter_steps = 20, .render_scale = 1, .bloom_mips = 5},
-    {.name = "medium-skyview96-scale0.75", .mode = SKY_CHOICE_AUTO, .steps = 32, .step_distribution = 2,
+    {.name = "medium-skyview96-scale0.75", .mode = SKY_CHOICE_AUTO, .pass_kind = SKY_PASS_AUTO, .steps = 32, .step_distribution = 2,
      .sample_offset = 0.5, .skyview_width = 96, .skyview_height = 54, .skyview_steps = 16,
      .transmittance_width = 256, .transmittance_height = 64, .transmittance_steps = 40, .multiscatter_size = 32,
      .multiscatter_sqrt_dirs = 32, .multiscatter_steps = 20, .render_scale = 0.75, .bloom_mips = 5},
-    {.name = "medium-skyview96-scale0.5", .mode = SKY_CHOICE_AUTO, .steps = 32, .step_distribution = 2,
+    {.name = "medium-skyview96-scale0.5", .mode = SKY_CHOICE_AUTO, .pass_kind = SKY_PASS_AUTO, .steps = 32, .step_distribution = 2,
      .sample_offset = 0.5, .skyview_width = 96, .skyview_height = 54, .skyview_steps = 16,
      .transmittance_width = 256, .transmittance_height = 64, .transmittance_steps = 40, .multiscatter_size = 32,
      .multiscatter_sqrt_dirs = 32, .multiscatter_steps = 20, .render_scale = 0.5, .bloom_mips = 5},
