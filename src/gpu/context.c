@@ -223,6 +223,10 @@ int gpu_list_devices(FILE *out)
     return n ? 0 : -1;
 }
 
+/* Contexts created and not yet destroyed, and the device type of the last one (gpu_device_type). */
+static int live_contexts;
+static VkPhysicalDeviceType live_device_type;
+
 /* quiet: no message (a probe; the context that follows reports what is wrong). */
 static int pick_device(gpu_context *ctx, int index, bool quiet)
 {
@@ -266,6 +270,12 @@ static int pick_device(gpu_context *ctx, int index, bool quiet)
 
 int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
 {
+    /* With a context alive (the window re-reading its scene file), name its device: a second instance would
+     * reload volk's instance functions, and destroying it would leave the live context calling into freed ones. */
+    if (live_contexts > 0) {
+        *type = live_device_type;
+        return 0;
+    }
     gpu_context ctx = {0};
     gpu_context_desc desc = {.device_index = device_index};
     if (create_instance(&ctx, &desc, false) != 0) return -1;
@@ -349,11 +359,14 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
     };
     VK_CHECK(vkCreateCommandPool(ctx->device, &pinfo, NULL, &ctx->command_pool));
     gpu_set_name(ctx, VK_OBJECT_TYPE_COMMAND_POOL, (uint64_t)ctx->command_pool, "main command pool");
+    live_contexts++;
+    live_device_type = ctx->props.deviceType;
     return 0;
 }
 
 void gpu_context_destroy(gpu_context *ctx)
 {
+    if (ctx->command_pool && live_contexts > 0) live_contexts--;   /* only a fully created context counted */
     if (ctx->device) {
         vkDeviceWaitIdle(ctx->device);
         if (ctx->command_pool) vkDestroyCommandPool(ctx->device, ctx->command_pool, NULL);
