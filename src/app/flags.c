@@ -25,7 +25,7 @@ const flag flags_table[] = {
     {"--tonemap", ARG_STRING, 0, 0, "OP   clamp | reinhard | aces (default aces)"},
     {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
     {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
-    {"--quality", ARG_STRING, 0, 0, "P   low | medium | high | ultra | lesson | auto: a preset of the knobs below (later flags override it); auto (the default of --render/--bench): the measured front's point for the scene kind; lesson: the 32-step march of the guide"},
+    {"--quality", ARG_STRING, 0, 0, "P   low | medium | high | ultra | lesson | cpu | auto: a preset of the knobs below (later flags override it); auto (the default of --render/--bench): the measured front's point for the scene kind and device kind; lesson: the 32-step march of the guide; cpu: a 96x54 sky-view LUT at half size (lavapipe 1280x720: >= 30 fps at <= 1 % daytime error)"},
     {"--bloom-res", ARG_STRING, 0, 0, "R    half | quarter: the bloom chain's first mip at half or a quarter of the sky's size (default half; quarter: a quarter of the bloom's cost, for CPU devices)"},
     {"--bloom-downsample", ARG_STRING, 0, 0, "D levels | single-pass: with --post-pass compute, the bloom downsample as one dispatch per level (default: faster on an H100) or all levels in one dispatch (tile counters, the last workgroup continues)"},
     {"--post-pass", ARG_STRING, 0, 0, "K fragment | compute | auto: bloom and the tone map as draws or compute dispatches (one dispatch for the whole bloom downsample); auto: fragment on a CPU device, compute on a GPU (default auto)"},

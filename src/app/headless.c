@@ -1,9 +1,9 @@
 #include "app/headless.h"
+#include "app/cpu_time.h"
 #include "app/sequence.h"
 #include "sky/submit.h"
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 
 static int compare_double(const void *a, const void *b)
 {
@@ -15,15 +15,6 @@ static double median(double *v, int n)
 {
     qsort(v, (size_t)n, sizeof *v, compare_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-/* User + system CPU time of the whole process (every thread: a CPU device's workers too), in ms. */
-static double process_cpu_ms(void)
-{
-    struct rusage u;
-    getrusage(RUSAGE_SELF, &u);
-    return 1e3 * ((double)u.ru_utime.tv_sec + (double)u.ru_stime.tv_sec) +
-           1e-3 * ((double)u.ru_utime.tv_usec + (double)u.ru_stime.tv_usec);
 }
 
 /* Per-pass GPU medians, then the frame: the benchmark's output format (one line per pass). */
@@ -122,11 +113,13 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
     gpu_buffer_invalidate(r->ctx, &r->readback_display);
 }
 
-int headless_run(const options *o)
+int headless_run(const options *given)
 {
     /* Refuse bad frames and unwritable outputs before any expensive work (exit 2, nothing written): every frame's
-     * options and files, one frame's or a sequence's. */
-    if (sequence_check(o)) return 2;
+     * options and files, one frame's or a sequence's (whose quality choice may then serve all its frames). */
+    options checked = *given;
+    if (sequence_check(&checked)) return 2;
+    const options *o = &checked;
     gpu_context ctx;
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(&ctx, &desc);

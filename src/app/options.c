@@ -6,6 +6,7 @@
 #include "app/options_sequence.h"
 #include "app/help.h"
 #include "app/scene_dump.h"
+#include "gpu/context.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -160,8 +161,8 @@ static int apply(options *o, const flag *f, const char *value)
     } else if (!strcmp(n, "--no-bloom")) o->view.bloom = false;
     else if (!strcmp(n, "--steps")) o->view.steps = (int)x;
     else if (!strcmp(n, "--quality")) {
-        static const char *const w[] = {"low", "medium", "high", "ultra", "lesson", "auto"};
-        int k = parse_word(n, value, w, 6);
+        static const char *const w[] = {"low", "medium", "high", "ultra", "lesson", "cpu", "auto"};
+        int k = parse_word(n, value, w, 7);
         if (k < 0) return 2;
         o->quality = w[k];
     } else if (!strcmp(n, "--bloom-res")) {
@@ -264,7 +265,19 @@ static bool window_mode(int argc, char **argv)
     return true;
 }
 
-int options_parse(options *o, int argc, char **argv)
+/* Will the run's device (--device N, or the default choice) be a CPU implementation? Asked of a bare instance,
+ * only when --quality auto chooses: its measured tables differ by device kind. No device: the GPU table (the run
+ * reports the missing device itself). */
+static bool device_is_cpu(const options *o)
+{
+    if (o->reference || o->help || o->version || o->list_devices) return false;   /* no device in this run */
+    VkPhysicalDeviceType type;
+    return gpu_device_type(o->device_index, &type) == 0 && type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
+int options_parse(options *o, int argc, char **argv) { return options_parse_for_classes(o, argc, argv, 0); }
+
+int options_parse_for_classes(options *o, int argc, char **argv, unsigned quality_classes)
 {
     *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
                    .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5,
@@ -284,7 +297,7 @@ int options_parse(options *o, int argc, char **argv)
     if (window) quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips);
     const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
     double picked_error = 0.0;
-    const char *picked_scene = NULL;
+    char picked_scene[96] = "";
     for (int pass = -1; pass < 2; ++pass) {
     if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
     if (pass == 1) {
@@ -296,19 +309,24 @@ int options_parse(options *o, int argc, char **argv)
                                     : !window && o->max_error <= 0.0 && !o->scene_quality;
         const quality_config *q = o->quality && !automatic ? quality_preset(o->quality) : NULL;
         double measured = 0.0;
-        const char *scene = NULL;
+        unsigned classes = quality_classes ? quality_classes
+                                           : quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
         if (automatic) {
-            q = quality_auto(o->view.altitude_km, o->view.sun_elevation_deg, &measured, &scene);
+            q = quality_auto(classes, device_is_cpu(o), &measured);
             o->quality = NULL;
+            o->quality_auto = true;
+            o->quality_classes = classes;
         } else if (o->max_error > 0.0) {
-            q = quality_pick(o->max_error, o->view.altitude_km, o->view.sun_elevation_deg, &measured, &scene);
+            q = quality_pick(o->max_error, classes, &measured);
+            quality_class_names(classes, picked_scene, sizeof picked_scene);
+            o->quality_classes = classes;
             if (!q) {
-                char msg[200];
+                char msg[240];
                 snprintf(msg, sizeof msg, "no measured configuration reaches %g on a %s scene; try a larger budget or --quality ultra",
-                         o->max_error, scene);
+                         o->max_error, picked_scene);
                 return bad("--max-error", msg);
             }
-            picked = q, picked_error = measured, picked_scene = scene;
+            picked = q, picked_error = measured;
         }
         /* --quality / --max-error replace the scene's whole quality section; without them the scene's preset (applied
          * by scene_load, under the scene's knobs) stays. */
@@ -337,7 +355,10 @@ int options_parse(options *o, int argc, char **argv)
         bool scene_flag = !strcmp(f->name, "--scene");
         bool first_pass_flag = !strcmp(f->name, "--quality") || !strcmp(f->name, "--max-error") ||
                                !strcmp(f->name, "--altitude") || !strcmp(f->name, "--sun-elevation") ||
-                               !strcmp(f->name, "--dump-scene") || options_tooling_first_pass(f->name);
+                               !strcmp(f->name, "--dump-scene") || !strcmp(f->name, "--device") ||
+                               !strcmp(f->name, "--reference") || !strcmp(f->name, "--help") ||
+                               !strcmp(f->name, "--version") || !strcmp(f->name, "--list-devices") ||
+                               options_tooling_first_pass(f->name);
         /* Pass -1 loads the scene; pass 0 reads only what the choice depends on; pass 1 applies every flag except the
          * scene and the choice. */
         if (pass < 0 ? scene_flag
@@ -356,7 +377,7 @@ int options_parse(options *o, int argc, char **argv)
         return bad("--max-steps", msg);
     }
     /* The --max-error choice, reported only now: every flag has been read and accepted. */
-    if (picked)
+    if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);

@@ -29,6 +29,8 @@ typedef struct options {
     int path_samples;                           /* paths per pixel / direction */
     double scales[3];
     const char *quality;                        /* --quality preset name (NULL: none) */
+    bool quality_auto;                          /* the knobs are --quality auto's choice (named or the default) */
+    unsigned quality_classes;                   /* the scene classes that choice (or --max-error's) served */
     /* Scene features (scene files and their flags). */
     const char *scene_path;                     /* --scene FILE.json (NULL: none) */
     bool scene_quality;                         /* the scene file has a quality section (no --quality auto then) */

@@ -3,6 +3,7 @@
 #include "app/exr_header.h"
 #include "app/options.h"
 #include "app/options_sequence.h"
+#include "app/quality.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/png_io.h"
@@ -56,7 +57,7 @@ int sequence_frame_options(const options *base, int frame, options *out)
         animated_value(&base->animate[k], frame, frame_count(base), v, VALUE_SIZE);
         argv[base->argc + k] = v;   /* last: overrides the flag and the scene */
     }
-    int rc = options_parse(out, argc, argv);
+    int rc = options_parse_for_classes(out, argc, argv, base->quality_classes);
     /* The frame's options keep no pointer into the appended values (they are numbers by now); the command line they
      * record is the one given. */
     out->argc = base->argc, out->argv = base->argv;
@@ -80,8 +81,25 @@ static bool same_luts(const sky_lut_quality *a, const sky_lut_quality *b)
            a->lut_f32 == b->lut_f32 && a->skyview_width == b->skyview_width && a->skyview_height == b->skyview_height;
 }
 
-int sequence_check(const options *base)
+/* A quality chosen by the scene (--quality auto, the default, or --max-error) is chosen once for the whole
+ * sequence: for every scene class its frames pass through (all of them, whatever --frame-range renders, so that a
+ * split sequence equals the whole), and the base options are parsed again under that choice. Frames then differ
+ * only in view, sun and medium values: no preset switch (and no jump in the error) from one frame to the next. */
+static int choose_sequence_quality(options *base)
 {
+    if (base->animate_count == 0 || base->quality_classes == 0) return 0;
+    unsigned classes = 0;
+    for (int i = 0; i < frame_count(base); ++i) {
+        options f;   /* the frame's view does not depend on the quality choice it is parsed under */
+        if (sequence_frame_options(base, i, &f)) return 2;
+        classes |= quality_class_bit(f.view.altitude_km, f.view.sun_elevation_deg);
+    }
+    return options_parse_for_classes(base, base->argc, base->argv, classes);
+}
+
+int sequence_check(options *base)
+{
+    if (choose_sequence_quality(base)) return 2;
     for (int i = base->frame_first; i <= base->frame_last; ++i) {
         options f;
         if (sequence_frame_options(base, i, &f)) return 2;

@@ -11,9 +11,11 @@
 bool sequence_active(const options *o);
 /* Frame `frame`'s options (base itself when nothing is animated). 0 ok, 2 bad (one line printed). */
 int sequence_frame_options(const options *base, int frame, options *out);
-/* Before any GPU work: every frame of the range parses, keeps what the renderer is made for (size, LUTs, bloom) and
- * has writable output files. 0 ok, 2 bad (one line printed; nothing written). */
-int sequence_check(const options *base);
+/* Before any GPU work: a quality chosen by the scene (auto, --max-error) is chosen once for every scene class the
+ * sequence's frames pass through (base is parsed again under it); every frame of the range parses, keeps what the
+ * renderer is made for (size, LUTs, bloom) and has writable output files. 0 ok, 2 bad (one line printed; nothing
+ * written). */
+int sequence_check(options *base);
 
 typedef void (*sequence_render_fn)(sky_renderer *r, const frame_desc *f);
 /* Render the range's frames with r (made for base), writing each frame's outputs; the LUTs are recomputed only when a
