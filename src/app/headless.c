@@ -1,4 +1,5 @@
 #include "app/headless.h"
+#include "app/stop.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/png_io.h"
@@ -31,6 +32,7 @@ static int write_outputs(const options *o, sky_renderer *r)
     char err[512];
     for (int i = 0; i < o->output_count; ++i) {
         int rc;
+        if (stop_requested()) return 1;   /* the graceful stop: no further output (one being written is dropped) */
         if (is_exr(o->outputs[i])) {
             io_exr_layer layer = {.name = "", .rgba_half = r->readback_linear.mapped};
             rc = io_write_exr(o->outputs[i], w, h, &layer, 1, err, sizeof err);
@@ -38,7 +40,7 @@ static int write_outputs(const options *o, sky_renderer *r)
             rc = io_write_png(o->outputs[i], w, h, r->readback_display.mapped, 1, err, sizeof err);
         }
         if (rc != 0) {
-            fprintf(stderr, "vksky: %s\n", err);
+            if (!stop_requested()) fprintf(stderr, "vksky: %s\n", err);   /* else stop_status says why */
             return 1;
         }
     }
@@ -58,12 +60,12 @@ static void bench(const options *o, sky_renderer *r)
 
     /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. */
     frame_desc f = {.view = &o->view};
-    for (int i = 0; i < 3; ++i) sky_renderer_render(r, &f);
+    for (int i = 0; i < 3 && !stop_requested(); ++i) sky_renderer_render(r, &f);
 
     /* LUT passes, measured on their own (a frame recomputes them only when the atmosphere changes). */
     frame_desc with_luts = {.view = &o->view, .force_luts = true};
     double *lut_ms[2] = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double))};
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n && !stop_requested(); ++i) {
         sky_renderer_render(r, &with_luts);
         uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
         for (uint32_t k = 0; k < c; ++k) {
@@ -72,7 +74,7 @@ static void bench(const options *o, sky_renderer *r)
         }
     }
     /* Steady-state frames. */
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n && !stop_requested(); ++i) {
         wall[i] = sky_renderer_render(r, &f);
         uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
         double total = 0;
@@ -90,12 +92,13 @@ static void bench(const options *o, sky_renderer *r)
         }
         gpu_total[i] = total;
     }
-    if (r->timer.enabled) {
+    if (stop_requested()) n = 0;   /* the graceful stop: no figures from a cut-short run */
+    if (n && r->timer.enabled) {
         printf("pass transmittance_lut gpu_ms %.4f\n", median(lut_ms[0], n));
         if (r->variant.multiscatter) printf("pass multiscatter_lut gpu_ms %.4f\n", median(lut_ms[1], n));
         for (int p = 0; p < pass_count; ++p) printf("pass %s gpu_ms %.4f\n", names[p], median(per_pass[p], n));
     }
-    printf("frame gpu_ms %.4f wall_ms %.4f\n", r->timer.enabled ? median(gpu_total, n) : -1.0, median(wall, n));
+    if (n) printf("frame gpu_ms %.4f wall_ms %.4f\n", r->timer.enabled ? median(gpu_total, n) : -1.0, median(wall, n));
     for (int p = 0; p < pass_count; ++p) free(per_pass[p]);
     free(lut_ms[0]);
     free(lut_ms[1]);
@@ -140,6 +143,7 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
 int headless_run(const options *o)
 {
     char err[512];
+    stop_install();
     /* Refuse unwritable outputs before any expensive work (exit 2, nothing written). */
     for (int i = 0; i < o->output_count; ++i)
         if (io_check_writable(o->outputs[i], err, sizeof err) != 0) {
@@ -164,7 +168,9 @@ int headless_run(const options *o)
     if (o->trace_passes) r.pass_trace = stdout;
 
     int status = 0;
-    if (o->bench_frames > 0) {
+    if (stop_requested()) {
+        /* Stopped while the device and the renderer were made: nothing to render. */
+    } else if (o->bench_frames > 0) {
         gpu_barrier_trace(NULL);
         bench(o, &r);
     } else {
@@ -179,5 +185,5 @@ int headless_run(const options *o)
         fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
         if (status == 0) status = 1;
     }
-    return status;
+    return stop_status(status);
 }

@@ -1,4 +1,5 @@
 #include "app/reference_run.h"
+#include "app/stop.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/half_float.h"
@@ -41,7 +42,8 @@ static void *render_rows(void *arg)
         int y = job->next_row++;
         pthread_mutex_unlock(&job->lock);
         if (y >= o->height) return NULL;
-        for (int x = 0; x < o->width; ++x) {
+        /* The graceful stop, between pixels: a path-traced pixel can take long, a row much longer. */
+        for (int x = 0; x < o->width && !stop_requested(); ++x) {
             double dir[3], rgb[3], err[3];
             ref_pixel_dir(x, y, o->width, o->height, o->view.yaw_deg * DEG, o->view.pitch_deg * DEG,
                           o->view.fov_deg * DEG, dir);
@@ -56,6 +58,7 @@ static void *render_rows(void *arg)
 int reference_run(const options *o)
 {
     char err[512];
+    stop_install();
     for (int i = 0; i < o->output_count; ++i) {
         size_t n = strlen(o->outputs[i]);
         if (n < 4 || strcasecmp(o->outputs[i] + n - 4, ".exr") != 0) {
@@ -73,6 +76,7 @@ int reference_run(const options *o)
         double view[3], rgb[3], e[3];
         ref_dir(o->view.yaw_deg * DEG, o->view.pitch_deg * DEG, view);
         radiance(o, view, job.sun, rgb, e);
+        if (stop_requested()) return stop_status(0);
         if (o->path_trace) printf("%.9g %.9g %.9g stderr %.3g %.3g %.3g\n", rgb[0], rgb[1], rgb[2], e[0], e[1], e[2]);
         else printf("%.9g %.9g %.9g\n", rgb[0], rgb[1], rgb[2]);
         return 0;
@@ -90,17 +94,21 @@ int reference_run(const options *o)
     for (int i = 0; i < THREADS; ++i) pthread_create(&threads[i], NULL, render_rows, &job);
     for (int i = 0; i < THREADS; ++i) pthread_join(threads[i], NULL);
     pthread_mutex_destroy(&job.lock);
+    if (stop_requested()) {   /* rows left unrendered: write nothing */
+        free(job.rgba);
+        return stop_status(0);
+    }
     uint16_t *half = malloc(pixels * 4 * sizeof(uint16_t));
     for (size_t i = 0; i < pixels * 4; ++i) half[i] = io_float_to_half(job.rgba[i]);
     free(job.rgba);
     int status = 0;
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         io_exr_layer layer = {.name = "", .rgba_half = half};
-        if (io_write_exr(o->outputs[i], o->width, o->height, &layer, 1, err, sizeof err) != 0) {
-            fprintf(stderr, "vksky: %s\n", err);
+        if (stop_requested() || io_write_exr(o->outputs[i], o->width, o->height, &layer, 1, err, sizeof err) != 0) {
+            if (!stop_requested()) fprintf(stderr, "vksky: %s\n", err);   /* else stop_status says why */
             status = 1;
         }
     }
     free(half);
-    return status;
+    return stop_status(status);
 }
