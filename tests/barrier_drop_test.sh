@@ -58,7 +58,7 @@ got=$(awk '
         else if (id == "SYNC-HAZARD-WRITE-AFTER-WRITE") print "WAW"
         else if (id ~ /^SYNC-HAZARD-/) print substr(id, 13)
         # Core checks: an image used, transitioned or presented in a layout it is not in.
-        else if (id ~ /InvalidImageLayout|oldLayout-01197|imageLayout-00344|None-02699|srcImageLayout-00189|pImageIndices-01296/)
+        else if (id ~ /InvalidImageLayout|oldLayout-01197|imageLayout-00344|None-02699|srcImageLayout-00189|dstImageLayout-00180|pImageIndices-01296/)
             print "layout"
         else print "other:" id
     }' "$work/stderr" | LC_ALL=C sort -u | paste -sd+ -)

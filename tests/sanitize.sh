@@ -2,7 +2,8 @@
 # tests/sanitize.sh [BUILD_DIR]: build vksky with AddressSanitizer + UndefinedBehaviorSanitizer (VKSKY_SANITIZE)
 # and run the unit tests and the headless renders that cover every input path under them: the command line (cli:
 # every bad flag), scene files (scenes, and a short scene_fuzz), the EXR/PNG writers and readers (io), the CPU
-# reference and path tracer, and GPU renders under validation (test_luts, test_paths, test_features). Any
+# reference and path tracer, GPU renders under validation (test_luts, test_paths, test_features), and the
+# composite's readers, layers and bad inputs (composite). Any
 # sanitizer report aborts that run, so the test that made it fails.
 #
 # LeakSanitizer is on, with suppressions (tests/lsan.supp) only for the Vulkan driver and the validation layer,
@@ -19,4 +20,4 @@ export LSAN_OPTIONS=suppressions=$ROOT/tests/lsan.supp:print_suppressions=0
 export VKSKY_SCENE_FUZZ_MUTANTS=150
 cd "$BUILD"
 ctest -j"$(nproc)" --output-on-failure \
-  -R '^(io|exr_read|solar_position|metrics|camera|barrier_table|reference|path_tracer|cli|scenes|scene_fuzz|test_luts|test_paths|test_features)$'
+  -R '^(io|exr_read|solar_position|metrics|camera|barrier_table|reference|path_tracer|cli|scenes|scene_fuzz|test_luts|test_paths|test_features|composite)$'

@@ -48,6 +48,30 @@ VKSKY_STRUCT(SkyPush) {
                                   (0.5 midpoint, 0.3 Hillaire), w: km of path at which the count reaches max */
 } VKSKY_END(SkyPush)
 
+/* Composite pass push constants (composite.comp): aerial perspective from the camera to each pixel's point, and
+ * the sky along the rays of pixels without geometry. The march frame is the sky pass's, at the camera: up = +Y
+ * (the local vertical), km. 8 vec4 = 128 bytes, the push-constant size every device has. */
+VKSKY_STRUCT(CompositePush) {
+    vec4 forward;              /* xyz: view axis in the march frame (zero: orientation unknown, sky pixels keep
+                                  the beauty), w: camera altitude km (from double on the CPU) */
+    vec4 right;                /* xyz: right * tan(fov/2)*aspect, w: 1 / width */
+    vec4 up;                   /* xyz: up * tan(fov/2),           w: 1 / height */
+    vec4 sun_dir;              /* xyz: toward the sun in the march frame, w: step distribution exponent */
+    vec4 march;                /* as SkyPush.march: min steps, max steps, sample position, km at max steps */
+    vec4 world_to_march[3];    /* rows of the 3x3 matrix from a world-unit offset to march-frame km (axis swap,
+                                  unit scale and the tilt of the local vertical); w: the camera's world position */
+} VKSKY_END(CompositePush)
+
+/* The composite pass's output: one RGBA32F image of VKSKY_AOV_COUNT bands of `height` rows each, band k the k-th
+ * layer (one image: one barrier, one copy). */
+#define VKSKY_AOV_COMPOSITE 0      /* RGBA: beauty * T + rayleigh + mie on geometry, the sky (+ sun disc) elsewhere */
+#define VKSKY_AOV_SKY 1            /* sky without the sun disc (pixels without geometry) */
+#define VKSKY_AOV_SUN_DISK 2       /* the sun disc alone, through the atmosphere */
+#define VKSKY_AOV_TRANSMITTANCE 3  /* camera -> point (geometry) or along the whole ray (sky) */
+#define VKSKY_AOV_RAYLEIGH 4       /* in-scattering with the Rayleigh phase (+ its multiple scattering) */
+#define VKSKY_AOV_MIE 5            /* in-scattering with the Mie phase (+ its multiple scattering) */
+#define VKSKY_AOV_COUNT 6
+
 /* Bloom push constants. */
 VKSKY_STRUCT(BloomPush) {
     vec4 src_texel;            /* xy: 1/size of the source image, z: 1 = first downsample (threshold + Karis), w: threshold */

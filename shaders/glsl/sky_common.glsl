@@ -28,15 +28,17 @@ vec3 pixel_view_dir(vec2 pixel_centre, SkyPush p)
 /* Angle between two unit vectors, accurate for tiny angles (acos of a dot near 1 is not). */
 float small_angle(vec3 a, vec3 b) { return 2.0 * asin(clamp(0.5 * length(a - b), 0.0, 1.0)); }
 
-/* From space: move a ray's origin to where it enters the top sphere. False if it misses the atmosphere. */
-bool enter_atmosphere(inout float h, inout float mu, inout float mu_s, float nu)
+/* From space: move a ray's origin to where it enters the top sphere (t_entry km along it). False if it misses
+ * the atmosphere. */
+bool enter_atmosphere(inout float h, inout float mu, inout float mu_s, float nu, out float t_entry)
 {
+    t_entry = 0.0;
     if (h <= top_altitude()) return true;
     float r = ground_radius() + h;
     float gap2 = -top_gap2_of(h);                     /* r^2 - Rt^2 > 0 */
     float disc = r * r * mu * mu - gap2;
     if (mu >= 0.0 || disc < 0.0) return false;
-    float t_entry = gap2 / (-r * mu + sqrt(disc));
+    t_entry = gap2 / (-r * mu + sqrt(disc));
     float rt = top_radius();
     mu = clamp((r * mu + t_entry) / rt, -1.0, 1.0);
     mu_s = clamp((r * mu_s + t_entry * nu) / rt, -1.0, 1.0);
@@ -44,35 +46,61 @@ bool enter_atmosphere(inout float h, inout float mu, inout float mu_s, float nu)
     return true;
 }
 
-/* The march: in-scattered radiance along the ray (no sun disc) and the ray's transmittance. */
-vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out vec3 throughput,
-               out bool hits_ground)
+/* What the march gathers over a piece of a view ray. The in-scattered radiance is split by phase function into
+ * two parts that add up to all of it exactly (docs/readme/composite.md, "Layers"):
+ *   rayleigh: single scattering by every species with the Rayleigh phase (Rayleigh, and the extra species of a
+ *             scene file), plus the multiple-scattering term Psi * sigma_s of those species;
+ *   mie:      single scattering by Mie, plus Psi * sigma_s of Mie.
+ * (Psi multiplies the total scattering coefficient, which is the sum of the two groups'.) The lit ground's
+ * reflection is not part of either: sky_march adds it where the whole ray ends on the ground. */
+struct MarchSegment {
+    vec3 rayleigh, mie;     /* in-scattered radiance of each part, up to the segment's end */
+    vec3 throughput;        /* transmittance from the camera to the segment's end */
+    bool hits_ground;       /* the whole ray (not the segment) ends on the ground */
+    float r, mu_s, nu;      /* at the march's origin (the camera, or where a ray from space enters) */
+    float t_max;            /* the whole ray's length from that origin (to the ground or the top) */
+};
+
+/* The march over the first t_end km of the ray from altitude h_cam along v (sun toward s, local up = +Y); the
+ * whole ray for t_end >= its length. The one march of vksky: the sky (sky_march), the LUT passes and aerial
+ * perspective to a point (aerial.glsl) all integrate through here. */
+MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, float t_end)
 {
     float h = h_cam;
     float mu = v.y;
     float mu_s = s.y;
     float nu = dot(v, s);
-    vec3 radiance = vec3(0.0);
-    throughput = vec3(1.0);
-    hits_ground = false;
+    MarchSegment seg;
+    seg.rayleigh = vec3(0.0);
+    seg.mie = vec3(0.0);
+    seg.throughput = vec3(1.0);
+    seg.hits_ground = false;
+    seg.nu = nu;
     bool from_space = h > top_altitude();
-    if (!enter_atmosphere(h, mu, mu_s, nu)) return radiance;
+    float t_entry;
+    bool enters = enter_atmosphere(h, mu, mu_s, nu, t_entry);
+    seg.r = ground_radius() + h;
+    seg.mu_s = mu_s;
+    seg.t_max = 0.0;
+    if (!enters) return seg;
 
-    hits_ground = ray_hits_ground(h, mu);
-    float t_max = hits_ground ? distance_to_ground(h, mu) : distance_to_top(h, mu);
+    seg.hits_ground = ray_hits_ground(h, mu);
+    float t_max = seg.hits_ground ? distance_to_ground(h, mu) : distance_to_top(h, mu);
+    seg.t_max = t_max;
+    float t_stop = clamp(t_end - t_entry, 0.0, t_max);
     /* Fixed count (min = max) or Hillaire's count growing with the path length. */
-    float steps = floor(mix(march.x, march.y, clamp(t_max / max(march.w, 1e-6), 0.0, 1.0)));
-    float r = ground_radius() + h;
+    float steps = floor(mix(march.x, march.y, clamp(t_stop / max(march.w, 1e-6), 0.0, 1.0)));
+    float r = seg.r;
     float phase_r = rayleigh_phase(nu);
     float phase_m = mie_phase(nu, atmo.mie_absorption.w);
-    /* Step boundaries at t_max (i/N)^p: p = 1 uniform, p = 2 Hillaire's quadratic spacing, which puts short
+    /* Step boundaries at t_stop (i/N)^p: p = 1 uniform, p = 2 Hillaire's quadratic spacing, which puts short
      * steps near the camera where an upward or horizontal ray meets the dense, thin Mie layer. A ray that
      * enters from space starts in the thinnest air, so it keeps uniform steps. */
     float p = from_space ? 1.0 : distribution;
     float t_prev = 0.0;
     for (float i = 0.0; i < steps; i += 1.0) {
         float u = (i + 1.0) / steps;
-        float t_next = t_max * (p == 2.0 ? u * u : p == 1.0 ? u : pow(u, p));   /* pow costs exp + log per step */
+        float t_next = t_stop * (p == 2.0 ? u * u : p == 1.0 ? u : pow(u, p));   /* pow costs exp + log per step */
         float dt = t_next - t_prev;
         float t = t_prev + march.z * dt;
         t_prev = t_next;
@@ -85,19 +113,35 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
         vec3 psi = HAS_MULTISCATTER ? lookup_multiscatter(h_t, mu_s_t) : vec3(0.0);
         /* Single scattering is shadowed by the planet (seed bug 5); multiple scattering is already integrated
          * over the sphere, shadow included, in the LUT (seed bug 9). */
-        vec3 source = atmo.sun.rgb * (earth_shadow(h_t, mu_s_t) * sun_t * (m.rayleigh * phase_r + m.mie * phase_m)
-                                      + psi * m.scattering);
-        radiance += throughput * source * step_integral(m.extinction, dt, step_t);
-        throughput *= step_t;
+        vec3 sun_single = earth_shadow(h_t, mu_s_t) * sun_t;
+        vec3 weight = atmo.sun.rgb * seg.throughput * step_integral(m.extinction, dt, step_t);
+        seg.rayleigh += weight * m.rayleigh * (sun_single * phase_r + psi);
+        seg.mie += weight * m.mie * (sun_single * phase_m + psi);
+        seg.throughput *= step_t;
     }
-    /* A lit ground (albedo > 0): Lambertian, lit by the sun through the atmosphere and by the sky (the
-     * ground-irradiance LUT: the sky's irradiance on the ground per unit sun illuminance, by sun angle). */
-    if (HAS_GROUND && hits_ground) {
-        float mu_s_g = clamp((r * mu_s + t_max * nu) / ground_radius(), -1.0, 1.0);
-        vec3 sun_g = lookup_transmittance(0.0, mu_s_g) * earth_shadow(0.0, mu_s_g) * max(mu_s_g, 0.0);
-        radiance += throughput * atmo.sun.rgb * (sun_g + GROUND_SKY_IRRADIANCE(mu_s_g)) * atmo.ground.rgb / PI;
-    }
-    return radiance;
+    return seg;
+}
+
+/* A lit ground (albedo > 0) where the whole ray ends on it, seen through the ray's transmittance: Lambertian, lit
+ * by the sun through the atmosphere and by the sky (the ground-irradiance LUT: the sky's irradiance on the ground
+ * per unit sun illuminance, by sun angle). Zero without a lit ground. */
+vec3 lit_ground(MarchSegment seg)
+{
+    if (!HAS_GROUND || !seg.hits_ground) return vec3(0.0);
+    float mu_s_g = clamp((seg.r * seg.mu_s + seg.t_max * seg.nu) / ground_radius(), -1.0, 1.0);
+    vec3 sun_g = lookup_transmittance(0.0, mu_s_g) * earth_shadow(0.0, mu_s_g) * max(mu_s_g, 0.0);
+    return seg.throughput * atmo.sun.rgb * (sun_g + GROUND_SKY_IRRADIANCE(mu_s_g)) * atmo.ground.rgb / PI;
+}
+
+/* The march: in-scattered radiance along the ray (no sun disc) and the ray's transmittance. */
+vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out vec3 throughput,
+               out bool hits_ground)
+{
+    MarchSegment seg = march_segment(h_cam, v, s, march, distribution, 3.0e38);
+    vec3 radiance = seg.rayleigh + seg.mie;
+    throughput = seg.throughput;
+    hits_ground = seg.hits_ground;
+    return radiance + lit_ground(seg);
 }
 
 /* Sun disc with limb darkening, seen through the ray's transmittance; hidden where the planet is in the way of

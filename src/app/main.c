@@ -1,4 +1,5 @@
 /* vksky: a physically based sky (Hillaire 2020) over raw Vulkan. */
+#include "app/composite_app.h"
 #include "app/headless.h"
 #include "app/options.h"
 #include "app/window.h"
@@ -8,9 +9,12 @@
 int main(int argc, char **argv)
 {
     options o;
+    composite_options co;   /* its flags leave argv here; the shared table never sees them */
+    if (composite_options_extract(&co, &argc, argv) != 0) return 2;
     if (options_parse(&o, argc, argv) != 0) return 2;
     if (o.help) {
         options_print_help(stdout);
+        composite_options_print_help(stdout);
         return 0;
     }
     if (o.version) {
@@ -29,6 +33,8 @@ int main(int argc, char **argv)
         }
         return reference_run(&o);
     }
+    if (co.input) return composite_run(&o, &co);
+    if (co.aovs) return composite_aovs_run(&o);
     if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);
     if (o.frames || o.screenshot) {
         fprintf(stderr, "vksky: %s: only for the interactive window (not with --render or --bench)\n",

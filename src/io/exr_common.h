@@ -3,6 +3,7 @@
 #define VKSKY_IO_EXR_COMMON_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include <openexr.h>
 
@@ -18,5 +19,20 @@ const char *io_exr_msg(exr_result_t rc);
 
 /* Channel name for layer `layer` ("" = the default layer) and component index c (0..3 = R,G,B,A). */
 void io_exr_channel_name(char *out, size_t out_size, const char *layer, int c);
+
+/* One layer for the shared encode loop (exr_layers.c): `channels` (3 or 4) interleaved values per pixel, top row
+   first, from exactly one of `half` (stored bits) or `f32` (converted with io_float_to_half a chunk at a time). */
+typedef struct io_exr_write_layer {
+    const char *name;
+    int channels;
+    const uint16_t *half;
+    const float *f32;
+} io_exr_write_layer;
+
+/* Writes the layers as one scanline part of HALF channels, ZIP, atomically (atomic_file.h). The caller has
+   validated everything (size, names unique and short enough, channel counts, pixels present). 0, or -1 + err
+   ("cannot write 'PATH': ..."). Used by io_write_exr and io_write_exr_layers. */
+int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
+                             int layer_count, char *err, size_t err_size);
 
 #endif /* VKSKY_IO_EXR_COMMON_H */

@@ -18,8 +18,9 @@ ref_quality ref_quality_converged(void)
 /* Camera (altitude, view, sun) -> start point (h, mu, mu_s, nu) of the march; 0 when the ray misses the
  * atmosphere (or the input is unusable). */
 static int sky_start(const model_atmosphere *a, double altitude, const double v_in[3], const double s_in[3],
-                     double *h, double *mu, double *mus, double *nu)
+                     double *h, double *mu, double *mus, double *nu, double *t_entry)
 {
+    *t_entry = 0.0;
     double v[3], s[3];
     double lv = sqrt(v_in[0] * v_in[0] + v_in[1] * v_in[1] + v_in[2] * v_in[2]);
     double ls = sqrt(s_in[0] * s_in[0] + s_in[1] * s_in[1] + s_in[2] * s_in[2]);
@@ -50,6 +51,7 @@ static int sky_start(const model_atmosphere *a, double altitude, const double v_
     double sq = sqrt((Rt - p) * (Rt + p));
     double pcs = r * (-*mu * v[0] * s[0] + sin2 * s[1] - *mu * v[2] * s[2]);
     *mus = clampd((pcs - sq * *nu) / Rt, -1.0, 1.0);
+    *t_entry = -r * *mu - sq; /* the closest point is -r mu along the ray; the entry sq before it */
     *mu = -sq / Rt;
     *h = top;
     return 1;
@@ -60,7 +62,8 @@ typedef struct sky_ray {
     double h, r, mu, mus, nu, pr, pm;
     int sun_steps;
     const psi_table *psi;
-    double Tv[3], L[3];
+    double Tv[3];
+    double Lr[3], Lm[3]; /* in-scattering by phase: Rayleigh-phase species, Mie (each with its Psi share) */
 } sky_ray;
 
 /* One midpoint step [t - dt/2, t + dt/2] of the view march (per-step analytic integration). */
@@ -85,27 +88,33 @@ static void sky_step(sky_ray *s, double t, double dt)
     }
     if (s->psi)
         psi_table_eval(s->psi, a, ht, mst, ps);
+    /* Psi multiplies the total scattering coefficient, sr + sm: each group takes its own share, so the two parts
+     * add up to the whole source. */
     for (int c = 0; c < 3; ++c) {
-        double single =
-            vis * Ts[c] * (m.sr[c] * s->pr + m.sm[c] * s->pm);
-        double S = a->sun_illuminance[c] * (single + ps[c] * m.scat[c]);
-        s->L[c] += s->Tv[c] * S * step_integral(m.ext[c], dt);
+        double w = a->sun_illuminance[c] * s->Tv[c] * step_integral(m.ext[c], dt);
+        s->Lr[c] += w * m.sr[c] * (vis * Ts[c] * s->pr + ps[c]);
+        s->Lm[c] += w * m.sm[c] * (vis * Ts[c] * s->pm + ps[c]);
         s->Tv[c] *= exp(-m.ext[c] * dt);
     }
 }
 
-/* March from (h, mu) with the sun at mu_s and nu = dot(view, sun): view_steps steps graded toward the lowest
- * point, a step that contains a crossing of the earth's shadow or a kink of the horizon fade split there
- * (ray_cuts), direct sun transmittance, Psi from the table. */
-static void sky_march(const model_atmosphere *a, double h, double mu, double mus, double nu, int view_steps,
-                      int sun_steps, const psi_table *psi, double out[3])
+/* March from (h, mu) with the sun at mu_s and nu = dot(view, sun) over the first `limit` km of the ray (all of
+ * it when longer): view_steps steps graded toward the lowest point, a step that contains a crossing of the
+ * earth's shadow or a kink of the horizon fade split there (ray_cuts), direct sun transmittance, Psi from the
+ * table. */
+static void sky_march(const model_atmosphere *a, double h, double mu, double mus, double nu, double limit,
+                      int view_steps, int sun_steps, const psi_table *psi, ref_aerial *out)
 {
     sky_ray s = {a, h, a->bottom_radius + h, mu, mus, nu, phase_rayleigh(nu), phase_hg(a->mie_g, nu),
-                 sun_steps, psi, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}};
+                 sun_steps, psi, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
     double tend, cuts[MAX_CUTS];
     int ground = hit_ground(a, h, mu, &tend);
     if (!ground)
         tend = dist_to_top(a, h, mu);
+    if (limit < tend) { /* the segment ends in the air: grade it as a ray that does not reach the ground */
+        tend = limit > 0.0 ? limit : 0.0;
+        ground = 0;
+    }
     if (tend > 0.0) {
         int ncut = ray_cuts(a, h, mu, mus, nu, tend, cuts), ic = 0;
         for (int k = 0; k < view_steps; ++k) {
@@ -121,15 +130,15 @@ static void sky_march(const model_atmosphere *a, double h, double mu, double mus
             sky_step(&s, 0.5 * (t0 + t1), t1 - t0);
         }
     }
-    for (int c = 0; c < 3; ++c)
-        out[c] = (s.L[c] > 0.0 && isfinite(s.L[c])) ? s.L[c] : 0.0;
+    for (int c = 0; c < 3; ++c) {
+        out->rayleigh[c] = (s.Lr[c] > 0.0 && isfinite(s.Lr[c])) ? s.Lr[c] : 0.0;
+        out->mie[c] = (s.Lm[c] > 0.0 && isfinite(s.Lm[c])) ? s.Lm[c] : 0.0;
+        out->transmittance[c] = s.Tv[c];
+    }
 }
 
-void ref_sky_radiance(const model_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
-                      ref_quality q, double out_rgb[3])
+static ref_quality quality_at_least_1(ref_quality q)
 {
-    double h, mu, mus, nu;
-    out_rgb[0] = out_rgb[1] = out_rgb[2] = 0.0;
     if (q.view_steps < 1)
         q.view_steps = 1;
     if (q.sun_steps < 1)
@@ -138,10 +147,36 @@ void ref_sky_radiance(const model_atmosphere *a, double altitude, const double v
         q.ms_sqrt_dirs = 2;
     if (q.ms_steps < 1)
         q.ms_steps = 1;
-    if (!sky_start(a, altitude, view_dir, sun_dir, &h, &mu, &mus, &nu))
+    return q;
+}
+
+void ref_sky_radiance(const model_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
+                      ref_quality q, double out_rgb[3])
+{
+    double h, mu, mus, nu, t_entry;
+    out_rgb[0] = out_rgb[1] = out_rgb[2] = 0.0;
+    q = quality_at_least_1(q);
+    if (!sky_start(a, altitude, view_dir, sun_dir, &h, &mu, &mus, &nu, &t_entry))
         return;
     const psi_table *psi = psi_cache_get(a, q.ms_sqrt_dirs, q.ms_steps);
-    sky_march(a, h, mu, mus, nu, q.view_steps, q.sun_steps, psi, out_rgb);
+    ref_aerial seg;
+    sky_march(a, h, mu, mus, nu, INFINITY, q.view_steps, q.sun_steps, psi, &seg);
+    for (int c = 0; c < 3; ++c)
+        out_rgb[c] = seg.rayleigh[c] + seg.mie[c];
+}
+
+void ref_radiance_to_point(const model_atmosphere *a, double altitude, const double view_dir[3],
+                           const double sun_dir[3], double distance, ref_quality q, ref_aerial *out)
+{
+    double h, mu, mus, nu, t_entry;
+    *out = (ref_aerial){{1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+    q = quality_at_least_1(q);
+    if (!(distance > 0.0) || !sky_start(a, altitude, view_dir, sun_dir, &h, &mu, &mus, &nu, &t_entry))
+        return;
+    if (!(distance > t_entry))
+        return; /* the point lies in the empty space before the atmosphere */
+    const psi_table *psi = psi_cache_get(a, q.ms_sqrt_dirs, q.ms_steps);
+    sky_march(a, h, mu, mus, nu, distance - t_entry, q.view_steps, q.sun_steps, psi, out);
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */

@@ -88,6 +88,20 @@ ref_quality ref_quality_converged(void);
 void ref_sky_radiance(const model_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
                       ref_quality q, double out_rgb[3]);
 
+/* Aerial perspective to a point: from camera altitude `altitude` along the unit view direction (local frame, up =
+ * +Y) to the point `distance` km away, with the sun toward sun_dir. L_point_seen = L_point T + S with S =
+ * rayleigh + mie exactly: `rayleigh` holds the single scattering of every species with the Rayleigh phase
+ * (Rayleigh and the extra species) plus their share Psi sigma_s of the multiple scattering, `mie` Mie's single
+ * scattering plus its share. The march of ref_sky_radiance stopped at the point (the same steps and cuts over
+ * the shorter segment; a point beyond the ray's end is clamped to it; the lit ground's reflection, which is
+ * the surface's own radiance, is not included). distance <= 0: T = 1, S = 0. */
+typedef struct ref_aerial {
+    double transmittance[3];
+    double rayleigh[3], mie[3];
+} ref_aerial;
+void ref_radiance_to_point(const model_atmosphere *a, double altitude, const double view_dir[3],
+                           const double sun_dir[3], double distance, ref_quality q, ref_aerial *out);
+
 /* View direction of pixel (x, y) (y = 0 at the top) of a width x height image, docs/model.md "Conventions of the
  * image"; fov_y_rad is the vertical field of view. */
 void ref_pixel_dir(int x, int y, int width, int height, double yaw_rad, double pitch_rad, double fov_y_rad,

@@ -126,6 +126,15 @@ static void copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent
     vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
 }
 
+void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force)
+{
+    if (force || sky_renderer_luts_dirty(r)) {
+        record_luts(r, cmd);
+        r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere);
+        r->luts_valid = true;
+    }
+}
+
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
 {
     const sky_view *v = f->view;
@@ -136,11 +145,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     gpu_timer_reset(timer, cmd);
 
     /* 1. LUTs, only when the atmosphere changed: transmittance, then multi-scattering (reads transmittance). */
-    if (f->force_luts || sky_renderer_luts_dirty(r)) {
-        record_luts(r, cmd);
-        r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere);
-        r->luts_valid = true;
-    }
+    frame_record_luts(r, cmd, f->force_luts);
 
     /* 2. Sky. The sky pass runs as a fragment pass (HDR as colour attachment) or a compute dispatch (HDR as
      * storage image); with the sky-view LUT it first renders that LUT for this frame's camera and sun. */

@@ -21,5 +21,8 @@ typedef struct frame_desc {
     gpu_timer *timer;            /* NULL: the renderer's timer (one per frame in flight otherwise) */
 } frame_desc;
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
+/* A frame's first step alone (the composite frame's too): the LUT passes and their barriers, when the atmosphere
+ * changed (or `force`); afterwards the LUTs are readable by compute and fragment shaders. */
+void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force);
 
 #endif

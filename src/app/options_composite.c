@@ -1,0 +1,133 @@
+#include "app/options_composite.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct composite_flag {
+    const char *name;
+    bool takes_value;
+    const char *help;
+} composite_flag;
+
+static const composite_flag composite_flags[] = {
+    {"--composite", true, "FILE.exr  apply the atmosphere to a rendered image: a multilayer EXR with <ViewLayer>.Combined.RGBA and <ViewLayer>.Position.XYZ (Blender's names), or the beauty with --position; writes the composite and its AOV layers to --render FILE.exr"},
+    {"--position", true, "FILE.exr   with --composite: the world-position pass as its own file (X,Y,Z, or R,G,B read as X,Y,Z)"},
+    {"--beauty-layer", true, "NAME   with --composite: the beauty's layer (channels NAME.R, .G, .B, .A)"},
+    {"--position-layer", true, "NAME with --composite: the position's layer (NAME.X, .Y, .Z or NAME.R, .G, .B)"},
+    {"--world-unit", true, "M        with --composite: metres per world unit (default 1)"},
+    {"--world-up", true, "y|z        with --composite: the world's up axis (default z); the ground is the plane up = 0"},
+    {"--ground-altitude", true, "KM with --composite: altitude of the world's ground plane (default 0)"},
+    {"--camera-position", true, "X,Y,Z with --composite: camera position in world units, when the EXR has no worldToCamera; --yaw/--pitch/--fov give its orientation (sky pixels)"},
+    {"--aerial-perspective", true, "M march | volume | auto: camera->point by a march per pixel (accurate) or the froxel volume (fast; not built yet) (default auto = march)"},
+    {"--aovs", false, "              with --render FILE.exr (a plain sky render): also write the layers sky, sun_disk, transmittance, rayleigh, mie"},
+};
+enum { COMPOSITE_FLAG_COUNT = sizeof composite_flags / sizeof composite_flags[0] };
+
+void composite_options_print_help(FILE *out)
+{
+    fprintf(out, "\ncompositing (docs/readme/composite.md):\n"
+                 "       vksky --composite render.exr --render out.exr [options]\n"
+                 "       vksky --composite beauty.exr --position position.exr --render out.exr [options]\n");
+    for (int i = 0; i < COMPOSITE_FLAG_COUNT; ++i)
+        fprintf(out, "  %s %s\n", composite_flags[i].name, composite_flags[i].help);
+}
+
+static int bad(const char *flag, const char *what, const char *value)
+{
+    fprintf(stderr, "vksky: %s: %s%s%s\n", flag, value ? "'" : "", value ? value : "", what);
+    return 2;
+}
+
+static bool parse_double(const char *text, double *out)
+{
+    errno = 0;
+    char *end = NULL;
+    double v = strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v)) return false;
+    *out = v;
+    return true;
+}
+
+static bool parse_triple(const char *text, double out[3])
+{
+    char buf[256];
+    if (strlen(text) >= sizeof buf) return false;
+    strcpy(buf, text);
+    char *parts[3], *save = NULL, *tok = strtok_r(buf, ",", &save);
+    int n = 0;
+    for (; tok && n < 3; tok = strtok_r(NULL, ",", &save)) parts[n++] = tok;
+    if (n != 3 || tok) return false;
+    for (int i = 0; i < 3; ++i)
+        if (!parse_double(parts[i], &out[i])) return false;
+    return true;
+}
+
+static int take(composite_options *co, const char *name, const char *value)
+{
+    if (!strcmp(name, "--composite")) co->input = value;
+    else if (!strcmp(name, "--position")) co->position = value;
+    else if (!strcmp(name, "--beauty-layer")) co->beauty_layer = value;
+    else if (!strcmp(name, "--position-layer")) co->position_layer = value;
+    else if (!strcmp(name, "--world-unit")) {
+        if (!parse_double(value, &co->world_unit_m) || !(co->world_unit_m >= 1e-9 && co->world_unit_m <= 1e9))
+            return bad(name, "' is not a length; expected metres per world unit in [1e-9, 1e9]", value);
+    } else if (!strcmp(name, "--world-up")) {
+        if (!strcmp(value, "y") || !strcmp(value, "Y")) co->up_axis = 1;
+        else if (!strcmp(value, "z") || !strcmp(value, "Z")) co->up_axis = 2;
+        else return bad(name, "' is not an axis; expected y or z", value);
+    } else if (!strcmp(name, "--ground-altitude")) {
+        if (!parse_double(value, &co->ground_altitude_km) || fabs(co->ground_altitude_km) > 100.0)
+            return bad(name, "' is not an altitude; expected km in [-100, 100]", value);
+    } else if (!strcmp(name, "--camera-position")) {
+        if (!parse_triple(value, co->camera_position) || fabs(co->camera_position[0]) > 1e15 ||
+            fabs(co->camera_position[1]) > 1e15 || fabs(co->camera_position[2]) > 1e15)
+            return bad(name, "' is not a position; expected X,Y,Z in world units (three finite numbers)", value);
+        co->has_camera_position = true;
+    } else if (!strcmp(name, "--aerial-perspective")) {
+        if (!strcmp(value, "march")) co->aerial = AERIAL_MARCH;
+        else if (!strcmp(value, "volume")) co->aerial = AERIAL_VOLUME;
+        else if (!strcmp(value, "auto")) co->aerial = AERIAL_AUTO;
+        else return bad(name, "' is not a method; expected march, volume or auto", value);
+    } else if (!strcmp(name, "--aovs")) co->aovs = true;
+    return 0;
+}
+
+int composite_options_extract(composite_options *co, int *argc, char **argv)
+{
+    *co = (composite_options){.world_unit_m = 1.0, .up_axis = 2, .aerial = AERIAL_AUTO};
+    const char *needs_composite = NULL;
+    int out = 1;
+    for (int i = 1; i < *argc; ++i) {
+        const char *a = argv[i];
+        const composite_flag *f = NULL;
+        for (int k = 0; k < COMPOSITE_FLAG_COUNT; ++k)
+            if (!strcmp(a, composite_flags[k].name)) f = &composite_flags[k];
+        if (!f) {
+            /* A shared flag: kept for options_parse; noted where the composite needs to know it was given. The
+             * next word is its value for every shared flag that takes one, and is kept with it. */
+            if (!strcmp(a, "--yaw") || !strcmp(a, "--pitch")) co->has_orientation = true;
+            if (!strcmp(a, "--fov")) co->has_fov = true;
+            if (!strcmp(a, "--width") || !strcmp(a, "--height")) co->has_size = true;
+            argv[out++] = argv[i];
+            continue;
+        }
+        const char *value = NULL;
+        if (f->takes_value) {
+            if (i + 1 >= *argc) return bad(a, "needs a value (vksky --help)", NULL);
+            value = argv[++i];
+        }
+        if (take(co, a, value) != 0) return 2;
+        if (strcmp(a, "--composite") && strcmp(a, "--aovs") && strcmp(a, "--aerial-perspective") && !needs_composite)
+            needs_composite = a;
+    }
+    argv[out] = NULL;
+    *argc = out;
+    if (needs_composite && !co->input) return bad(needs_composite, "only with --composite", NULL);
+    if (co->input && co->aovs) return bad("--aovs", "not with --composite (its output always has the AOV layers)", NULL);
+    if (co->input && co->has_size)
+        return bad(co->has_size ? "--width/--height" : "", "not with --composite (the size is the input's)", NULL);
+    if (co->aerial == AERIAL_VOLUME)
+        return bad("--aerial-perspective", "volume: the froxel volume is not built yet; use march or auto", NULL);
+    return 0;
+}

@@ -1,0 +1,32 @@
+/* The flags of `vksky --composite` and `--aovs` (issue 12), parsed apart from the shared flag table: they are taken
+ * out of argv before options_parse sees it, so the shared table needs no entry for them. */
+#ifndef VKSKY_APP_OPTIONS_COMPOSITE_H
+#define VKSKY_APP_OPTIONS_COMPOSITE_H
+#include <stdbool.h>
+#include <stdio.h>
+
+typedef enum aerial_method { AERIAL_MARCH, AERIAL_VOLUME, AERIAL_AUTO } aerial_method;
+
+typedef struct composite_options {
+    const char *input;              /* --composite FILE.exr: multilayer render, or the beauty with --position */
+    const char *position;           /* --position FILE.exr (NULL: the position is a layer of the input) */
+    const char *beauty_layer;       /* --beauty-layer NAME (NULL: <ViewLayer>.Combined, or top-level R,G,B,A) */
+    const char *position_layer;     /* --position-layer NAME (NULL: <ViewLayer>.Position, or top-level X,Y,Z/R,G,B) */
+    double world_unit_m;            /* --world-unit M: metres per world unit (default 1) */
+    int up_axis;                    /* --world-up y|z: 1 or 2 (default z) */
+    double ground_altitude_km;      /* --ground-altitude KM (default 0) */
+    bool has_camera_position;
+    double camera_position[3];      /* --camera-position X,Y,Z (world units) */
+    bool has_orientation;           /* --yaw or --pitch given (they are the shared flags; seen, not taken) */
+    bool has_fov;                   /* --fov given */
+    bool has_size;                  /* --width or --height given */
+    bool aovs;                      /* --aovs: a plain sky render also writes the AOV layers */
+    aerial_method aerial;           /* --aerial-perspective march|volume|auto (default auto) */
+} composite_options;
+
+/* Takes this module's flags (and their values) out of argv, compacting it and updating *argc; notes the shared
+ * flags it cares about. 0, or 2 after one line on stderr (bad value, missing value, a flag that needs
+ * --composite). */
+int composite_options_extract(composite_options *co, int *argc, char **argv);
+void composite_options_print_help(FILE *out);
+#endif

@@ -1,0 +1,300 @@
+/* vksky image I/O: the multilayer EXR writer (OpenEXRCore C API 3.1). One part, HALF channels, ZIP, written to a
+   temporary and renamed (atomic_file.h). See exr_layers.h. The encode loop here serves both writers: io_write_exr
+   (RGBA half layers, exr_write.c) and io_write_exr_layers (RGB or RGBA float layers, converted a chunk at a time so
+   a large image never needs a second full-size copy). */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+
+#include "io/exr_layers.h"
+
+#include "io/atomic_file.h"
+#include "io/exr_common.h"
+#include "io/half_float.h"
+#include "io/io_error.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+#include <openexr.h>
+
+typedef struct out_stream {
+    int fd;
+    int err_no; /* errno of the first failed write, 0 if none */
+} out_stream;
+
+static int64_t stream_write(exr_const_context_t ctxt, void *userdata, const void *buffer, uint64_t sz,
+                            uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    out_stream *s = (out_stream *)userdata;
+    const uint8_t *p = (const uint8_t *)buffer;
+    uint64_t done = 0;
+    while (done < sz) {
+        uint64_t want = sz - done;
+        if (want > (uint64_t)1 << 30) want = (uint64_t)1 << 30;
+        ssize_t n = pwrite(s->fd, p + done, (size_t)want, (off_t)(offset + done));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            int e = (n < 0) ? errno : EIO;
+            if (!s->err_no) s->err_no = e;
+            if (error_cb) error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed: %s", strerror(e));
+            return -1;
+        }
+        done += (uint64_t)n;
+    }
+    return (int64_t)sz;
+}
+
+static void stream_destroy(exr_const_context_t ctxt, void *userdata, int failed)
+{
+    (void)ctxt;
+    (void)userdata;
+    (void)failed; /* the fd is owned and closed by the writer */
+}
+
+/* OpenEXRCore 3.1.x keeps a ZIP-compressed chunk whose compressed size is exactly equal to the raw size, but
+   every reader (Core and the C++ library) treats packed_size == unpacked_size as "stored uncompressed", so such a
+   chunk would read back as garbage (reproducible with small 4-channel chunks). Wrap the library's compressor and
+   store the raw packed data whenever compression does not make the chunk strictly smaller. */
+typedef struct compress_wrap {
+    exr_result_t (*orig)(exr_encode_pipeline_t *);
+} compress_wrap;
+
+static exr_result_t compress_no_expand(exr_encode_pipeline_t *enc)
+{
+    const compress_wrap *wrap = (const compress_wrap *)enc->encoding_user_data;
+    if (!wrap || !wrap->orig) return EXR_ERR_INVALID_ARGUMENT;
+    exr_result_t rc = wrap->orig(enc);
+    if (rc != EXR_ERR_SUCCESS) return rc;
+    if (enc->compressed_bytes >= enc->packed_bytes && enc->compressed_buffer != enc->packed_buffer) {
+        if (!enc->compressed_buffer || !enc->packed_buffer || enc->compressed_alloc_size < enc->packed_bytes)
+            return EXR_ERR_CORRUPT_CHUNK;
+        memcpy(enc->compressed_buffer, enc->packed_buffer, (size_t)enc->packed_bytes);
+        enc->compressed_bytes = (size_t)enc->packed_bytes;
+    }
+    return EXR_ERR_SUCCESS;
+}
+
+/* Channel k (0..3 = R, G, B, A) of layer `l`: which layer and component an encoder channel name stands for. */
+static int find_channel(const io_exr_write_layer *layers, int layer_count, const char *name, int *layer, int *comp)
+{
+    for (int l = 0; l < layer_count; ++l) {
+        for (int c = 0; c < layers[l].channels; ++c) {
+            char n[IO_EXR_MAX_LAYER_NAME + 8];
+            io_exr_channel_name(n, sizeof n, layers[l].name, c);
+            if (name && strcmp(name, n) == 0) {
+                *layer = l;
+                *comp = c;
+                return 1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* Points encoder channel `ci` at the rows of one chunk: straight into half data, or into `scratch` filled with the
+   float data converted to half (round to nearest even, io_float_to_half). */
+static void feed_channel(exr_coding_channel_info_t *ci, const io_exr_write_layer *L, int comp, int width, int y0,
+                         int rows, uint16_t *scratch)
+{
+    size_t first = (size_t)y0 * (size_t)width * (size_t)L->channels + (size_t)comp;
+    if (L->half) {
+        ci->encode_from_ptr = (const uint8_t *)(L->half + first);
+        ci->user_pixel_stride = L->channels * (int32_t)sizeof(uint16_t);
+        ci->user_line_stride = width * L->channels * (int32_t)sizeof(uint16_t);
+    } else {
+        size_t n = (size_t)rows * (size_t)width;
+        for (size_t i = 0; i < n; ++i) scratch[i] = io_float_to_half(L->f32[first + i * (size_t)L->channels]);
+        ci->encode_from_ptr = (const uint8_t *)scratch;
+        ci->user_pixel_stride = (int32_t)sizeof(uint16_t);
+        ci->user_line_stride = width * (int32_t)sizeof(uint16_t);
+    }
+    ci->user_data_type = EXR_PIXEL_HALF;
+    ci->user_bytes_per_element = (int16_t)sizeof(uint16_t);
+}
+
+/* Everything a writer is given, checked before a file is opened. 0, or -1 + err. */
+static int check_layers(const char *path, int width, int height, const io_exr_write_layer *layers, int layer_count,
+                        char *err, size_t err_size)
+{
+    const char *p = io_safe_path(path);
+    if (io_check_image_target(path, width, height, err, err_size) != 0) return -1;
+    if (!layers || layer_count <= 0 || layer_count > 1000) {
+        io_set_err(err, err_size, "cannot write '%s': invalid layer list (%d layers; 1 to 1000 accepted)", p,
+                   layer_count);
+        return -1;
+    }
+    for (int i = 0; i < layer_count; ++i) {
+        const io_exr_write_layer *L = &layers[i];
+        size_t len = L->name ? strlen(L->name) : 0;
+        if (!L->name || (!L->half && !L->f32)) {
+            io_set_err(err, err_size, "cannot write '%s': layer %d has no %s", p, i, L->name ? "pixels" : "name");
+            return -1;
+        }
+        if (L->channels != 3 && L->channels != 4) {
+            io_set_err(err, err_size, "cannot write '%s': layer '%s' has %d channels (3 or 4 accepted)", p, L->name,
+                       L->channels);
+            return -1;
+        }
+        if (len > IO_EXR_MAX_LAYER_NAME || (len && (L->name[0] == '.' || L->name[len - 1] == '.'))) {
+            io_set_err(err, err_size, "cannot write '%s': layer %d name '%.40s' %s", p, i, L->name,
+                       len > IO_EXR_MAX_LAYER_NAME ? "too long" : "starts or ends with '.'");
+            return -1;
+        }
+        for (int j = 0; j < i; ++j) {
+            if (strcmp(L->name, layers[j].name) == 0) {
+                io_set_err(err, err_size, "cannot write '%s': duplicate layer name '%s'", p, L->name);
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
+                             int layer_count, char *err, size_t err_size)
+{
+    const char *p = io_safe_path(path);
+    if (check_layers(path, width, height, layers, layer_count, err, err_size) != 0) return -1;
+    char tmp[PATH_MAX + 64];
+    int fd = io_atomic_open(path, tmp, sizeof tmp, err, err_size);
+    if (fd < 0) return -1;
+
+    out_stream stream = {fd, 0};
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = io_exr_error_handler;
+    init.user_data = &stream;
+    init.write_fn = stream_write;
+    init.destroy_fn = stream_destroy;
+
+    exr_context_t ctxt = NULL;
+    exr_result_t rc;
+    const char *stage = "start";
+    uint16_t *scratch = NULL;
+    io_exr_clear_msg();
+
+    rc = exr_start_write(&ctxt, tmp, EXR_WRITE_FILE_DIRECTLY, &init);
+    if (rc != EXR_ERR_SUCCESS) goto fail;
+
+    /* Names longer than 31 bytes need the "long names" file flag (only set when needed: old readers reject it). */
+    int long_names = 0;
+    for (int l = 0; l < layer_count; ++l) long_names |= strlen(layers[l].name) + 2 > 31;
+    if (long_names) {
+        stage = "enable long names";
+        rc = exr_set_longname_support(ctxt, 1);
+        if (rc != EXR_ERR_SUCCESS) goto fail;
+    }
+
+    int part = 0;
+    stage = "add part";
+    rc = exr_add_part(ctxt, "", EXR_STORAGE_SCANLINE, &part);
+    if (rc != EXR_ERR_SUCCESS) goto fail;
+    stage = "header";
+    rc = exr_initialize_required_attr_simple(ctxt, part, width, height, EXR_COMPRESSION_ZIP);
+    if (rc != EXR_ERR_SUCCESS) goto fail;
+
+    stage = "add channel";
+    for (int l = 0; l < layer_count; ++l) {
+        for (int c = 0; c < layers[l].channels; ++c) {
+            char name[IO_EXR_MAX_LAYER_NAME + 8];
+            io_exr_channel_name(name, sizeof name, layers[l].name, c);
+            rc = exr_add_channel(ctxt, part, name, EXR_PIXEL_HALF, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+            if (rc != EXR_ERR_SUCCESS) goto fail;
+        }
+    }
+
+    stage = "write header";
+    rc = exr_write_header(ctxt);
+    if (rc != EXR_ERR_SUCCESS) goto fail;
+
+    int32_t lines_per_chunk = 0;
+    stage = "chunk layout";
+    rc = exr_get_scanlines_per_chunk(ctxt, part, &lines_per_chunk);
+    if (rc == EXR_ERR_SUCCESS && (lines_per_chunk <= 0 || lines_per_chunk > 256)) rc = EXR_ERR_INVALID_ATTR;
+    if (rc != EXR_ERR_SUCCESS) goto fail;
+
+    int channel_count = 0;
+    for (int l = 0; l < layer_count; ++l) channel_count += layers[l].channels;
+    scratch = (uint16_t *)malloc((size_t)channel_count * (size_t)lines_per_chunk * (size_t)width * sizeof(uint16_t));
+    if (!scratch) {
+        rc = EXR_ERR_OUT_OF_MEMORY;
+        goto fail;
+    }
+
+    for (int y = 0; y < height; y += lines_per_chunk) {
+        exr_chunk_info_t cinfo;
+        exr_encode_pipeline_t enc;
+        memset(&cinfo, 0, sizeof cinfo);
+        memset(&enc, 0, sizeof enc);
+        stage = "chunk info";
+        rc = exr_write_scanline_chunk_info(ctxt, part, y, &cinfo);
+        if (rc != EXR_ERR_SUCCESS) goto fail;
+        stage = "encode init";
+        rc = exr_encoding_initialize(ctxt, part, &cinfo, &enc);
+        if (rc != EXR_ERR_SUCCESS) goto fail;
+
+        /* The channel list is sorted by name in the file; map each back to (layer, component) by name. */
+        for (int ch = 0; ch < enc.channel_count && rc == EXR_ERR_SUCCESS; ++ch) {
+            exr_coding_channel_info_t *ci = &enc.channels[ch];
+            int l = 0, c = 0;
+            if (!find_channel(layers, layer_count, ci->channel_name, &l, &c)) {
+                rc = EXR_ERR_INVALID_ARGUMENT;
+                break;
+            }
+            feed_channel(ci, &layers[l], c, width, cinfo.start_y, cinfo.height,
+                         scratch + (size_t)ch * (size_t)lines_per_chunk * (size_t)width);
+        }
+        stage = "encode";
+        compress_wrap wrap = {NULL};
+        if (rc == EXR_ERR_SUCCESS) rc = exr_encoding_choose_default_routines(ctxt, part, &enc);
+        if (rc == EXR_ERR_SUCCESS && enc.compress_fn) {
+            wrap.orig = enc.compress_fn;
+            enc.encoding_user_data = &wrap;
+            enc.compress_fn = compress_no_expand;
+        }
+        if (rc == EXR_ERR_SUCCESS) rc = exr_encoding_run(ctxt, part, &enc);
+        exr_encoding_destroy(ctxt, &enc);
+        if (rc != EXR_ERR_SUCCESS) goto fail;
+    }
+
+    free(scratch);
+    scratch = NULL;
+    stage = "finish";
+    rc = exr_finish(&ctxt);
+    ctxt = NULL;
+    if (rc != EXR_ERR_SUCCESS || stream.err_no) goto fail;
+
+    return io_atomic_commit(fd, tmp, path, err, err_size);
+
+fail:
+    free(scratch);
+    if (ctxt) exr_finish(&ctxt);
+    if (stream.err_no)
+        io_set_err(err, err_size, "cannot write '%s': %s", p, strerror(stream.err_no));
+    else
+        io_set_err(err, err_size, "cannot write '%s': OpenEXR %s failed: %s", p, stage, io_exr_msg(rc));
+    io_atomic_abort(fd, tmp);
+    return -1;
+}
+
+int io_write_exr_layers(const char *path, int width, int height, const io_exr_out_layer *layers, int layer_count,
+                        char *err, size_t err_size)
+{
+    if (!layers || layer_count <= 0 || layer_count > 1000)
+        return check_layers(path, width, height, NULL, layer_count, err, err_size);
+    io_exr_write_layer *w = (io_exr_write_layer *)calloc((size_t)layer_count, sizeof *w);
+    if (!w) {
+        io_set_err(err, err_size, "cannot write '%s': out of memory", io_safe_path(path));
+        return -1;
+    }
+    for (int i = 0; i < layer_count; ++i) w[i] = (io_exr_write_layer){layers[i].name, layers[i].channels, NULL, layers[i].pixels};
+    int r = io_exr_write_layers_half(path, width, height, w, layer_count, err, err_size);
+    free(w);
+    return r;
+}

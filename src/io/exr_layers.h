@@ -1,0 +1,32 @@
+/* vksky image I/O: a multilayer EXR for compositing: one part, HALF channels, ZIP compression, the layers named in
+ * the layer.channel convention that Nuke, Blender and OpenImageIO read ("sky.R", "sky.G", ...). Atomic: written to
+ * "<dir>/.<basename>.tmp.<pid>" and renamed over `path` only when complete; on failure no file is left at `path`.
+ */
+#ifndef VKSKY_IO_EXR_LAYERS_H
+#define VKSKY_IO_EXR_LAYERS_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Named io_exr_out_layer, not io_exr_layer: that name is already the RGBA-half layer of io_write_exr (image_io.h /
+   exr_write.h), and a translation unit may include both writers. */
+typedef struct io_exr_out_layer {
+    const char *name;     /* "" for the top-level R, G, B(, A); else e.g. "sky" -> sky.R, sky.G, sky.B(, sky.A) */
+    int channels;         /* 3 (RGB) or 4 (RGBA) */
+    const float *pixels;  /* width*height*channels floats, interleaved, top row first; stored as half (finite
+                             values beyond +-65504 clamp, inf and NaN stay) */
+} io_exr_out_layer;
+
+/* 0 on success; else -1 and one line in err[err_size] (bad size, NULL pixels, a channel count other than 3 or 4,
+   an empty or duplicate or over-long layer name, a name with a '.' at either end, an unwritable path). */
+int io_write_exr_layers(const char *path, int width, int height, const io_exr_out_layer *layers, int layer_count,
+                        char *err, size_t err_size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* VKSKY_IO_EXR_LAYERS_H */
