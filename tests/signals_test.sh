@@ -83,6 +83,7 @@ trap 'rm -rf "$work"' EXIT
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 t_start=$(date +%s)
+"$VKSKY" --help | grep -q "^  130 / 143 stopped by SIGINT" || fail "--help does not document the exit statuses 130 / 143"
 
 # 1. Headless render: SIGINT once the frame is recorded (the pass trace is printed while recording, just before the
 #    submit), so the frame is on the device when the signal lands (768x768 at "high": seconds on a CPU device).

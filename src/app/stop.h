@@ -6,6 +6,7 @@
 #ifndef VKSKY_APP_STOP_H
 #define VKSKY_APP_STOP_H
 #include <stdbool.h>
+#include <stdio.h>
 
 /* Installs the handlers for SIGINT and SIGTERM, and hands io the flag (an output not yet renamed into place is
  * then abandoned). Call at the start of a long-running mode. */
@@ -17,4 +18,7 @@ bool stop_requested(void);
 /* The exit status for a run that ended with `status`: when a stop was asked for, prints one line on stderr ("vksky:
  * stopped by SIGINT (...)") and returns 128 + the signal; otherwise returns `status` unchanged. */
 int stop_status(int status);
+
+/* --help's last paragraph: the exit statuses, and what a stop does. */
+void stop_print_help(FILE *out);
 #endif

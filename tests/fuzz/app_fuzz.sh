@@ -27,9 +27,10 @@ if [ -e "${regs[0]}" ]; then
     echo "$name: ${#regs[@]} regression inputs pass"
 fi
 
-# 2. The dictionary: flag names from the table, and the value words and separators the parser reads.
+# 2. The dictionary: flag names (every "--name" string in src/app: the table's and the composite's), and the
+#    value words and separators the parsers read.
 {
-    cat "$here/../../src/app/"*.c | grep -oE '\{"--[a-z0-9-]+"' | sed 's/^{//' | sort -u
+    cat "$here/../../src/app/"*.c | grep -oE '"--[a-z0-9-]+"' | sort -u
     for w in low medium high ultra clamp reinhard aces march skyview auto fill fragment compute f16 f32 hg \
              cornette-shanks henyey-greenstein exponential tent layers true false null x , = .exr .png .json \
              '"quality"' '"preset"' '"species"' '"density"' '"profile"' '"camera"' '"output"' '"sun"' '"planet"'; do

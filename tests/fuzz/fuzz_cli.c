@@ -1,12 +1,13 @@
 /* libFuzzer harness for the command line (issue 15 item 4): the input is split at newlines into arguments (at most
- * 32, each at most 200 bytes; a NUL ends an argument early) and parsed by options_parse, exactly what main does
- * before it renders anything. The properties (app_fuzz_common.h): status 0 or 2; one "vksky: " line on 2; on 0 a
- * silent parse whose dump round-trips.
+ * 32, each at most 200 bytes; a NUL ends an argument early) and parsed as main parses before it renders anything:
+ * composite_options_extract takes the composite's flags out, then options_parse. The properties (app_fuzz_common.h):
+ * status 0 or 2; one "vksky: " line on 2; on 0 a silent parse whose dump round-trips.
  * Two arguments are tamed so that a run stays in the process and on the parser: --dump-scene (prints and exits) is
  * dropped, and a --scene value is replaced by one of the shipped scenes (chosen by the value's bytes), since a path
  * from the fuzzer could name /dev/stdin or a FIFO; the scene's bytes are fuzz_scene's job. Seed corpus: command
  * lines from the tests and the README (tests/fuzz/cli_corpus, one argument per line). */
 #include "app_fuzz_common.h"
+#include "app/options_composite.h"
 
 #ifndef VKSKY_FUZZ_SCENES
 #error "VKSKY_FUZZ_SCENES: the shipped scenes' directory"
@@ -58,6 +59,25 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         argv[argc++] = arg;
     }
     argv[argc] = NULL;
-    fuzz_check_command_line(argc, argv);
+    /* As main: the composite's flags leave argv first (their own parser), then the shared table's parse. */
+    composite_options co;
+    char *err = NULL;
+    size_t n = 0;
+    FILE *saved = stderr, *mem = open_memstream(&err, &n);
+    if (!mem) fuzz_fail("open_memstream", NULL);
+    stderr = mem;
+    int rc = composite_options_extract(&co, &argc, argv);
+    stderr = saved;
+    fclose(mem);
+    if (rc == 2) {
+        char *nl = strchr(err, '\n');
+        if (strncmp(err, "vksky: ", 7) != 0 || !nl || nl[1] != '\0')
+            fuzz_fail("composite flags: status 2 without exactly one 'vksky: ' line on stderr", err);
+    } else if (rc != 0 || err[0]) {
+        fuzz_fail("composite flags: a status other than 0 or 2, or a message with 0", err);
+    } else {
+        fuzz_check_command_line(argc, argv);
+    }
+    free(err);
     return 0;
 }
