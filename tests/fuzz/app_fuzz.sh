@@ -31,9 +31,10 @@ fi
 #    value words and separators the parsers read.
 {
     cat "$here/../../src/app/"*.c | grep -oE '"--[a-z0-9-]+"' | sort -u
+    # the scene loader's field names and words, as JSON strings ("\"camera\"")
+    cat "$here/../../src/app/"scene*.c | grep -oE '"[a-z][a-z0-9_]*"' | sort -u | sed 's/"/\\"/g; s/.*/"&"/'
     for w in low medium high ultra clamp reinhard aces march skyview auto fill fragment compute f16 f32 hg \
-             cornette-shanks henyey-greenstein exponential tent layers true false null x , = .exr .png .json \
-             '"quality"' '"preset"' '"species"' '"density"' '"profile"' '"camera"' '"output"' '"sun"' '"planet"'; do
+             cornette-shanks henyey-greenstein exponential tent layers true false null x , = .exr .png .json; do
         printf '"%s"\n' "$(printf '%s' "$w" | sed 's/\\/\\\\/g; s/"/\\"/g')"
     done
 } >"$work/dict"
