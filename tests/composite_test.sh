@@ -32,9 +32,9 @@ read -r -a CAMERA <"$S/camera.txt"
     "${SUN[@]}" --validate 2>"$work/err" || fail "two-file composite: exit $? ($(cat "$work/err"))"
 # Its sky pixels are vksky's sky along each pixel's ray: a plain sky render of the same camera, without bloom, by
 # the same method (the composite marches every pixel; a plain render's default, --quality auto, may pick the
-# sky-view LUT instead, which interpolates).
+# sky-view LUT instead, which interpolates, and on a CPU device a half-size sky: --render-scale 1).
 "$VKSKY" --render "$work/out/sky.exr" --width 240 --height 135 --altitude 0.2188 --yaw -90 --pitch -3 --fov 40 \
-    --sky-mode march --no-bloom "${SUN[@]}" --validate || fail "plain sky render: exit $?"
+    --sky-mode march --render-scale 1 --no-bloom "${SUN[@]}" --validate || fail "plain sky render: exit $?"
 "$CHECK" "$work/out/two.exr" "$S/render.exr" "$work/out/sky.exr" || fail "two-file composite: layers or sky pixels"
 # Without an orientation: geometry composited, sky pixels keep the beauty, one note on stderr.
 "$VKSKY" --composite "$S/beauty.exr" --position "$S/position.exr" --camera-position -3.5,-8.5,218.8 \

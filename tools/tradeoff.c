@@ -16,13 +16,13 @@
  *            [--emit-table FILE] [--cost gpu|cpu] [--configs a,b,...] [--scenes noon,...]
  *            [--device N]
  */
+#include "app/cpu_time.h"
 #include "app/quality.h"
 #include "io/half_float.h"
 #include "reference/metrics.h"
 #include "sky/submit.h"
 #include <math.h>
 #include <pthread.h>
-#include <sys/resource.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -134,14 +134,6 @@ static void error_mask(const model_atmosphere *a, const quality_scene *s, const 
             if (d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2] > cos(4.0 * SUN_RADIUS)) mask[y * g->w + x] = 0;
         }
     free(full);
-}
-
-static double process_cpu_ms(void)
-{
-    struct rusage u;
-    getrusage(RUSAGE_SELF, &u);
-    return 1e3 * ((double)u.ru_utime.tv_sec + (double)u.ru_stime.tv_sec) +
-           1e-3 * ((double)u.ru_utime.tv_usec + (double)u.ru_stime.tv_usec);
 }
 
 static sky_renderer make_renderer(gpu_context *ctx, const quality_config *q, sky_view *v, int w, int h, bool readback,

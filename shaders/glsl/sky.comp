@@ -15,5 +15,5 @@ void main()
     if (any(greaterThanEqual(p, imageSize(hdr_out)))) return;
     vec3 v = pixel_view_dir(vec2(p) + 0.5, push);
     vec3 c = SKY_RADIANCE(push.forward.w, v, push.sun_dir.xyz, push.march);
-    imageStore(hdr_out, p, vec4(c, 1.0));
+    imageStore(hdr_out, p, vec4(c, SKY_CLASS(push.forward.w, v, push.sun_dir.xyz)));   /* alpha: the class */
 }

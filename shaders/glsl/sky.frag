@@ -11,5 +11,5 @@ void main()
 {
     vec3 v = pixel_view_dir(gl_FragCoord.xy, push);
     vec3 c = SKY_RADIANCE(push.forward.w, v, push.sun_dir.xyz, push.march);
-    out_color = vec4(c, 1.0);
+    out_color = vec4(c, SKY_CLASS(push.forward.w, v, push.sun_dir.xyz));   /* alpha: the class */
 }

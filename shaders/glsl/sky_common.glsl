@@ -156,6 +156,15 @@ vec3 sun_disc(vec3 v, vec3 s, vec3 throughput, bool hits_ground)
     return atmo.sun.rgb * 10.0 * throughput * limb;
 }
 
+/* The pixel's class, stored in the HDR image's alpha for the tone map's upsample (hdr_upsample.glsl): 0 the ray
+ * hits the ground, 1 sky, 2 inside the sun's disc. A render scale below 1 then keeps the horizon and the disc's
+ * edge sharp: the upsample never blends across a class boundary. */
+float sky_class(float h_cam, vec3 v, vec3 s)
+{
+    if (ray_hits_ground(h_cam, v.y)) return 0.0;
+    return HAS_SUN_DISC && small_angle(v, s) < atmo.sun.w ? 2.0 : 1.0;
+}
+
 vec3 sky_radiance(float h_cam, vec3 v, vec3 s, vec4 march, float distribution)
 {
     vec3 throughput;

@@ -8,6 +8,7 @@
 #include "shared.h"
 #include "bloom_filter.glsl"
 #include "tonemap_ops.glsl"
+#include "hdr_upsample.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform sampler2D hdr;
@@ -25,7 +26,7 @@ void main()
     ivec2 size = imageSize(display);
     if (any(greaterThanEqual(p, size))) return;
     vec2 uv = (vec2(p) + 0.5) / vec2(size);
-    vec3 color = textureLod(hdr, uv, 0.0).rgb;
+    vec3 color = hdr_upsample(hdr, uv);
     float strength = push.tonemap.z;
     if (strength > 0.0) {
         vec3 b = textureLod(bloom0, uv, 0.0).rgb;

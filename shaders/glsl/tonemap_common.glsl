@@ -2,6 +2,7 @@
  * VKSKY_COMPOSITE it also writes the scene-linear HDR + bloom composite (the EXR's pixels). */
 #include "shared.h"
 #include "tonemap_ops.glsl"
+#include "hdr_upsample.glsl"
 
 layout(set = 0, binding = 0) uniform sampler2D hdr;
 layout(set = 0, binding = 1) uniform sampler2D bloom;
@@ -14,7 +15,7 @@ layout(location = 1) out vec4 out_linear;
 
 void main()
 {
-    vec3 color = texture(hdr, in_uv).rgb;
+    vec3 color = hdr_upsample(hdr, in_uv);
     if (push.params.z > 0.0) color += push.params.z * texture(bloom, in_uv).rgb;
     color = min(color, vec3(65504.0));
 #ifdef VKSKY_COMPOSITE

@@ -1,5 +1,6 @@
 #include "app/quality.h"
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #define DEFAULT_LUTS .transmittance_width = 256, .transmittance_height = 64, .transmittance_steps = 40, \
@@ -59,16 +60,17 @@ const quality_config quality_sweep[] = {
      .step_distribution = 2, .sample_offset = 0.5, .skyview_width = 192, .skyview_height = 108, .skyview_steps = 30,
      DEFAULT_LUTS, .render_scale = 1, .bloom_mips = 5},
     /* Candidates for a CPU device's window (lavapipe, issue 16): medium's LUTs (multi-scattering with 1024
-     * directions, computed once) with low's sky-view LUT, at full size and at 0.75. */
-    {.name = "medium-skyview96", .mode = SKY_CHOICE_AUTO, .steps = 32, .step_distribution = 2, .sample_offset = 0.5,
+     * directions, computed once) with low's sky-view LUT, at full size, 0.75 and 0.5 (--quality cpu). The sky pass
+     * kind by device, as the presets. */
+    {.name = "medium-skyview96", .mode = SKY_CHOICE_AUTO, .pass_kind = SKY_PASS_AUTO, .steps = 32, .step_distribution = 2, .sample_offset = 0.5,
      .skyview_width = 96, .skyview_height = 54, .skyview_steps = 16, .transmittance_width = 256,
      .transmittance_height = 64, .transmittance_steps = 40, .multiscatter_size = 32, .multiscatter_sqrt_dirs = 32,
      .multiscatter_steps = 20, .render_scale = 1, .bloom_mips = 5},
-    {.name = "medium-skyview96-scale0.75", .mode = SKY_CHOICE_AUTO, .steps = 32, .step_distribution = 2,
+    {.name = "medium-skyview96-scale0.75", .mode = SKY_CHOICE_AUTO, .pass_kind = SKY_PASS_AUTO, .steps = 32, .step_distribution = 2,
      .sample_offset = 0.5, .skyview_width = 96, .skyview_height = 54, .skyview_steps = 16,
      .transmittance_width = 256, .transmittance_height = 64, .transmittance_steps = 40, .multiscatter_size = 32,
      .multiscatter_sqrt_dirs = 32, .multiscatter_steps = 20, .render_scale = 0.75, .bloom_mips = 5},
-    {.name = "medium-skyview96-scale0.5", .mode = SKY_CHOICE_AUTO, .steps = 32, .step_distribution = 2,
+    {.name = "medium-skyview96-scale0.5", .mode = SKY_CHOICE_AUTO, .pass_kind = SKY_PASS_AUTO, .steps = 32, .step_distribution = 2,
      .sample_offset = 0.5, .skyview_width = 96, .skyview_height = 54, .skyview_steps = 16,
      .transmittance_width = 256, .transmittance_height = 64, .transmittance_steps = 40, .multiscatter_size = 32,
      .multiscatter_sqrt_dirs = 32, .multiscatter_steps = 20, .render_scale = 0.5, .bloom_mips = 5},
@@ -87,6 +89,9 @@ const quality_config *quality_preset(const char *name)
     for (int i = 0; i < 4; ++i)
         if (!strcmp(quality_presets[i].name, name)) return &quality_presets[i];
     if (!strcmp(name, "lesson")) return &quality_lesson;
+    if (!strcmp(name, "cpu"))      /* the CPU device's point: a sweep configuration under a short name */
+        for (int k = 0; k < quality_sweep_count; ++k)
+            if (!strcmp(quality_sweep[k].name, QUALITY_CPU_CONFIG)) return &quality_sweep[k];
     return NULL;
 }
 
@@ -133,34 +138,75 @@ int quality_scene_class(double altitude_km, double sun_elevation_deg)
 }
 
 #include "app/quality_table.h"
+#include "app/quality_table_cpu.h"
 
-const quality_config *quality_pick(double max_error, double altitude_km, double sun_elevation_deg, double *measured,
-                                   const char **scene_name)
+/* The configuration a table row names (the sweep's, or a preset measured under its own name). */
+static const quality_config *config_named(const char *name)
 {
-    int scene = quality_scene_class(altitude_km, sun_elevation_deg);
-    *scene_name = quality_scenes[scene].name;
+    for (int k = 0; k < 4; ++k)
+        if (!strcmp(quality_presets[k].name, name)) return &quality_presets[k];
+    for (int k = 0; k < quality_sweep_count; ++k)
+        if (!strcmp(quality_sweep[k].name, name)) return &quality_sweep[k];
+    return NULL;
+}
+
+/* The cheapest configuration of a measured table whose error is within budget[class] on every class of the set
+ * (a bitmask of quality_scenes indices). Its cost on a set is its dearest class: a sequence that passes from noon
+ * to twilight keeps one configuration, the one that serves its hardest frame. *measured: its largest error. */
+static const quality_config *pick_from(const quality_measurement *table, int count, const double *budget,
+                                       unsigned classes, double *measured)
+{
     const quality_config *best = NULL;
     double best_ms = INFINITY;
-    for (int i = 0; i < quality_table_count; ++i) {
-        const quality_measurement *m = &quality_table[i];
-        if (m->scene != scene || !(m->err_mean <= max_error) || m->gpu_ms >= best_ms) continue;
-        for (int k = 0; k < quality_sweep_count; ++k)
-            if (!strcmp(quality_sweep[k].name, m->config)) best = &quality_sweep[k];
-        for (int k = 0; k < 4; ++k)
-            if (!strcmp(quality_presets[k].name, m->config)) best = &quality_presets[k];
-        best_ms = m->gpu_ms;
-        *measured = m->err_mean;
+    for (int i = 0; i < count; ++i) {
+        if (!(classes >> table[i].scene & 1u)) continue;
+        bool first_row = true;   /* each configuration once: at its first row on a class of the set */
+        for (int j = 0; j < i; ++j)
+            if (classes >> table[j].scene & 1u && !strcmp(table[j].config, table[i].config)) first_row = false;
+        if (!first_row) continue;
+        double ms = 0.0, err = 0.0;
+        bool serves_all = true;
+        for (int c = 0; c < 6 && serves_all; ++c) {
+            if (!(classes >> c & 1u)) continue;
+            const quality_measurement *row = NULL;
+            for (int j = 0; j < count; ++j)
+                if (table[j].scene == c && !strcmp(table[j].config, table[i].config)) row = &table[j];
+            serves_all = row && row->err_mean <= budget[c];
+            if (serves_all) ms = fmax(ms, row->gpu_ms), err = fmax(err, row->err_mean);
+        }
+        const quality_config *q = config_named(table[i].config);
+        if (!serves_all || !q || ms >= best_ms) continue;
+        best = q, best_ms = ms, *measured = err;
     }
     return best;
 }
 
-const quality_config *quality_auto(double altitude_km, double sun_elevation_deg, double *measured,
-                                   const char **scene_name)
+void quality_class_names(unsigned classes, char *out, size_t size)
 {
-    int scene = quality_scene_class(altitude_km, sun_elevation_deg);
-    double best = INFINITY;
-    for (int i = 0; i < quality_table_count; ++i)
-        if (quality_table[i].scene == scene && quality_table[i].err_mean < best) best = quality_table[i].err_mean;
-    double budget = fmax(QUALITY_AUTO_FLOOR, QUALITY_AUTO_SLACK * best);
-    return quality_pick(budget, altitude_km, sun_elevation_deg, measured, scene_name);
+    size_t used = 0;
+    out[0] = '\0';
+    for (int c = 0; c < 6; ++c)
+        if (classes >> c & 1u && used < size)
+            used += (size_t)snprintf(out + used, size - used, "%s%s", used ? "+" : "", quality_scenes[c].name);
+}
+
+const quality_config *quality_pick(double max_error, unsigned classes, double *measured)
+{
+    double budget[6];
+    for (int c = 0; c < 6; ++c) budget[c] = max_error;
+    return pick_from(quality_table, quality_table_count, budget, classes, measured);
+}
+
+const quality_config *quality_auto(unsigned classes, bool cpu_device, double *measured)
+{
+    const quality_measurement *table = cpu_device ? quality_table_cpu : quality_table;
+    int count = cpu_device ? quality_table_cpu_count : quality_table_count;
+    double budget[6];
+    for (int c = 0; c < 6; ++c) {
+        double best = INFINITY;
+        for (int i = 0; i < count; ++i)
+            if (table[i].scene == c && table[i].err_mean < best) best = table[i].err_mean;
+        budget[c] = fmax(QUALITY_AUTO_FLOOR, QUALITY_AUTO_SLACK * best);
+    }
+    return pick_from(table, count, budget, classes, measured);
 }

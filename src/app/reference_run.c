@@ -1,4 +1,5 @@
 #include "app/reference_run.h"
+#include "app/exr_header.h"
 #include "app/stop.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
@@ -104,10 +105,21 @@ int reference_run(const options *o)
     int status = 0;
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         io_exr_layer layer = {.name = "", .rgba_half = half};
-        if (stop_requested() || io_write_exr(o->outputs[i], o->width, o->height, &layer, 1, err, sizeof err) != 0) {
+        if (stop_requested()) {   /* the graceful stop: no further output (stop_status says why) */
+            status = 1;
+            break;
+        }
+        exr_header h;   /* how it was made (app/exr_header.h): the command line says --reference */
+        if (exr_header_build(&h, o, -1) != 0) {
+            fprintf(stderr, "vksky: %s: out of memory for the EXR header\n", o->outputs[i]);
+            status = 1;
+            break;
+        }
+        if (io_write_exr_meta(o->outputs[i], o->width, o->height, &layer, 1, &h.meta, err, sizeof err) != 0) {
             if (!stop_requested()) fprintf(stderr, "vksky: %s\n", err);   /* else stop_status says why */
             status = 1;
         }
+        exr_header_free(&h);
     }
     free(half);
     return stop_status(status);

@@ -16,6 +16,7 @@
  *
  * The window in three files: this one (the loop, frames in flight, screenshot, title, setup), swapchain.c (the
  * swapchain's life) and window_input.c (the controls); their shared state is app/window_app.h. */
+#include "app/cpu_time.h"
 #include "app/window_app.h"
 #include "app/window.h"
 #include "app/stop.h"
@@ -27,6 +28,7 @@
 #include <string.h>
 
 #define TITLE_PERIOD_S 0.5
+#define STEADY_FROM 10          /* the summary's steady figures start at this presented frame */
 
 static const char NO_DISPLAY[] = "vksky: no display available (DISPLAY/WAYLAND_DISPLAY unset or unusable); use "
                                  "--render FILE.exr|FILE.png for headless rendering";
@@ -188,6 +190,7 @@ static bool draw_frame(app *a, gpu_buffer *capture)
     present(a, image);
     a->slot = (a->slot + 1) % FRAMES_IN_FLIGHT;
     a->presented++;
+    if (a->presented == STEADY_FROM) a->st.steady_time = glfwGetTime(), a->st.steady_cpu_ms = process_cpu_ms();
     return true;
 }
 
@@ -439,6 +442,13 @@ static void print_summary(app *a)
     double gpu = a->st.gpu_samples_total ? a->st.gpu_ms_total / (double)a->st.gpu_samples_total : -1.0;
     printf("frames %ld seconds %.3f fps %.2f gpu_ms %.3f\n", a->presented, seconds,
            seconds > 0 ? (double)a->presented / seconds : 0.0, gpu);
+    /* From the STEADY_FROM-th frame on: no shader compilation, LUT builds or first-frame setup in the figures. */
+    long steady = a->presented - STEADY_FROM;
+    if (steady > 0) {
+        double s = glfwGetTime() - a->st.steady_time;
+        printf("steady_frames %ld fps %.2f cpu_ms %.3f\n", steady, s > 0 ? (double)steady / s : 0.0,
+               (process_cpu_ms() - a->st.steady_cpu_ms) / (double)steady);
+    }
     printf("sun_elevation %.3f\n", a->view.sun_elevation_deg);
     printf("camera altitude_km %.6f yaw %.3f pitch %.3f\n", a->view.altitude_km, a->view.yaw_deg, a->view.pitch_deg);
 }

@@ -26,6 +26,7 @@ typedef struct stats {
     long title_frames;
     double gpu_ms_sum, gpu_ms_total;
     long gpu_samples, gpu_samples_total;
+    double steady_time, steady_cpu_ms;   /* wall clock and process CPU at the STEADY_FROM-th presented frame */
 } stats;
 
 typedef struct test_hooks {

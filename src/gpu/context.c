@@ -223,7 +223,12 @@ int gpu_list_devices(FILE *out)
     return n ? 0 : -1;
 }
 
-static int pick_device(gpu_context *ctx, int index)
+/* Contexts created and not yet destroyed, and the device type of the last one (gpu_device_type). */
+static int live_contexts;
+static VkPhysicalDeviceType live_device_type;
+
+/* quiet: no message (a probe; the context that follows reports what is wrong). */
+static int pick_device(gpu_context *ctx, int index, bool quiet)
 {
     uint32_t n = 0;
     vkEnumeratePhysicalDevices(ctx->instance, &n, NULL);
@@ -231,16 +236,16 @@ static int pick_device(gpu_context *ctx, int index)
     if (n > 16) n = 16;
     vkEnumeratePhysicalDevices(ctx->instance, &n, pds);
     if (n == 0) {
-        fprintf(stderr, "vksky: no Vulkan device found; install a driver (mesa-vulkan-drivers provides lavapipe)\n");
+        if (!quiet) fprintf(stderr, "vksky: no Vulkan device found; install a driver (mesa-vulkan-drivers provides lavapipe)\n");
         return -1;
     }
     if (index >= 0) {
         if ((uint32_t)index >= n) {
-            fprintf(stderr, "vksky: --device %d: there are %u devices (0..%u); see --list-devices\n", index, n, n - 1);
+            if (!quiet) fprintf(stderr, "vksky: --device %d: there are %u devices (0..%u); see --list-devices\n", index, n, n - 1);
             return -2;
         }
         if (!device_is_usable(pds[index])) {
-            fprintf(stderr, "vksky: --device %d does not support Vulkan 1.3 with a graphics+compute queue\n", index);
+            if (!quiet) fprintf(stderr, "vksky: --device %d does not support Vulkan 1.3 with a graphics+compute queue\n", index);
             return -2;
         }
         ctx->physical = pds[index];
@@ -256,18 +261,49 @@ static int pick_device(gpu_context *ctx, int index)
         }
     }
     if (best < 0) {
-        fprintf(stderr, "vksky: no Vulkan 1.3 device with a graphics+compute queue\n");
+        if (!quiet) fprintf(stderr, "vksky: no Vulkan 1.3 device with a graphics+compute queue\n");
         return -1;
     }
     ctx->physical = pds[best];
     return 0;
 }
 
+int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
+{
+    /* With a context alive (the window re-reading its scene file), name its device: a second instance would
+     * reload volk's instance functions, and destroying it would leave the live context calling into freed ones. */
+    if (live_contexts > 0) {
+        *type = live_device_type;
+        return 0;
+    }
+    /* The devices do not change within a process: probe each index once (a sequence parses every frame's options,
+     * and each parse of --quality auto asks). */
+    static bool probed;
+    static int probed_index, probed_result;
+    static VkPhysicalDeviceType probed_type;
+    if (probed && probed_index == device_index) {
+        *type = probed_type;
+        return probed_result;
+    }
+    gpu_context ctx = {0};
+    gpu_context_desc desc = {.device_index = device_index};
+    if (create_instance(&ctx, &desc, false) != 0) return -1;
+    int picked = pick_device(&ctx, device_index, true);
+    if (picked == 0) {
+        VkPhysicalDeviceProperties p;
+        vkGetPhysicalDeviceProperties(ctx.physical, &p);
+        *type = p.deviceType;
+    }
+    vkDestroyInstance(ctx.instance, NULL);
+    probed = true, probed_index = device_index, probed_result = picked == 0 ? 0 : -1, probed_type = *type;
+    return probed_result;
+}
+
 int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
 {
     *ctx = (gpu_context){0};
     if (create_instance(ctx, desc, false) != 0) return -1;
-    int picked = pick_device(ctx, desc->device_index);
+    int picked = pick_device(ctx, desc->device_index, false);
     if (picked != 0) {
         gpu_context_destroy(ctx);
         return picked;
@@ -333,11 +369,14 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
     };
     VK_CHECK(vkCreateCommandPool(ctx->device, &pinfo, NULL, &ctx->command_pool));
     gpu_set_name(ctx, VK_OBJECT_TYPE_COMMAND_POOL, (uint64_t)ctx->command_pool, "main command pool");
+    live_contexts++;
+    live_device_type = ctx->props.deviceType;
     return 0;
 }
 
 void gpu_context_destroy(gpu_context *ctx)
 {
+    if (ctx->command_pool && live_contexts > 0) live_contexts--;   /* only a fully created context counted */
     if (ctx->device) {
         vkDeviceWaitIdle(ctx->device);
         if (ctx->command_pool) vkDestroyCommandPool(ctx->device, ctx->command_pool, NULL);

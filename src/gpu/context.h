@@ -43,6 +43,9 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc);
 void gpu_context_destroy(gpu_context *ctx);
 /* Prints the physical devices with their indices (for --list-devices). Returns 0 or -1. */
 int gpu_list_devices(FILE *out);
+/* The type of the device gpu_context_create would pick for device_index (-1: the default choice), from a bare
+ * instance; 0, or -1 (no message) if there is none. For choices made before the context exists (--quality auto). */
+int gpu_device_type(int device_index, VkPhysicalDeviceType *type);
 
 /* Messages the validation layer reported so far (every one is also printed to stderr). */
 unsigned gpu_validation_message_count(void);
