@@ -16,6 +16,7 @@
 #    targets (an RGBA16F HDR image of the average 300x200 window alone is 480 kB) or a swapchain's images on each
 #    resize exceeds it many times over; a leaked Vulkan object of any size is the validation layer's to report
 #    when the device is destroyed.
+# VKSKY_SOAK_FLAGS: more vksky flags (ctest window_soak_compute: another preset and the compute post chain).
 # Exit 77 (ctest: skipped) when xvfb-run or xdotool is missing.
 # Usage: window_soak.sh path/to/vksky [SEED]
 set -u
@@ -24,6 +25,7 @@ SEED=${2:-${VKSKY_SOAK_SEED:-15}}
 ROUNDS=${VKSKY_SOAK_ROUNDS:-5}
 PER_ROUND=${VKSKY_SOAK_RESIZES:-60}
 RSS_BOUND_KB=${VKSKY_SOAK_RSS_BOUND_KB:-12288}
+read -r -a EXTRA_FLAGS <<<"${VKSKY_SOAK_FLAGS:-}"
 SELF=$(readlink -f "$0")
 HERE=$(dirname "$SELF")
 MAXW=640 MAXH=480
@@ -34,7 +36,7 @@ if [ "${3:-}" = "--inside-xvfb" ]; then
     fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
     cp "$HERE/../scenes/earth-clear.json" "$work/scene.json"
     VKSKY_TEST_REPORT=1 stdbuf -oL "$VKSKY" --validate --frames 100000000 --width 320 --height 180 \
-        --scene "$work/scene.json" >"$work/out" 2>"$work/err" &
+        --scene "$work/scene.json" "${EXTRA_FLAGS[@]}" >"$work/out" 2>"$work/err" &
     pid=$!
     wid=""
     for _ in $(seq 300); do
@@ -117,7 +119,7 @@ tiny=$(grep -cE "^swapchain ([0-9]|1[0-5])x([0-9]|1[0-5]) " "$work/out")
 thin=$(grep -cE "^swapchain ([1-4]x[0-9]{3}|[0-9]{3}x[1-4]) " "$work/out")
 frames=$(sed -n 's/^frames \([0-9]*\) .*/\1/p' "$work/out")
 reloaded=$(grep -c "^scene reloaded" "$work/out")
-echo "window_soak: seed $SEED, $resizes resizes, $recreated swapchains ($tiny tiny, $thin thin), ${frames:-0} frames," \
+echo "window_soak: ${VKSKY_SOAK_FLAGS:+flags $VKSKY_SOAK_FLAGS, }seed $SEED, $resizes resizes, $recreated swapchains ($tiny tiny, $thin thin), ${frames:-0} frames," \
      "$reloaded/$reloads F5 reloads, VmRSS $rss1 kB after round 1, $rss_end kB at the end"
 [ "$recreated" -ge $((resizes / 2)) ] || fail "only $recreated swapchain recreations for $resizes resizes"
 [ "$tiny" -ge 10 ] && [ "$thin" -ge 5 ] || fail "too few tiny ($tiny) or thin ($thin) swapchains"
