@@ -37,11 +37,14 @@ fi
              cornette-shanks henyey-greenstein exponential tent layers true false null x , = .exr .png .json; do
         printf '"%s"\n' "$(printf '%s' "$w" | sed 's/\\/\\\\/g; s/"/\\"/g')"
     done
+    # the scene harness reads EXR headers too (--scene FRAME.exr): the EXR fuzzer's dictionary, and the attribute
+    [ "$name" = fuzz_scene ] && grep -v '^#' "$here/exr.dict" && echo '"vksky:scene"'
 } >"$work/dict"
 
-# 3. Fuzz. -close_fd_mask=1: what a parse prints on stdout (--max-error's choice) is not looked at.
+# 3. Fuzz (-max_len: the scene corpus's EXRs are up to 4 kB). -close_fd_mask=1: what a parse prints on stdout
+#    (--max-error's choice) is not looked at.
 mkdir -p "$work/corpus" "$work/findings"
-"$FUZZER" -max_total_time="$SECONDS_" -rss_limit_mb=2048 -max_len=4096 -timeout=10 -close_fd_mask=1 \
+"$FUZZER" -max_total_time="$SECONDS_" -rss_limit_mb=2048 -max_len=8192 -timeout=10 -close_fd_mask=1 \
     -dict="$work/dict" -artifact_prefix="$work/findings/" -print_final_stats=1 \
     "$work/corpus" "$CORPUS" >"$work/log" 2>&1
 rc=$?
