@@ -7,8 +7,9 @@
 #  - it stopped promptly: well before the run would have finished on its own.
 # A signal is sent only once the handler is installed (the SigCgt mask in /proc/PID/status has it): before that the
 # default action would end the process, which is not what is under test. Runs: a headless render stopped while its
-# frame is on the device; --bench stopped between frames; the path tracer stopped between pixels; the window under
-# Xvfb stopped while presenting (with --screenshot: no screenshot) and while minimised (in the event wait).
+# frame is on the device; --bench stopped between frames; the path tracer stopped between pixels; a sequence stopped
+# between frames (the frames it finished stay, whole); the window under Xvfb stopped while presenting (with
+# --screenshot: no screenshot) and while minimised (in the event wait).
 # Usage: signals_test.sh path/to/vksky
 set -u
 VKSKY=${1:?usage: signals_test.sh path/to/vksky}
@@ -130,7 +131,33 @@ wait_for handler_installed "$pid" || fail "reference: handler never installed"
 sleep 1
 stop_and_check "reference rows" INT 130 10 "$work/m"
 
-# 4. The window, under Xvfb (skipped without xvfb-run / xdotool).
+# 4. A sequence of 1000 frames: SIGINT once two frames are written. It stops between frames: the frames it finished
+#    stay and are whole (each loads back as a scene: its header is read to the end of the attributes, and the file
+#    is all there), no later frame and no temporary is left.
+mkdir -p "$work/s"
+"$VKSKY" --validate --width 64 --height 64 --quality low --frame-count 1000 --animate sun-elevation=0:40 \
+    --render "$work/s/f_%04d.exr" >"$work/s/out" 2>"$work/s/err" &
+pid=$!
+wait_for grep -q '^vksky: frame 1 ' "$work/s/err" || fail "sequence: frame 1 never written: $(head -c 600 "$work/s/err")"
+kill -INT "$pid"
+wait "$pid"
+rc=$?
+written=$(ls "$work/s" | grep -c '^f_[0-9]*\.exr$')
+echo "sequence: SIGINT -> exit $rc, $written frames kept"
+[ "$rc" -eq 130 ] || fail "sequence: exit status $rc, expected 130 (stderr: $(tail -c 600 "$work/s/err"))"
+grep -q "^vksky: stopped by SIGINT: exit status 130" "$work/s/err" || fail "sequence: no 'stopped by SIGINT' line"
+! grep -qi validation "$work/s/err" || fail "sequence: validation messages: $(grep -i validation "$work/s/err" | head -3)"
+! grep -q "frames rendered" "$work/s/err" || fail "sequence: a stopped sequence reported itself done"
+left=$(ls -A "$work/s" | grep -v -x -e out -e err | grep -v '^f_[0-9]*\.exr$')
+[ -z "$left" ] || fail "sequence: files left behind: $left"
+[ "$written" -ge 2 ] && [ "$written" -lt 1000 ] || fail "sequence: $written frames written (expected 2 to 999)"
+for ((i = 0; i < written; ++i)); do
+    f=$(printf '%s/s/f_%04d.exr' "$work" "$i")
+    [ -f "$f" ] || { fail "sequence: frame $i missing ($written written: not the first ones)"; continue; }
+    "$VKSKY" --scene "$f" --dump-scene >/dev/null 2>"$work/s/load.err" || fail "sequence: frame $i unreadable: $(cat "$work/s/load.err")"
+done
+
+# 5. The window, under Xvfb (skipped without xvfb-run / xdotool).
 if command -v xvfb-run >/dev/null && command -v xdotool >/dev/null; then
     timeout 120 "$HERE/xvfb_run.sh" 640x480x24 "$SELF" "$VKSKY" --inside-xvfb "$work"
     f=$(cat "$work/xvfb.fails" 2>/dev/null || echo 1)

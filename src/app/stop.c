@@ -34,8 +34,8 @@ void stop_print_help(FILE *out)
 {
     fprintf(out, "\nexit status: 0 done; 1 a failed render or a validation message; 2 bad input (one line on stderr);\n"
                  "  130 / 143 stopped by SIGINT (Ctrl-C) / SIGTERM: the run stops between frames, after the frame on\n"
-                 "  the device, or between pixels (--reference), waits for the device, writes no output and leaves no\n"
-                 "  temporary file; a second signal ends it at once.\n");
+                 "  the device, or between pixels (--reference), waits for the device, leaves no partial output and no\n"
+                 "  temporary file (a sequence keeps the frames it finished); a second signal ends it at once.\n");
 }
 
 int stop_status(int status)
