@@ -20,4 +20,4 @@ export LSAN_OPTIONS=suppressions=$ROOT/tests/lsan.supp:print_suppressions=0
 export VKSKY_SCENE_FUZZ_MUTANTS=150
 cd "$BUILD"
 ctest -j"$(nproc)" --output-on-failure \
-  -R '^(io|exr_read|solar_position|metrics|camera|barrier_table|reference|path_tracer|cli|scenes|scene_fuzz|test_luts|test_paths|test_features|composite)$'
+  -R '^(io|exr_read|solar_position|metrics|camera|barrier_table|reference|path_tracer|cli|scenes|scene_fuzz|test_luts|test_paths|test_features|composite|sun_place|sequences)$'

@@ -13,6 +13,7 @@
 set -u
 VKSKY=${1:?usage: scene_test.sh path/to/vksky path/to/exr_probe [scenes dir] [bad scenes dir]}
 PROBE=${2:?usage: scene_test.sh path/to/vksky path/to/exr_probe [scenes dir] [bad scenes dir]}
+PIXELS=$(dirname "$PROBE")/exr_pixels   # built beside exr_probe (tests/CMakeLists.txt): EXR pixels bit for bit
 here=$(cd "$(dirname "$0")" && pwd)
 SCENES=${3:-$here/../scenes}
 BAD=${4:-$here/scenes_bad}
@@ -43,7 +44,11 @@ for scene in "$SCENES"/*.json; do
         fail "$name: dump -> load -> dump differs: $(diff "$work/$name.dump.json" "$work/$name.dump2.json" | head -5)"
     "$VKSKY" --scene "$work/$name.dump.json" "${SMALL[@]}" --render "$work/$name.again.exr" 2>"$work/err" ||
         fail "$name: the dump does not render: $(cat "$work/err")"
-    cmp -s "$work/$name.exr" "$work/$name.again.exr" || fail "$name: the dump renders a different image"
+    # The pixels bit for bit (the files' headers differ by the command line they record), and the same effective
+    # scene in both headers.
+    "$PIXELS" same "$work/$name.exr" "$work/$name.again.exr" || fail "$name: the dump renders a different image"
+    cmp -s <("$PIXELS" attr "$work/$name.exr" vksky:scene) <("$PIXELS" attr "$work/$name.again.exr" vksky:scene) ||
+        fail "$name: the dump's render records another scene"
 done
 [ $shipped -ge 4 ] || fail "expected at least 4 shipped scenes in $SCENES, found $shipped"
 "$VKSKY" --dump-scene | grep -v '"description"' >"$work/defaults.json"

@@ -26,8 +26,8 @@ static void check_table(const quality_measurement *table, int count, bool cpu_de
     for (int scene = 0; scene < 6; ++scene) {
         const quality_scene *s = &quality_scenes[scene];
         double measured = 0;
-        const char *name = NULL;
-        const quality_config *q = quality_auto(s->altitude_km, s->sun_elevation_deg, cpu_device, &measured, &name);
+        const quality_config *q = quality_auto(quality_class_bit(s->altitude_km, s->sun_elevation_deg), cpu_device,
+                                               &measured);
         CHECK(q != NULL, "%s %s: auto picked nothing", device, s->name);
         if (!q) continue;
         const quality_measurement *m = row_of(table, count, q->name, scene);
@@ -52,8 +52,59 @@ static void check_table(const quality_measurement *table, int count, bool cpu_de
     }
 }
 
+/* A sequence's class set (every pair of classes, and all six): the one configuration auto keeps for all frames is
+ * within each class's budget, and no measured configuration that is within every class's budget costs less on its
+ * dearest class. Searched here over the sweep's configurations by name, not over table rows as quality.c does. */
+static void check_sets(const quality_measurement *table, int count, bool cpu_device, const char *device)
+{
+    double budget[6];
+    for (int c = 0; c < 6; ++c) {
+        double best = INFINITY;
+        for (int i = 0; i < count; ++i)
+            if (table[i].scene == c) best = fmin(best, table[i].err_mean);
+        budget[c] = fmax(0.01, 1.25 * best);
+    }
+    unsigned sets[16];
+    int set_count = 0;
+    for (int a = 0; a < 6; ++a)
+        for (int b = a + 1; b < 6 && set_count < 15; b += 2) sets[set_count++] = 1u << a | 1u << b;
+    sets[set_count++] = 0x3f;
+    for (int k = 0; k < set_count; ++k) {
+        double measured = 0;
+        const quality_config *q = quality_auto(sets[k], cpu_device, &measured);
+        double cheapest = INFINITY;   /* the dearest-class cost of the best configuration that serves the set */
+        for (int n = -4; n < quality_sweep_count; ++n) {
+            const char *name = n < 0 ? quality_presets[n + 4].name : quality_sweep[n].name;
+            double cost = 0;
+            bool serves = true;
+            for (int c = 0; c < 6; ++c) {
+                if (!(sets[k] >> c & 1u)) continue;
+                const quality_measurement *m = row_of(table, count, name, c);
+                serves = serves && m && m->err_mean <= budget[c];
+                if (m) cost = fmax(cost, m->gpu_ms);
+            }
+            if (serves) cheapest = fmin(cheapest, cost);
+        }
+        CHECK((q != NULL) == isfinite(cheapest), "%s set 0x%x: auto picked %s, the search found %g", device, sets[k],
+              q ? q->name : "nothing", cheapest);
+        if (!q) continue;
+        double cost = 0;
+        for (int c = 0; c < 6; ++c) {
+            if (!(sets[k] >> c & 1u)) continue;
+            const quality_measurement *m = row_of(table, count, q->name, c);
+            CHECK(m && m->err_mean <= budget[c], "%s set 0x%x: '%s' is over %s's budget", device, sets[k], q->name,
+                  quality_scenes[c].name);
+            if (m) cost = fmax(cost, m->gpu_ms);
+        }
+        CHECK(cost <= cheapest, "%s set 0x%x: '%s' costs %g, %g serves the set", device, sets[k], q->name, cost,
+              cheapest);
+    }
+}
+
 int main(void)
 {
+    check_sets(quality_table, quality_table_count, false, "GPU");
+    check_sets(quality_table_cpu, quality_table_cpu_count, true, "CPU");
     check_table(quality_table, quality_table_count, false, "GPU");
     check_table(quality_table_cpu, quality_table_cpu_count, true, "CPU");
     /* The CPU device's daytime point is --quality cpu, within 1 % on every daytime class. */

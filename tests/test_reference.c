@@ -372,7 +372,8 @@ static void test_multiscatter(const model_atmosphere *a, ref_quality cq)
     int all_ok = 1;
 
     for (int p = 0; p < np; ++p) {
-        double h = pts[p].h, mus = pts[p].mus, base[3] = {0.0, 0.0, 0.0}, v[3], prev[3], dprev = 0.0;
+        double h = pts[p].h, mus = pts[p].mus, base[3] = {0.0, 0.0, 0.0}, v[3] = {0.0, 0.0, 0.0},
+               prev[3] = {0.0, 0.0, 0.0}, dprev = 0.0;   /* set before first read (k > 0); gcc -O3 cannot see it */
         printf("  Psi(%g km, mu_s %g) [%s]\n", h, mus, pts[p].what);
 
         /* sqrt_dirs: n0/4, n0/2, n0, 2 n0 */

@@ -1,18 +1,9 @@
 #include "app/headless.h"
 #include "app/cpu_time.h"
-#include "io/atomic_file.h"
-#include "io/exr_write.h"
-#include "io/png_io.h"
+#include "app/sequence.h"
 #include "sky/submit.h"
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
-
-static bool is_exr(const char *path)
-{
-    size_t n = strlen(path);
-    return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
-}
 
 static int compare_double(const void *a, const void *b)
 {
@@ -24,26 +15,6 @@ static double median(double *v, int n)
 {
     qsort(v, (size_t)n, sizeof *v, compare_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-static int write_outputs(const options *o, sky_renderer *r)
-{
-    int w = o->width, h = o->height;
-    char err[512];
-    for (int i = 0; i < o->output_count; ++i) {
-        int rc;
-        if (is_exr(o->outputs[i])) {
-            io_exr_layer layer = {.name = "", .rgba_half = r->readback_linear.mapped};
-            rc = io_write_exr(o->outputs[i], w, h, &layer, 1, err, sizeof err);
-        } else {
-            rc = io_write_png(o->outputs[i], w, h, r->readback_display.mapped, 1, err, sizeof err);
-        }
-        if (rc != 0) {
-            fprintf(stderr, "vksky: %s\n", err);
-            return 1;
-        }
-    }
-    return 0;
 }
 
 /* Per-pass GPU medians, then the frame: the benchmark's output format (one line per pass). */
@@ -142,15 +113,13 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
     gpu_buffer_invalidate(r->ctx, &r->readback_display);
 }
 
-int headless_run(const options *o)
+int headless_run(const options *given)
 {
-    char err[512];
-    /* Refuse unwritable outputs before any expensive work (exit 2, nothing written). */
-    for (int i = 0; i < o->output_count; ++i)
-        if (io_check_writable(o->outputs[i], err, sizeof err) != 0) {
-            fprintf(stderr, "vksky: --render: %s\n", err);
-            return 2;
-        }
+    /* Refuse bad frames and unwritable outputs before any expensive work (exit 2, nothing written): every frame's
+     * options and files, one frame's or a sequence's (whose quality choice may then serve all its frames). */
+    options checked = *given;
+    if (sequence_check(&checked)) return 2;
+    const options *o = &checked;
     gpu_context ctx;
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(&ctx, &desc);
@@ -175,9 +144,7 @@ int headless_run(const options *o)
         gpu_barrier_trace(NULL);
         bench(o, &r);
     } else {
-        frame_desc f = {.view = &o->view};
-        render_frames(&r, &f);
-        status = write_outputs(o, &r);
+        status = sequence_render(o, &r, render_frames);   /* one frame, or the frames of a sequence */
     }
     sky_renderer_destroy(&r);
     gpu_context_destroy(&ctx);

@@ -4,6 +4,8 @@
 #include "app/options.h"
 #include "app/window.h"
 #include "app/reference_run.h"
+#include "app/scene_find.h"
+#include "app/sequence.h"
 #include <stdlib.h>
 
 int main(int argc, char **argv)
@@ -21,6 +23,7 @@ int main(int argc, char **argv)
         printf("vksky %s\n", VKSKY_VERSION);
         return 0;
     }
+    if (o.list_scenes) return scene_list(stdout);
     if (o.list_devices) return gpu_list_devices(stdout) == 0 ? 0 : 1;
     if (o.path_trace && !o.reference) {
         fprintf(stderr, "vksky: --path-trace: only with --reference\n");
@@ -32,6 +35,12 @@ int main(int argc, char **argv)
             return 2;
         }
         return reference_run(&o);
+    }
+    if ((co.input || co.aovs) && sequence_active(&o)) {
+        fprintf(stderr, "vksky: %s: not with %s (one image; a sequence renders plain sky frames)\n",
+                o.animate_count ? "--animate" : o.frame_range_set ? "--frame-range" : "--frame-count",
+                co.input ? "--composite" : "--aovs");
+        return 2;
     }
     if (co.input) return composite_run(&o, &co);
     if (co.aovs) return composite_aovs_run(&o);

@@ -2,6 +2,9 @@
 #include "app/flags.h"
 #include "app/quality.h"
 #include "app/scene.h"
+#include "app/options_tooling.h"
+#include "app/options_sequence.h"
+#include "app/help.h"
 #include "app/scene_dump.h"
 #include "gpu/context.h"
 #include <errno.h>
@@ -26,10 +29,10 @@ double options_sun_radius_rad(const options *o) { return o->sun_angular_radius_d
 
 void options_print_help(FILE *out)
 {
-    fprintf(out, "usage: vksky [options]                               interactive window (see F1 for controls)\n"
-                 "       vksky --render FILE.exr|FILE.png [options]    headless render\n"
-                 "       vksky --bench N [options]                       benchmark\n\noptions:\n");
-    for (int i = 0; i < flags_count; ++i) fprintf(out, "  %s %s\n", flags_table[i].name, flags_table[i].help);
+    help_entry entries[flags_count];
+    for (int i = 0; i < flags_count; ++i)
+        entries[i] = (help_entry){flags_table[i].name, flags_table[i].kind != ARG_NONE, flags_table[i].help};
+    help_print(out, entries, flags_count);
 }
 
 static int bad(const char *flag_name, const char *what)
@@ -128,6 +131,10 @@ static int apply(options *o, const flag *f, const char *value)
     const char *n = f->name;
     double x = 0;
     if ((f->kind == ARG_INT || f->kind == ARG_DOUBLE) && parse_number(f, value, &x) != 0) return 2;
+    int handled = options_tooling_apply(o, n, value, x);   /* the sun by date and place, --list-scenes */
+    if (handled >= 0) return handled;
+    handled = options_sequence_apply(o, n, value, x);   /* --animate, --frame-count, --frame-range */
+    if (handled >= 0) return handled;
     if (!strcmp(n, "--render")) {
         if (!has_extension(value, ".exr") && !has_extension(value, ".png"))
             return bad(n, "unknown output type; expected a file name ending in .exr or .png");
@@ -213,8 +220,8 @@ static int apply(options *o, const flag *f, const char *value)
     else if (!strcmp(n, "--ozone-scale")) o->scales[2] = x;
     else if (!strcmp(n, "--scene")) {
         if (o->scene_path) return bad(n, "given twice; expected one scene (later flags override its fields)");
-        o->scene_path = value;
-        if (scene_load(value, o) != 0) return 2;
+        o->scene_path = options_tooling_scene_path(value);   /* a shipped scene's name -> its file */
+        if (!o->scene_path || scene_load(o->scene_path, o) != 0) return 2;
     } else if (!strcmp(n, "--dump-scene")) o->dump_scene = true;
     else if (!strcmp(n, "--ground-albedo")) {
         if (parse_triple(f, value, o->ground_albedo)) return 2;
@@ -251,7 +258,7 @@ static int apply(options *o, const flag *f, const char *value)
 static bool window_mode(int argc, char **argv)
 {
     static const char *const headless[] = {"--render", "--bench", "--reference", "--help", "--version",
-                                           "--list-devices", "--dump-scene"};
+                                           "--list-devices", "--dump-scene", "--list-scenes"};
     for (int i = 1; i < argc; ++i)
         for (size_t k = 0; k < sizeof headless / sizeof headless[0]; ++k)
             if (!strncmp(argv[i], headless[k], strlen(headless[k]))) return false;
@@ -268,12 +275,15 @@ static bool device_is_cpu(const options *o)
     return gpu_device_type(o->device_index, &type) == 0 && type == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
 
-int options_parse(options *o, int argc, char **argv)
+int options_parse(options *o, int argc, char **argv) { return options_parse_for_classes(o, argc, argv, 0); }
+
+int options_parse_for_classes(options *o, int argc, char **argv, unsigned quality_classes)
 {
     *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
                    .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5,
                    .scales = {1.0, 1.0, 1.0}, .path_samples = 4096, .sun_angular_radius_deg = 0.265,
-                   .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true, .post_pass = POST_PASS_AUTO};
+                   .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true, .post_pass = POST_PASS_AUTO,
+                   .argc = argc, .argv = argv};
     model_atmosphere_earth(&o->atmosphere);
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
@@ -287,10 +297,11 @@ int options_parse(options *o, int argc, char **argv)
     if (window) quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips);
     const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
     double picked_error = 0.0;
-    const char *picked_scene = NULL;
+    char picked_scene[96] = "";
     for (int pass = -1; pass < 2; ++pass) {
     if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
     if (pass == 1) {
+        if (options_tooling_resolve(o)) return 2;   /* the sun from a date and place, before --max-error reads it */
         if (o->quality && o->max_error > 0.0) return bad("--max-error", "not with --quality; give one or the other");
         /* auto: named, or the default of a headless run that names no quality (no --quality, --max-error or scene
          * file quality section). It is no preset a scene file can name, so a dump lists its knobs instead. */
@@ -298,20 +309,24 @@ int options_parse(options *o, int argc, char **argv)
                                     : !window && o->max_error <= 0.0 && !o->scene_quality;
         const quality_config *q = o->quality && !automatic ? quality_preset(o->quality) : NULL;
         double measured = 0.0;
-        const char *scene = NULL;
+        unsigned classes = quality_classes ? quality_classes
+                                           : quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
         if (automatic) {
-            q = quality_auto(o->view.altitude_km, o->view.sun_elevation_deg, device_is_cpu(o), &measured, &scene);
+            q = quality_auto(classes, device_is_cpu(o), &measured);
             o->quality = NULL;
             o->quality_auto = true;
+            o->quality_classes = classes;
         } else if (o->max_error > 0.0) {
-            q = quality_pick(o->max_error, o->view.altitude_km, o->view.sun_elevation_deg, &measured, &scene);
+            q = quality_pick(o->max_error, classes, &measured);
+            quality_class_names(classes, picked_scene, sizeof picked_scene);
+            o->quality_classes = classes;
             if (!q) {
-                char msg[200];
+                char msg[240];
                 snprintf(msg, sizeof msg, "no measured configuration reaches %g on a %s scene; try a larger budget or --quality ultra",
-                         o->max_error, scene);
+                         o->max_error, picked_scene);
                 return bad("--max-error", msg);
             }
-            picked = q, picked_error = measured, picked_scene = scene;
+            picked = q, picked_error = measured;
         }
         /* --quality / --max-error replace the scene's whole quality section; without them the scene's preset (applied
          * by scene_load, under the scene's knobs) stays. */
@@ -342,7 +357,8 @@ int options_parse(options *o, int argc, char **argv)
                                !strcmp(f->name, "--altitude") || !strcmp(f->name, "--sun-elevation") ||
                                !strcmp(f->name, "--dump-scene") || !strcmp(f->name, "--device") ||
                                !strcmp(f->name, "--reference") || !strcmp(f->name, "--help") ||
-                               !strcmp(f->name, "--version") || !strcmp(f->name, "--list-devices");
+                               !strcmp(f->name, "--version") || !strcmp(f->name, "--list-devices") ||
+                               options_tooling_first_pass(f->name);
         /* Pass -1 loads the scene; pass 0 reads only what the choice depends on; pass 1 applies every flag except the
          * scene and the choice. */
         if (pass < 0 ? scene_flag
@@ -350,6 +366,7 @@ int options_parse(options *o, int argc, char **argv)
             if (apply(o, f, value) != 0) return 2;
     }
     }
+    if (options_tooling_resolve(o) || options_sequence_resolve(o)) return 2;
     scale3(o->atmosphere.rayleigh_scattering, o->scales[0]);
     scale3(o->atmosphere.mie_scattering, o->scales[1]);
     scale3(o->atmosphere.mie_absorption, o->scales[1]);
@@ -360,7 +377,7 @@ int options_parse(options *o, int argc, char **argv)
         return bad("--max-steps", msg);
     }
     /* The --max-error choice, reported only now: every flag has been read and accepted. */
-    if (picked)
+    if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);

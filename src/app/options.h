@@ -13,6 +13,9 @@ double options_sun_radius_rad(const options *o);
 
 /* 0: ok; 2: bad input (message printed). */
 int options_parse(options *o, int argc, char **argv);
+/* The same, with the quality choice (--quality auto, --max-error) made for a set of scene classes (quality.h)
+ * instead of the view's own: a sequence's frames keep one configuration (sequence.c). 0: the view's class. */
+int options_parse_for_classes(options *o, int argc, char **argv, unsigned quality_classes);
 
 void options_print_help(FILE *out);
 #endif

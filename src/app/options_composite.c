@@ -1,4 +1,5 @@
 #include "app/options_composite.h"
+#include "app/help.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -26,11 +27,14 @@ enum { COMPOSITE_FLAG_COUNT = sizeof composite_flags / sizeof composite_flags[0]
 
 void composite_options_print_help(FILE *out)
 {
-    fprintf(out, "\ncompositing (docs/readme/composite.md):\n"
-                 "       vksky --composite render.exr --render out.exr [options]\n"
-                 "       vksky --composite beauty.exr --position position.exr --render out.exr [options]\n");
+    /* In --help's columns (app/help), as a section after the table's groups. */
+    help_entry entries[COMPOSITE_FLAG_COUNT];
     for (int i = 0; i < COMPOSITE_FLAG_COUNT; ++i)
-        fprintf(out, "  %s %s\n", composite_flags[i].name, composite_flags[i].help);
+        entries[i] = (help_entry){composite_flags[i].name, composite_flags[i].takes_value, composite_flags[i].help};
+    help_print_section(out, "compositing",
+                       "       vksky --composite render.exr --render out.exr [options]   (docs/readme/composite.md)\n"
+                       "       vksky --composite beauty.exr --position position.exr --render out.exr [options]\n",
+                       entries, COMPOSITE_FLAG_COUNT);
 }
 
 static int bad(const char *flag, const char *what, const char *value)

@@ -3,11 +3,21 @@
  * without either including the other. Include app/options.h for the parser and the helpers that read it. */
 #ifndef VKSKY_APP_OPTIONS_STRUCT_H
 #define VKSKY_APP_OPTIONS_STRUCT_H
+#include "app/sun_place.h"
 #include "model/medium.h"
 #include "sky/renderer.h"
 #include <stdbool.h>
 
 #define OPTIONS_MAX_OUTPUTS 4
+#define OPTIONS_MAX_ANIMATE 16
+
+/* One --animate PARAM=FROM:TO: a numeric flag (or "time": the local clock, decimal hours) going linearly from FROM at
+ * the sequence's first frame to TO at its last. */
+typedef struct options_animation {
+    const char *flag_name;                      /* "--sun-elevation", ...; "--time" for time (hours) */
+    bool integer;                               /* an integer flag: the value is rounded */
+    double from, to;
+} options_animation;
 
 typedef struct options {
     sky_view view;
@@ -20,6 +30,7 @@ typedef struct options {
     double scales[3];
     const char *quality;                        /* --quality preset name (NULL: none) */
     bool quality_auto;                          /* the knobs are --quality auto's choice (named or the default) */
+    unsigned quality_classes;                   /* the scene classes that choice (or --max-error's) served */
     /* Scene features (scene files and their flags). */
     const char *scene_path;                     /* --scene FILE.json (NULL: none) */
     bool scene_quality;                         /* the scene file has a quality section (no --quality auto then) */
@@ -47,5 +58,18 @@ typedef struct options {
     int device_index;                           /* -1: pick */
     bool trace_barriers;
     bool help, version;
+    /* tooling (issue 14) */
+    sun_place place;                            /* --date, --time, ... or the scene's sun.date ...: the sun by SPA */
+    const char *sun_angles_flag;                /* --sun-elevation or --sun-azimuth on the command line (NULL: neither) */
+    bool sun_elevation_flag, sun_azimuth_flag;  /* which of them */
+    bool list_scenes;                           /* --list-scenes */
+    /* sequences (issue 14): app/options_sequence.c, app/sequence.c */
+    options_animation animate[OPTIONS_MAX_ANIMATE];
+    int animate_count;
+    int frame_count;                            /* --frame-count N (default 1) */
+    int frame_first, frame_last;                /* --frame-range A:B, inclusive (default 0 : N-1) */
+    bool frame_range_set;
+    int argc;                                   /* the command line: a frame's options re-parse it, EXRs record it */
+    char **argv;
 } options;
 #endif

@@ -1,5 +1,6 @@
 #include "app/quality.h"
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #define DEFAULT_LUTS .transmittance_width = 256, .transmittance_height = 64, .transmittance_steps = 40, \
@@ -139,43 +140,73 @@ int quality_scene_class(double altitude_km, double sun_elevation_deg)
 #include "app/quality_table.h"
 #include "app/quality_table_cpu.h"
 
-/* The cheapest configuration of a measured table whose error on the scene class is <= max_error. */
-static const quality_config *pick_from(const quality_measurement *table, int count, double max_error, int scene,
-                                       double *measured)
+/* The configuration a table row names (the sweep's, or a preset measured under its own name). */
+static const quality_config *config_named(const char *name)
+{
+    for (int k = 0; k < 4; ++k)
+        if (!strcmp(quality_presets[k].name, name)) return &quality_presets[k];
+    for (int k = 0; k < quality_sweep_count; ++k)
+        if (!strcmp(quality_sweep[k].name, name)) return &quality_sweep[k];
+    return NULL;
+}
+
+/* The cheapest configuration of a measured table whose error is within budget[class] on every class of the set
+ * (a bitmask of quality_scenes indices). Its cost on a set is its dearest class: a sequence that passes from noon
+ * to twilight keeps one configuration, the one that serves its hardest frame. *measured: its largest error. */
+static const quality_config *pick_from(const quality_measurement *table, int count, const double *budget,
+                                       unsigned classes, double *measured)
 {
     const quality_config *best = NULL;
     double best_ms = INFINITY;
     for (int i = 0; i < count; ++i) {
-        const quality_measurement *m = &table[i];
-        if (m->scene != scene || !(m->err_mean <= max_error) || m->gpu_ms >= best_ms) continue;
-        for (int k = 0; k < quality_sweep_count; ++k)
-            if (!strcmp(quality_sweep[k].name, m->config)) best = &quality_sweep[k];
-        for (int k = 0; k < 4; ++k)
-            if (!strcmp(quality_presets[k].name, m->config)) best = &quality_presets[k];
-        best_ms = m->gpu_ms;
-        *measured = m->err_mean;
+        if (!(classes >> table[i].scene & 1u)) continue;
+        bool first_row = true;   /* each configuration once: at its first row on a class of the set */
+        for (int j = 0; j < i; ++j)
+            if (classes >> table[j].scene & 1u && !strcmp(table[j].config, table[i].config)) first_row = false;
+        if (!first_row) continue;
+        double ms = 0.0, err = 0.0;
+        bool serves_all = true;
+        for (int c = 0; c < 6 && serves_all; ++c) {
+            if (!(classes >> c & 1u)) continue;
+            const quality_measurement *row = NULL;
+            for (int j = 0; j < count; ++j)
+                if (table[j].scene == c && !strcmp(table[j].config, table[i].config)) row = &table[j];
+            serves_all = row && row->err_mean <= budget[c];
+            if (serves_all) ms = fmax(ms, row->gpu_ms), err = fmax(err, row->err_mean);
+        }
+        const quality_config *q = config_named(table[i].config);
+        if (!serves_all || !q || ms >= best_ms) continue;
+        best = q, best_ms = ms, *measured = err;
     }
     return best;
 }
 
-const quality_config *quality_pick(double max_error, double altitude_km, double sun_elevation_deg, double *measured,
-                                   const char **scene_name)
+void quality_class_names(unsigned classes, char *out, size_t size)
 {
-    int scene = quality_scene_class(altitude_km, sun_elevation_deg);
-    *scene_name = quality_scenes[scene].name;
-    return pick_from(quality_table, quality_table_count, max_error, scene, measured);
+    size_t used = 0;
+    out[0] = '\0';
+    for (int c = 0; c < 6; ++c)
+        if (classes >> c & 1u && used < size)
+            used += (size_t)snprintf(out + used, size - used, "%s%s", used ? "+" : "", quality_scenes[c].name);
 }
 
-const quality_config *quality_auto(double altitude_km, double sun_elevation_deg, bool cpu_device, double *measured,
-                                   const char **scene_name)
+const quality_config *quality_pick(double max_error, unsigned classes, double *measured)
+{
+    double budget[6];
+    for (int c = 0; c < 6; ++c) budget[c] = max_error;
+    return pick_from(quality_table, quality_table_count, budget, classes, measured);
+}
+
+const quality_config *quality_auto(unsigned classes, bool cpu_device, double *measured)
 {
     const quality_measurement *table = cpu_device ? quality_table_cpu : quality_table;
     int count = cpu_device ? quality_table_cpu_count : quality_table_count;
-    int scene = quality_scene_class(altitude_km, sun_elevation_deg);
-    *scene_name = quality_scenes[scene].name;
-    double best = INFINITY;
-    for (int i = 0; i < count; ++i)
-        if (table[i].scene == scene && table[i].err_mean < best) best = table[i].err_mean;
-    double budget = fmax(QUALITY_AUTO_FLOOR, QUALITY_AUTO_SLACK * best);
-    return pick_from(table, count, budget, scene, measured);
+    double budget[6];
+    for (int c = 0; c < 6; ++c) {
+        double best = INFINITY;
+        for (int i = 0; i < count; ++i)
+            if (table[i].scene == c && table[i].err_mean < best) best = table[i].err_mean;
+        budget[c] = fmax(QUALITY_AUTO_FLOOR, QUALITY_AUTO_SLACK * best);
+    }
+    return pick_from(table, count, budget, classes, measured);
 }

@@ -3,6 +3,7 @@
 #ifndef VKSKY_APP_QUALITY_H
 #define VKSKY_APP_QUALITY_H
 #include "sky/renderer.h"
+#include <stddef.h>
 
 typedef struct quality_config {
     const char *name;
@@ -44,17 +45,25 @@ extern const quality_scene quality_scenes[6];
 /* The scene class a view belongs to (nearest by sun elevation and altitude). */
 int quality_scene_class(double altitude_km, double sun_elevation_deg);
 
-/* --max-error: the cheapest configuration whose measured mean relative luminance error on the view's scene
- * class is <= max_error; NULL if none is (the caller says so). *measured gets that error. */
-const quality_config *quality_pick(double max_error, double altitude_km, double sun_elevation_deg, double *measured,
-                                   const char **scene_name);
+/* The scene classes a choice serves, as a bitmask of quality_scenes indices: one view's class, or every class the
+ * frames of a sequence pass through (a sequence keeps one configuration: sequence.h). */
+static inline unsigned quality_class_bit(double altitude_km, double sun_elevation_deg)
+{
+    return 1u << quality_scene_class(altitude_km, sun_elevation_deg);
+}
+/* "noon", or "sunset+twilight" for a set. */
+void quality_class_names(unsigned classes, char *out, size_t size);
 
-/* --quality auto (the default of a headless render): a point on the measured front for the view's scene class,
- * the cheapest measured configuration whose mean error is within max(1 %, 1.25 x the best measured error on
+/* --max-error: the cheapest configuration whose measured mean relative luminance error is <= max_error on every
+ * class of the set (its cost: its dearest class); NULL if none is (the caller says so). *measured gets its
+ * largest error. */
+const quality_config *quality_pick(double max_error, unsigned classes, double *measured);
+
+/* --quality auto (the default of a headless render): a point on the measured front, the cheapest measured
+ * configuration whose mean error on each class of the set is within max(1 %, 1.25 x the best measured error on
  * that class), in the table of the device kind: GPU (quality_table.h, sky GPU ms on an H200) or CPU
- * (quality_table_cpu.h, CPU ms per whole frame on lavapipe). *measured, *scene_name: as quality_pick. */
+ * (quality_table_cpu.h, CPU ms per whole frame on lavapipe). *measured: as quality_pick. */
 #define QUALITY_AUTO_FLOOR 0.01
 #define QUALITY_AUTO_SLACK 1.25
-const quality_config *quality_auto(double altitude_km, double sun_elevation_deg, bool cpu_device, double *measured,
-                                   const char **scene_name);
+const quality_config *quality_auto(unsigned classes, bool cpu_device, double *measured);
 #endif

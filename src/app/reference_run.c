@@ -1,4 +1,5 @@
 #include "app/reference_run.h"
+#include "app/exr_header.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/half_float.h"
@@ -96,10 +97,17 @@ int reference_run(const options *o)
     int status = 0;
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         io_exr_layer layer = {.name = "", .rgba_half = half};
-        if (io_write_exr(o->outputs[i], o->width, o->height, &layer, 1, err, sizeof err) != 0) {
+        exr_header h;   /* how it was made (app/exr_header.h): the command line says --reference */
+        if (exr_header_build(&h, o, -1) != 0) {
+            fprintf(stderr, "vksky: %s: out of memory for the EXR header\n", o->outputs[i]);
+            status = 1;
+            break;
+        }
+        if (io_write_exr_meta(o->outputs[i], o->width, o->height, &layer, 1, &h.meta, err, sizeof err) != 0) {
             fprintf(stderr, "vksky: %s\n", err);
             status = 1;
         }
+        exr_header_free(&h);
     }
     free(half);
     return status;

@@ -2,13 +2,17 @@
  * the field readers of scene_validate.c. */
 #include "app/scene.h"
 #include "app/quality.h"
+#include "app/scene_sun.h"
 #include "app/scene_validate.h"
+#include "app/exr_names.h"
+#include "io/exr_meta.h"
 #include <cjson/cJSON.h>
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #define SCENE_MAX_BYTES (1 << 20)
 
@@ -227,9 +231,9 @@ static int parse_species(const scene_ctx *c, const cJSON *species)
 static int parse_sun(const scene_ctx *c, const cJSON *sun)
 {
     static const char *const names[] = {"elevation_deg", "azimuth_deg", "illuminance", "angular_radius_deg",
-                                        "limb_darkening", "disc"};
+                                        "limb_darkening", "disc", SCENE_SUN_PLACE_FIELDS};
     options *o = c->o;
-    return scene_check_fields(c, sun, "sun", names, COUNT(names)) ||
+    return scene_check_fields(c, sun, "sun", names, COUNT(names)) || scene_sun_parse(c->file, sun, o) ||
            scene_get_number(c, sun, "elevation_deg", "sun", scene_flag_range("--sun-elevation", false), &o->view.sun_elevation_deg) ||
            scene_get_number(c, sun, "azimuth_deg", "sun", scene_flag_range("--sun-azimuth", false), &o->view.sun_azimuth_deg) ||
            scene_get_array(c, sun, "illuminance", "sun", scene_flag_range("--sun-illuminance", false), 3,
@@ -374,6 +378,32 @@ static int read_all(const char *path, const char *shown, char **text, size_t *le
     return 0;
 }
 
+static bool exr_file(const char *path)
+{
+    size_t n = strlen(path);
+    return n >= 4 && !strcasecmp(path + n - 4, ".exr");
+}
+
+/* The scene an EXR made by vksky carries in its header (app/exr_header.h): the effective scene of its render. */
+static int read_exr_scene(const char *path, const char *shown, char **text, size_t *len)
+{
+    char err[512];
+    int rc = io_exr_read_string_attr(path, EXR_HEADER_SCENE, text, err, sizeof err);
+    if (rc < 0) fprintf(stderr, "vksky: --scene: %s\n", err);
+    if (rc > 0) fprintf(stderr, "vksky: --scene: '%s' has no '%s' attribute; expected an EXR written by vksky (or a "
+                                "scene .json file)\n", shown, EXR_HEADER_SCENE);
+    if (rc != 0) return 2;
+    *len = strlen(*text);
+    if (*len > SCENE_MAX_BYTES) {
+        fprintf(stderr, "vksky: --scene: '%s' carries a scene larger than %d bytes; expected a scene (a small JSON "
+                        "text)\n", shown, SCENE_MAX_BYTES);
+        free(*text);
+        *text = NULL;
+        return 2;
+    }
+    return 0;
+}
+
 static bool blank(char ch)
 {
     return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n';
@@ -427,7 +457,7 @@ int scene_load(const char *path, options *o)
     scene_printable(c.file, sizeof c.file, path);
     char *text = NULL;
     size_t len = 0;
-    if (read_all(path, c.file, &text, &len)) return 2;
+    if (exr_file(path) ? read_exr_scene(path, c.file, &text, &len) : read_all(path, c.file, &text, &len)) return 2;
     int rc = 2;
     cJSON *root = NULL;
     size_t first = 0;

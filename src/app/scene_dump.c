@@ -1,5 +1,6 @@
 /* Scene files: --dump-scene, the effective options written back as a scene (the schema in scene.h). */
 #include "app/scene_dump.h"
+#include "app/scene_sun.h"
 #include "app/scene.h"
 #include "app/scene_validate.h"
 #include <cjson/cJSON.h>
@@ -122,8 +123,11 @@ int scene_dump(const options *o, FILE *out)
     boolean(&b, root, "multiple_scattering", o->multiple_scattering);
 
     cJSON *sun = obj(&b, root, "sun");
-    num(&b, sun, "elevation_deg", v->sun_elevation_deg);
-    num(&b, sun, "azimuth_deg", v->sun_azimuth_deg);
+    if (!scene_sun_by_place(o)) {   /* else the date and place give them (scene_sun_dump) */
+        num(&b, sun, "elevation_deg", v->sun_elevation_deg);
+        num(&b, sun, "azimuth_deg", v->sun_azimuth_deg);
+    }
+    b.ok = b.ok && scene_sun_dump(sun, o);
     arr(&b, sun, "illuminance", a->sun_illuminance, 3);
     num(&b, sun, "angular_radius_deg", o->sun_angular_radius_deg);
     num(&b, sun, "limb_darkening", o->limb_darkening);

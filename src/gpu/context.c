@@ -276,6 +276,15 @@ int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
         *type = live_device_type;
         return 0;
     }
+    /* The devices do not change within a process: probe each index once (a sequence parses every frame's options,
+     * and each parse of --quality auto asks). */
+    static bool probed;
+    static int probed_index, probed_result;
+    static VkPhysicalDeviceType probed_type;
+    if (probed && probed_index == device_index) {
+        *type = probed_type;
+        return probed_result;
+    }
     gpu_context ctx = {0};
     gpu_context_desc desc = {.device_index = device_index};
     if (create_instance(&ctx, &desc, false) != 0) return -1;
@@ -286,7 +295,8 @@ int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
         *type = p.deviceType;
     }
     vkDestroyInstance(ctx.instance, NULL);
-    return picked == 0 ? 0 : -1;
+    probed = true, probed_index = device_index, probed_result = picked == 0 ? 0 : -1, probed_type = *type;
+    return probed_result;
 }
 
 int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)

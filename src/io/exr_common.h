@@ -29,10 +29,15 @@ typedef struct io_exr_write_layer {
     const float *f32;
 } io_exr_write_layer;
 
-/* Writes the layers as one scanline part of HALF channels, ZIP, atomically (atomic_file.h). The caller has
-   validated everything (size, names unique and short enough, channel counts, pixels present). 0, or -1 + err
-   ("cannot write 'PATH': ..."). Used by io_write_exr and io_write_exr_layers. */
+/* Writes the layers as one scanline part of HALF channels, ZIP, atomically (atomic_file.h), with the header
+   attributes of `meta` (exr_meta.h; NULL: none). The caller has validated everything (size, names unique and short
+   enough, channel counts, pixels present). 0, or -1 + err ("cannot write 'PATH': ..."). Used by io_write_exr(_meta)
+   and io_write_exr_layers. */
+struct io_exr_meta;
 int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
-                             int layer_count, char *err, size_t err_size);
+                             int layer_count, const struct io_exr_meta *meta, char *err, size_t err_size);
+
+/* The attributes of an io_exr_meta (exr_meta.h) onto a part being written, before its header is written. */
+exr_result_t io_exr_set_meta(exr_context_t ctxt, int part, const struct io_exr_meta *meta);
 
 #endif /* VKSKY_IO_EXR_COMMON_H */

@@ -158,7 +158,7 @@ static int check_layers(const char *path, int width, int height, const io_exr_wr
 }
 
 int io_exr_write_layers_half(const char *path, int width, int height, const io_exr_write_layer *layers,
-                             int layer_count, char *err, size_t err_size)
+                             int layer_count, const struct io_exr_meta *meta, char *err, size_t err_size)
 {
     const char *p = io_safe_path(path);
     if (check_layers(path, width, height, layers, layer_count, err, err_size) != 0) return -1;
@@ -198,6 +198,11 @@ int io_exr_write_layers_half(const char *path, int width, int height, const io_e
     stage = "header";
     rc = exr_initialize_required_attr_simple(ctxt, part, width, height, EXR_COMPRESSION_ZIP);
     if (rc != EXR_ERR_SUCCESS) goto fail;
+    if (meta) {
+        stage = "attributes";
+        rc = io_exr_set_meta(ctxt, part, meta);
+        if (rc != EXR_ERR_SUCCESS) goto fail;
+    }
 
     stage = "add channel";
     for (int l = 0; l < layer_count; ++l) {
@@ -294,7 +299,7 @@ int io_write_exr_layers(const char *path, int width, int height, const io_exr_ou
         return -1;
     }
     for (int i = 0; i < layer_count; ++i) w[i] = (io_exr_write_layer){layers[i].name, layers[i].channels, NULL, layers[i].pixels};
-    int r = io_exr_write_layers_half(path, width, height, w, layer_count, err, err_size);
+    int r = io_exr_write_layers_half(path, width, height, w, layer_count, NULL, err, err_size);
     free(w);
     return r;
 }

@@ -23,6 +23,11 @@ typedef struct io_exr_layer {
 int io_write_exr(const char *path, int width, int height, const io_exr_layer *layers, int layer_count, char *err,
                  size_t err_size);
 
+/* The same with header attributes (exr_meta.h; NULL: none). */
+struct io_exr_meta;
+int io_write_exr_meta(const char *path, int width, int height, const io_exr_layer *layers, int layer_count,
+                      const struct io_exr_meta *meta, char *err, size_t err_size);
+
 #ifdef __cplusplus
 }
 #endif

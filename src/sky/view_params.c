@@ -22,10 +22,8 @@ static void dir_from_angles(double az_deg, double el_deg, double out[3])
     out[2] = cos(el) * sin(az);
 }
 
-SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height)
+void sky_view_basis(const sky_view *v, double f[3], double right[3], double up[3])
 {
-    /* The ray matrix: camera basis scaled by tan(fov/2) and the aspect ratio, built in double. */
-    double f[3], right[3], up[3];
     dir_from_angles(v->yaw_deg, v->pitch_deg, f);
     if (fabs(v->pitch_deg) >= 90.0 - 1e-9) {
         dir_from_angles(v->yaw_deg + 90.0, 0.0, right);
@@ -38,6 +36,13 @@ SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height)
     up[0] = right[1] * f[2] - right[2] * f[1];
     up[1] = right[2] * f[0] - right[0] * f[2];
     up[2] = right[0] * f[1] - right[1] * f[0];
+}
+
+SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height)
+{
+    /* The ray matrix: camera basis scaled by tan(fov/2) and the aspect ratio, built in double. */
+    double f[3], right[3], up[3];
+    sky_view_basis(v, f, right, up);
     double ty = tan(0.5 * v->fov_deg * DEG), tx = ty * (double)width / (double)height;
     double sun[3];
     dir_from_angles(v->sun_azimuth_deg, v->sun_elevation_deg, sun);

@@ -1,0 +1,192 @@
+/* The frames of a sequence (sequence.h). */
+#include "app/sequence.h"
+#include "app/exr_header.h"
+#include "app/options.h"
+#include "app/options_sequence.h"
+#include "app/quality.h"
+#include "io/atomic_file.h"
+#include "io/exr_write.h"
+#include "io/png_io.h"
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+bool sequence_active(const options *o) { return o->frame_count > 1 || o->animate_count > 0 || o->frame_range_set; }
+
+static int frame_count(const options *o) { return o->frame_count > 0 ? o->frame_count : 1; }
+
+/* Animation a's value at frame i, as the flag's text (time: "HH:MM:SS.mmm" from decimal hours). */
+static void animated_value(const options_animation *a, int frame, int count, char *out, size_t out_size)
+{
+    double t = count > 1 ? (double)frame / (double)(count - 1) : 0.0;
+    double v = (1.0 - t) * a->from + t * a->to;
+    double lo = fmin(a->from, a->to), hi = fmax(a->from, a->to);
+    v = fmin(fmax(v, lo), hi);   /* rounding never steps outside FROM..TO (and so the flag's range) */
+    if (!strcmp(a->flag_name, "--time")) {
+        char text[16];
+        sequence_time_text(v, text);
+        snprintf(out, out_size, "--time=%s", text);
+    } else if (a->integer) {
+        snprintf(out, out_size, "%s=%lld", a->flag_name, llround(v));
+    } else {
+        snprintf(out, out_size, "%s=%.17g", a->flag_name, v);
+    }
+}
+
+int sequence_frame_options(const options *base, int frame, options *out)
+{
+    if (base->animate_count == 0) {
+        *out = *base;
+        return 0;
+    }
+    enum { VALUE_SIZE = 96 };
+    int argc = base->argc + base->animate_count;
+    char **argv = calloc((size_t)argc + 1, sizeof *argv);
+    char *values = calloc((size_t)base->animate_count, VALUE_SIZE);
+    if (!argv || !values) {
+        free(argv);
+        free(values);
+        fprintf(stderr, "vksky: --animate: out of memory\n");
+        return 2;
+    }
+    memcpy(argv, base->argv, (size_t)base->argc * sizeof *argv);
+    for (int k = 0; k < base->animate_count; ++k) {
+        char *v = values + (size_t)k * VALUE_SIZE;
+        animated_value(&base->animate[k], frame, frame_count(base), v, VALUE_SIZE);
+        argv[base->argc + k] = v;   /* last: overrides the flag and the scene */
+    }
+    int rc = options_parse_for_classes(out, argc, argv, base->quality_classes);
+    /* The frame's options keep no pointer into the appended values (they are numbers by now); the command line they
+     * record is the one given. */
+    out->argc = base->argc, out->argv = base->argv;
+    free(argv);
+    free(values);
+    return rc;
+}
+
+/* A --render value's file for a frame: the pattern filled in, or a value without one %d as it is. */
+static bool frame_path(const char *output, int frame, char *path, size_t size)
+{
+    if (sequence_pattern_kind(output) == 1) return sequence_output_path(output, frame, path, size);
+    return (size_t)snprintf(path, size, "%s", output) < size;
+}
+
+static bool same_luts(const sky_lut_quality *a, const sky_lut_quality *b)
+{
+    return a->transmittance_width == b->transmittance_width && a->transmittance_height == b->transmittance_height &&
+           a->transmittance_steps == b->transmittance_steps && a->multiscatter_size == b->multiscatter_size &&
+           a->multiscatter_steps == b->multiscatter_steps && a->multiscatter_sqrt_dirs == b->multiscatter_sqrt_dirs &&
+           a->lut_f32 == b->lut_f32 && a->skyview_width == b->skyview_width && a->skyview_height == b->skyview_height;
+}
+
+/* A quality chosen by the scene (--quality auto, the default, or --max-error) is chosen once for the whole
+ * sequence: for every scene class its frames pass through (all of them, whatever --frame-range renders, so that a
+ * split sequence equals the whole), and the base options are parsed again under that choice. Frames then differ
+ * only in view, sun and medium values: no preset switch (and no jump in the error) from one frame to the next. */
+static int choose_sequence_quality(options *base)
+{
+    if (base->animate_count == 0 || base->quality_classes == 0) return 0;
+    unsigned classes = 0;
+    for (int i = 0; i < frame_count(base); ++i) {
+        options f;   /* the frame's view does not depend on the quality choice it is parsed under */
+        if (sequence_frame_options(base, i, &f)) return 2;
+        classes |= quality_class_bit(f.view.altitude_km, f.view.sun_elevation_deg);
+    }
+    return options_parse_for_classes(base, base->argc, base->argv, classes);
+}
+
+int sequence_check(options *base)
+{
+    if (choose_sequence_quality(base)) return 2;
+    for (int i = base->frame_first; i <= base->frame_last; ++i) {
+        options f;
+        if (sequence_frame_options(base, i, &f)) return 2;
+        if (f.width != base->width || f.height != base->height || f.render_scale != base->render_scale ||
+            f.bloom_mips != base->bloom_mips || f.view.bloom != base->view.bloom ||
+            !same_luts(&f.lut, &base->lut)) {
+            fprintf(stderr, "vksky: --animate: frame %d changes the image or LUT sizes, the bloom chain or the quality "
+                            "preset, which a sequence keeps; expected an animation of view, sun or medium values\n", i);
+            return 2;
+        }
+        for (int k = 0; k < base->output_count; ++k) {
+            char path[PATH_MAX], err[512];
+            if (!frame_path(base->outputs[k], i, path, sizeof path)) {
+                fprintf(stderr, "vksky: --render: '%s' makes a file name longer than %d bytes\n", base->outputs[k],
+                        PATH_MAX - 1);
+                return 2;
+            }
+            if (io_check_writable(path, err, sizeof err) != 0) {
+                fprintf(stderr, "vksky: --render: %s\n", err);
+                return 2;
+            }
+        }
+    }
+    return 0;
+}
+
+static bool is_exr(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
+}
+
+/* The frame's files; EXRs with the header that says how they were made (exr_header.h). */
+static int write_outputs(const options *o, const sky_renderer *r, int frame, bool sequence, const char **first_path)
+{
+    static char first[PATH_MAX];
+    char err[512];
+    for (int i = 0; i < o->output_count; ++i) {
+        char path[PATH_MAX];
+        if (!frame_path(o->outputs[i], frame, path, sizeof path)) return 1;   /* checked before */
+        if (i == 0) snprintf(first, sizeof first, "%s", path), *first_path = first;
+        int rc;
+        if (is_exr(path)) {
+            exr_header h;
+            if (exr_header_build(&h, o, sequence ? frame : -1) != 0) {
+                fprintf(stderr, "vksky: %s: out of memory for the EXR header\n", path);
+                return 1;
+            }
+            io_exr_layer layer = {.name = "", .rgba_half = r->readback_linear.mapped};
+            rc = io_write_exr_meta(path, o->width, o->height, &layer, 1, &h.meta, err, sizeof err);
+            exr_header_free(&h);
+        } else {
+            rc = io_write_png(path, o->width, o->height, r->readback_display.mapped, 1, err, sizeof err);
+        }
+        if (rc != 0) {
+            fprintf(stderr, "vksky: %s\n", err);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render)
+{
+    bool sequence = sequence_active(base);
+    int count = frame_count(base), done = 0, lut_computations = 0;
+    int range = base->frame_last - base->frame_first + 1;
+    for (int i = base->frame_first; i <= base->frame_last; ++i) {
+        options f;
+        if (sequence_frame_options(base, i, &f)) return 1;   /* parsed before (sequence_check): not expected */
+        /* Same values: the renderer keeps its LUTs (their hash is unchanged) and its pipelines. */
+        sky_renderer_set_atmosphere(r, &f.atmosphere, options_sun_radius_rad(&f));
+        sky_features features = options_features(&f);
+        sky_renderer_set_features(r, &features);
+        bool luts = sky_renderer_luts_dirty(r);
+        lut_computations += luts;
+        frame_desc desc = {.view = &f.view};
+        render(r, &desc);
+        const char *path = "";
+        if (write_outputs(&f, r, i, sequence, &path) != 0) return 1;
+        ++done;
+        if (sequence)
+            fprintf(stderr, "vksky: frame %d (%d of %d; %d/%d of this job): %s, LUTs %s\n", i, i + 1, count, done,
+                    range, path, luts ? "computed" : "reused");
+    }
+    if (sequence)
+        fprintf(stderr, "vksky: %d frame%s rendered; LUTs computed %d time%s\n", done, done == 1 ? "" : "s",
+                lut_computations, lut_computations == 1 ? "" : "s");
+    return 0;
+}
