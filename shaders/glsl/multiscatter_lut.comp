@@ -52,11 +52,13 @@ void main()
             float h_t = altitude_along(h, mu, t, r_t);
             float mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
             Medium m = sample_medium(h_t);
-            vec3 sun_t = texture(transmittance_lut, transmittance_uv(h_t, mu_s_t, t_size)).rgb;
+            float mu_t;
+            float visible = sun_visibility(h_t, mu_s_t, mu_t);
+            vec3 sun_t = texture(transmittance_lut, transmittance_uv(h_t, mu_t, t_size)).rgb;
             vec3 step_t = exp(-m.extinction * dt);
             vec3 integral = step_integral(m.extinction, dt, step_t);
             /* Earth shadow baked in (seed bug 9); the isotropic phase 1/(4 pi) on the scattered light only. */
-            l_2nd += throughput * m.scattering * sun_t * earth_shadow(h_t, mu_s_t) / (4.0 * PI) * integral;
+            l_2nd += throughput * m.scattering * sun_t * visible / (4.0 * PI) * integral;
             f_ms += throughput * m.scattering * integral;
             throughput *= step_t;
         }
@@ -64,8 +66,11 @@ void main()
          * illuminance), scattered again like the rest of L_2nd. */
         if (HAS_GROUND && ray_hits_ground(h, mu)) {
             float mu_s_g = clamp((r * mu_s + t_max * nu) / ground_radius(), -1.0, 1.0);
-            vec3 sun_g = texture(transmittance_lut, transmittance_uv(0.0, mu_s_g, t_size)).rgb;
-            l_2nd += throughput * sun_g * max(mu_s_g, 0.0) * atmo.ground.rgb / PI;
+            /* The lesson's bounce has no shadow term (the cosine does it); the penumbra's has its visible part. */
+            float mu_t_g = mu_s_g;
+            float visible_g = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE ? 1.0 : sun_visibility(0.0, mu_s_g, mu_t_g);
+            vec3 sun_g = texture(transmittance_lut, transmittance_uv(0.0, mu_t_g, t_size)).rgb;
+            l_2nd += throughput * sun_g * visible_g * max(mu_t_g, 0.0) * atmo.ground.rgb / PI;
         }
     }
     shared_l[thread] = l_2nd;
@@ -84,5 +89,9 @@ void main()
     l_2nd = shared_l[0] * inv_n;
     f_ms = shared_f[0] * inv_n;
     vec3 psi = l_2nd / max(1.0 - f_ms, vec3(1e-6));
-    imageStore(multiscatter_out, texel, vec4(min(psi, vec3(FP16_MAX)), 1.0));
+    /* Stored as Psi^(1/4) (MULTISCATTER_ENCODE_POWER, atmosphere.glsl): across the terminator Psi falls by
+     * orders of magnitude over a few texels, and the sampler's linear interpolation of Psi itself overshoots there
+     * (the sky low opposite the sun at twilight, 4 % at sun -4 deg); interpolating the fourth root follows a
+     * near-exponential fall 4x better, and fp16 keeps the small values' relative precision. */
+    imageStore(multiscatter_out, texel, vec4(sqrt(sqrt(min(psi, vec3(FP16_MAX)))), 1.0));
 }

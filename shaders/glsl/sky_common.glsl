@@ -12,9 +12,12 @@ vec3 lookup_transmittance(float h, float mu)
                                             float(textureSize(ground_irradiance_lut, 0).x)), 0.5)).rgb
 #endif
 
+/* The LUT holds Psi^(1/4) (multiscatter_lut.comp says why). */
 vec3 lookup_multiscatter(float h, float mu_s)
 {
-    return texture(multiscatter_lut, multiscatter_uv(h, mu_s, vec2(textureSize(multiscatter_lut, 0)))).rgb;
+    vec3 root = texture(multiscatter_lut, multiscatter_uv(h, mu_s, vec2(textureSize(multiscatter_lut, 0)))).rgb;
+    vec3 root2 = root * root;
+    return root2 * root2;
 }
 
 /* View ray of a pixel centre: the ray matrix (camera basis scaled by fov/aspect), never an inverse
@@ -81,11 +84,13 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
         float mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
         Medium m = sample_medium(h_t);
         vec3 step_t = exp(-m.extinction * dt);
-        vec3 sun_t = lookup_transmittance(h_t, mu_s_t);
+        float mu_t;
+        float visible = sun_visibility(h_t, mu_s_t, mu_t);
+        vec3 sun_t = lookup_transmittance(h_t, mu_t);
         vec3 psi = HAS_MULTISCATTER ? lookup_multiscatter(h_t, mu_s_t) : vec3(0.0);
-        /* Single scattering is shadowed by the planet (seed bug 5); multiple scattering is already integrated
-         * over the sphere, shadow included, in the LUT (seed bug 9). */
-        vec3 source = atmo.sun.rgb * (earth_shadow(h_t, mu_s_t) * sun_t * (m.rayleigh * phase_r + m.mie * phase_m)
+        /* Single scattering is shadowed by the planet (seed bug 5), the penumbra included; multiple scattering is
+         * already integrated over the sphere, shadow included, in the LUT (seed bug 9). */
+        vec3 source = atmo.sun.rgb * (visible * sun_t * (m.rayleigh * phase_r + m.mie * phase_m)
                                       + psi * m.scattering);
         radiance += throughput * source * step_integral(m.extinction, dt, step_t);
         throughput *= step_t;
@@ -94,7 +99,9 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
      * ground-irradiance LUT: the sky's irradiance on the ground per unit sun illuminance, by sun angle). */
     if (HAS_GROUND && hits_ground) {
         float mu_s_g = clamp((r * mu_s + t_max * nu) / ground_radius(), -1.0, 1.0);
-        vec3 sun_g = lookup_transmittance(0.0, mu_s_g) * earth_shadow(0.0, mu_s_g) * max(mu_s_g, 0.0);
+        float mu_t_g;
+        float visible_g = sun_visibility(0.0, mu_s_g, mu_t_g);
+        vec3 sun_g = lookup_transmittance(0.0, mu_t_g) * visible_g * max(mu_t_g, 0.0);
         radiance += throughput * atmo.sun.rgb * (sun_g + GROUND_SKY_IRRADIANCE(mu_s_g)) * atmo.ground.rgb / PI;
     }
     return radiance;

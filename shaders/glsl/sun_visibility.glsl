@@ -51,10 +51,11 @@ float sun_visibility(float h, float mu_s, out float mu_t)
         float lit = ray_hits_ground(h, mu_s) ? 0.0 : 1.0;
         return lit * clamp(mu_s * 10.0 + 0.5, 0.0, 1.0);
     }
+    float R = atmo.sun.w;
+    if (mu_s >= R && R > 0.0) return 1.0;   /* asin(mu_s) >= mu_s: the whole disc is up, no trigonometry */
     float rho = sqrt(rho2_of(h));
     float elevation = asin(clamp(mu_s, -1.0, 1.0));
     float d = elevation + atan(rho, ground_radius());
-    float R = atmo.sun.w;
     if (!(R > 0.0)) return d > 0.0 ? 1.0 : 0.0;
     if (d >= R) return 1.0;
     float f = sv_lens_fraction(d, rho / ground_radius(), R);

@@ -99,9 +99,10 @@ static void ms_split_step(const model_atmosphere *a, const sun_table *st, int su
             ray_point(a, h, r, mu, tm, &rt, &ht);
             ht = clampd(ht, 0.0, atmo_height(a));
             double mst = rt > 0.0 ? clampd((r * mus + tm * nu) / rt, -1.0, 1.0) : mus;
-            double vis = sun_visibility_rho2(rho2_of(a, ht), rt, mst) * (hi - lo) / (t1 - t0);
+            double mut;
+            double vis = sun_visibility_at(a, rho2_of(a, ht), rt, mst, &mut) * (hi - lo) / (t1 - t0);
             if (vis > 0.0) {
-                sun_T(a, st, sun_steps, ht, mst, T);
+                sun_T(a, st, sun_steps, ht, mut, T);
                 for (int c = 0; c < 3; ++c)
                     out[c] += vis * T[c];
             }
@@ -213,7 +214,7 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
                         continue;
                     }
                     double mst = clampd(A + B * cos_az[i], -1.0, 1.0);
-                    double vis = sun_visibility_rho2(rho2, rt, mst);
+                    double vis = sun_visibility_at(a, rho2, rt, mst, &mst); /* mst: where the transmittance is read */
                     if (vis <= 0.0)
                         continue;
                     if (st) {

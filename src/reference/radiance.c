@@ -75,11 +75,12 @@ static void sky_step(sky_ray *s, double t, double dt)
     ht = clampd(ht, 0.0, atmo_height(a));
     double mst = rt > 0.0 ? clampd((s->r * s->mus + t * s->nu) / rt, -1.0, 1.0) : s->mus;
     medium_at(a, ht, &m);
-    double vis = sun_visibility_rho2(rho2_of(a, ht), rt, mst);
+    double mut;
+    double vis = sun_visibility_at(a, rho2_of(a, ht), rt, mst, &mut);
     double Ts[3] = {0.0, 0.0, 0.0}, ps[3] = {0.0, 0.0, 0.0};
     if (vis > 0.0) {
         double tau[3];
-        optical_depth(a, ht, mst, s->sun_steps, tau);
+        optical_depth(a, ht, mut, s->sun_steps, tau);
         for (int c = 0; c < 3; ++c)
             Ts[c] = exp(-tau[c]);
     }

@@ -98,18 +98,33 @@ static inline void ray_point(const model_atmosphere *a, double h, double r, doub
     *ht = q / (s + a->bottom_radius);
 }
 
-/* Earth shadow (inclusive ground test toward the sun) times the horizon fade, at a point (rho2 = h (2Rb + h)). */
-static inline double sun_visibility_rho2(double rho2, double r, double mus)
+/* Sun visibility of the atmosphere's model (model/sun_visibility.h) at a point (rho2 = h (2Rb + h), r = Rb + h) and
+ * *mu_t, the sun zenith cosine at which to read the sun's transmittance. The lesson's fade: the earth shadow
+ * (inclusive ground test toward the sun) times saturate(10 mu_s + 0.5). The penumbra: the visible fraction of the
+ * disc, with two exact early outs that cost no trigonometry in the integrators' inner loops (asin(mu_s) >= mu_s for
+ * mu_s >= 0, and asin(mu_s) <= mu_s, atan(rho / Rb) <= rho / Rb below). */
+static inline double sun_visibility_at(const model_atmosphere *a, double rho2, double r, double mus, double *mu_t)
 {
-    if (mus < 0.0 && rho2 <= r * r * mus * mus)
+    *mu_t = mus;
+    if (a->sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE) {
+        if (mus < 0.0 && rho2 <= r * r * mus * mus)
+            return 0.0;
+        return clampd(10.0 * mus + 0.5, 0.0, 1.0);
+    }
+    double R = a->sun_angular_radius;
+    if (mus >= R && R > 0.0)
+        return 1.0;
+    double rho = sqrt(rho2 > 0.0 ? rho2 : 0.0);
+    if (mus + rho / a->bottom_radius <= -R)
         return 0.0;
-    return clampd(10.0 * mus + 0.5, 0.0, 1.0);
+    return model_sun_visibility(MODEL_SUN_VISIBILITY_PENUMBRA, rho, r, a->bottom_radius, mus, R, mu_t);
 }
 
-/* Where the sun visibility of the model is not smooth along a ray: the earth's shadow boundary (a jump) and
- * mu_s = -0.05 / +0.05 (the kinks of the horizon fade). Up to 6 distances in (0, tend), sorted. Integrating each
+/* Where the sun visibility of the lesson's model is not smooth along a ray: the earth's shadow boundary (a jump)
+ * and mu_s = -0.05 / +0.05 (the kinks of the horizon fade). Up to 6 distances in (0, tend), sorted. Integrating each
  * piece separately keeps the midpoint rule second-order (a jump inside a step makes it first order, a kink
- * makes its error erratic). */
+ * makes its error erratic). The penumbra is smooth (its width, 2R ~ 60 km of path at the ground, spans many
+ * steps): no cuts. */
 #define MAX_CUTS 6
 int ray_cuts(const model_atmosphere *a, double h, double mu, double mus, double nu, double tend, double *cuts);
 
