@@ -46,6 +46,12 @@ void main()
         float t_max = ray_hits_ground(h, mu) ? distance_to_ground(h, mu) : distance_to_top(h, mu);
         float dt = t_max / float(steps);
         vec3 throughput = vec3(1.0);
+        /* The first bounce's phase (sunlight scattered at the sample toward the texel's point, cosine nu): the
+         * lesson's isotropic 1/(4 pi), or with the penumbra the real Rayleigh and Mie phases (docs/model.md
+         * "Multiple scattering"): in the earth's shadow the light comes forward-scattered from lit air sunward. */
+        bool lesson = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE;
+        float phase_r = lesson ? 1.0 / (4.0 * PI) : rayleigh_phase(nu);
+        float phase_m = lesson ? 1.0 / (4.0 * PI) : mie_phase(nu, atmo.mie_absorption.w);
         for (int k = 0; k < steps; ++k) {
             float t = (float(k) + 0.5) * dt;
             float r_t;
@@ -57,8 +63,8 @@ void main()
             vec3 sun_t = texture(transmittance_lut, transmittance_uv(h_t, mu_t, t_size)).rgb;
             vec3 step_t = exp(-m.extinction * dt);
             vec3 integral = step_integral(m.extinction, dt, step_t);
-            /* Earth shadow baked in (seed bug 9); the isotropic phase 1/(4 pi) on the scattered light only. */
-            l_2nd += throughput * m.scattering * sun_t * visible / (4.0 * PI) * integral;
+            /* Earth shadow baked in (seed bug 9); the first bounce's phase on the scattered light only. */
+            l_2nd += throughput * (m.rayleigh * phase_r + m.mie * phase_m) * sun_t * visible * integral;
             f_ms += throughput * m.scattering * integral;
             throughput *= step_t;
         }

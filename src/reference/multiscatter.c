@@ -118,7 +118,7 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
     const double top = atmo_height(a), H = bruneton_H(a), r = a->bottom_radius + h;
     const int n_half = (n_az + 1) / 2;
     const size_t n_rays = (size_t)count * (size_t)n_half;
-    double *az = malloc(sizeof(double) * (2 * (size_t)n_half + 2 * (size_t)count + (MAX_CUTS + 2) * n_rays) +
+    double *az = malloc(sizeof(double) * (2 * (size_t)n_half + 2 * (size_t)count + (MAX_CUTS + 4) * n_rays) +
                         sizeof(int) * 2 * n_rays);
     double(*L)[3] = calloc((size_t)count, sizeof *L);
     double F[3] = {0.0, 0.0, 0.0};
@@ -133,7 +133,13 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
     double *cos_az = az, *w_az = az + n_half, *sin_s = az + 2 * n_half, *cos_s = sin_s + count;
     double *cut = cos_s + count;             /* [q][i][MAX_CUTS + 1]: ray_cuts of each (sun, azimuth) ray */
     double *nu_qi = cut + (MAX_CUTS + 1) * n_rays; /* [q][i] */
-    int *next_cut = (int *)(nu_qi + n_rays);       /* [q][i]: first cut not behind the current step */
+    double *pr_qi = nu_qi + n_rays, *pm_qi = pr_qi + n_rays; /* [q][i]: first-bounce phases (see below) */
+    int *next_cut = (int *)(pm_qi + n_rays);       /* [q][i]: first cut not behind the current step */
+    /* The first scattering of the second order (sunlight scattered at the sample toward the point): the lesson's
+     * isotropic phase, or with the penumbra the real Rayleigh and Mie phases of its angle, whose cosine is
+     * nu = dir.sun (docs/model.md "Multiple scattering"): in the earth's shadow the light comes from lit air
+     * toward the sun, forward-scattered, which the isotropic phase underestimates (Mie's forward lobe most). */
+    const int real_phase = a->sun_visibility != MODEL_SUN_VISIBILITY_LESSON_FADE;
     for (int i = 0; i < n_half; ++i) {
         cos_az[i] = cos(2.0 * REF_PI * (i + 0.5) / n_az);
         w_az[i] = ((2 * i + 1 == n_az) ? 1.0 : 2.0) * 2.0 * REF_PI / n_az;
@@ -154,21 +160,25 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
                 size_t qi = (size_t)q * n_half + i;
                 double *cq = cut + (MAX_CUTS + 1) * qi;
                 nu_qi[qi] = cos_az[i] * sin_phi * sin_s[q] + mu * cos_s[q];
+                pr_qi[qi] = real_phase ? phase_rayleigh(nu_qi[qi]) : 1.0 / (4.0 * REF_PI);
+                pm_qi[qi] = real_phase ? phase_hg(a->mie_g, nu_qi[qi]) : 1.0 / (4.0 * REF_PI);
                 int nc = graded ? ray_cuts(a, h, mu, cos_s[q], nu_qi[qi], tend, cq) : 0;
                 cq[nc] = INFINITY; /* sentinel */
                 next_cut[qi] = 0;
             }
         double Tv[3] = {1.0, 1.0, 1.0};
         for (int k = 0; k < steps; ++k) {
-            double t, dt, rt, ht, w[3];
+            double t, dt, rt, ht, w[3], wr[3], wm[3];
             medium m;
             ray_step(a, h, mu, tend, ground, graded, steps, k, &t, &dt);
             ray_point(a, h, r, mu, t, &rt, &ht);
             ht = clampd(ht, 0.0, top);
             medium_at(a, ht, &m);
             for (int c = 0; c < 3; ++c) {
-                double f = step_integral(m.ext[c], dt) * m.scat[c] * Tv[c];
-                w[c] = f * wj / (4.0 * REF_PI); /* isotropic phase */
+                double si = step_integral(m.ext[c], dt) * Tv[c], f = si * m.scat[c];
+                w[c] = f * wj / (4.0 * REF_PI); /* (only to skip empty steps) */
+                wr[c] = si * m.sr[c] * wj;       /* times the first-bounce phase, per (sun, azimuth) */
+                wm[c] = si * m.sm[c] * wj;
                 F[c] += f * wj * 2.0 * REF_PI;  /* every azimuth of this polar node has the same f */
                 Tv[c] *= exp(-m.ext[c] * dt);
             }
@@ -194,7 +204,7 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
             double ka = (r + t * mu) / rt, kb = t * sin_phi / rt;
             for (int q = 0; q < count; ++q) {
                 double A = ka * cos_s[q], B = kb * sin_s[q];
-                double acc[3] = {0.0, 0.0, 0.0};
+                double acc[3] = {0.0, 0.0, 0.0}, accm[3] = {0.0, 0.0, 0.0}; /* Rayleigh-phase, Mie-phase parts */
                 for (int i = 0; i < n_half; ++i) {
                     double T[3];
                     size_t qi = (size_t)q * n_half + i;
@@ -209,8 +219,10 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
                         while (ci[nx + nc] < t1)
                             ++nc;
                         ms_split_step(a, st, sun_steps, h, r, mu, cos_s[q], nu_qi[qi], t0, t1, ci + nx, nc, T);
-                        for (int c = 0; c < 3; ++c)
-                            acc[c] += w_az[i] * T[c];
+                        for (int c = 0; c < 3; ++c) {
+                            acc[c] += w_az[i] * pr_qi[qi] * T[c];
+                            accm[c] += w_az[i] * pm_qi[qi] * T[c];
+                        }
                         continue;
                     }
                     double mst = clampd(A + B * cos_az[i], -1.0, 1.0);
@@ -241,15 +253,17 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
                         sun_T(a, NULL, sun_steps, ht, mst, T);
                     }
                     vis *= w_az[i];
-                    for (int c = 0; c < 3; ++c)
-                        acc[c] += vis * T[c];
+                    for (int c = 0; c < 3; ++c) {
+                        acc[c] += vis * pr_qi[qi] * T[c];
+                        accm[c] += vis * pm_qi[qi] * T[c];
+                    }
                 }
                 for (int c = 0; c < 3; ++c)
-                    L[q][c] += w[c] * acc[c];
+                    L[q][c] += wr[c] * acc[c] + wm[c] * accm[c];
             }
         }
     }
-    /* L and F are integrals over the sphere (L carries the isotropic phase 1/(4 pi)); the model's average over
+    /* L and F are integrals over the sphere (L carries the first bounce's phase); the model's average over
      * directions divides both by 4 pi. f_ms < 1 always (sigma_s <= sigma_t). */
     for (int q = 0; q < count; ++q)
         for (int c = 0; c < 3; ++c) {

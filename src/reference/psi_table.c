@@ -241,9 +241,11 @@ static unsigned long long g_psi_clock;
 
 const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps)
 {
-    /* Psi is per unit sun illuminance and isotropic: the key leaves out E and g. */
+    /* Psi is per unit sun illuminance: the key leaves out E, and g where the first bounce is isotropic (the
+     * lesson's model; the penumbra's uses the real phases, multiscatter.c). */
     model_atmosphere a = *a_in;
-    a.mie_g = 0.0;
+    if (a.sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE)
+        a.mie_g = 0.0;
     a.sun_illuminance[0] = a.sun_illuminance[1] = a.sun_illuminance[2] = 0.0;
     psi_cache_slot *victim = &g_psi_cache[0];
     for (int i = 0; i < PSI_CACHE_SLOTS; ++i) {

@@ -137,7 +137,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     /* 1. LUTs, only when the atmosphere changed: transmittance, then multi-scattering (reads transmittance). */
     if (f->force_luts || sky_renderer_luts_dirty(r)) {
         record_luts(r, cmd);
-        r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere);
+        r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
         r->luts_valid = true;
     }
 

@@ -255,7 +255,7 @@ void sky_renderer_set_features(sky_renderer *r, const sky_features *f)
 
 bool sky_renderer_luts_dirty(const sky_renderer *r)
 {
-    return !r->luts_valid || r->lut_hash != sky_atmosphere_lut_hash(&r->atmosphere);
+    return !r->luts_valid || r->lut_hash != sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
 }
 
 static double now_ms(void)
