@@ -1,7 +1,8 @@
 /* tools/tradeoff: the speed/accuracy trade, measured.
  *
  * For every configuration (the presets and a sweep of the knobs) and every scene of the fixed set (noon,
- * afternoon, sunset, twilight, 10 km at the horizon, 400 km at the limb):
+ * afternoon, sunset (sun +2), twilight (-4), 10 km at the horizon, 400 km at the limb, the sun on the horizon (0),
+ * twilight at -2; quality_scenes):
  *   - GPU time: per-pass timestamps, median over --frames frames after warm-up, at --size (no readback);
  *   - error: a small frame (--error-size, bloom off) against the converged CPU reference of the same view:
  *     relative luminance error over sky pixels (mean, p95, max) and mean CIEDE2000 of the tone-mapped images.
@@ -213,11 +214,11 @@ int main(int argc, char **argv)
     model_atmosphere a;
     model_atmosphere_earth(&a);
     int nconf = 4 + quality_sweep_count;
-    row *rows = calloc((size_t)nconf * 6, sizeof *rows);
+    row *rows = calloc((size_t)nconf * QUALITY_SCENE_COUNT, sizeof *rows);
     int count = 0;
-    float *refs[6];
-    unsigned char *masks[6];
-    for (int s = 0; s < 6; ++s) {
+    float *refs[QUALITY_SCENE_COUNT];
+    unsigned char *masks[QUALITY_SCENE_COUNT];
+    for (int s = 0; s < QUALITY_SCENE_COUNT; ++s) {
         refs[s] = reference_image(&a, &quality_scenes[s], ew, eh);
         masks[s] = malloc((size_t)ew * eh);
         error_mask(&a, &quality_scenes[s], ew, eh, masks[s]);
@@ -228,7 +229,7 @@ int main(int argc, char **argv)
     for (int c = 0; c < nconf; ++c) {
         const quality_config *q = c < 4 ? &quality_presets[c] : &quality_sweep[c - 4];
         if (!wanted(configs, q->name)) continue;
-        for (int s = 0; s < 6; ++s) {
+        for (int s = 0; s < QUALITY_SCENE_COUNT; ++s) {
             row *r = &rows[count++];
             r->config = q->name;
             r->scene = s;

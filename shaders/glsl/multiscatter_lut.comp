@@ -28,6 +28,10 @@ void main()
     /* Seed bug 1: clamp 10 m above the ground so no direction starts exactly on the sphere. */
     float h = clamp(multiscatter_h_of_y(sub_uv_to_unit(uv.y, size.y)), MULTISCATTER_MIN_ALTITUDE, top_altitude());
     vec3 sun = vec3(sqrt(max(0.0, 1.0 - mu_s * mu_s)), mu_s, 0.0);
+    /* The weight of the real phases in the first bounce: the point's own sun occlusion (0 for the lesson's model:
+     * isotropic; see the reference's multiscatter.c and docs/model.md). */
+    float mu_t_point;
+    float shade = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE ? 0.0 : 1.0 - sun_visibility(h, mu_s, mu_t_point);
 
     int sqrt_dirs = int(atmo.lut_steps.z);
     int dir_count = sqrt_dirs * sqrt_dirs;
@@ -46,12 +50,11 @@ void main()
         float t_max = ray_hits_ground(h, mu) ? distance_to_ground(h, mu) : distance_to_top(h, mu);
         float dt = t_max / float(steps);
         vec3 throughput = vec3(1.0);
-        /* The first bounce's phase (sunlight scattered at the sample toward the texel's point, cosine nu): the
-         * lesson's isotropic 1/(4 pi), or with the penumbra the real Rayleigh and Mie phases (docs/model.md
-         * "Multiple scattering"): in the earth's shadow the light comes forward-scattered from lit air sunward. */
-        bool lesson = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE;
-        float phase_r = lesson ? 1.0 / (4.0 * PI) : rayleigh_phase(nu);
-        float phase_m = lesson ? 1.0 / (4.0 * PI) : mie_phase(nu, atmo.mie_absorption.w);
+        /* The first bounce's phase (sunlight scattered at the sample toward the texel's point, cosine nu):
+         * isotropic where the point is lit, the real Rayleigh and Mie phases where it is in the earth's shadow
+         * (docs/model.md "Multiple scattering"): there the light comes forward-scattered from lit air sunward. */
+        float phase_r = 1.0 / (4.0 * PI) + shade * (rayleigh_phase(nu) - 1.0 / (4.0 * PI));
+        float phase_m = 1.0 / (4.0 * PI) + shade * (mie_phase(nu, atmo.mie_absorption.w) - 1.0 / (4.0 * PI));
         for (int k = 0; k < steps; ++k) {
             float t = (float(k) + 0.5) * dt;
             float r_t;
