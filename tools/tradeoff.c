@@ -9,7 +9,7 @@
  * Writes a CSV (plot it with tools/plot_tradeoff.sh) and optionally the C table that --max-error chooses from.
  *
  *   tradeoff [--size WxH] [--error-size WxH] [--frames N] [--csv FILE] [--emit-table FILE]
- *            [--configs a,b,...] [--device N]
+ *            [--configs a,b,...] [--device N] [--sun-visibility penumbra|lesson-fade]
  */
 #include "app/quality.h"
 #include "io/image_io.h"
@@ -194,6 +194,7 @@ int main(int argc, char **argv)
 {
     int tw = 1920, th = 1080, ew = 96, eh = 54, frames = 30, device = -1;
     const char *csv = "tradeoff.csv", *table = NULL, *configs = NULL;
+    bool lesson = false;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) { fprintf(stderr, "tradeoff: %s needs a value\n", a); return 2; }
@@ -204,6 +205,8 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--emit-table")) table = v, ++i;
         else if (!strcmp(a, "--configs")) configs = v, ++i;
         else if (!strcmp(a, "--device")) device = atoi(v), ++i;
+        else if (!strcmp(a, "--sun-visibility") && (!strcmp(v, "penumbra") || !strcmp(v, "lesson-fade")))
+            lesson = !strcmp(v, "lesson-fade"), ++i;
         else { fprintf(stderr, "tradeoff: bad argument %s %s\n", a, v); return 2; }
     }
     gpu_context ctx;
@@ -213,6 +216,7 @@ int main(int argc, char **argv)
             frames, ew, eh);
     model_atmosphere a;
     model_atmosphere_earth(&a);
+    if (lesson) a.sun_visibility = MODEL_SUN_VISIBILITY_LESSON_FADE;
     int nconf = 4 + quality_sweep_count;
     row *rows = calloc((size_t)nconf * QUALITY_SCENE_COUNT, sizeof *rows);
     int count = 0;

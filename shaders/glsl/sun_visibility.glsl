@@ -54,6 +54,7 @@ float sun_visibility(float h, float mu_s, out float mu_t)
     float R = atmo.sun.w;
     if (mu_s >= R && R > 0.0) return 1.0;   /* asin(mu_s) >= mu_s: the whole disc is up, no trigonometry */
     float rho = sqrt(rho2_of(h));
+    if (mu_s + rho / ground_radius() <= -R) return 0.0;   /* asin(mu_s) <= mu_s, atan(rho, Rb) <= rho / Rb: all hidden */
     float elevation = asin(clamp(mu_s, -1.0, 1.0));
     float d = elevation + atan(rho, ground_radius());
     if (!(R > 0.0)) return d > 0.0 ? 1.0 : 0.0;
