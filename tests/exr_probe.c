@@ -1,7 +1,7 @@
 /* exr_probe FILE.exr X Y [X Y ...]: print "R G B" (scene-linear, %.6g) of each pixel (x, y), y = 0 at the top, one
  * line per pixel. A helper of tests/scene_test.sh. Exit 0 ok, 1 unreadable file, 2 bad arguments or a pixel out
  * of the image. */
-#include "io/image_io.h"
+#include "io/exr_read.h"
 #include <stdio.h>
 #include <stdlib.h>
 

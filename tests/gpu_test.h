@@ -2,9 +2,9 @@
  * rendering a view into host memory, and check macros. Any validation message fails the test. */
 #ifndef VKSKY_GPU_TEST_H
 #define VKSKY_GPU_TEST_H
-#include "io/image_io.h"
+#include "io/half_float.h"
 #include "reference/ref_atmosphere.h"
-#include "sky/renderer.h"
+#include "sky/submit.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -70,6 +70,24 @@ static inline test_frame test_renderer_frame(test_renderer *t, const sky_view *v
     for (size_t i = 0; i < 4 * n; ++i) out.linear[i] = io_half_to_float(half[i]);
     memcpy(out.display, t->r.readback_display.mapped, 4 * n);
     return out;
+}
+
+/* A LUT on the host as RGBA floats (rgba_out holds 4 x the extent's texels; untouched when the variant has no such
+   LUT): the renderer hands back the stored texels, half floats are widened here. */
+static inline void test_read_lut(sky_renderer *r, int which, float *rgba_out)
+{
+    VkExtent2D e = sky_renderer_lut_extent(r, which);
+    size_t count = (size_t)e.width * e.height * 4;
+    void *texels = malloc(count * sizeof(float));
+    if (!texels) return;
+    VkFormat format = sky_renderer_read_lut(r, which, texels);
+    if (format == VK_FORMAT_R32G32B32A32_SFLOAT) {
+        memcpy(rgba_out, texels, count * sizeof(float));
+    } else if (format == VK_FORMAT_R16G16B16A16_SFLOAT) {
+        const uint16_t *h = texels;
+        for (size_t i = 0; i < count; ++i) rgba_out[i] = io_half_to_float(h[i]);
+    }
+    free(texels);
 }
 
 static inline void test_renderer_destroy(test_renderer *t) { sky_renderer_destroy(&t->r); }

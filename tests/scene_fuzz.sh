@@ -61,7 +61,10 @@ argv_accepted=0 argv_rejected=0
 RANDOM=2020
 for i in $(seq 1 "$N"); do
     args=()
-    for k in $(seq 1 $((RANDOM % 4 + 1))); do
+    # The count is drawn here, in this shell: $RANDOM inside $(...) runs in a subshell, which reseeds it (the count
+    # would then differ from run to run) and does not advance this shell's sequence.
+    nflags=$((RANDOM % 4 + 1))
+    for k in $(seq 1 "$nflags"); do
         args+=("${flags[RANDOM % ${#flags[@]}]}")
         [ $((RANDOM % 5)) -eq 0 ] || args+=("${values[RANDOM % ${#values[@]}]}")
     done

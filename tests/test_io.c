@@ -1,4 +1,4 @@
-/* Standalone test for src/io/image_io.c. Exits non-zero on any failure.
+/* Standalone test for src/io/ (exr_write, exr_read, png_io, atomic_file, half_float). Exits non-zero on any failure.
  *
  * Covers: float<->half edge cases; a 2-layer (default + "mie") 37x21 EXR round trip with exact half bits;
  * `exrheader` accepting the file and reporting ZIP compression; the EXR reader on files written directly
@@ -12,7 +12,11 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr_read.h"
+#include "io/exr_write.h"
+#include "io/half_float.h"
+#include "io/png_io.h"
 
 #include <dirent.h>
 #include <errno.h>

@@ -21,8 +21,8 @@ int main(void)
 
     enum { TW = 256, TH = 64, MN = 32 };   /* the default LUT sizes */
     static float trans[TW * TH * 4], ms[MN * MN * 4];
-    sky_renderer_read_lut(&r, 0, trans);
-    sky_renderer_read_lut(&r, 1, ms);
+    test_read_lut(&r, 0, trans);
+    test_read_lut(&r, 1, ms);
 
     /* Transmittance: all four edges, the corners and an interior grid (>= 20 texels). */
     int xs[] = {0, 1, 37, 128, 200, 254, TW - 1};

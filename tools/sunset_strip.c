@@ -9,7 +9,7 @@
  *
  *   sunset_strip OUT.png [--width W] [--height H] [--samples N] [--threads T]
  */
-#include "io/image_io.h"
+#include "io/png_io.h"
 #include "reference/metrics.h"
 #include "reference/path_tracer.h"
 

@@ -12,8 +12,9 @@
  *            [--configs a,b,...] [--device N] [--sun-visibility penumbra|lesson-fade]
  */
 #include "app/quality.h"
-#include "io/image_io.h"
+#include "io/half_float.h"
 #include "reference/metrics.h"
+#include "sky/submit.h"
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>

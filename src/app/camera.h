@@ -6,7 +6,7 @@
  * moves (parallel transport: no pole, no sudden twist). */
 #ifndef VKSKY_APP_CAMERA_H
 #define VKSKY_APP_CAMERA_H
-#include "sky/renderer.h"
+#include "sky/view_params.h"
 
 #define CAMERA_GROUND_RADIUS_KM 6360.0
 #define CAMERA_MIN_ALTITUDE_KM 0.0005     /* never inside the planet: half a metre above the ground */

@@ -1,5 +1,8 @@
 #include "app/headless.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr_write.h"
+#include "io/png_io.h"
+#include "sky/submit.h"
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>

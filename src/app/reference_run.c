@@ -1,5 +1,7 @@
 #include "app/reference_run.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/exr_write.h"
+#include "io/half_float.h"
 #include "reference/path_tracer.h"
 #include <math.h>
 #include <pthread.h>

@@ -32,7 +32,7 @@
  * Rules:
  *  - Species: rayleigh, mie and ozone only. Rayleigh absorption and ozone scattering must be 0 (the model has
  *    neither). Density profiles: exponential (rayleigh, mie), tent (ozone).
- *  - A field that has a command-line flag has that flag's range (looked up in options.c's flag table, not copied):
+ *  - A field that has a command-line flag has that flag's range (looked up in the flag table, app/flags.c, not copied):
  *    e.g. camera.fov_deg as --fov, species.mie.phase.g as --mie-g, quality.max_steps as --max-steps (or 0: fixed).
  *    Fields without a flag: radii in [1, 1e6] km with atmosphere_top_km > ground_radius_km, coefficients in
  *    [0, 1000] /km, scale heights and the tent's half width in [0.01, 1000] km, its centre in [0, 1000] km.
@@ -46,18 +46,13 @@
  * "vksky: --scene: cannot read 'FILE': reason" for an unreadable file. */
 #ifndef VKSKY_APP_SCENE_H
 #define VKSKY_APP_SCENE_H
-#include "app/options.h"
-#include <stdio.h>
+#include "app/options_struct.h"
 
 /* Load a scene file onto *o (fields present override what *o holds; a quality preset the scene names is applied
  * first, its knob fields after it, and o->quality is set to the preset's name). 0: ok; 2: bad input (one line
  * printed on stderr; *o may be partly changed). */
 int scene_load(const char *path, options *o);
 
-/* Print the scene *o describes as JSON (the schema above, every field present). 0: ok; 1: out of memory. */
-int scene_dump(const options *o, FILE *out);
-
-/* The inclusive range of a numeric command-line flag (defined in options.c, from its flag table); false if the
- * flag is unknown or takes no range. */
-bool options_flag_range(const char *flag_name, double *min, double *max);
+/* The "description" of the scene loaded last (NULL: none, or it had none); --dump-scene writes it back. */
+const char *scene_loaded_description(void);
 #endif

@@ -12,88 +12,23 @@
  * writes, the optional screenshot copy and that layout transition all happen before presentation.
  *
  * Swapchain life: recreated (with oldSwapchain) when the framebuffer size changes, or acquire/present say
- * OUT_OF_DATE or SUBOPTIMAL; no frame is drawn while the window is minimised (we sleep in glfwWaitEvents). */
-#include <volk.h>
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
-
-#include "app/camera.h"
+ * OUT_OF_DATE or SUBOPTIMAL; no frame is drawn while the window is minimised (we sleep in glfwWaitEvents).
+ *
+ * The window in three files: this one (the loop, frames in flight, screenshot, title, setup), swapchain.c (the
+ * swapchain's life) and window_input.c (the controls); their shared state is app/window_app.h. */
+#include "app/window_app.h"
 #include "app/window.h"
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/png_io.h"
+#include "sky/frame.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define FRAMES_IN_FLIGHT 2
-#define MAX_IMAGES 8
-#define SUN_RATE_DEG_S 30.0
-#define AUTO_SUN_RATE_DEG_S 15.0
-#define LOOK_DEG_PER_PIXEL 0.1
 #define TITLE_PERIOD_S 0.5
 
 static const char NO_DISPLAY[] = "vksky: no display available (DISPLAY/WAYLAND_DISPLAY unset or unusable); use "
                                  "--render FILE.exr|FILE.png for headless rendering";
-
-typedef struct swapchain {
-    VkSwapchainKHR handle;
-    VkSurfaceFormatKHR format;
-    VkExtent2D extent;
-    uint32_t count;
-    VkImage images[MAX_IMAGES];
-    VkImageView views[MAX_IMAGES];
-    VkSemaphore render_finished[MAX_IMAGES];   /* per image: see the top of the file */
-    bool can_copy;                             /* TRANSFER_SRC usage: screenshots */
-} swapchain;
-
-typedef struct frame_slot {
-    VkCommandBuffer cmd;
-    VkFence done;              /* signalled when this slot's last submission finished */
-    VkSemaphore acquired;
-    gpu_timer timer;
-    bool timer_unread;         /* submitted; its timestamps are not yet read */
-} frame_slot;
-
-typedef struct input_state {
-    bool captured;             /* cursor disabled: mouse look */
-    bool have_cursor;
-    double cursor_x, cursor_y;
-    double look_dx, look_dy;   /* pixels since the last frame */
-    bool auto_sun;
-} input_state;
-
-typedef struct stats {
-    double start, title_time, last_frame;
-    long title_frames;
-    double gpu_ms_sum, gpu_ms_total;
-    long gpu_samples, gpu_samples_total;
-} stats;
-
-typedef struct test_hooks {
-    bool resize;               /* VKSKY_TEST_RESIZE=1: resize 3 times, minimise and restore once */
-    long last_frame;           /* the presented count the hook last acted on */
-    int minimized_waits;       /* > 0: we minimised the window; restore after a few idle waits */
-    bool hid;                  /* no window manager iconified it: we unmapped it ourselves */
-} test_hooks;
-
-typedef struct app {
-    const options *o;
-    GLFWwindow *window;
-    gpu_context ctx;
-    VkSurfaceKHR surface;
-    swapchain sc;
-    frame_slot frames[FRAMES_IN_FLIGHT];
-    uint32_t slot;
-    sky_renderer renderer;
-    sky_view view;
-    camera cam;
-    input_state in;
-    stats st;
-    test_hooks test;
-    bool swapchain_dirty;      /* resize seen, or acquire/present reported OUT_OF_DATE / SUBOPTIMAL */
-    long presented;
-    bool traced;
-    int status;
-} app;
 
 /* --- GLFW errors: kept, not printed (no-display runs must print exactly one line) ------------------------- */
 
@@ -104,111 +39,7 @@ static void on_glfw_error(int code, const char *text)
     snprintf(glfw_error, sizeof glfw_error, "GLFW error 0x%x: %s", code, text ? text : "");
 }
 
-/* --- Controls ---------------------------------------------------------------------------------------------- */
-
-static void print_controls(void)
-{
-    printf("vksky controls\n"
-           "  W A S D        fly forward / left / back / right (0.2 km/s)\n"
-           "  Space / C      fly up / down (along the local vertical)\n"
-           "  Left Shift     10x speed\n"
-           "  mouse          look around (click the window to capture the cursor)\n"
-           "  Left / Right   sun azimuth (30 deg/s)\n"
-           "  Up / Down      sun elevation (30 deg/s, -90..90)\n"
-           "  T              automatic sun rotation (azimuth, 15 deg/s) on/off\n"
-           "  1 / 2 / 3      tone map: clamp / Reinhard / ACES\n"
-           "  = + / -        exposure +/- 0.5 EV\n"
-           "  B              bloom on/off\n"
-           "  Escape         release the mouse; again: quit\n"
-           "  F5             reload the --scene file (recomputes only what changed)\n"
-           "  F1 / H         this table\n");
-    fflush(stdout);
-}
-
-static void set_captured(app *a, bool captured)
-{
-    a->in.captured = captured;
-    a->in.have_cursor = false;   /* the first motion after a mode change is a jump, not a look */
-    glfwSetInputMode(a->window, GLFW_CURSOR, captured ? GLFW_CURSOR_DISABLED : GLFW_CURSOR_NORMAL);
-    if (glfwRawMouseMotionSupported())
-        glfwSetInputMode(a->window, GLFW_RAW_MOUSE_MOTION, captured ? GLFW_TRUE : GLFW_FALSE);
-}
-
-static const char *tonemap_name(int t)
-{
-    return t == VKSKY_TONEMAP_CLAMP ? "clamp" : t == VKSKY_TONEMAP_REINHARD ? "reinhard" : "aces";
-}
-
-/* Discrete keys (toggles, steps) act on the press; held keys are polled once a frame in read_input. */
-/* F5: reload the scene file's medium and features. The renderer recomputes only what changed: the LUTs when
- * their inputs' hash changed, the pipelines when the variant changed. The camera and the sun stay where the user
- * put them. A broken file leaves the current scene (its one-line error is printed). */
-static void reload_scene(app *a)
-{
-    if (!a->o->scene_path) {
-        printf("F5: no --scene file to reload\n");
-        return;
-    }
-    char *argv[] = {"vksky", "--scene", (char *)a->o->scene_path, "--render", "x.png"};
-    options fresh;
-    if (options_parse(&fresh, 5, argv) != 0) return;
-    /* The atmosphere uniform buffer is shared by the frames in flight: wait for them before rewriting it. */
-    vkDeviceWaitIdle(a->ctx.device);
-    sky_variant before = a->renderer.variant;
-    sky_renderer_set_atmosphere(&a->renderer, &fresh.atmosphere, options_sun_radius_rad(&fresh));
-    sky_features features = options_features(&fresh);
-    sky_renderer_set_features(&a->renderer, &features);
-    printf("scene reloaded: %s (LUTs %s, pipelines %s)\n", a->o->scene_path,
-           sky_renderer_luts_dirty(&a->renderer) ? "recomputed" : "kept",
-           memcmp(&before, &a->renderer.variant, sizeof before) ? "rebuilt" : "kept");
-    fflush(stdout);
-}
-
-static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
-{
-    (void)scancode, (void)mods;
-    if (action != GLFW_PRESS) return;
-    app *a = glfwGetWindowUserPointer(w);
-    sky_view *v = &a->view;
-    switch (key) {
-    case GLFW_KEY_ESCAPE:
-        if (a->in.captured) set_captured(a, false);
-        else glfwSetWindowShouldClose(w, GLFW_TRUE);
-        return;
-    case GLFW_KEY_T: a->in.auto_sun = !a->in.auto_sun; printf("auto sun %s\n", a->in.auto_sun ? "on" : "off"); break;
-    case GLFW_KEY_1: v->tonemap = VKSKY_TONEMAP_CLAMP; break;
-    case GLFW_KEY_2: v->tonemap = VKSKY_TONEMAP_REINHARD; break;
-    case GLFW_KEY_3: v->tonemap = VKSKY_TONEMAP_ACES; break;
-    case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: v->exposure_ev = fmin(20.0, v->exposure_ev + 0.5); break;
-    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: v->exposure_ev = fmax(-20.0, v->exposure_ev - 0.5); break;
-    case GLFW_KEY_B: v->bloom = !v->bloom; printf("bloom %s\n", v->bloom ? "on" : "off"); break;
-    case GLFW_KEY_F1: case GLFW_KEY_H: print_controls(); return;
-    case GLFW_KEY_F5: reload_scene(a); return;
-    default: return;
-    }
-    if (key >= GLFW_KEY_1 && key <= GLFW_KEY_3) printf("tonemap %s\n", tonemap_name(v->tonemap));
-    if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD || key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT)
-        printf("exposure %+.1f EV\n", v->exposure_ev);
-    fflush(stdout);
-}
-
-static void on_mouse_button(GLFWwindow *w, int button, int action, int mods)
-{
-    (void)mods;
-    app *a = glfwGetWindowUserPointer(w);
-    if (button == GLFW_MOUSE_BUTTON_LEFT && action == GLFW_PRESS && !a->in.captured) set_captured(a, true);
-}
-
-static void on_cursor(GLFWwindow *w, double x, double y)
-{
-    app *a = glfwGetWindowUserPointer(w);
-    if (a->in.captured && a->in.have_cursor) {
-        a->in.look_dx += x - a->in.cursor_x;
-        a->in.look_dy += y - a->in.cursor_y;
-    }
-    a->in.cursor_x = x, a->in.cursor_y = y, a->in.have_cursor = true;
-}
-
+/* The framebuffer changed size: the loop recreates the swapchain before its next frame. */
 static void on_framebuffer_size(GLFWwindow *w, int width, int height)
 {
     (void)width, (void)height;
@@ -216,135 +47,14 @@ static void on_framebuffer_size(GLFWwindow *w, int width, int height)
     a->swapchain_dirty = true;
 }
 
-static double key_axis(GLFWwindow *w, int positive, int negative)
-{
-    return (glfwGetKey(w, positive) == GLFW_PRESS ? 1.0 : 0.0) - (glfwGetKey(w, negative) == GLFW_PRESS ? 1.0 : 0.0);
-}
-
-/* Held keys and the mouse since the last frame -> camera and sun, over dt seconds of wall time. */
-static void read_input(app *a, double dt)
-{
-    GLFWwindow *w = a->window;
-    camera_input in = {
-        .forward = key_axis(w, GLFW_KEY_W, GLFW_KEY_S),
-        .right = key_axis(w, GLFW_KEY_D, GLFW_KEY_A),
-        .up = key_axis(w, GLFW_KEY_SPACE, GLFW_KEY_C),
-        .boost = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS,
-        .yaw_deg = a->in.look_dx * LOOK_DEG_PER_PIXEL,
-        .pitch_deg = -a->in.look_dy * LOOK_DEG_PER_PIXEL,   /* screen y grows downwards */
-        .sun_azimuth_deg = (key_axis(w, GLFW_KEY_RIGHT, GLFW_KEY_LEFT) * SUN_RATE_DEG_S +
-                            (a->in.auto_sun ? AUTO_SUN_RATE_DEG_S : 0.0)) * dt,
-        .sun_elevation_deg = key_axis(w, GLFW_KEY_UP, GLFW_KEY_DOWN) * SUN_RATE_DEG_S * dt,
-    };
-    a->in.look_dx = a->in.look_dy = 0.0;
-    camera_update(&a->cam, &in, dt);
-    camera_to_view(&a->cam, &a->view);
-}
-
-/* --- Swapchain --------------------------------------------------------------------------------------------- */
-
-/* An 8-bit sRGB format lets the hardware encode; a UNORM one makes the spine tell the tone map to encode sRGB
- * itself (frame.c checks the format). Anything else: the surface's first format. */
-static VkSurfaceFormatKHR choose_format(const app *a)
-{
-    VkSurfaceFormatKHR formats[64];
-    uint32_t n = 64;
-    VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(a->ctx.physical, a->surface, &n, formats));
-    static const VkFormat preferred[] = {VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_B8G8R8A8_UNORM,
-                                         VK_FORMAT_R8G8B8A8_UNORM};
-    for (size_t p = 0; p < sizeof preferred / sizeof preferred[0]; ++p)
-        for (uint32_t i = 0; i < n; ++i)
-            if (formats[i].format == preferred[p] && formats[i].colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
-                return formats[i];
-    return formats[0];
-}
-
-static void swapchain_destroy_views(app *a, swapchain *sc)
-{
-    for (uint32_t i = 0; i < sc->count; ++i) {
-        vkDestroyImageView(a->ctx.device, sc->views[i], NULL);
-        vkDestroySemaphore(a->ctx.device, sc->render_finished[i], NULL);
-    }
-    sc->count = 0;
-}
-
-static VkExtent2D swapchain_extent(const app *a, const VkSurfaceCapabilitiesKHR *caps)
-{
-    if (caps->currentExtent.width != UINT32_MAX) return caps->currentExtent;
-    int w, h;
-    glfwGetFramebufferSize(a->window, &w, &h);
-    VkExtent2D e = {(uint32_t)w, (uint32_t)h};
-    e.width = e.width < caps->minImageExtent.width ? caps->minImageExtent.width : e.width;
-    e.width = e.width > caps->maxImageExtent.width ? caps->maxImageExtent.width : e.width;
-    e.height = e.height < caps->minImageExtent.height ? caps->minImageExtent.height : e.height;
-    e.height = e.height > caps->maxImageExtent.height ? caps->maxImageExtent.height : e.height;
-    return e;
-}
-
-static void swapchain_create_views(app *a, swapchain *sc)
-{
-    const gpu_context *ctx = &a->ctx;
-    sc->count = MAX_IMAGES;
-    VK_CHECK(vkGetSwapchainImagesKHR(ctx->device, sc->handle, &sc->count, sc->images));
-    VkSemaphoreCreateInfo sinfo = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-    for (uint32_t i = 0; i < sc->count; ++i) {
-        VkImageViewCreateInfo vinfo = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = sc->images[i],
-                                       .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = sc->format.format,
-                                       .subresourceRange = gpu_color_range(0, 1)};
-        VK_CHECK(vkCreateImageView(ctx->device, &vinfo, NULL, &sc->views[i]));
-        VK_CHECK(vkCreateSemaphore(ctx->device, &sinfo, NULL, &sc->render_finished[i]));
-        char name[48];
-        snprintf(name, sizeof name, "swapchain image %u", i);
-        gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE, (uint64_t)sc->images[i], name);
-        gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)sc->views[i], name);
-        snprintf(name, sizeof name, "render finished %u", i);
-        gpu_set_name(ctx, VK_OBJECT_TYPE_SEMAPHORE, (uint64_t)sc->render_finished[i], name);
-    }
-}
-
-/* (Re)create the swapchain at the surface's current size. Returns false while the surface has no area
- * (minimised). The caller has waited for the device to go idle: nothing still uses the old images, their
- * views or semaphores (a present's semaphore wait is a queue operation, finished once the queue is idle). */
-static bool swapchain_create(app *a)
-{
-    const gpu_context *ctx = &a->ctx;
-    swapchain *sc = &a->sc;
-    VkSurfaceCapabilitiesKHR caps;
-    VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(ctx->physical, a->surface, &caps));
-    VkExtent2D extent = swapchain_extent(a, &caps);
-    if (extent.width == 0 || extent.height == 0) return false;
-    uint32_t count = caps.minImageCount + 1;   /* one spare: acquire need not wait for the oldest present */
-    if (caps.maxImageCount && count > caps.maxImageCount) count = caps.maxImageCount;
-    if (count > MAX_IMAGES) count = MAX_IMAGES;
-    sc->can_copy = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
-    VkSwapchainKHR old = sc->handle;
-    VkSwapchainCreateInfoKHR info = {
-        .sType = VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR, .surface = a->surface, .minImageCount = count,
-        .imageFormat = sc->format.format, .imageColorSpace = sc->format.colorSpace, .imageExtent = extent,
-        .imageArrayLayers = 1,
-        .imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (sc->can_copy ? VK_IMAGE_USAGE_TRANSFER_SRC_BIT : 0),
-        .imageSharingMode = VK_SHARING_MODE_EXCLUSIVE, .preTransform = caps.currentTransform,
-        .compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR, .presentMode = VK_PRESENT_MODE_FIFO_KHR,  /* always there */
-        .clipped = VK_TRUE, .oldSwapchain = old,
-    };
-    if (!(caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR))
-        info.compositeAlpha = VK_COMPOSITE_ALPHA_INHERIT_BIT_KHR;
-    VK_CHECK(vkCreateSwapchainKHR(ctx->device, &info, NULL, &sc->handle));
-    swapchain_destroy_views(a, sc);
-    if (old) vkDestroySwapchainKHR(ctx->device, old, NULL);
-    sc->extent = extent;
-    swapchain_create_views(a, sc);
-    gpu_set_name(ctx, VK_OBJECT_TYPE_SWAPCHAIN_KHR, (uint64_t)sc->handle, "swapchain");
-    if (a->test.resize) printf("swapchain %ux%u images %u\n", extent.width, extent.height, sc->count);
-    return true;
-}
+/* --- Swapchain recreation (swapchain.c) and the renderer's size -------------------------------------------- */
 
 /* Resize, OUT_OF_DATE or SUBOPTIMAL: a new swapchain and a renderer of the new size. Waiting for the device
  * first keeps it simple: nothing in flight still uses the old swapchain or the old-size render targets. */
 static void swapchain_recreate(app *a)
 {
     VK_CHECK(vkDeviceWaitIdle(a->ctx.device));
-    if (!swapchain_create(a)) {
+    if (!swapchain_create(&a->sc, &a->ctx, a->surface, a->window, a->test.resize)) {
         /* The surface has no area yet (minimised, or the resize still on its way): stay dirty, don't spin. */
         glfwWaitEventsTimeout(0.05);
         return;
@@ -612,7 +322,7 @@ static void run_loop(app *a)
         }
         double now = glfwGetTime(), dt = fmin(1.0, now - a->st.last_frame);
         a->st.last_frame = now;
-        read_input(a, dt);
+        window_input_read(a, dt);
         bool last = quitting || (o->frames && a->presented + 1 == o->frames);
         if (last && o->screenshot) {
             if (draw_screenshot_frame(a)) break;
@@ -644,9 +354,7 @@ static int open_window(app *a)
         return 1;
     }
     glfwSetWindowUserPointer(a->window, a);
-    glfwSetKeyCallback(a->window, on_key);
-    glfwSetMouseButtonCallback(a->window, on_mouse_button);
-    glfwSetCursorPosCallback(a->window, on_cursor);
+    window_input_install(a);
     glfwSetFramebufferSizeCallback(a->window, on_framebuffer_size);
     return 0;
 }
@@ -678,8 +386,8 @@ static int open_device(app *a)
 static int start_rendering(app *a)
 {
     const options *o = a->o;
-    a->sc.format = choose_format(a);
-    if (!swapchain_create(a)) {
+    a->sc.format = swapchain_choose_format(&a->ctx, a->surface);
+    if (!swapchain_create(&a->sc, &a->ctx, a->surface, a->window, a->test.resize)) {
         /* Created minimised: start at the requested size; the loop recreates once the window has an area. */
         a->sc.extent = (VkExtent2D){(uint32_t)o->width, (uint32_t)o->height};
         a->swapchain_dirty = true;
@@ -710,8 +418,7 @@ static void shut_down(app *a)
         vkDeviceWaitIdle(a->ctx.device);
         if (a->renderer.ctx) sky_renderer_destroy(&a->renderer);
         if (a->frames[0].done) frames_destroy(a);
-        swapchain_destroy_views(a, &a->sc);
-        if (a->sc.handle) vkDestroySwapchainKHR(a->ctx.device, a->sc.handle, NULL);
+        swapchain_destroy(&a->sc, &a->ctx);
     }
     if (a->surface) vkDestroySurfaceKHR(a->ctx.instance, a->surface, NULL);
     if (a->ctx.instance) gpu_context_destroy(&a->ctx);

@@ -3,7 +3,8 @@
  * Read this function top to bottom beside docs/synchronization.md. Each barrier names who wrote, who reads and
  * the hazard it prevents (RAW read-after-write, WAR write-after-read, WAW, layout transition). Passes record
  * their own draws/dispatches (luts.c, sky_pass.c, bloom.c, tonemap.c); barriers live only here. */
-#include "sky/renderer.h"
+#include "sky/frame.h"
+#include "sky/view_params.h"
 
 /* How each frame image was last used by the previous frame: the first barrier of this frame waits for it (WAR)
  * and discards the contents (old layout UNDEFINED). */
@@ -143,8 +144,8 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
 
     /* 2. Sky. The sky pass runs as a fragment pass (HDR as colour attachment) or a compute dispatch (HDR as
      * storage image); with the sky-view LUT it first renders that LUT for this frame's camera and sun. */
-    sky_mode mode = sky_view_resolve_mode(v, r);
-    sky_pass_kind kind = sky_renderer_pass_kind(r, v);
+    sky_mode mode = sky_view_resolve_mode(v, r->atmosphere.radii.z);
+    sky_pass_kind kind = sky_view_pass_kind(v, r->ctx->props.deviceType);
     gpu_usage sky_reads = kind == SKY_PASS_COMPUTE ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_FRAGMENT_SAMPLED;
     gpu_usage hdr_write = kind == SKY_PASS_COMPUTE ? GPU_USAGE_COMPUTE_STORAGE_WRITE : GPU_USAGE_COLOR_ATTACHMENT_WRITE;
     gpu_barrier_batch b;

@@ -1,31 +1,13 @@
-/* The sky renderer: owns the passes and the frame's images; frame.c records a frame over them. */
+/* The sky renderer's resources and their lifetime: the passes, the frame's images, the atmosphere they are built
+ * for; creation, destruction, resizing, new atmosphere or features. frame.c records a frame over them
+ * (sky/frame.h), submit.c submits and reads back (sky/submit.h), view_params.c turns a view into push constants. */
 #ifndef VKSKY_SKY_RENDERER_H
 #define VKSKY_SKY_RENDERER_H
 #include "gpu/timing.h"
 #include "sky/atmosphere.h"
 #include "sky/passes.h"
-
-typedef enum sky_mode_choice { SKY_CHOICE_MARCH, SKY_CHOICE_SKYVIEW, SKY_CHOICE_AUTO, SKY_CHOICE_FILL } sky_mode_choice;
-
-typedef struct sky_view {
-    double altitude_km;                     /* camera altitude above the ground, >= 0 */
-    double yaw_deg, pitch_deg, fov_deg;     /* view axis: same convention as the sun's azimuth/elevation */
-    double sun_azimuth_deg, sun_elevation_deg;
-    int steps;                              /* view march steps (the minimum when max_steps > steps) */
-    int max_steps;                          /* > steps: Hillaire's variable count, growing with path length (0: fixed) */
-    double steps_ramp_km;                   /* path length at which the variable count reaches max_steps */
-    double sample_offset;                   /* sample position within a step: 0.5 midpoint, 0.3 Hillaire */
-    double step_distribution;               /* step ends at t_max (i/N)^p: 1 uniform, 2 quadratic (Hillaire) */
-    sky_mode_choice mode;                   /* per-pixel march, sky-view LUT lookup, or auto */
-    sky_pass_kind pass_kind;                /* fragment or compute sky pass */
-    int skyview_steps;                      /* march steps of the sky-view LUT texels */
-    double exposure_ev;                     /* tone map exposure, in stops */
-    int tonemap;                            /* VKSKY_TONEMAP_* */
-    bool bloom;
-    double bloom_strength, bloom_threshold;
-} sky_view;
-
-sky_view sky_view_default(void);
+/* The renderer never reads a view; this include gives the renderer's users (options, quality) the view type. */
+#include "sky/view_params.h"
 
 typedef struct sky_renderer_desc {
     uint32_t width, height;      /* output size */
@@ -73,43 +55,9 @@ void sky_renderer_set_atmosphere(sky_renderer *r, const model_atmosphere *a, dou
 /* Ground albedo, Mie phase model, limb darkening, sun disc, multi-scattering. A change of what the scene needs
  * (species present, multi-scattering, disc, ground, phase model) rebuilds the pipelines for the new variant. */
 void sky_renderer_set_features(sky_renderer *r, const sky_features *f);
-/* The sky pass kind a frame of this view uses (auto resolved for the device). */
-sky_pass_kind sky_renderer_pass_kind(const sky_renderer *r, const sky_view *v);
-/* The sky mode a frame of this view uses (auto: the sky-view LUT inside the atmosphere, the march from space). */
-sky_mode sky_view_resolve_mode(const sky_view *v, const sky_renderer *r);
+/* The LUTs do not hold the current atmosphere (the next frame recomputes them). */
 bool sky_renderer_luts_dirty(const sky_renderer *r);
 /* New size: rebuilds the HDR target, the bloom mip chain and the tone map's descriptors (waits for the GPU). */
 void sky_renderer_resize(sky_renderer *r, uint32_t width, uint32_t height);
 
-/* Camera + sun -> the sky pass's push constants (the ray matrix built from the camera basis). */
-SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height);
-/* The sky-view LUT pass's push constants (its own march settings). */
-SkyPush sky_view_skyview_push(const sky_view *v);
-TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader);
-
-/* An image the tone map writes that the renderer does not own (a swapchain image). */
-typedef struct frame_target {
-    VkImage image;
-    VkImageView view;
-    VkExtent2D extent;
-    gpu_usage before;            /* GPU_USAGE_ACQUIRED for a swapchain image */
-    gpu_usage after;             /* GPU_USAGE_PRESENT for a swapchain image */
-    gpu_buffer *capture;         /* non-NULL: also copy the image into this host buffer (4 bytes a pixel) */
-} frame_target;
-
-/* frame.c: the whole frame, in order, with every barrier between the passes. */
-typedef struct frame_desc {
-    const sky_view *view;
-    bool force_luts;             /* recompute the LUTs even if they are up to date (benchmarks) */
-    const frame_target *target;  /* NULL: the renderer's own display image (headless) */
-    gpu_timer *timer;            /* NULL: the renderer's timer (one per frame in flight otherwise) */
-} frame_desc;
-void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
-
-/* Records a frame, submits it, waits. Returns wall milliseconds from submit to fence. */
-double sky_renderer_render(sky_renderer *r, const frame_desc *f);
-/* Copy a LUT to the host as floats RGBA (tests): which 0 transmittance, 1 multiscatter; rgba_out holds
- * 4 x the extent's pixels. */
-VkExtent2D sky_renderer_lut_extent(const sky_renderer *r, int which);
-void sky_renderer_read_lut(sky_renderer *r, int which, float *rgba_out);
 #endif

@@ -1,0 +1,83 @@
+/* The command-line flag table (see flags.h): one row per flag, in the order --help lists them. */
+#include "app/flags.h"
+#include <string.h>
+
+const flag flags_table[] = {
+    {"--render", ARG_STRING, 0, 0, "FILE   write the frame: .exr (scene-linear half RGBA, ZIP) or .png (tone-mapped 8-bit sRGB); repeatable"},
+    {"--width", ARG_INT, 1, 16384, "N      image width in pixels (default 1280)"},
+    {"--height", ARG_INT, 1, 16384, "N      image height in pixels (default 720)"},
+    {"--sun-elevation", ARG_DOUBLE, -90, 90, "DEG   sun elevation above the horizon (default 20)"},
+    {"--sun-azimuth", ARG_DOUBLE, -360, 360, "DEG   sun azimuth (default 0)"},
+    {"--altitude", ARG_DOUBLE, 0, 1e6, "KM    camera altitude above the ground (default 0.001 = 1 m)"},
+    {"--yaw", ARG_DOUBLE, -360, 360, "DEG    view azimuth, same convention as --sun-azimuth (default 0)"},
+    {"--pitch", ARG_DOUBLE, -90, 90, "DEG    view elevation, same convention as --sun-elevation (default 10)"},
+    {"--fov", ARG_DOUBLE, 1, 170, "DEG    vertical field of view (default 75)"},
+    {"--exposure", ARG_DOUBLE, -20, 20, "EV  exposure in stops before tone mapping (default 0)"},
+    {"--tonemap", ARG_STRING, 0, 0, "OP   clamp | reinhard | aces (default aces)"},
+    {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
+    {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
+    {"--quality", ARG_STRING, 0, 0, "P   low | medium | high | ultra: a preset of the knobs below (later flags override it)"},
+    {"--max-error", ARG_DOUBLE, 1e-4, 1, "E the cheapest measured configuration whose mean relative luminance error on this kind of scene is <= E"},
+    {"--max-steps", ARG_INT, 1, 4096, "N  variable step count (Hillaire): from --steps up to N as the path grows (default: = --steps)"},
+    {"--steps-ramp", ARG_DOUBLE, 0.001, 1e5, "KM path length at which the variable count reaches --max-steps (default 100)"},
+    {"--sample-offset", ARG_DOUBLE, 0, 1, "X sample position within a step: 0.5 midpoint (default), 0.3 Hillaire"},
+    {"--step-distribution", ARG_DOUBLE, 1, 4, "P steps end at t_max (i/N)^P: 1 uniform, 2 quadratic (default 2; uniform for rays entering from space)"},
+    {"--sky-mode", ARG_STRING, 0, 0, "M   march | skyview | auto | fill: per-pixel march, sky-view LUT lookup, the LUT inside the atmosphere, or a constant (the benchmark floor) (default march)"},
+    {"--sky-pass", ARG_STRING, 0, 0, "K   fragment | compute | auto: the sky pass as a full-screen draw or a compute dispatch; auto: fragment on a CPU device, compute on a GPU (default auto)"},
+    {"--skyview-lut", ARG_STRING, 2, 4096, "WxH sky-view LUT size (default 192x108)"},
+    {"--skyview-steps", ARG_INT, 1, 1024, "N march steps per sky-view LUT texel (default 30)"},
+    {"--transmittance-lut", ARG_STRING, 2, 4096, "WxH transmittance LUT size (default 256x64)"},
+    {"--transmittance-steps", ARG_INT, 1, 4096, "N steps per transmittance texel (default 40)"},
+    {"--multiscatter-lut", ARG_INT, 2, 1024, "N multi-scattering LUT size NxN (default 32)"},
+    {"--multiscatter-dirs", ARG_INT, 1, 4096, "N sphere directions per texel, a perfect square (default 64)"},
+    {"--multiscatter-steps", ARG_INT, 1, 4096, "N steps per direction (default 20)"},
+    {"--lut-format", ARG_STRING, 0, 0, "F  f16 | f32: RGBA16F or RGBA32F LUTs (default f16)"},
+    {"--bloom-mips", ARG_INT, 1, 8, "N   bloom downsample passes (default 5)"},
+    {"--render-scale", ARG_DOUBLE, 0.1, 1, "S sky rendered at S x the output size, upsampled by the tone map (default 1)"},
+    {"--mie-g", ARG_DOUBLE, -0.999, 0.999, "G       Mie Henyey-Greenstein asymmetry (default 0.8)"},
+    {"--rayleigh-scale", ARG_DOUBLE, 0, 1000, "S Rayleigh density scale (default 1)"},
+    {"--mie-scale", ARG_DOUBLE, 0, 1000, "S      Mie (aerosol) density scale (default 1)"},
+    {"--ozone-scale", ARG_DOUBLE, 0, 1000, "S    ozone density scale (default 1)"},
+    {"--scene", ARG_STRING, 0, 0, "FILE.json  load a scene file first (schema: scenes/README.md); every other flag overrides it"},
+    {"--dump-scene", ARG_NONE, 0, 0, "      print the effective scene (after all overrides) as scene JSON and exit"},
+    {"--ground-albedo", ARG_TRIPLE, 0, 1, "R,G,B ground albedo (default 0,0,0)"},
+    {"--mie-phase", ARG_STRING, 0, 0, "M    hg | cornette-shanks: the Mie phase function (default hg = Henyey-Greenstein)"},
+    {"--sun-illuminance", ARG_TRIPLE, 0, 1e6, "R,G,B sun illuminance at the top of the atmosphere (default 20,20,20)"},
+    {"--sun-angular-radius", ARG_DOUBLE, 0.01, 10, "DEG sun disc angular radius (default 0.265)"},
+    {"--limb-darkening", ARG_DOUBLE, 0, 1, "U   sun limb darkening coefficient (default 0.6)"},
+    {"--no-sun-disc", ARG_NONE, 0, 0, "     leave the sun disc out"},
+    {"--no-multiscatter", ARG_NONE, 0, 0, " single scattering only (no multi-scattering term or LUT)"},
+    {"--reference", ARG_NONE, 0, 0, "       CPU reference (double precision, no LUTs): print R G B along the view axis, or with --render write a reference image"},
+    {"--path-trace", ARG_NONE, 0, 0, "      with --reference: Monte Carlo path tracer of the same medium, all scattering orders"},
+    {"--samples", ARG_INT, 1, 100000000, "N        with --path-trace: paths per estimate (default 4096)"},
+    {"--bench", ARG_INT, 1, 100000, "N      render N frames after warm-up, print per-pass GPU ms medians"},
+    {"--frames", ARG_INT, 1, 100000000, "N     window: quit after N presented frames"},
+    {"--screenshot", ARG_STRING, 0, 0, "FILE window: save the last presented frame as PNG before quitting"},
+    {"--validate", ARG_NONE, 0, 0, "      Khronos validation + synchronization validation; any message fails the run (also VKSKY_VALIDATION=1)"},
+    {"--trace-barriers", ARG_NONE, 0, 0, "print one line per barrier as the frame is recorded"},
+    {"--trace-passes", ARG_NONE, 0, 0, "  list the passes the frame records"},
+    {"--list-devices", ARG_NONE, 0, 0, "  list Vulkan devices and exit"},
+    {"--device", ARG_INT, 0, 63, "N     use device N of --list-devices (default: discrete > integrated > CPU)"},
+    {"--help", ARG_NONE, 0, 0, "          this text"},
+    {"--version", ARG_NONE, 0, 0, "       print the version"},
+};
+
+const int flags_count = (int)(sizeof flags_table / sizeof flags_table[0]);
+
+const flag *flags_find(const char *name, size_t name_len)
+{
+    const flag *f = NULL;
+    for (int k = 0; k < flags_count; ++k)
+        if (strlen(flags_table[k].name) == name_len && !strncmp(flags_table[k].name, name, name_len)) f = &flags_table[k];
+    return f;
+}
+
+bool flags_range(const char *flag_name, double *min, double *max)
+{
+    for (int i = 0; i < flags_count; ++i)
+        if (!strcmp(flags_table[i].name, flag_name) && flags_table[i].min < flags_table[i].max) {
+            *min = flags_table[i].min, *max = flags_table[i].max;
+            return true;
+        }
+    return false;
+}

@@ -1,0 +1,32 @@
+/* vksky image I/O: atomic output files. A writer opens "<dir>/.<basename>.tmp.<pid>", writes it, and rename()s it
+ * over `path` only once everything succeeded; on failure the temp file is removed and `path` is left untouched
+ * (no new file is created; an existing one is kept). Errors follow io_error.h.
+ */
+#ifndef VKSKY_IO_ATOMIC_FILE_H
+#define VKSKY_IO_ATOMIC_FILE_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Checks that `path` can be created before expensive work: the directory exists and is writable (verified by
+   creating and removing the writers' temp file, since access() always says yes to root). 0 ok, -1 + err. */
+int io_check_writable(const char *path, char *err, size_t err_size);
+
+/* Opens (creates or truncates) the temp file for `path`, its name into tmp[tmp_size]; returns the fd, or -1 + err. */
+int io_atomic_open(const char *path, char *tmp, size_t tmp_size, char *err, size_t err_size);
+
+/* fsync + close `fd` (if >= 0) and rename tmp -> path. On failure unlinks tmp and returns -1 + err. `fd` is always
+   closed. */
+int io_atomic_commit(int fd, const char *tmp, const char *path, char *err, size_t err_size);
+
+/* Gives up: closes `fd` (if >= 0) and removes the temp file. */
+void io_atomic_abort(int fd, const char *tmp);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* VKSKY_IO_ATOMIC_FILE_H */

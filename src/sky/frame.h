@@ -1,0 +1,25 @@
+/* The frame spine (frame.c): every pass of a frame in order, with every barrier between them, recorded over the
+ * renderer's resources into a command buffer. */
+#ifndef VKSKY_SKY_FRAME_H
+#define VKSKY_SKY_FRAME_H
+#include "sky/renderer.h"
+
+/* An image the tone map writes that the renderer does not own (a swapchain image). */
+typedef struct frame_target {
+    VkImage image;
+    VkImageView view;
+    VkExtent2D extent;
+    gpu_usage before;            /* GPU_USAGE_ACQUIRED for a swapchain image */
+    gpu_usage after;             /* GPU_USAGE_PRESENT for a swapchain image */
+    gpu_buffer *capture;         /* non-NULL: also copy the image into this host buffer (4 bytes a pixel) */
+} frame_target;
+
+typedef struct frame_desc {
+    const sky_view *view;
+    bool force_luts;             /* recompute the LUTs even if they are up to date (benchmarks) */
+    const frame_target *target;  /* NULL: the renderer's own display image (headless) */
+    gpu_timer *timer;            /* NULL: the renderer's timer (one per frame in flight otherwise) */
+} frame_desc;
+void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
+
+#endif

@@ -1,0 +1,65 @@
+/* Submission and readback over a renderer (see sky/submit.h). */
+#include "sky/submit.h"
+#include <string.h>
+#include <time.h>
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+double sky_renderer_render(sky_renderer *r, const frame_desc *f)
+{
+    VkCommandBuffer cmd = gpu_begin_commands(r->ctx);
+    frame_record(r, cmd, f);
+    double t0 = now_ms();
+    gpu_submit_and_wait(r->ctx, cmd);
+    double wall = now_ms() - t0;
+    if (r->desc.readback) {
+        gpu_buffer_invalidate(r->ctx, &r->readback_linear);
+        gpu_buffer_invalidate(r->ctx, &r->readback_display);
+    }
+    return wall;
+}
+
+VkExtent2D sky_renderer_lut_extent(const sky_renderer *r, int which)
+{
+    return which == 0 ? r->luts.transmittance.extent : r->luts.multiscatter.extent;
+}
+
+VkFormat sky_renderer_read_lut(sky_renderer *r, int which, void *texels_out)
+{
+    const gpu_context *ctx = r->ctx;
+    const gpu_image *img = which == 0 ? &r->luts.transmittance : &r->luts.multiscatter;
+    if (!img->image) return VK_FORMAT_UNDEFINED;   /* no multi-scattering LUT in this variant */
+    const char *name = which == 0 ? "transmittance_lut" : "multiscatter_lut";
+    size_t count = (size_t)img->extent.width * img->extent.height * 4;
+    bool f32 = img->format == VK_FORMAT_R32G32B32A32_SFLOAT;
+    gpu_buffer buf;
+    gpu_buffer_create(ctx, &buf, "lut readback", count * (f32 ? sizeof(float) : sizeof(uint16_t)),
+                      VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    VkCommandBuffer cmd = gpu_begin_commands(ctx);
+    /* The LUT passes wrote the LUT and made it readable by shaders; the copy reads it: to TRANSFER_SRC. */
+    gpu_barrier_batch b = gpu_barrier_batch_begin("lut readback");
+    gpu_barrier_add_image(&b, "lut_readback.to_copy", name, img->image, gpu_color_range(0, 1),
+                          GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, GPU_USAGE_TRANSFER_SRC, false);
+    gpu_barrier_flush(cmd, &b);
+    VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                .imageExtent = {img->extent.width, img->extent.height, 1}};
+    vkCmdCopyImageToBuffer(cmd, img->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buf.buffer, 1, &region);
+    /* Back to the sampled layout for later frames (WAR against the copy); the buffer to the host (RAW). */
+    b = gpu_barrier_batch_begin("lut readback");
+    gpu_barrier_add_image(&b, "lut_readback.to_sample", name, img->image, gpu_color_range(0, 1),
+                          GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    gpu_barrier_add_buffer(&b, "lut_readback.to_host", "lut readback", buf.buffer, GPU_USAGE_TRANSFER_DST,
+                           GPU_USAGE_HOST_READ);
+    gpu_barrier_flush(cmd, &b);
+    gpu_submit_and_wait(ctx, cmd);
+    gpu_buffer_invalidate(ctx, &buf);
+    /* As stored: the half -> float conversion is the caller's (io/ has it; sky/ may not include io/). */
+    memcpy(texels_out, buf.mapped, count * (f32 ? sizeof(float) : sizeof(uint16_t)));
+    gpu_buffer_destroy(ctx, &buf);
+    return img->format;
+}

@@ -1,0 +1,14 @@
+/* Submission and readback over a renderer: a recorded frame submitted and waited for (headless, tests), a LUT
+ * copied to the host (tests). The window submits its own frames (app/window.c: frames in flight). */
+#ifndef VKSKY_SKY_SUBMIT_H
+#define VKSKY_SKY_SUBMIT_H
+#include "sky/frame.h"
+
+/* Records a frame, submits it, waits. Returns wall milliseconds from submit to fence. */
+double sky_renderer_render(sky_renderer *r, const frame_desc *f);
+/* Copy a LUT to the host as the GPU stores it (tests): which 0 transmittance, 1 multiscatter; RGBA texels, 16 bytes
+ * each for R32G32B32A32_SFLOAT, 8 (half bits) for R16G16B16A16_SFLOAT; texels_out holds 16 bytes x the extent's
+ * pixels. Returns the LUT's format (VK_FORMAT_UNDEFINED: no such LUT in this variant, nothing written). */
+VkExtent2D sky_renderer_lut_extent(const sky_renderer *r, int which);
+VkFormat sky_renderer_read_lut(sky_renderer *r, int which, void *texels_out);
+#endif

@@ -1,0 +1,81 @@
+/* A view -> the push constants and choices of a frame (see sky/view_params.h). */
+#include "sky/view_params.h"
+#include <math.h>
+
+static const double DEG = 3.14159265358979323846 / 180.0;
+
+sky_view sky_view_default(void)
+{
+    return (sky_view){
+        .altitude_km = 0.001, .yaw_deg = 0.0, .pitch_deg = 10.0, .fov_deg = 75.0,
+        .sun_azimuth_deg = 0.0, .sun_elevation_deg = 20.0, .steps = 32, .max_steps = 0, .steps_ramp_km = 100.0,
+        .sample_offset = 0.5, .step_distribution = 2.0, .mode = SKY_CHOICE_MARCH, .pass_kind = SKY_PASS_AUTO, .skyview_steps = 30,
+        .exposure_ev = 0.0, .tonemap = VKSKY_TONEMAP_ACES, .bloom = true,
+        .bloom_strength = 0.04, .bloom_threshold = 1.0};
+}
+
+static void dir_from_angles(double az_deg, double el_deg, double out[3])
+{
+    double az = az_deg * DEG, el = el_deg * DEG;
+    out[0] = cos(el) * cos(az);
+    out[1] = sin(el);
+    out[2] = cos(el) * sin(az);
+}
+
+SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height)
+{
+    /* The ray matrix: camera basis scaled by tan(fov/2) and the aspect ratio, built in double. */
+    double f[3], right[3], up[3];
+    dir_from_angles(v->yaw_deg, v->pitch_deg, f);
+    if (fabs(v->pitch_deg) >= 90.0 - 1e-9) {
+        dir_from_angles(v->yaw_deg + 90.0, 0.0, right);
+    } else {
+        /* right = normalize(cross(f, +Y)) */
+        double rx = -f[2], rz = f[0], n = sqrt(rx * rx + rz * rz);
+        right[0] = rx / n, right[1] = 0.0, right[2] = rz / n;
+    }
+    /* up = cross(right, f) */
+    up[0] = right[1] * f[2] - right[2] * f[1];
+    up[1] = right[2] * f[0] - right[0] * f[2];
+    up[2] = right[0] * f[1] - right[1] * f[0];
+    double ty = tan(0.5 * v->fov_deg * DEG), tx = ty * (double)width / (double)height;
+    double sun[3];
+    dir_from_angles(v->sun_azimuth_deg, v->sun_elevation_deg, sun);
+    int max_steps = v->max_steps > v->steps ? v->max_steps : v->steps;
+    return (SkyPush){
+        .forward = {(float)f[0], (float)f[1], (float)f[2], (float)v->altitude_km},
+        .right = {(float)(right[0] * tx), (float)(right[1] * tx), (float)(right[2] * tx), 1.0f / (float)width},
+        .up = {(float)(up[0] * ty), (float)(up[1] * ty), (float)(up[2] * ty), 1.0f / (float)height},
+        .sun_dir = {(float)sun[0], (float)sun[1], (float)sun[2], (float)v->step_distribution},
+        .march = {(float)v->steps, (float)max_steps, (float)v->sample_offset, (float)v->steps_ramp_km},
+    };
+}
+
+SkyPush sky_view_skyview_push(const sky_view *v)
+{
+    SkyPush p = sky_view_push(v, 1, 1);
+    p.march = (vksky_vec4){(float)v->skyview_steps, (float)v->skyview_steps, (float)v->sample_offset,
+                           (float)v->steps_ramp_km};
+    return p;
+}
+
+sky_pass_kind sky_view_pass_kind(const sky_view *v, VkPhysicalDeviceType device_type)
+{
+    if (v->pass_kind != SKY_PASS_AUTO) return v->pass_kind;
+    return device_type == VK_PHYSICAL_DEVICE_TYPE_CPU ? SKY_PASS_FRAGMENT : SKY_PASS_COMPUTE;
+}
+
+sky_mode sky_view_resolve_mode(const sky_view *v, double atmosphere_top_km)
+{
+    if (v->mode == SKY_CHOICE_MARCH) return SKY_MODE_MARCH;
+    if (v->mode == SKY_CHOICE_FILL) return SKY_MODE_FILL;
+    bool inside = v->altitude_km < atmosphere_top_km;
+    if (v->mode == SKY_CHOICE_SKYVIEW) return inside ? SKY_MODE_SKYVIEW : SKY_MODE_MARCH;
+    return inside ? SKY_MODE_SKYVIEW : SKY_MODE_MARCH;
+}
+
+TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader)
+{
+    return (TonemapPush){.params = {(float)exp2(v->exposure_ev), (float)v->tonemap,
+                                    v->bloom ? (float)v->bloom_strength : 0.0f, encode_srgb_in_shader ? 1.0f : 0.0f}};
+}

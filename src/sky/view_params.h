@@ -1,0 +1,40 @@
+/* A view (camera, sun, march settings, tone map) and what a frame makes of it: the push constants of the sky
+ * pass, the sky-view LUT pass and the tone map, and the sky mode and pass kind it resolves to. Plain arithmetic on
+ * the view; no renderer state (the spine passes in the little it needs: the atmosphere's top, the device type). */
+#ifndef VKSKY_SKY_VIEW_PARAMS_H
+#define VKSKY_SKY_VIEW_PARAMS_H
+#include "sky/passes.h"
+
+typedef enum sky_mode_choice { SKY_CHOICE_MARCH, SKY_CHOICE_SKYVIEW, SKY_CHOICE_AUTO, SKY_CHOICE_FILL } sky_mode_choice;
+
+typedef struct sky_view {
+    double altitude_km;                     /* camera altitude above the ground, >= 0 */
+    double yaw_deg, pitch_deg, fov_deg;     /* view axis: same convention as the sun's azimuth/elevation */
+    double sun_azimuth_deg, sun_elevation_deg;
+    int steps;                              /* view march steps (the minimum when max_steps > steps) */
+    int max_steps;                          /* > steps: Hillaire's variable count, growing with path length (0: fixed) */
+    double steps_ramp_km;                   /* path length at which the variable count reaches max_steps */
+    double sample_offset;                   /* sample position within a step: 0.5 midpoint, 0.3 Hillaire */
+    double step_distribution;               /* step ends at t_max (i/N)^p: 1 uniform, 2 quadratic (Hillaire) */
+    sky_mode_choice mode;                   /* per-pixel march, sky-view LUT lookup, or auto */
+    sky_pass_kind pass_kind;                /* fragment or compute sky pass */
+    int skyview_steps;                      /* march steps of the sky-view LUT texels */
+    double exposure_ev;                     /* tone map exposure, in stops */
+    int tonemap;                            /* VKSKY_TONEMAP_* */
+    bool bloom;
+    double bloom_strength, bloom_threshold;
+} sky_view;
+
+sky_view sky_view_default(void);
+
+/* The sky pass kind a frame of this view uses (auto: fragment on a CPU device, compute otherwise). */
+sky_pass_kind sky_view_pass_kind(const sky_view *v, VkPhysicalDeviceType device_type);
+/* The sky mode a frame of this view uses (auto: the sky-view LUT inside the atmosphere, the march from space);
+ * atmosphere_top_km: the atmosphere's top altitude above the ground. */
+sky_mode sky_view_resolve_mode(const sky_view *v, double atmosphere_top_km);
+/* Camera + sun -> the sky pass's push constants (the ray matrix built from the camera basis). */
+SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height);
+/* The sky-view LUT pass's push constants (its own march settings). */
+SkyPush sky_view_skyview_push(const sky_view *v);
+TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader);
+#endif
