@@ -1,6 +1,7 @@
 /* Scene files: --dump-scene, the effective options written back as a scene (the schema in scene.h). */
 #include "app/scene_dump.h"
 #include "app/scene.h"
+#include "app/options_sunvis.h"
 #include "app/scene_validate.h"
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -120,6 +121,7 @@ int scene_dump(const options *o, FILE *out)
     }
 
     boolean(&b, root, "multiple_scattering", o->multiple_scattering);
+    str(&b, root, "sun_visibility", sunvis_name(a->sun_visibility));
 
     cJSON *sun = obj(&b, root, "sun");
     num(&b, sun, "elevation_deg", v->sun_elevation_deg);
