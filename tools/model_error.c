@@ -14,6 +14,11 @@
  * --target (relative, default 0.005) or --max-samples, whichever comes first; pilot and main run are merged.
  *
  *   model_error [--model penumbra|lesson-fade] [--target REL] [--pilot N] [--max-samples N] [--threads T] [--seed S]
+ *               [--pt-from FILE]
+ *
+ * --pt-from FILE takes the path tracer's numbers (RGB, standard errors, samples) from an earlier run's output (its
+ * first table, rows in this order) instead of tracing again: the tracer has no part of the model in it, so its
+ * numbers do not change when the model does, and a model change is then measured in a minute instead of minutes.
  */
 #include "reference/path_tracer.h"
 
@@ -141,6 +146,32 @@ static void single_scattering(const model_atmosphere *a, double h, const double 
     }
 }
 
+/* The path tracer's columns of an earlier run's first table (see --pt-from); returns the rows read, -1 on error. */
+static int read_pt(const char *path, int n_rows, double (*P)[3], double (*se)[3], long long *samples)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return -1;
+    char line[2048];
+    int n = 0;
+    while (n < n_rows && fgets(line, sizeof line, f)) {
+        if (strncmp(line, "| ", 2) != 0 || !strstr(line, "(+- ") || !strstr(line, "% |"))
+            continue;
+        /* fields: sun | view | model RGB | PT RGB (+- stderr) | L model | L PT | error | samples | time */
+        char *field[10] = {0};
+        int k = 0;
+        for (char *c = line; *c && k < 10; ++c)
+            if (*c == '|')
+                field[k++] = c + 1;
+        if (k < 9 || sscanf(field[3], "%lf %lf %lf (+- %lf %lf %lf)", &P[n][0], &P[n][1], &P[n][2], &se[n][0],
+                            &se[n][1], &se[n][2]) != 6 || sscanf(field[7], "%lld", &samples[n]) != 1)
+            break;
+        ++n;
+    }
+    fclose(f);
+    return n;
+}
+
 static void usage(void)
 {
     fprintf(stderr, "usage: model_error [--model penumbra|lesson-fade] [--target REL] [--pilot N] [--max-samples N] "
@@ -194,6 +225,7 @@ int main(int argc, char **argv)
     long long pilot = 20000, max_samples = 20000000;
     int threads = 2, model = MODEL_SUN_VISIBILITY_PENUMBRA;
     unsigned long long seed = 2020;
+    const char *pt_from = NULL;
     for (int i = 1; i < argc; ++i) {
         if (i + 1 >= argc) {
             usage();
@@ -207,6 +239,8 @@ int main(int argc, char **argv)
             max_samples = atoll(argv[++i]);
         else if (!strcmp(argv[i], "--threads"))
             threads = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--pt-from"))
+            pt_from = argv[++i];
         else if (!strcmp(argv[i], "--seed"))
             seed = strtoull(argv[++i], NULL, 10);
         else if (!strcmp(argv[i], "--model")) {
@@ -235,15 +269,22 @@ int main(int argc, char **argv)
     model_atmosphere_earth(&a);
     a.sun_visibility = model;
     ref_quality q = ref_quality_converged();
+    static double pt_P[MAX_ROWS][3], pt_se[MAX_ROWS][3];
+    static long long pt_n[MAX_ROWS];
+    if (pt_from && read_pt(pt_from, n_rows, pt_P, pt_se, pt_n) != n_rows) {
+        fprintf(stderr, "model_error: --pt-from %s: expected the %d rows of an earlier run's first table\n", pt_from,
+                n_rows);
+        return 2;
+    }
     double t_start = now_s();
 
     printf("Model: sun visibility %s (sun angular radius %.3f deg). Model = ref_sky_radiance (converged: view_steps "
            "%d, sun_steps %d, ms %dx%d dirs, %d steps); PT = pt_radiance (all orders, ground albedo 0, the sun a disc), "
            "+- = 1 standard error; luminance L = 0.2126 R + 0.7152 G + 0.0722 B; error = (L_model - L_PT) / L_PT.\n"
-           "Adaptive samples: pilot %lld, target relative stderr of L_PT %.3g, cap %lld; %d threads, seed %llu.\n\n",
+           "Adaptive samples: pilot %lld, target relative stderr of L_PT %.3g, cap %lld; %d threads, seed %llu%s%s.\n\n",
            model == MODEL_SUN_VISIBILITY_PENUMBRA ? "penumbra" : "lesson-fade", a.sun_angular_radius / DEG,
            q.view_steps, q.sun_steps, q.ms_sqrt_dirs, q.ms_sqrt_dirs, q.ms_steps, pilot, target, max_samples, threads,
-           seed);
+           seed, pt_from ? "; PT columns from " : "", pt_from ? pt_from : "");
     printf("| sun | view | model RGB | PT RGB (+- stderr) | L model | L PT (+- stderr) | model error | samples | time |\n");
     printf("|---:|---|---|---|---:|---:|---:|---:|---:|\n");
     fflush(stdout);
@@ -257,11 +298,17 @@ int main(int argc, char **argv)
         double t0 = now_s();
         ref_sky_radiance(&a, w->altitude, v, s, q, M);
 
+        long long n = pilot;
+        if (pt_from) {
+            for (int c = 0; c < 3; ++c)
+                P[c] = pt_P[i][c], se[c] = pt_se[i][c];
+            n = pt_n[i];
+            goto measured;
+        }
         /* pilot (the seeds of the 1 m rows are those of the earlier 36-row table) */
         unsigned long long row_seed = seed + (i < 36 ? 1000ull * (i / 4) + i % 4 : 100000ull + 1000ull * i);
         pt_settings ps = {pilot, row_seed, 0.0, 0, threads};
         pt_radiance(&a, w->altitude, v, s, &ps, P, se);
-        long long n = pilot;
         double Lp = lum(P), rel = Lp > 0.0 ? lum_se(se) / Lp : 0.0;
         if (rel > target) {
             double want = (double)pilot * (rel / target) * (rel / target) * 1.1;
@@ -278,6 +325,7 @@ int main(int argc, char **argv)
                 n += more;
             }
         }
+    measured:;
         double dt = now_s() - t0;
         double Lm = lum(M);
         Lp = lum(P);

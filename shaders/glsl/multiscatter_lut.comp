@@ -16,6 +16,7 @@ layout(set = 0, binding = 2, LUT_FORMAT) uniform writeonly image2D multiscatter_
 
 shared vec3 shared_l[THREADS];
 shared vec3 shared_f[THREADS];
+shared float shared_x[THREADS];
 
 void main()
 {
@@ -38,6 +39,7 @@ void main()
     int steps = int(atmo.lut_steps.y);
     vec3 l_2nd = vec3(0.0);
     vec3 f_ms = vec3(0.0);
+    float l_x = 0.0;   /* green L2 weighted by dir_x^2 - dir_z^2 (toward the sun's azimuth vs across it) */
     for (int d = int(thread); d < dir_count; d += THREADS) {
         int i = d / sqrt_dirs, j = d - i * sqrt_dirs;
         float theta = 2.0 * PI * (float(i) + 0.5) / float(sqrt_dirs);
@@ -50,6 +52,7 @@ void main()
         float t_max = ray_hits_ground(h, mu) ? distance_to_ground(h, mu) : distance_to_top(h, mu);
         float dt = t_max / float(steps);
         vec3 throughput = vec3(1.0);
+        vec3 l_dir = vec3(0.0);
         /* The first bounce's phase (sunlight scattered at the sample toward the texel's point, cosine nu):
          * isotropic where the point is lit, the real Rayleigh and Mie phases where it is in the earth's shadow
          * (docs/model.md "Multiple scattering"): there the light comes forward-scattered from lit air sunward. */
@@ -67,7 +70,7 @@ void main()
             vec3 step_t = exp(-m.extinction * dt);
             vec3 integral = step_integral(m.extinction, dt, step_t);
             /* Earth shadow baked in (seed bug 9); the first bounce's phase on the scattered light only. */
-            l_2nd += throughput * (m.rayleigh * phase_r + m.mie * phase_m) * sun_t * visible * integral;
+            l_dir += throughput * (m.rayleigh * phase_r + m.mie * phase_m) * sun_t * visible * integral;
             f_ms += throughput * m.scattering * integral;
             throughput *= step_t;
         }
@@ -79,17 +82,21 @@ void main()
             float mu_t_g = mu_s_g;
             float visible_g = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE ? 1.0 : sun_visibility(0.0, mu_s_g, mu_t_g);
             vec3 sun_g = texture(transmittance_lut, transmittance_uv(0.0, mu_t_g, t_size)).rgb;
-            l_2nd += throughput * sun_g * visible_g * max(mu_t_g, 0.0) * atmo.ground.rgb / PI;
+            l_dir += throughput * sun_g * visible_g * max(mu_t_g, 0.0) * atmo.ground.rgb / PI;
         }
+        l_2nd += l_dir;
+        l_x += l_dir.g * (dir.x * dir.x - dir.z * dir.z);
     }
     shared_l[thread] = l_2nd;
     shared_f[thread] = f_ms;
+    shared_x[thread] = l_x;
     /* Tree sum over the workgroup; barrier() orders the shared-memory writes and reads between steps. */
     for (uint stride = THREADS / 2; stride > 0; stride /= 2) {
         barrier();
         if (thread < stride) {
             shared_l[thread] += shared_l[thread + stride];
             shared_f[thread] += shared_f[thread + stride];
+            shared_x[thread] += shared_x[thread + stride];
         }
     }
     if (thread != 0) return;
@@ -102,5 +109,9 @@ void main()
      * orders of magnitude over a few texels, and the sampler's linear interpolation of Psi itself overshoots there
      * (the sky low opposite the sun at twilight, 4 % at sun -4 deg); interpolating the fourth root follows a
      * near-exponential fall 4x better, and fp16 keeps the small values' relative precision. */
-    imageStore(multiscatter_out, texel, vec4(sqrt(sqrt(min(psi, vec3(FP16_MAX)))), 1.0));
+    /* Alpha: the second bounce's anisotropy D = E[dir_x^2 - dir_z^2] of L2 (green) x (1 - f_ms) (L2's share of Psi)
+     * x the point's own occlusion (only in the shadow, as the first bounce's real phases): the view march scales the
+     * Rayleigh part of the Psi term by 1 + (3/8) D (v_x^2 - v_y^2) (docs/model.md). 0 for the lesson's model. */
+    float aniso = shared_l[0].g > 0.0 ? shared_x[0] / shared_l[0].g * (1.0 - f_ms.g) * shade : 0.0;
+    imageStore(multiscatter_out, texel, vec4(sqrt(sqrt(min(psi, vec3(FP16_MAX)))), clamp(aniso, -1.0, 1.0)));
 }

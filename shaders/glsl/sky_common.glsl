@@ -12,12 +12,12 @@ vec3 lookup_transmittance(float h, float mu)
                                             float(textureSize(ground_irradiance_lut, 0).x)), 0.5)).rgb
 #endif
 
-/* The LUT holds Psi^(1/4) (multiscatter_lut.comp says why). */
-vec3 lookup_multiscatter(float h, float mu_s)
+/* The LUT holds Psi^(1/4) (multiscatter_lut.comp says why) and, in alpha, the second bounce's anisotropy D. */
+vec4 lookup_multiscatter(float h, float mu_s)
 {
-    vec3 root = texture(multiscatter_lut, multiscatter_uv(h, mu_s, vec2(textureSize(multiscatter_lut, 0)))).rgb;
-    vec3 root2 = root * root;
-    return root2 * root2;
+    vec4 texel = texture(multiscatter_lut, multiscatter_uv(h, mu_s, vec2(textureSize(multiscatter_lut, 0))));
+    vec3 root2 = texel.rgb * texel.rgb;
+    return vec4(root2 * root2, texel.a);
 }
 
 /* View ray of a pixel centre: the ray matrix (camera basis scaled by fov/aspect), never an inverse
@@ -87,11 +87,21 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
         float mu_t;
         float visible = sun_visibility(h_t, mu_s_t, mu_t);
         vec3 sun_t = lookup_transmittance(h_t, mu_t);
-        vec3 psi = HAS_MULTISCATTER ? lookup_multiscatter(h_t, mu_s_t) : vec3(0.0);
+        vec4 psi_d = HAS_MULTISCATTER ? lookup_multiscatter(h_t, mu_s_t) : vec4(0.0);
+        /* The second bounce's anisotropy on the Rayleigh part: the view direction in the sample's frame (v_x toward
+         * the sun's azimuth, v_y across it), factor 1 + (3/8) D (v_x^2 - v_y^2); D = 0 for the lesson's model. */
+        float f_r = 1.0;
+        if (SUN_VISIBILITY != VKSKY_SUN_VISIBILITY_LESSON_FADE && psi_d.a != 0.0) {
+            float mu_v = clamp((r * mu + t) / r_t, -1.0, 1.0);
+            float sin2s = (1.0 - mu_s_t) * (1.0 + mu_s_t);
+            float v_x = sin2s > 1e-8 ? (nu - mu_v * mu_s_t) * inversesqrt(sin2s) : 0.0;
+            float v_y2 = max(0.0, (1.0 - mu_v) * (1.0 + mu_v) - v_x * v_x);
+            f_r = 1.0 + 0.375 * psi_d.a * (v_x * v_x - v_y2);
+        }
         /* Single scattering is shadowed by the planet (seed bug 5), the penumbra included; multiple scattering is
          * already integrated over the sphere, shadow included, in the LUT (seed bug 9). */
         vec3 source = atmo.sun.rgb * (visible * sun_t * (m.rayleigh * phase_r + m.mie * phase_m)
-                                      + psi * m.scattering);
+                                      + psi_d.rgb * (m.rayleigh * f_r + m.mie));
         radiance += throughput * source * step_integral(m.extinction, dt, step_t);
         throughput *= step_t;
     }

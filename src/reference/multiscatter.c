@@ -113,7 +113,7 @@ static void ms_split_step(const model_atmosphere *a, const sun_table *st, int su
 
 int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int count, int n_az,
                      const polar_rule *pr, int steps, int graded, int sun_steps, const sun_table *st,
-                     double (*out)[3])
+                     double (*out)[3], double *aniso)
 {
     const double top = atmo_height(a), H = bruneton_H(a), r = a->bottom_radius + h;
     const int n_half = (n_az + 1) / 2;
@@ -121,16 +121,21 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
     double *az = malloc(sizeof(double) * (2 * (size_t)n_half + 2 * (size_t)count + (MAX_CUTS + 4) * n_rays) +
                         sizeof(int) * 2 * n_rays);
     double(*L)[3] = calloc((size_t)count, sizeof *L);
+    /* The second bounce's anisotropy (aniso != NULL, the penumbra's model): per sun cosine, the green channel of L2
+     * weighted by dir_x^2 - dir_y^2 (x: toward the sun's azimuth, y: across it, both horizontal). */
+    double *L2x = aniso ? calloc((size_t)count, sizeof *L2x) : NULL;
     double F[3] = {0.0, 0.0, 0.0};
     double row[SUN_TABLE_NX][3]; /* the sun table interpolated along x_r for the current sample */
     for (int q = 0; q < count; ++q)
         out[q][0] = out[q][1] = out[q][2] = 0.0;
-    if (!az || !L) {
+    if (!az || !L || (aniso && !L2x)) {
         free(az);
         free(L);
+        free(L2x);
         return 0;
     }
     double *cos_az = az, *w_az = az + n_half, *sin_s = az + 2 * n_half, *cos_s = sin_s + count;
+    double cos2_az[512];
     double *cut = cos_s + count;             /* [q][i][MAX_CUTS + 1]: ray_cuts of each (sun, azimuth) ray */
     double *nu_qi = cut + (MAX_CUTS + 1) * n_rays; /* [q][i] */
     double *pr_qi = nu_qi + n_rays, *pm_qi = pr_qi + n_rays; /* [q][i]: first-bounce phases (see below) */
@@ -145,6 +150,8 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
     const int real_phase = a->sun_visibility != MODEL_SUN_VISIBILITY_LESSON_FADE;
     for (int i = 0; i < n_half; ++i) {
         cos_az[i] = cos(2.0 * REF_PI * (i + 0.5) / n_az);
+        if (i < 512)
+            cos2_az[i] = cos(4.0 * REF_PI * (i + 0.5) / n_az); /* cos(2 az): (dir_x^2 - dir_y^2) / sin^2(phi) */
         w_az[i] = ((2 * i + 1 == n_az) ? 1.0 : 2.0) * 2.0 * REF_PI / n_az;
     }
     for (int q = 0; q < count; ++q) {
@@ -211,6 +218,7 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
             for (int q = 0; q < count; ++q) {
                 double A = ka * cos_s[q], B = kb * sin_s[q];
                 double acc[3] = {0.0, 0.0, 0.0}, accm[3] = {0.0, 0.0, 0.0}; /* Rayleigh-phase, Mie-phase parts */
+                double ax = 0.0, axm = 0.0; /* green, times cos(2 az) */
                 for (int i = 0; i < n_half; ++i) {
                     double T[3];
                     size_t qi = (size_t)q * n_half + i;
@@ -228,6 +236,10 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
                         for (int c = 0; c < 3; ++c) {
                             acc[c] += w_az[i] * pr_qi[qi] * T[c];
                             accm[c] += w_az[i] * pm_qi[qi] * T[c];
+                        }
+                        if (L2x && i < 512) {
+                            ax += w_az[i] * pr_qi[qi] * T[1] * cos2_az[i];
+                            axm += w_az[i] * pm_qi[qi] * T[1] * cos2_az[i];
                         }
                         continue;
                     }
@@ -263,9 +275,15 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
                         acc[c] += vis * pr_qi[qi] * T[c];
                         accm[c] += vis * pm_qi[qi] * T[c];
                     }
+                    if (L2x && i < 512) {
+                        ax += vis * pr_qi[qi] * T[1] * cos2_az[i];
+                        axm += vis * pm_qi[qi] * T[1] * cos2_az[i];
+                    }
                 }
                 for (int c = 0; c < 3; ++c)
                     L[q][c] += wr[c] * acc[c] + wm[c] * accm[c];
+                if (L2x)
+                    L2x[q] += (wr[1] * ax + wm[1] * axm) * sin_phi * sin_phi;
             }
         }
     }
@@ -277,8 +295,16 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
             double v = L[q][c] / (4.0 * REF_PI) / (1.0 - fms);
             out[q][c] = (v > 0.0 && isfinite(v)) ? v : 0.0;
         }
+    /* D = (E[dir_x^2 - dir_y^2] of L2, green) (1 - f_ms) (the second order's share of Psi) x the point's own sun
+     * occlusion (the anisotropy is applied where the first bounce's real phases are: in the shadow). */
+    for (int q = 0; aniso && q < count; ++q) {
+        double mt, shade = 1.0 - sun_visibility_at(a, rho2_of(a, h), r, cos_s[q], &mt);
+        double d = L[q][1] > 0.0 ? L2x[q] / L[q][1] * (1.0 - F[1] / (4.0 * REF_PI)) * shade : 0.0;
+        aniso[q] = isfinite(d) ? clampd(d, -1.0, 1.0) : 0.0;
+    }
     free(az);
     free(L);
+    free(L2x);
     return 1;
 }
 
@@ -295,7 +321,7 @@ static void multiscatter_at(const model_atmosphere *a, double h, double mu_s, po
         sun_steps = 1;
     if (pr) {
         multiscatter_row(a, h, &ms, 1, n_az, pr, graded ? ms_steps_for(steps, ms) : steps, graded, sun_steps, NULL,
-                         res);
+                         res, NULL);
         free(pr->mu);
     }
     for (int c = 0; c < 3; ++c)

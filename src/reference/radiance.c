@@ -84,12 +84,22 @@ static void sky_step(sky_ray *s, double t, double dt)
         for (int c = 0; c < 3; ++c)
             Ts[c] = exp(-tau[c]);
     }
-    if (s->psi)
-        psi_table_eval(s->psi, a, ht, mst, ps);
+    double fr = 1.0; /* the second bounce's anisotropy on the Rayleigh part of the Psi term */
+    if (s->psi) {
+        double D;
+        psi_table_eval(s->psi, a, ht, mst, ps, &D);
+        if (D != 0.0 && rt > 0.0) {
+            /* the view direction in the sample's frame: v_z = mu_v, v_x toward the sun's azimuth, v_y across */
+            double muv = clampd((s->r * s->mu + t) / rt, -1.0, 1.0), sin2s = (1.0 - mst) * (1.0 + mst);
+            double vx = sin2s > 1e-12 ? (s->nu - muv * mst) / sqrt(sin2s) : 0.0;
+            double vy2 = fmax(0.0, (1.0 - muv) * (1.0 + muv) - vx * vx);
+            fr = 1.0 + 0.375 * D * (vx * vx - vy2);
+        }
+    }
     for (int c = 0; c < 3; ++c) {
         double single =
             vis * Ts[c] * (m.sr[c] * s->pr + m.sm[c] * s->pm);
-        double S = a->sun_illuminance[c] * (single + ps[c] * m.scat[c]);
+        double S = a->sun_illuminance[c] * (single + ps[c] * (m.sr[c] * fr + m.sm[c]));
         s->L[c] += s->Tv[c] * S * step_integral(m.ext[c], dt);
         s->Tv[c] *= exp(-m.ext[c] * dt);
     }

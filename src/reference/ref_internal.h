@@ -210,7 +210,7 @@ int polar_horizon(const model_atmosphere *a, double h, int n, polar_rule *p);
  * contribute equally, so only half of them are evaluated. Returns 0 when out of memory (out = 0). */
 int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int count, int n_az,
                      const polar_rule *pr, int steps, int graded, int sun_steps, const sun_table *st,
-                     double (*out)[3]);
+                     double (*out)[3], double *aniso);
 
 /* The 10 m altitude clamp of every Psi evaluation. */
 static inline double ms_altitude(const model_atmosphere *a, double h) { return clampd(h, 0.01, atmo_height(a)); }
@@ -234,6 +234,10 @@ typedef struct psi_table psi_table;
 const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps);
 
 /* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does). */
-void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3]);
+/* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does), and *aniso, the second bounce's
+ * anisotropy D: the Rayleigh part of the Psi term is scaled by 1 + (3/8) D (v_x^2 - v_y^2) for a view direction v
+ * with components v_x toward the sun's azimuth and v_y across it (docs/model.md). */
+void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3],
+                    double *aniso);
 
 #endif /* VKSKY_REF_INTERNAL_H */
