@@ -101,7 +101,9 @@ VKSKY_STRUCT(TonemapPush) {
 #define VKSKY_SPEC_EXTRA_SPECIES 11     /* how many extra species (0 .. VKSKY_MAX_EXTRA) */
 #define VKSKY_SPEC_EXTRA0_PROFILE 12
 #define VKSKY_SPEC_EXTRA1_PROFILE 13
-#define VKSKY_SPEC_COUNT 13             /* IDs 1 .. 13 */
+#define VKSKY_SPEC_COUNT 13             /* IDs 1 .. 13: the scene's variant (every pipeline of the renderer) */
+#define VKSKY_SPEC_AP_RANGE 14          /* the aerial-perspective volume's (ap_volume.c): its range in km */
+#define VKSKY_SPEC_AP_DISTRIBUTION 15   /* and its slice distribution exponent (1 linear, 2 quadratic) */
 #define VKSKY_MIE_PHASE_HG 0
 #define VKSKY_MIE_PHASE_CORNETTE_SHANKS 1
 

@@ -22,11 +22,17 @@ typedef struct composite_options {
     bool has_size;                  /* --width or --height given */
     bool aovs;                      /* --aovs: a plain sky render also writes the AOV layers */
     aerial_method aerial;           /* --aerial-perspective march|volume|auto (default auto) */
+    unsigned ap_size[3];            /* --ap-volume-size WxHxD: froxels (default 32x32x32) */
+    double ap_range_km;             /* --ap-volume-range KM (default 32) */
+    double ap_distribution;         /* --ap-volume-slices linear|quadratic: 1 or 2 (default quadratic) */
 } composite_options;
 
 /* Takes this module's flags (and their values) out of argv, compacting it and updating *argc; notes the shared
  * flags it cares about. 0, or 2 after one line on stderr (bad value, missing value, a flag that needs
  * --composite). */
 int composite_options_extract(composite_options *co, int *argc, char **argv);
+/* --aerial-perspective auto: whether the froxel volume meets --max-error (0: not given -> the march), by the
+ * volume's measured error (docs/readme/apvolume.md); *why gets the reason for a note on stderr. */
+bool composite_auto_volume(const composite_options *co, double max_error, const char **why);
 void composite_options_print_help(FILE *out);
 #endif
