@@ -288,11 +288,12 @@ static void bench(sky_renderer *r, sky_composite *c, const CompositePush *push, 
 {
     enum { PASSES = 4 };
     static const char *const names[PASSES] = {"ap_volume", "composite_upload", "composite", "composite_readback"};
-    double *ms = calloc((size_t)frames * PASSES, sizeof *ms), read[GPU_TIMER_MAX];
+    double *ms = calloc((size_t)frames * (PASSES + 1), sizeof *ms), read[GPU_TIMER_MAX];
     if (!ms) return;
+    double *wall = ms + (size_t)frames * PASSES;   /* submit -> fence (lavapipe's timestamps miss compute work) */
     for (int i = 0; i < 3; ++i) sky_composite_render(r, c, push, 1);   /* warm-up: LUTs, shader compiles, clocks */
     for (int i = 0; i < frames; ++i) {
-        sky_composite_render(r, c, push, 1);
+        wall[i] = sky_composite_render(r, c, push, 1);
         uint32_t count = gpu_timer_read(r->ctx, &r->timer, read);
         for (uint32_t k = 0; k < count; ++k)
             for (int p = 0; p < PASSES; ++p)
@@ -302,6 +303,9 @@ static void bench(sky_renderer *r, sky_composite *c, const CompositePush *push, 
         qsort(ms + p * frames, (size_t)frames, sizeof *ms, compare_double);
         printf("pass %s gpu_ms %.4f (%ux%u)\n", names[p], ms[p * frames + frames / 2], c->width, c->height);
     }
+    qsort(wall, (size_t)frames, sizeof *wall, compare_double);
+    printf("composite frame wall_ms %.3f (submit to fence, median of %d; %s)\n", wall[frames / 2], frames,
+           c->has_volume ? "volume" : "march");
     free(ms);
 }
 

@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
@@ -319,7 +320,7 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     gpu_barrier_flush(cmd, &b);
 }
 
-void sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames)
+double sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames)
 {
     VkCommandBuffer cmd = gpu_begin_commands(r->ctx);
     for (int i = 0; i < (frames > 1 ? frames : 1) && i < 16; ++i) {
@@ -333,6 +334,10 @@ void sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush
         }
         composite_frame_record(r, c, cmd, push, i > 0);
     }
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     gpu_submit_and_wait(r->ctx, cmd);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
     gpu_buffer_invalidate(r->ctx, &c->readback);
+    return (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6;
 }

@@ -67,6 +67,7 @@ const float *sky_composite_layer(const sky_composite *c, int k);
 /* The composite frame, in order, with its barriers (composite.c). */
 void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer cmd, const CompositePush *push,
                             bool force_luts);
-/* Record `frames` frames (tests: VKSKY_FRAMES) into one command buffer, submit, wait, read back. */
-void sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames);
+/* Record `frames` frames (tests: VKSKY_FRAMES) into one command buffer, submit, wait, read back. Returns wall
+ * milliseconds from submit to fence. */
+double sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames);
 #endif
