@@ -42,7 +42,12 @@ read -r -a CAMERA <"$S/camera.txt"
 "$CHECK" "$work/out/vol.exr" "$S/render.exr" "$work/out/sky.exr" || fail "volume composite: layers or sky pixels"
 "$VKSKY" --composite "$S/render.exr" --render "$work/out/auto.exr" "${SUN[@]}" --max-error 0.05 --validate \
     2>"$work/err" || fail "auto composite: exit $? ($(cat "$work/err"))"
-grep -q "auto: --max-error allows" "$work/err" || fail "auto with --max-error 0.05: did not take the volume: $(cat "$work/err")"
+grep -q "allows the volume 16x16x16" "$work/err" ||
+    fail "auto with --max-error 0.05: did not take the cheapest volume (src/app/ap_trade_table.h): $(cat "$work/err")"
+"$VKSKY" --composite "$S/render.exr" --render "$work/out/auto.exr" "${SUN[@]}" --max-error 0.003 --validate \
+    2>"$work/err" || fail "auto composite, --max-error 0.003: exit $? ($(cat "$work/err"))"
+grep -q "auto: no measured froxel volume" "$work/err" ||
+    fail "auto with --max-error 0.003: expected the march: $(cat "$work/err")"
 # Without an orientation: geometry composited, sky pixels keep the beauty, one note on stderr.
 "$VKSKY" --composite "$S/beauty.exr" --position "$S/position.exr" --camera-position -3.5,-8.5,218.8 \
     --render "$work/out/noorient.exr" --validate 2>"$work/err" || fail "composite without orientation: exit $?"

@@ -321,8 +321,12 @@ static int pick_volume(const options *o, const composite_options *co, bool orien
                        const ap_volume_desc **out)
 {
     *out = NULL;
-    const char *why = "";
-    bool want = co->aerial == AERIAL_VOLUME || (co->aerial == AERIAL_AUTO && composite_auto_volume(co, o->max_error, &why));
+    char why[300] = "";
+    unsigned size[3] = {co->ap_size[0], co->ap_size[1], co->ap_size[2]};
+    double range = co->ap_range_km, distribution = co->ap_distribution;
+    bool want = co->aerial == AERIAL_VOLUME ||
+                (co->aerial == AERIAL_AUTO && composite_auto_volume(co, o->max_error, size, &range, &distribution,
+                                                                    why, sizeof why));
     if (want && !oriented) {
         if (co->aerial == AERIAL_VOLUME) {
             fprintf(stderr, "vksky: --aerial-perspective volume: the froxel volume covers the camera's frustum, whose "
@@ -330,11 +334,11 @@ static int pick_volume(const options *o, const composite_options *co, bool orien
             return -1;
         }
         want = false;
+        snprintf(why, sizeof why, "the camera's orientation is unknown: the march");
     }
     if (co->aerial == AERIAL_AUTO && o->max_error > 0.0) fprintf(stderr, "vksky: --aerial-perspective auto: %s\n", why);
     if (!want) return 0;
-    *desc = (ap_volume_desc){co->ap_size[0], co->ap_size[1], co->ap_size[2], (float)co->ap_range_km,
-                             (float)co->ap_distribution};
+    *desc = (ap_volume_desc){size[0], size[1], size[2], (float)range, (float)distribution};
     *out = desc;
     return 0;
 }

@@ -1,6 +1,8 @@
 #include "app/options_composite.h"
+#include "app/ap_trade_table.h"
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,7 +21,7 @@ static const composite_flag composite_flags[] = {
     {"--world-up", true, "y|z        with --composite: the world's up axis (default z); the ground is the plane up = 0"},
     {"--ground-altitude", true, "KM with --composite: altitude of the world's ground plane (default 0)"},
     {"--camera-position", true, "X,Y,Z with --composite: camera position in world units, when the EXR has no worldToCamera; --yaw/--pitch/--fov give its orientation (sky pixels)"},
-    {"--aerial-perspective", true, "M march | volume | auto: camera->point by a march per pixel (accurate) or Hillaire's froxel volume (fast; docs/readme/apvolume.md); auto: the volume when --max-error allows it (default auto)"},
+    {"--aerial-perspective", true, "M march | volume | auto: camera->point by a march per pixel (accurate) or Hillaire's froxel volume (fast; docs/readme/apvolume.md); auto: the cheapest measured one within --max-error, else the march (default auto)"},
     {"--ap-volume-size", true, "WxHxD  the froxel volume's size (default 32x32x32; 1 to 512 each)"},
     {"--ap-volume-range", true, "KM   the froxel volume's depth range (default 32; farther points are marched)"},
     {"--ap-volume-slices", true, "linear|quadratic the froxel volume's slice spacing (default quadratic, Hillaire's)"},
@@ -68,6 +70,7 @@ static bool parse_triple(const char *text, double out[3])
 
 static int take(composite_options *co, const char *name, const char *value)
 {
+    if (!strncmp(name, "--ap-volume-", 12)) co->ap_shape_given = true;
     if (!strcmp(name, "--composite")) co->input = value;
     else if (!strcmp(name, "--position")) co->position = value;
     else if (!strcmp(name, "--beauty-layer")) co->beauty_layer = value;
@@ -149,21 +152,32 @@ int composite_options_extract(composite_options *co, int *argc, char **argv)
     return 0;
 }
 
-/* The froxel volume's error on seed 004's scene (test_aerial --volume, 32x32x32 to 32 km, quadratic), as the
- * largest relative error of the in-scattering over the points it holds: the figure auto weighs --max-error
- * against. Other shapes are not measured: auto keeps the march for them. */
-#define AP_VOLUME_MEASURED_ERROR 0.03   /* 2.9 % measured */
-
-bool composite_auto_volume(const composite_options *co, double max_error, const char **why)
+bool composite_auto_volume(const composite_options *co, double max_error, unsigned size[3], double *range_km,
+                           double *distribution, char *why, size_t why_size)
 {
-    bool default_shape = co->ap_size[0] == 32 && co->ap_size[1] == 32 && co->ap_size[2] == 32 &&
-                         co->ap_range_km == 32.0 && co->ap_distribution == 2.0;
-    if (!(max_error > 0.0)) *why = "no --max-error: the accurate march";
-    else if (!default_shape) *why = "the volume's error is measured for its default shape only: the march";
-    else if (max_error < AP_VOLUME_MEASURED_ERROR) *why = "--max-error is below the volume's measured error: the march";
-    else {
-        *why = "--max-error allows the volume's measured error: the volume";
-        return true;
+    if (!(max_error > 0.0)) {
+        snprintf(why, why_size, "no --max-error: the accurate march");
+        return false;
     }
-    return false;
+    /* The march, unless a measured volume shape (the one the flags gave, if any) is cheaper within the error. */
+    const ap_trade *march = &ap_trade_table[0], *best = march;
+    for (int i = 1; i < AP_TRADE_COUNT; ++i) {
+        const ap_trade *t = &ap_trade_table[i];
+        bool shape_ok = !co->ap_shape_given || (t->size[0] == co->ap_size[0] && t->size[1] == co->ap_size[1] &&
+                                                t->size[2] == co->ap_size[2] && t->range_km == co->ap_range_km &&
+                                                t->distribution == co->ap_distribution);
+        if (shape_ok && t->err_mean <= max_error && t->gpu_ms < best->gpu_ms) best = t;
+    }
+    if (best == march) {
+        snprintf(why, why_size, "no measured froxel volume%s is within --max-error %g (the march: %.2g): the march",
+                 co->ap_shape_given ? " of the shape given" : "", max_error, march->err_mean);
+        return false;
+    }
+    memcpy(size, best->size, sizeof best->size);
+    *range_km = best->range_km, *distribution = best->distribution;
+    snprintf(why, why_size, "--max-error %g allows the volume %ux%ux%u %s (measured error %.2g vs the march's %.2g; "
+             "%.2f ms vs %.2f ms at 1080p on an H100)", max_error, size[0], size[1], size[2],
+             best->distribution == 1.0 ? "linear" : "quadratic", best->err_mean, march->err_mean, best->gpu_ms,
+             march->gpu_ms);
+    return true;
 }
