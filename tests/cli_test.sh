@@ -83,7 +83,7 @@ for q in low medium high ultra; do
     "$VKSKY" --quality $q --render "$work/q.png" --width 48 --height 27 --validate 2>"$work/err" \
         || fail "--quality $q failed: $(cat "$work/err")"
 done
-expect_bad "unknown preset" "low, medium, high or ultra" --quality extreme --render "$work/bad.exr"
+expect_bad "unknown preset" "low, medium, high, ultra, lesson or auto" --quality extreme --render "$work/bad.exr"
 expect_bad "preset and budget" "--max-error" --quality low --max-error 0.1 --render "$work/bad.exr"
 expect_bad "impossible budget" "no measured configuration" --max-error 0.0001 --sun-elevation -4 --render "$work/bad.exr"
 for budget in 0.005 0.02 0.3; do

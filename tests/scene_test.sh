@@ -202,7 +202,7 @@ bad_scene phase-model "species.mie.phase.model: unknown value 'rayleigh'; expect
 bad_scene array-length "planet.ground_albedo: expected 3 numbers, got 2"
 bad_scene not-integer "output.width: 64.5 is not an integer; expected an integer in [1, 16384] (as --width)"
 bad_scene duplicate-field "camera.pitch_deg: given twice"
-bad_scene bad-preset "quality.preset: unknown value 'extreme'; expected low, medium, high or ultra"
+bad_scene bad-preset "quality.preset: unknown value 'extreme'; expected low, medium, high, ultra or lesson"
 bad_scene max-steps-below "quality.max_steps: max_steps 16 is below steps 64"
 bad_scene not-square "quality.multiscatter_directions: 50 is not a perfect square"
 for f in "$BAD"/*.json; do   # every fixture is exercised above

@@ -5,10 +5,16 @@
  *   - GPU time: per-pass timestamps, median over --frames frames after warm-up, at --size (no readback);
  *   - error: a small frame (--error-size, bloom off) against the converged CPU reference of the same view:
  *     relative luminance error over sky pixels (mean, p95, max) and mean CIEDE2000 of the tone-mapped images.
+ *     With --error-render WxH the frame is rendered at WxH and compared at an --error-size grid of its pixels
+ *     (the reference traced through those very pixels): the error of a full-size frame, whose render scale and
+ *     upsample act on its own pixel spacing, at the reference cost of the small grid.
+ *   - --cost cpu: the table's cost is the process's CPU ms per whole frame (bloom and tone map included) instead
+ *     of the sky's GPU ms: on a CPU device (lavapipe) the frame's work whatever else the machine runs.
  * Writes a CSV (plot it with tools/plot_tradeoff.sh) and optionally the C table that --max-error chooses from.
  *
- *   tradeoff [--size WxH] [--error-size WxH] [--frames N] [--csv FILE] [--emit-table FILE]
- *            [--configs a,b,...] [--device N]
+ *   tradeoff [--size WxH] [--error-size WxH] [--error-render WxH] [--frames N] [--csv FILE]
+ *            [--emit-table FILE] [--cost gpu|cpu] [--configs a,b,...] [--scenes noon,...]
+ *            [--device N]
  */
 #include "app/quality.h"
 #include "io/half_float.h"
@@ -16,6 +22,7 @@
 #include "sky/submit.h"
 #include <math.h>
 #include <pthread.h>
+#include <sys/resource.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -26,7 +33,7 @@ static const double SUN_RADIUS = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
 typedef struct row {
     const char *config;
     int scene;
-    double sky_ms, frame_ms, wall_ms;
+    double sky_ms, frame_ms, wall_ms, cpu_ms;
     metrics_luminance err;
     double de2000;
 } row;
@@ -56,10 +63,17 @@ static sky_view scene_view(const quality_scene *s)
     return v;
 }
 
+/* The error grid: w x h samples of a full_w x full_h frame, grid point i at pixel floor((i + 1/2) full / n) (the
+ * identity when the frame is the grid's own size). */
+typedef struct error_grid { int w, h, full_w, full_h; } error_grid;
+static int grid_x(const error_grid *g, int i) { return (int)(((double)i + 0.5) * g->full_w / g->w); }
+static int grid_y(const error_grid *g, int j) { return (int)(((double)j + 0.5) * g->full_h / g->h); }
+
 /* --- The converged reference image of a scene (CPU, two threads) --- */
 typedef struct ref_job {
     const model_atmosphere *a;
     const quality_scene *s;
+    const error_grid *g;
     int w, h, next;
     float *rgba;
     pthread_mutex_t lock;
@@ -77,7 +91,8 @@ static void *ref_rows(void *arg)
         if (y >= j->h) return NULL;
         for (int x = 0; x < j->w; ++x) {
             double dir[3], rgb[3];
-            ref_pixel_dir(x, y, j->w, j->h, j->s->yaw_deg * DEG, j->s->pitch_deg * DEG, j->s->fov_deg * DEG, dir);
+            ref_pixel_dir(grid_x(j->g, x), grid_y(j->g, y), j->g->full_w, j->g->full_h, j->s->yaw_deg * DEG,
+                          j->s->pitch_deg * DEG, j->s->fov_deg * DEG, dir);
             ref_sky_radiance(j->a, j->s->altitude_km, dir, sun, ref_quality_converged(), rgb);
             float *p = j->rgba + 4 * ((size_t)y * j->w + x);
             p[0] = (float)rgb[0], p[1] = (float)rgb[1], p[2] = (float)rgb[2], p[3] = 1.0f;
@@ -85,9 +100,10 @@ static void *ref_rows(void *arg)
     }
 }
 
-static float *reference_image(const model_atmosphere *a, const quality_scene *s, int w, int h)
+static float *reference_image(const model_atmosphere *a, const quality_scene *s, const error_grid *g)
 {
-    ref_job j = {.a = a, .s = s, .w = w, .h = h, .rgba = malloc(sizeof(float) * 4 * (size_t)w * h)};
+    int w = g->w, h = g->h;
+    ref_job j = {.a = a, .s = s, .g = g, .w = w, .h = h, .rgba = malloc(sizeof(float) * 4 * (size_t)w * h)};
     pthread_mutex_init(&j.lock, NULL);
     double up[3] = {0, 1, 0}, sun[3], rgb[3];
     ref_dir(0.0, s->sun_elevation_deg * DEG, sun);
@@ -102,17 +118,30 @@ static float *reference_image(const model_atmosphere *a, const quality_scene *s,
 }
 
 /* Sky pixels, minus the sun's disc and its immediate surroundings (the reference excludes the disc). */
-static void error_mask(const model_atmosphere *a, const quality_scene *s, int w, int h, unsigned char *mask)
+static void error_mask(const model_atmosphere *a, const quality_scene *s, const error_grid *g, unsigned char *mask)
 {
-    metrics_sky_mask(a, s->altitude_km, w, h, s->yaw_deg * DEG, s->pitch_deg * DEG, s->fov_deg * DEG, mask);
+    unsigned char *full = malloc((size_t)g->full_w * g->full_h);
+    metrics_sky_mask(a, s->altitude_km, g->full_w, g->full_h, s->yaw_deg * DEG, s->pitch_deg * DEG, s->fov_deg * DEG,
+                     full);
     double sun[3];
     ref_dir(0.0, s->sun_elevation_deg * DEG, sun);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
+    for (int y = 0; y < g->h; ++y)
+        for (int x = 0; x < g->w; ++x) {
             double d[3];
-            ref_pixel_dir(x, y, w, h, s->yaw_deg * DEG, s->pitch_deg * DEG, s->fov_deg * DEG, d);
-            if (d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2] > cos(4.0 * SUN_RADIUS)) mask[y * w + x] = 0;
+            int px = grid_x(g, x), py = grid_y(g, y);
+            ref_pixel_dir(px, py, g->full_w, g->full_h, s->yaw_deg * DEG, s->pitch_deg * DEG, s->fov_deg * DEG, d);
+            mask[y * g->w + x] = full[(size_t)py * g->full_w + px];
+            if (d[0] * sun[0] + d[1] * sun[1] + d[2] * sun[2] > cos(4.0 * SUN_RADIUS)) mask[y * g->w + x] = 0;
         }
+    free(full);
+}
+
+static double process_cpu_ms(void)
+{
+    struct rusage u;
+    getrusage(RUSAGE_SELF, &u);
+    return 1e3 * ((double)u.ru_utime.tv_sec + (double)u.ru_stime.tv_sec) +
+           1e-3 * ((double)u.ru_utime.tv_usec + (double)u.ru_stime.tv_usec);
 }
 
 static sky_renderer make_renderer(gpu_context *ctx, const quality_config *q, sky_view *v, int w, int h, bool readback,
@@ -140,6 +169,7 @@ static void measure_time(gpu_context *ctx, const quality_config *q, const qualit
     double *sky = calloc((size_t)frames, sizeof(double)), *total = calloc((size_t)frames, sizeof(double)),
            *wall = calloc((size_t)frames, sizeof(double));
     double ms[GPU_TIMER_MAX];
+    double cpu_start = process_cpu_ms();
     for (int i = 0; i < frames; ++i) {
         wall[i] = sky_renderer_render(&r, &f);
         uint32_t n = gpu_timer_read(ctx, &r.timer, ms);
@@ -148,6 +178,7 @@ static void measure_time(gpu_context *ctx, const quality_config *q, const qualit
             if (!strcmp(r.timer.names[k], "sky") || !strcmp(r.timer.names[k], "skyview_lut")) sky[i] += ms[k];
         }
     }
+    out->cpu_ms = (process_cpu_ms() - cpu_start) / frames;
     out->sky_ms = median(sky, frames);
     out->frame_ms = median(total, frames);
     out->wall_ms = median(wall, frames);
@@ -155,18 +186,23 @@ static void measure_time(gpu_context *ctx, const quality_config *q, const qualit
     sky_renderer_destroy(&r);
 }
 
-static void measure_error(gpu_context *ctx, const quality_config *q, const quality_scene *s, int w, int h,
+static void measure_error(gpu_context *ctx, const quality_config *q, const quality_scene *s, const error_grid *g,
                           const model_atmosphere *a, const float *ref, const unsigned char *mask, row *out)
 {
+    int w = g->w, h = g->h;
     sky_view v = scene_view(s);
     v.bloom = false;
-    sky_renderer r = make_renderer(ctx, q, &v, w, h, true, a);
+    sky_renderer r = make_renderer(ctx, q, &v, g->full_w, g->full_h, true, a);
     frame_desc f = {.view = &v};
     sky_renderer_render(&r, &f);
     size_t n = 4 * (size_t)w * h;
     float *gpu = malloc(sizeof(float) * n);
     const uint16_t *half = r.readback_linear.mapped;
-    for (size_t i = 0; i < n; ++i) gpu[i] = io_half_to_float(half[i]);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 4; ++c)
+                gpu[4 * ((size_t)y * w + x) + c] =
+                    io_half_to_float(half[4 * ((size_t)grid_y(g, y) * g->full_w + grid_x(g, x)) + c]);
     sky_renderer_destroy(&r);
     double max_ref = 0.0;
     for (size_t i = 0; i < (size_t)w * h; ++i)
@@ -192,25 +228,32 @@ static bool wanted(const char *list, const char *name)
 
 int main(int argc, char **argv)
 {
-    int tw = 1920, th = 1080, ew = 96, eh = 54, frames = 30, device = -1;
-    const char *csv = "tradeoff.csv", *table = NULL, *configs = NULL;
+    int tw = 1920, th = 1080, ew = 96, eh = 54, rw = 0, rh = 0, frames = 30, device = -1;
+    const char *csv = "tradeoff.csv", *table = NULL, *configs = NULL, *scenes = NULL;
+    bool cost_cpu = false;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) { fprintf(stderr, "tradeoff: %s needs a value\n", a); return 2; }
         if (!strcmp(a, "--size") && !parse_size(v, &tw, &th)) ++i;
         else if (!strcmp(a, "--error-size") && !parse_size(v, &ew, &eh)) ++i;
+        else if (!strcmp(a, "--error-render") && !parse_size(v, &rw, &rh)) ++i;
+        else if (!strcmp(a, "--cost") && (!strcmp(v, "gpu") || !strcmp(v, "cpu"))) cost_cpu = !strcmp(v, "cpu"), ++i;
         else if (!strcmp(a, "--frames") && (frames = atoi(v)) > 0) ++i;
         else if (!strcmp(a, "--csv")) csv = v, ++i;
         else if (!strcmp(a, "--emit-table")) table = v, ++i;
         else if (!strcmp(a, "--configs")) configs = v, ++i;
+        else if (!strcmp(a, "--scenes")) scenes = v, ++i;
         else if (!strcmp(a, "--device")) device = atoi(v), ++i;
         else { fprintf(stderr, "tradeoff: bad argument %s %s\n", a, v); return 2; }
     }
     gpu_context ctx;
     gpu_context_desc desc = {.device_index = device};
     if (gpu_context_create(&ctx, &desc) != 0) return 1;
-    fprintf(stderr, "tradeoff: device %s, timing at %dx%d (%d frames), error at %dx%d\n", ctx.props.deviceName, tw, th,
-            frames, ew, eh);
+    if (rw == 0) rw = ew, rh = eh;
+    if (rw < ew || rh < eh) { fprintf(stderr, "tradeoff: --error-render %dx%d is smaller than the %dx%d grid\n", rw, rh, ew, eh); return 2; }
+    error_grid grid = {.w = ew, .h = eh, .full_w = rw, .full_h = rh};
+    fprintf(stderr, "tradeoff: device %s, timing at %dx%d (%d frames), error at a %dx%d grid of %dx%d frames\n",
+            ctx.props.deviceName, tw, th, frames, ew, eh, rw, rh);
     model_atmosphere a;
     model_atmosphere_earth(&a);
     int nconf = 4 + quality_sweep_count;
@@ -219,30 +262,33 @@ int main(int argc, char **argv)
     float *refs[6];
     unsigned char *masks[6];
     for (int s = 0; s < 6; ++s) {
-        refs[s] = reference_image(&a, &quality_scenes[s], ew, eh);
+        refs[s] = NULL, masks[s] = NULL;
+        if (!wanted(scenes, quality_scenes[s].name)) continue;
+        refs[s] = reference_image(&a, &quality_scenes[s], &grid);
         masks[s] = malloc((size_t)ew * eh);
-        error_mask(&a, &quality_scenes[s], ew, eh, masks[s]);
+        error_mask(&a, &quality_scenes[s], &grid, masks[s]);
     }
     FILE *out = fopen(csv, "w");
     if (!out) { fprintf(stderr, "tradeoff: cannot write %s\n", csv); return 1; }
-    fprintf(out, "device,config,scene,width,height,sky_gpu_ms,frame_gpu_ms,wall_ms,err_mean,err_p95,err_max,ciede2000\n");
+    fprintf(out, "device,config,scene,width,height,sky_gpu_ms,frame_gpu_ms,wall_ms,err_mean,err_p95,err_max,ciede2000,cpu_ms\n");
     for (int c = 0; c < nconf; ++c) {
         const quality_config *q = c < 4 ? &quality_presets[c] : &quality_sweep[c - 4];
         if (!wanted(configs, q->name)) continue;
         for (int s = 0; s < 6; ++s) {
+            if (!refs[s]) continue;
             row *r = &rows[count++];
             r->config = q->name;
             r->scene = s;
             measure_time(&ctx, q, &quality_scenes[s], tw, th, frames, &a, r);
             /* The fill floor has no accuracy to speak of. */
             if (q->mode == SKY_CHOICE_FILL) r->err.mean = r->err.p95 = r->err.max = r->de2000 = NAN;
-            else measure_error(&ctx, q, &quality_scenes[s], ew, eh, &a, refs[s], masks[s], r);
-            fprintf(out, "\"%s\",%s,%s,%d,%d,%.4f,%.4f,%.4f,%.5f,%.5f,%.5f,%.4f\n", ctx.props.deviceName, q->name,
+            else measure_error(&ctx, q, &quality_scenes[s], &grid, &a, refs[s], masks[s], r);
+            fprintf(out, "\"%s\",%s,%s,%d,%d,%.4f,%.4f,%.4f,%.5f,%.5f,%.5f,%.4f,%.4f\n", ctx.props.deviceName, q->name,
                     quality_scenes[s].name, tw, th, r->sky_ms, r->frame_ms, r->wall_ms, r->err.mean, r->err.p95,
-                    r->err.max, r->de2000);
+                    r->err.max, r->de2000, r->cpu_ms);
             fflush(out);
-            fprintf(stderr, "%-20s %-13s sky %8.3f ms frame %8.3f ms wall %8.2f ms | err mean %6.2f%% p95 %6.2f%% max %6.2f%% dE00 %.2f\n",
-                    q->name, quality_scenes[s].name, r->sky_ms, r->frame_ms, r->wall_ms, 100 * r->err.mean,
+            fprintf(stderr, "%-20s %-13s sky %8.3f ms frame %8.3f ms wall %8.2f ms cpu %8.2f ms | err mean %6.2f%% p95 %6.2f%% max %6.2f%% dE00 %.2f\n",
+                    q->name, quality_scenes[s].name, r->sky_ms, r->frame_ms, r->wall_ms, r->cpu_ms, 100 * r->err.mean,
                     100 * r->err.p95, 100 * r->err.max, r->de2000);
         }
     }
@@ -250,17 +296,23 @@ int main(int argc, char **argv)
     if (table) {
         FILE *t = fopen(table, "w");
         if (t) {
-            fprintf(t, "/* Measured by tools/tradeoff on %s (sky GPU ms at %dx%d, median of %d frames; mean relative\n"
-                       " * luminance error at %dx%d vs the converged reference). Regenerate: tradeoff --emit-table FILE. */\n"
-                       "typedef struct quality_measurement { const char *config; int scene; double gpu_ms, err_mean, err_p95; } quality_measurement;\n"
-                       "static const quality_measurement quality_table[] = {\n",
-                    ctx.props.deviceName, tw, th, frames, ew, eh);
+            /* The GPU table declares the row type; the CPU table (quality_table_cpu.h) reuses it. */
+            const char *name = cost_cpu ? "quality_table_cpu" : "quality_table";
+            fprintf(t, "/* Measured by tools/tradeoff on %s (%s at %dx%d, median of %d frames; mean relative\n"
+                       " * luminance error at a %dx%d grid of %dx%d frames vs the converged reference).\n"
+                       " * Regenerate: tradeoff%s --emit-table FILE. */\n",
+                    ctx.props.deviceName, cost_cpu ? "process CPU ms per whole frame, bloom and tone map included"
+                                                   : "sky GPU ms", tw, th, frames, ew, eh, rw, rh,
+                    cost_cpu ? " --cost cpu" : "");
+            if (!cost_cpu)
+                fprintf(t, "typedef struct quality_measurement { const char *config; int scene; double gpu_ms, err_mean, err_p95; } quality_measurement;\n");
+            fprintf(t, "static const quality_measurement %s[] = {\n", name);
             int emitted = 0;
             for (int i = 0; i < count; ++i)
                 if (isfinite(rows[i].err.mean) && ++emitted)
-                    fprintf(t, "    {\"%s\", %d, %.4f, %.5f, %.5f},\n", rows[i].config, rows[i].scene, rows[i].sky_ms,
-                        rows[i].err.mean, rows[i].err.p95);
-            fprintf(t, "};\nstatic const int quality_table_count = %d;\n", emitted);
+                    fprintf(t, "    {\"%s\", %d, %.4f, %.5f, %.5f},\n", rows[i].config, rows[i].scene,
+                            cost_cpu ? rows[i].cpu_ms : rows[i].sky_ms, rows[i].err.mean, rows[i].err.p95);
+            fprintf(t, "};\nstatic const int %s_count = %d;\n", name, emitted);
             fclose(t);
         }
     }

@@ -83,6 +83,13 @@ VKSKY_STRUCT(TonemapPush) {
                                   z: bloom strength (0 = no bloom), w: 1 = encode sRGB in the shader */
 } VKSKY_END(TonemapPush)
 
+/* Compute post chain push constants (bloom_spd.comp, bloom_up.comp, tonemap.comp). */
+VKSKY_STRUCT(PostPush) {
+    vec4 params;               /* spd: x mip count, y threshold; up: xy 1/size of the smaller (source) mip */
+    vec4 tonemap;              /* tonemap.comp: TonemapPush's params (exposure, operator, bloom strength, sRGB) */
+    vec4 bloom;                /* tonemap.comp: xy 1/size of bloom mip 1, z 1 = add its tent (the fused last upsample) */
+} VKSKY_END(PostPush)
+
 /* Specialization constants: what a scene needs, compiled in; what it does not, compiled out (one pipeline
  * per variant, no per-pixel branch). The same IDs in every shader that includes atmosphere.glsl. */
 #define VKSKY_SPEC_RAYLEIGH 1

@@ -153,10 +153,25 @@ static int apply(options *o, const flag *f, const char *value)
     } else if (!strcmp(n, "--no-bloom")) o->view.bloom = false;
     else if (!strcmp(n, "--steps")) o->view.steps = (int)x;
     else if (!strcmp(n, "--quality")) {
-        static const char *const w[] = {"low", "medium", "high", "ultra"};
-        int k = parse_word(n, value, w, 4);
+        static const char *const w[] = {"low", "medium", "high", "ultra", "lesson", "auto"};
+        int k = parse_word(n, value, w, 6);
         if (k < 0) return 2;
         o->quality = w[k];
+    } else if (!strcmp(n, "--bloom-res")) {
+        static const char *const w[] = {"half", "quarter"};
+        int k = parse_word(n, value, w, 2);
+        if (k < 0) return 2;
+        o->bloom_quarter = k == 1;
+    } else if (!strcmp(n, "--bloom-downsample")) {
+        static const char *const w[] = {"levels", "single-pass"};
+        int k = parse_word(n, value, w, 2);
+        if (k < 0) return 2;
+        o->bloom_downsample = (bloom_downsample_kind)k;
+    } else if (!strcmp(n, "--post-pass")) {
+        static const char *const w[] = {"fragment", "compute", "auto"};
+        int k = parse_word(n, value, w, 3);
+        if (k < 0) return 2;
+        o->post_pass = (post_pass_kind)k;
     } else if (!strcmp(n, "--max-error")) o->max_error = x;
     else if (!strcmp(n, "--max-steps")) o->view.max_steps = (int)x;
     else if (!strcmp(n, "--steps-ramp")) o->view.steps_ramp_km = x;
@@ -247,24 +262,36 @@ int options_parse(options *o, int argc, char **argv)
     *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
                    .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5,
                    .scales = {1.0, 1.0, 1.0}, .path_samples = 4096, .sun_angular_radius_deg = 0.265,
-                   .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true};
+                   .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true, .post_pass = POST_PASS_AUTO};
     model_atmosphere_earth(&o->atmosphere);
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
     /* Three passes: --scene first (pass -1), wherever it stands; then the quality preset (or --max-error's choice)
      * sets the knobs, so that any knob flag, wherever it stands, overrides it. */
     const char *scene_quality = NULL;
-    /* The interactive window starts from the interactive preset (headless renders from the lesson's defaults);
-     * a scene and the flags override it. */
-    if (window_mode(argc, argv)) quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips);
+    /* The interactive window starts from the interactive preset, headless renders from --quality auto (the
+     * measured front's point for the scene kind, chosen once the view is known); a scene and the flags override
+     * either. */
+    bool window = window_mode(argc, argv);
+    if (window) quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips);
+    const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
+    double picked_error = 0.0;
+    const char *picked_scene = NULL;
     for (int pass = -1; pass < 2; ++pass) {
     if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
     if (pass == 1) {
         if (o->quality && o->max_error > 0.0) return bad("--max-error", "not with --quality; give one or the other");
-        const quality_config *q = o->quality ? quality_preset(o->quality) : NULL;
-        if (o->max_error > 0.0) {
-            double measured = 0.0;
-            const char *scene = NULL;
+        /* auto: named, or the default of a headless run that names no quality (no --quality, --max-error or scene
+         * file quality section). It is no preset a scene file can name, so a dump lists its knobs instead. */
+        bool automatic = o->quality ? !strcmp(o->quality, "auto")
+                                    : !window && o->max_error <= 0.0 && !o->scene_quality;
+        const quality_config *q = o->quality && !automatic ? quality_preset(o->quality) : NULL;
+        double measured = 0.0;
+        const char *scene = NULL;
+        if (automatic) {
+            q = quality_auto(o->view.altitude_km, o->view.sun_elevation_deg, &measured, &scene);
+            o->quality = NULL;
+        } else if (o->max_error > 0.0) {
             q = quality_pick(o->max_error, o->view.altitude_km, o->view.sun_elevation_deg, &measured, &scene);
             if (!q) {
                 char msg[200];
@@ -272,9 +299,7 @@ int options_parse(options *o, int argc, char **argv)
                          o->max_error, scene);
                 return bad("--max-error", msg);
             }
-            fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
-                    "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
-                    o->max_error, q->name, measured, scene);
+            picked = q, picked_error = measured, picked_scene = scene;
         }
         /* --quality / --max-error replace the scene's whole quality section; without them the scene's preset (applied
          * by scene_load, under the scene's knobs) stays. */
@@ -320,6 +345,11 @@ int options_parse(options *o, int argc, char **argv)
         snprintf(msg, sizeof msg, "%d is below --steps %d; expected a maximum >= the minimum", o->view.max_steps, o->view.steps);
         return bad("--max-steps", msg);
     }
+    /* The --max-error choice, reported only now: every flag has been read and accepted. */
+    if (picked)
+        fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
+                "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
+                o->max_error, picked->name, picked_error, picked_scene);
     if (o->dump_scene && !o->help && !o->version) exit(scene_dump(o, stdout));   /* --dump-scene: nothing else runs */
     return 0;
 }

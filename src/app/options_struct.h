@@ -21,6 +21,7 @@ typedef struct options {
     const char *quality;                        /* --quality preset name (NULL: none) */
     /* Scene features (scene files and their flags). */
     const char *scene_path;                     /* --scene FILE.json (NULL: none) */
+    bool scene_quality;                         /* the scene file has a quality section (no --quality auto then) */
     bool dump_scene;                            /* --dump-scene: print the effective scene as JSON and exit */
     double ground_albedo[3];                    /* --ground-albedo R,G,B (default 0) */
     int mie_phase;                              /* 0 Henyey-Greenstein, 1 Cornette-Shanks (--mie-phase) */
@@ -32,6 +33,9 @@ typedef struct options {
     double max_error;                           /* --max-error (0: off) */                           /* density scales given so far: Rayleigh, Mie, ozone */
     double render_scale;
     int bloom_mips;
+    post_pass_kind post_pass;                   /* --post-pass: bloom + tone map as draws or dispatches (default auto) */
+    bloom_downsample_kind bloom_downsample;     /* --bloom-downsample: the compute chain's downsample */
+    bool bloom_quarter;                         /* --bloom-res quarter: the bloom chain from a quarter-size mip 0 */
     const char *outputs[OPTIONS_MAX_OUTPUTS];   /* --render, .exr or .png */
     int output_count;
     int bench_frames;                           /* --bench N (0: off) */

@@ -58,15 +58,35 @@ const quality_config quality_sweep[] = {
     {.name = "fill-compute", .mode = SKY_CHOICE_FILL, .pass_kind = SKY_PASS_COMPUTE, .steps = 32,
      .step_distribution = 2, .sample_offset = 0.5, .skyview_width = 192, .skyview_height = 108, .skyview_steps = 30,
      DEFAULT_LUTS, .render_scale = 1, .bloom_mips = 5},
+    /* Candidates for a CPU device's window (lavapipe, issue 16): medium's LUTs (multi-scattering with 1024
+     * directions, computed once) with low's sky-view LUT, at full size and at 0.75. */
+    {.name = "medium-skyview96", .mode = SKY_CHOICE_AUTO, .steps = 32, .step_distribution = 2, .sample_offset = 0.5,
+     .skyview_width = 96, .skyview_height = 54, .skyview_steps = 16, .transmittance_width = 256,
+     .transmittance_height = 64, .transmittance_steps = 40, .multiscatter_size = 32, .multiscatter_sqrt_dirs = 32,
+     .multiscatter_steps = 20, .render_scale = 1, .bloom_mips = 5},
+    {.name = "medium-skyview96-scale0.75", .mode = SKY_CHOICE_AUTO, .steps = 32, .step_distribution = 2,
+     .sample_offset = 0.5, .skyview_width = 96, .skyview_height = 54, .skyview_steps = 16,
+     .transmittance_width = 256, .transmittance_height = 64, .transmittance_steps = 40, .multiscatter_size = 32,
+     .multiscatter_sqrt_dirs = 32, .multiscatter_steps = 20, .render_scale = 0.75, .bloom_mips = 5},
+    {.name = "medium-skyview96-scale0.5", .mode = SKY_CHOICE_AUTO, .steps = 32, .step_distribution = 2,
+     .sample_offset = 0.5, .skyview_width = 96, .skyview_height = 54, .skyview_steps = 16,
+     .transmittance_width = 256, .transmittance_height = 64, .transmittance_steps = 40, .multiscatter_size = 32,
+     .multiscatter_sqrt_dirs = 32, .multiscatter_steps = 20, .render_scale = 0.5, .bloom_mips = 5},
     {.name = "march32-scale0.5", .mode = SKY_CHOICE_MARCH, .steps = 32, .step_distribution = 2, .sample_offset = 0.5,
      .skyview_width = 192, .skyview_height = 108, .skyview_steps = 30, DEFAULT_LUTS, .render_scale = 0.5, .bloom_mips = 5},
 };
 const int quality_sweep_count = (int)(sizeof quality_sweep / sizeof quality_sweep[0]);
 
+const quality_config quality_lesson = {.name = "lesson", .mode = SKY_CHOICE_MARCH, .pass_kind = SKY_PASS_AUTO,
+                                       .steps = 32, .step_distribution = 2, .sample_offset = 0.5, .skyview_width = 192,
+                                       .skyview_height = 108, .skyview_steps = 30, DEFAULT_LUTS, .render_scale = 1,
+                                       .bloom_mips = 5};
+
 const quality_config *quality_preset(const char *name)
 {
     for (int i = 0; i < 4; ++i)
         if (!strcmp(quality_presets[i].name, name)) return &quality_presets[i];
+    if (!strcmp(name, "lesson")) return &quality_lesson;
     return NULL;
 }
 
@@ -132,4 +152,15 @@ const quality_config *quality_pick(double max_error, double altitude_km, double 
         *measured = m->err_mean;
     }
     return best;
+}
+
+const quality_config *quality_auto(double altitude_km, double sun_elevation_deg, double *measured,
+                                   const char **scene_name)
+{
+    int scene = quality_scene_class(altitude_km, sun_elevation_deg);
+    double best = INFINITY;
+    for (int i = 0; i < quality_table_count; ++i)
+        if (quality_table[i].scene == scene && quality_table[i].err_mean < best) best = quality_table[i].err_mean;
+    double budget = fmax(QUALITY_AUTO_FLOOR, QUALITY_AUTO_SLACK * best);
+    return quality_pick(budget, altitude_km, sun_elevation_deg, measured, scene_name);
 }

@@ -18,9 +18,12 @@ typedef struct quality_config {
     int bloom_mips;
 } quality_config;
 
-/* low, medium, high, ultra (NULL if unknown). */
+/* low, medium, high, ultra, lesson (NULL if unknown; "auto" is not a fixed configuration: quality_auto). */
 const quality_config *quality_preset(const char *name);
 extern const quality_config quality_presets[4];
+/* The lesson's configuration (the defaults before --quality auto: the 32-step march, the lesson's LUTs), kept
+ * for comparison and for the guide: --quality lesson. The same knobs as the sweep's "march32". */
+extern const quality_config quality_lesson;
 /* The configurations tools/tradeoff sweeps (presets included). */
 extern const quality_config quality_sweep[];
 extern const int quality_sweep_count;
@@ -40,5 +43,13 @@ int quality_scene_class(double altitude_km, double sun_elevation_deg);
 /* --max-error: the cheapest configuration whose measured mean relative luminance error on the view's scene
  * class is <= max_error; NULL if none is (the caller says so). *measured gets that error. */
 const quality_config *quality_pick(double max_error, double altitude_km, double sun_elevation_deg, double *measured,
+                                   const char **scene_name);
+
+/* --quality auto (the default of a headless render): a point on the measured front for the view's scene class,
+ * the cheapest measured configuration whose mean error is within max(1 %, 1.25 x the best measured error on
+ * that class). *measured, *scene_name: as quality_pick. */
+#define QUALITY_AUTO_FLOOR 0.01
+#define QUALITY_AUTO_SLACK 1.25
+const quality_config *quality_auto(double altitude_km, double sun_elevation_deg, double *measured,
                                    const char **scene_name);
 #endif

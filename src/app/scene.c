@@ -281,6 +281,7 @@ static int parse_quality(const scene_ctx *c, const cJSON *q)
     sky_view *v = &o->view;
     sky_lut_quality *lut = &o->lut;
     if (scene_check_fields(c, q, "quality", names, COUNT(names))) return 2;
+    o->scene_quality = true;
     /* The preset first: the knob fields override it. */
     int preset = -1;
     if (scene_get_word(c, q, "preset", "quality", preset_words, COUNT(preset_words), &preset)) return 2;

@@ -35,7 +35,7 @@ static const char *const mode_words[] = {"march", "skyview", "auto", "fill"};   
 static const char *const pass_words[] = {"fragment", "compute", "auto"};            /* sky_pass_kind order */
 static const char *const lut_format_words[] = {"f16", "f32"};
 static const char *const phase_words[] = {"henyey-greenstein", "cornette-shanks"};  /* options.mie_phase */
-static const char *const preset_words[] = {"low", "medium", "high", "ultra"};
+static const char *const preset_words[] = {"low", "medium", "high", "ultra", "lesson"};
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 
 /* A printable, bounded copy (control characters -> '?'): messages stay one line whatever the file holds. */

@@ -401,7 +401,9 @@ static int start_rendering(app *a)
     /* The bloom chain is always allocated so B can toggle it; --no-bloom only starts with it off. */
     sky_renderer_desc rdesc = {.width = a->sc.extent.width, .height = a->sc.extent.height, .bloom = true,
                                .readback = false, .external_display = true, .display_format = a->sc.format.format,
-                               .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips};
+                               .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
+                               .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample,
+                               .bloom_quarter = o->bloom_quarter};
     sky_renderer_create(&a->renderer, &a->ctx, &rdesc);
     sky_renderer_set_atmosphere(&a->renderer, &o->atmosphere, options_sun_radius_rad(o));
     sky_features features = options_features(o);

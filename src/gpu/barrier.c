@@ -35,6 +35,14 @@ static const gpu_usage_info usages[GPU_USAGE_COUNT] = {
     /* Presentation: no stage or access in the barrier; the semaphore signalled by the submit orders it, and since
      * it is signalled at ALL_COMMANDS, this barrier's layout transition too (docs/synchronization.md §4). */
     [GPU_USAGE_PRESENT] = {"present", VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR},
+    /* A compute chain that reads and writes an image in place and samples it (the compute post chain's mips and
+     * tile counters): everything a compute shader can do to it, one layout. */
+    [GPU_USAGE_COMPUTE_STORAGE_RW] = {"compute_storage_rw", VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                      VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+                                          VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                                      VK_IMAGE_LAYOUT_GENERAL},
+    [GPU_USAGE_CLEAR_DST] = {"clear_dst", VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                             VK_IMAGE_LAYOUT_GENERAL},
 };
 
 static FILE *trace_out;
@@ -120,6 +128,7 @@ void gpu_stage_string(VkPipelineStageFlags2 stage, char *buf, size_t size)
     if (stage & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) append(buf, size, "FRAGMENT_SHADER");
     if (stage & VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT) append(buf, size, "COLOR_ATTACHMENT_OUTPUT");
     if (stage & VK_PIPELINE_STAGE_2_COPY_BIT) append(buf, size, "COPY");
+    if (stage & VK_PIPELINE_STAGE_2_CLEAR_BIT) append(buf, size, "CLEAR");
     if (stage & VK_PIPELINE_STAGE_2_HOST_BIT) append(buf, size, "HOST");
     if (stage & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT) append(buf, size, "ALL_COMMANDS");
 }
@@ -128,6 +137,7 @@ void gpu_access_string(VkAccessFlags2 access, char *buf, size_t size)
 {
     buf[0] = 0;
     if (!access) { snprintf(buf, size, "NONE"); return; }
+    if (access & VK_ACCESS_2_SHADER_STORAGE_READ_BIT) append(buf, size, "SHADER_STORAGE_READ");
     if (access & VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT) append(buf, size, "SHADER_STORAGE_WRITE");
     if (access & VK_ACCESS_2_SHADER_SAMPLED_READ_BIT) append(buf, size, "SHADER_SAMPLED_READ");
     if (access & VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT) append(buf, size, "COLOR_ATTACHMENT_READ");

@@ -28,6 +28,8 @@ typedef enum gpu_usage {
     GPU_USAGE_HOST_READ,                /* read by the CPU after the fence (buffers) */
     GPU_USAGE_ACQUIRED,                 /* swapchain image just acquired: the acquire semaphore's wait stage */
     GPU_USAGE_PRESENT,                  /* handed to the presentation engine */
+    GPU_USAGE_COMPUTE_STORAGE_RW,       /* imageLoad/imageStore/atomics and texture() in compute shaders (GENERAL) */
+    GPU_USAGE_CLEAR_DST,                /* vkCmdClearColorImage destination, kept in GENERAL */
     GPU_USAGE_COUNT
 } gpu_usage;
 

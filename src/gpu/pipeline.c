@@ -12,8 +12,9 @@ VkShaderModule gpu_shader_module(const gpu_context *ctx, const uint32_t *code, s
 VkDescriptorSetLayout gpu_set_layout(const gpu_context *ctx, const VkDescriptorType *types, uint32_t count,
                                      VkShaderStageFlags stages, const char *name)
 {
-    VkDescriptorSetLayoutBinding bindings[8] = {{0}};
-    for (uint32_t i = 0; i < count && i < 8; ++i)
+    VkDescriptorSetLayoutBinding bindings[16] = {{0}};
+    if (count > 16) count = 16;
+    for (uint32_t i = 0; i < count; ++i)
         bindings[i] = (VkDescriptorSetLayoutBinding){
             .binding = i, .descriptorType = types[i], .descriptorCount = 1, .stageFlags = stages};
     VkDescriptorSetLayoutCreateInfo info = {

@@ -69,10 +69,13 @@ static void image_create(const gpu_context *ctx, gpu_image *img, const char *nam
     VK_CHECK(vkBindImageMemory(ctx->device, img->image, img->memory, 0));
     VkImageViewType view_type = type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
     img->view = make_view(ctx, img->image, view_type, format, gpu_color_range(0, mips));
+    /* Every mip has a view, a one-mip image too (its whole-image view): a chain that shrank to one level on a
+     * tiny image must never hand a null view to a descriptor or an attachment. */
     for (uint32_t m = 0; m < mips && mips > 1; ++m) {
         img->mip_views[m] = make_view(ctx, img->image, view_type, format, gpu_color_range(m, 1));
         gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)img->mip_views[m], name);
     }
+    if (mips == 1) img->mip_views[0] = img->view;
     gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE, (uint64_t)img->image, name);
     gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)img->view, name);
     gpu_set_name(ctx, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)img->memory, name);
@@ -94,7 +97,7 @@ void gpu_image_destroy(const gpu_context *ctx, gpu_image *img)
 {
     if (!img->image) return;
     for (uint32_t m = 0; m < GPU_MAX_MIPS; ++m)
-        if (img->mip_views[m]) vkDestroyImageView(ctx->device, img->mip_views[m], NULL);
+        if (img->mip_views[m] && img->mip_views[m] != img->view) vkDestroyImageView(ctx->device, img->mip_views[m], NULL);
     vkDestroyImageView(ctx->device, img->view, NULL);
     vkDestroyImage(ctx->device, img->image, NULL);
     vkFreeMemory(ctx->device, img->memory, NULL);

@@ -9,7 +9,7 @@ typedef struct gpu_image {
     VkImage image;
     VkDeviceMemory memory;
     VkImageView view;                 /* all mips */
-    VkImageView mip_views[GPU_MAX_MIPS];  /* one view per mip: never sample and render the same subresource */
+    VkImageView mip_views[GPU_MAX_MIPS];  /* one view per mip (never null for m < mip_levels): never sample and render the same subresource */
     VkFormat format;
     VkExtent2D extent;
     uint32_t depth;                   /* 1, or the depth of a 3D image */

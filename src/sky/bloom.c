@@ -1,17 +1,19 @@
 #include "sky/passes.h"
 #include "sky/shaders.h"
 
-void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, uint32_t mips)
+void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, uint32_t mips, uint32_t start)
 {
     const gpu_context *ctx = s->ctx;
     b->hdr_extent = hdr->extent;
-    uint32_t w = hdr->extent.width / 2, h = hdr->extent.height / 2;
+    /* Mip 0 at half the HDR size, or (start 1) a quarter: the first downsample's 13 taps then reach +-2 HDR
+     * texels around each quarter-size texel's centre, which still covers its 4x4 footprint. */
+    uint32_t w = hdr->extent.width >> (1 + start), h = hdr->extent.height >> (1 + start);
     /* A full mip chain of a w x h image has floor(log2(max(w, h))) + 1 levels; keep every mip >= 2 pixels. */
     uint32_t fit = 1;
     while (fit < BLOOM_MAX_MIPS && (w >> fit) >= 2 && (h >> fit) >= 2) ++fit;
     b->mip_count = mips < fit ? mips : fit;
     gpu_image_create(ctx, &b->mips, "bloom mips", HDR_FORMAT, w ? w : 1, h ? h : 1, b->mip_count,
-                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
+                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
 
     VkDescriptorType types[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
     b->set_layout = gpu_set_layout(ctx, types, 1, VK_SHADER_STAGE_FRAGMENT_BIT, "bloom set layout");

@@ -11,6 +11,11 @@
 #define HDR_LAST_USE GPU_USAGE_FRAGMENT_SAMPLED            /* bloom downsample 0 and tone map read it */
 #define BLOOM_LAST_USE GPU_USAGE_FRAGMENT_SAMPLED          /* upsample sources and the tone map read the mips */
 #define LUT_LAST_USE GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED    /* the last frame's sky pass (and multiscatter) read them */
+/* With the compute post chain: the single-pass downsampler and the compute tone map sample the HDR image; the
+ * mips and tile counters were last touched by compute shaders, or (a swapchain target) mip 0 by the fragment
+ * tone map. */
+#define HDR_LAST_USE_COMPUTE GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED
+#define CHAIN_LAST_USE_COMPUTE GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED
 
 static uint32_t timed_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
 {
@@ -76,10 +81,20 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd)
     gpu_barrier_flush(cmd, &b);
 }
 
+/* One barrier on one mip of the bloom chain, named after its mip (e.g. "bloom.mip2.write_to_sample"). */
+static void mip_barrier(VkCommandBuffer cmd, const bloom_chain *bl, const char *point, const char *what, int mip,
+                        gpu_usage from, gpu_usage to)
+{
+    char name[64];
+    snprintf(name, sizeof name, "bloom.mip%d.%s", mip, what);
+    gpu_barrier_batch b = gpu_barrier_batch_begin(point);
+    gpu_barrier_add_image(&b, name, "bloom", bl->mips.image, gpu_color_range((uint32_t)mip, 1), from, to, false);
+    gpu_barrier_flush(cmd, &b);
+}
+
 static void record_bloom(sky_renderer *r, VkCommandBuffer cmd, const sky_view *v)
 {
     bloom_chain *bl = &r->bloom;
-    char name[64];
     /* Downsample chain: pass i renders mip i from mip i-1 (from the HDR image for i = 0). */
     for (uint32_t i = 0; i < bl->mip_count; ++i) {
         uint32_t t = timed_begin(r, cmd, "bloom_downsample");
@@ -87,30 +102,21 @@ static void record_bloom(sky_renderer *r, VkCommandBuffer cmd, const sky_view *v
         timed_end(r, cmd, t);
         /* Downsample i wrote mip i; downsample i+1 (or upsample into mip i-1, for the last) samples it: RAW +
          * layout. One barrier range per mip: the mip being rendered is never the one being sampled. */
-        gpu_barrier_batch b = gpu_barrier_batch_begin("bloom downsample chain");
-        snprintf(name, sizeof name, "bloom.mip%u.write_to_sample", i);
-        gpu_barrier_add_image(&b, name, "bloom", bl->mips.image, gpu_color_range(i, 1),
-                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_FRAGMENT_SAMPLED, false);
-        gpu_barrier_flush(cmd, &b);
+        mip_barrier(cmd, bl, "bloom downsample chain", "write_to_sample", (int)i, GPU_USAGE_COLOR_ATTACHMENT_WRITE,
+                    GPU_USAGE_FRAGMENT_SAMPLED);
     }
     /* Upsample chain: pass into mip i adds a tent-filtered mip i+1 onto mip i's own downsampled contents. */
     for (int i = (int)bl->mip_count - 2; i >= 0; --i) {
         /* Mip i was last sampled by downsample i+1 (WAR) and holds its downsample result, which the load op
          * LOAD and the blend read: SHADER_READ_ONLY -> COLOR_ATTACHMENT with COLOR_ATTACHMENT_READ|WRITE. */
-        gpu_barrier_batch b = gpu_barrier_batch_begin("bloom upsample chain");
-        snprintf(name, sizeof name, "bloom.mip%d.to_blend", i);
-        gpu_barrier_add_image(&b, name, "bloom", bl->mips.image, gpu_color_range((uint32_t)i, 1),
-                              GPU_USAGE_FRAGMENT_SAMPLED, GPU_USAGE_COLOR_ATTACHMENT_BLEND, false);
-        gpu_barrier_flush(cmd, &b);
+        mip_barrier(cmd, bl, "bloom upsample chain", "to_blend", i, GPU_USAGE_FRAGMENT_SAMPLED,
+                    GPU_USAGE_COLOR_ATTACHMENT_BLEND);
         uint32_t t = timed_begin(r, cmd, "bloom_upsample");
         bloom_record_upsample(bl, cmd, (uint32_t)i);
         timed_end(r, cmd, t);
         /* Upsample wrote mip i; the next upsample (or the tone map, for mip 0) samples it: RAW + layout. */
-        b = gpu_barrier_batch_begin("bloom upsample chain");
-        snprintf(name, sizeof name, "bloom.mip%d.blend_to_sample", i);
-        gpu_barrier_add_image(&b, name, "bloom", bl->mips.image, gpu_color_range((uint32_t)i, 1),
-                              GPU_USAGE_COLOR_ATTACHMENT_BLEND, GPU_USAGE_FRAGMENT_SAMPLED, false);
-        gpu_barrier_flush(cmd, &b);
+        mip_barrier(cmd, bl, "bloom upsample chain", "blend_to_sample", i, GPU_USAGE_COLOR_ATTACHMENT_BLEND,
+                    GPU_USAGE_FRAGMENT_SAMPLED);
     }
 }
 
@@ -133,6 +139,146 @@ void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force)
         r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere);
         r->luts_valid = true;
     }
+}
+
+/* Step 5, readback: the tone map (`writer`) wrote the display and composite images; the copies read them: RAW +
+ * layout. Then the copies wrote the host buffers; the CPU reads them after the fence: RAW (a fence alone does
+ * not make device writes visible to the host; the HOST_READ barrier does). */
+static void record_readback(sky_renderer *r, VkCommandBuffer cmd, gpu_usage writer, const char *display_name,
+                            const char *composite_name)
+{
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before readback");
+    gpu_barrier_add_image(&b, display_name, "display", r->display.image, one, writer, GPU_USAGE_TRANSFER_SRC, false);
+    gpu_barrier_add_image(&b, composite_name, "composite", r->composite.image, one, writer, GPU_USAGE_TRANSFER_SRC,
+                          false);
+    gpu_barrier_flush(cmd, &b);
+    uint32_t t = timed_begin(r, cmd, "readback");
+    copy_to_buffer(cmd, r->composite.image, r->composite.extent, r->readback_linear.buffer);
+    copy_to_buffer(cmd, r->display.image, r->display.extent, r->readback_display.buffer);
+    timed_end(r, cmd, t);
+    b = gpu_barrier_batch_begin("after readback");
+    gpu_barrier_add_buffer(&b, "readback.linear_to_host", "readback_linear", r->readback_linear.buffer,
+                           GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
+    gpu_barrier_add_buffer(&b, "readback.display_to_host", "readback_display", r->readback_display.buffer,
+                           GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
+    gpu_barrier_flush(cmd, &b);
+}
+
+/* Steps 3-5 with the compute post chain: the bloom chain in one dispatch (plus the upsamples), the tone map as
+ * a dispatch fused with the last upsample. Everything the chain touches stays in GENERAL. Returns false when
+ * the target needs the fragment tone map (a swapchain image), which the caller then records. */
+static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f, gpu_usage hdr_write,
+                                bool bloom)
+{
+    const sky_view *v = f->view;
+    bloom_chain *bl = &r->bloom;
+    post_compute *pc = &r->post;
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    bool compute_tonemap = pc->tonemap && !f->target;
+    uint32_t t;
+
+    /* The sky pass wrote the HDR image; the single pass (bloom level 0) and the tone map sample it, both compute
+     * shaders: RAW + layout. The mips were read by the previous frame's chain and tone map (WAR) and are
+     * rewritten: UNDEFINED -> GENERAL. The tile counters were incremented by the previous frame's single pass
+     * (WAR/WAW against its atomics); the clear rewrites them: UNDEFINED -> GENERAL. */
+    gpu_barrier_batch b = gpu_barrier_batch_begin("after sky (compute post)");
+    gpu_barrier_add_image(&b, "hdr.write_to_compute_sample", "hdr", r->hdr.image, one, hdr_write,
+                          compute_tonemap ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    if (bloom) {
+        gpu_barrier_add_image(&b, "bloom.to_storage", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
+                              CHAIN_LAST_USE_COMPUTE, GPU_USAGE_COMPUTE_STORAGE_RW, true);
+        if (r->desc.bloom_downsample == BLOOM_DOWN_SINGLE_PASS)
+            gpu_barrier_add_image(&b, "spd_counters.to_clear", "spd_counters", pc->counters.image, one,
+                                  GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_CLEAR_DST, true);
+    } else if (r->desc.bloom) {
+        /* Bloom switched off at run time: the tone map's descriptors still name mips 0 and 1 in GENERAL, never
+         * sampled (strength 0): a layout-only transition (WAR on the previous frame's reads). */
+        gpu_barrier_add_image(&b, "bloom.off_to_storage", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
+                              CHAIN_LAST_USE_COMPUTE, GPU_USAGE_COMPUTE_STORAGE_RW, true);
+    }
+    gpu_barrier_flush(cmd, &b);
+
+    if (bloom && r->desc.bloom_downsample == BLOOM_DOWN_LEVELS) {
+        /* One dispatch per level (the fragment chain's structure, compute shaders): level k wrote mip k; level
+         * k+1 samples it: RAW. */
+        for (uint32_t k = 0; k < bl->mip_count; ++k) {
+            t = timed_begin(r, cmd, "bloom_downsample");
+            post_record_downsample_level(pc, bl, cmd, k, r->hdr.extent, (float)v->bloom_threshold);
+            timed_end(r, cmd, t);
+            if (k + 1 < bl->mip_count)
+                mip_barrier(cmd, bl, "bloom downsample chain (compute)", "down_to_read", (int)k,
+                            GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW);
+        }
+        /* The last level wrote its mip (RAW for the first upsample); and the upsamples rewrite mips the later
+         * levels sampled (WAR): one barrier over the chain. */
+        b = gpu_barrier_batch_begin("bloom downsample chain (compute)");
+        gpu_barrier_add_image(&b, "bloom.down_to_upsample", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
+                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, false);
+        gpu_barrier_flush(cmd, &b);
+    } else if (bloom) {
+        t = timed_begin(r, cmd, "bloom_spd");
+        post_record_clear_counters(pc, cmd);
+        /* The clear wrote the counters; the single pass's atomics read and write them: RAW. */
+        b = gpu_barrier_batch_begin("bloom single pass");
+        gpu_barrier_add_image(&b, "spd_counters.clear_to_atomic", "spd_counters", pc->counters.image, one,
+                              GPU_USAGE_CLEAR_DST, GPU_USAGE_COMPUTE_STORAGE_RW, false);
+        gpu_barrier_flush(cmd, &b);
+        /* One dispatch, every level: inside it workgroups hand tiles on through the counters (bloom_spd.comp;
+         * docs/synchronization.md, "Inside the single-pass downsampler"), no barrier of the API's. */
+        post_record_downsample(pc, cmd, (float)v->bloom_threshold);
+        timed_end(r, cmd, t);
+        /* The single pass wrote every level; the upsamples (and the tone map) read them: RAW. */
+        b = gpu_barrier_batch_begin("bloom single pass");
+        gpu_barrier_add_image(&b, "bloom.spd_to_upsample", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
+                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, false);
+        gpu_barrier_flush(cmd, &b);
+    }
+    if (bloom) {
+        /* Upsamples down to mip 1 (mip 0's is fused into the compute tone map; a swapchain target's fragment
+         * tone map needs it done: down to mip 0). */
+        uint32_t last = compute_tonemap ? 1 : 0;
+        for (int i = (int)bl->mip_count - 2; i >= (int)last; --i) {
+            t = timed_begin(r, cmd, "bloom_upsample");
+            post_record_upsample(pc, bl, cmd, (uint32_t)i);
+            timed_end(r, cmd, t);
+            /* Upsample wrote mip i; the next upsample (or the tone map) samples it: RAW. (Mip 0, written only for
+             * the fragment tone map: bloom.mip0.storage_to_fragment below is its barrier.) */
+            if (i > 0)
+                mip_barrier(cmd, bl, "bloom upsample chain (compute)", "up_to_read", i, GPU_USAGE_COMPUTE_STORAGE_RW,
+                            GPU_USAGE_COMPUTE_STORAGE_RW);
+        }
+    }
+
+    TonemapPush tm = sky_view_tonemap_push(v, compute_tonemap ? true : !format_is_srgb(r->desc.display_format));
+    if (!bloom) tm.params.z = 0.0f;
+    if (compute_tonemap) {
+        /* The display and composite images were read by the previous frame's readback copies (WAR); the
+         * compute tone map rewrites every pixel: UNDEFINED -> GENERAL. */
+        b = gpu_barrier_batch_begin("before tonemap (compute)");
+        gpu_barrier_add_image(&b, "display.to_storage", "display", r->display.image, one, GPU_USAGE_TRANSFER_SRC,
+                              GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+        if (r->desc.readback)
+            gpu_barrier_add_image(&b, "composite.to_storage", "composite", r->composite.image, one,
+                                  GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+        gpu_barrier_flush(cmd, &b);
+        t = timed_begin(r, cmd, "tonemap");
+        post_record_tonemap(pc, bl, cmd, r->display.extent, &tm);
+        timed_end(r, cmd, t);
+        if (r->desc.readback) {
+            record_readback(r, cmd, GPU_USAGE_COMPUTE_STORAGE_WRITE, "display.storage_to_copy",
+                            "composite.storage_to_copy");
+        }
+        return true;
+    }
+    /* A target the compute tone map cannot write (a swapchain image): the fragment tone map follows (frame_record
+     * step 4); it samples mip 0, which the compute upsample wrote: RAW + GENERAL -> SHADER_READ_ONLY. */
+    b = gpu_barrier_batch_begin("before tonemap");
+    if (r->desc.bloom)
+        gpu_barrier_add_image(&b, "bloom.mip0.storage_to_fragment", "bloom", bl->mips.image, one,
+                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_FRAGMENT_SAMPLED, false);
+    gpu_barrier_flush(cmd, &b);
+    return false;
 }
 
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
@@ -172,7 +318,8 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
      * pixel is rewritten): UNDEFINED -> COLOR_ATTACHMENT (fragment) or GENERAL (compute). With the sky-view
      * LUT: the LUT pass wrote it, the sky pass samples it (RAW + layout). */
     b = gpu_barrier_batch_begin("before sky");
-    gpu_barrier_add_image(&b, "hdr.to_sky", "hdr", r->hdr.image, one, HDR_LAST_USE, hdr_write, true);
+    gpu_barrier_add_image(&b, "hdr.to_sky", "hdr", r->hdr.image, one,
+                          r->post_kind == POST_PASS_COMPUTE ? HDR_LAST_USE_COMPUTE : HDR_LAST_USE, hdr_write, true);
     if (mode == SKY_MODE_SKYVIEW)
         gpu_barrier_add_image(&b, "skyview.write_to_sample", "skyview_lut", r->luts.skyview.image, one,
                               GPU_USAGE_COMPUTE_STORAGE_WRITE, sky_reads, false);
@@ -182,25 +329,31 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     sky_pass_record(&r->sky, cmd, kind, mode, &r->hdr, &push);
     timed_end(r, cmd, t);
 
-    /* The sky pass wrote the HDR image; bloom downsample 0 and the tone map sample it: RAW + layout.
-     * The bloom mips were sampled by the previous frame (WAR) and are rendered anew: UNDEFINED -> attachment. */
-    b = gpu_barrier_batch_begin("after sky");
-    gpu_barrier_add_image(&b, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
-                          GPU_USAGE_FRAGMENT_SAMPLED, false);
-    if (bloom)
-        gpu_barrier_add_image(&b, "bloom.to_attachment", "bloom", r->bloom.mips.image,
-                              gpu_color_range(0, r->bloom.mip_count), BLOOM_LAST_USE,
-                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
-    /* Bloom switched off at run time (the window's B key) with the chain still allocated: the tone map's
-     * descriptor still names mip 0 and must find it in SHADER_READ_ONLY, though it never samples it (strength
-     * 0). A never-rendered chain is UNDEFINED: a layout-only transition, contents discarded (WAR on reads). */
-    else if (r->desc.bloom)
-        gpu_barrier_add_image(&b, "bloom.off_to_sample", "bloom", r->bloom.mips.image, gpu_color_range(0, 1),
-                              BLOOM_LAST_USE, GPU_USAGE_FRAGMENT_SAMPLED, true);
-    gpu_barrier_flush(cmd, &b);
+    /* 3. Post: the compute chain (bloom in one dispatch + upsamples, tone map fused with the last upsample:
+     * record_post_compute, which for its own display image also does steps 4 and 5), or the fragment chain. */
+    if (r->post_kind == POST_PASS_COMPUTE) {
+        if (record_post_compute(r, cmd, f, hdr_write, bloom)) return;
+    } else {
+        /* The sky pass wrote the HDR image; bloom downsample 0 and the tone map sample it: RAW + layout.
+         * The bloom mips were sampled by the previous frame (WAR) and are rendered anew: UNDEFINED -> attachment. */
+        b = gpu_barrier_batch_begin("after sky");
+        gpu_barrier_add_image(&b, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
+                              GPU_USAGE_FRAGMENT_SAMPLED, false);
+        if (bloom)
+            gpu_barrier_add_image(&b, "bloom.to_attachment", "bloom", r->bloom.mips.image,
+                                  gpu_color_range(0, r->bloom.mip_count), BLOOM_LAST_USE,
+                                  GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+        /* Bloom switched off at run time (the window's B key) with the chain still allocated: the tone map's
+         * descriptor still names mip 0 and must find it in SHADER_READ_ONLY, though it never samples it (strength
+         * 0). A never-rendered chain is UNDEFINED: a layout-only transition, contents discarded (WAR on reads). */
+        else if (r->desc.bloom)
+            gpu_barrier_add_image(&b, "bloom.off_to_sample", "bloom", r->bloom.mips.image, gpu_color_range(0, 1),
+                                  BLOOM_LAST_USE, GPU_USAGE_FRAGMENT_SAMPLED, true);
+        gpu_barrier_flush(cmd, &b);
 
-    /* 3. Bloom: 5 downsamples, 4 additive upsamples. */
-    if (bloom) record_bloom(r, cmd, v);
+        /* Bloom: 5 downsamples, 4 additive upsamples. */
+        if (bloom) record_bloom(r, cmd, v);
+    }
 
     /* 4. Tone map into the display image (and the linear composite for EXR output). The previous frame's
      * readback copy read them (WAR), or for a swapchain image the acquire semaphore's wait stage; they are
@@ -223,26 +376,9 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                    r->desc.readback ? r->composite.view : VK_NULL_HANDLE, &tm);
     timed_end(r, cmd, t);
 
-    /* 5. Readback (headless): the tone map wrote both images; the copies read them: RAW + layout. Then the
-     * copies wrote the host buffers; the CPU reads them after the fence: RAW (a fence alone does not make
-     * device writes visible to the host; the HOST_READ barrier does). */
+    /* 5. Readback (headless): record_readback. */
     if (r->desc.readback && !f->target) {
-        b = gpu_barrier_batch_begin("before readback");
-        gpu_barrier_add_image(&b, "display.write_to_copy", "display", r->display.image, one,
-                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false);
-        gpu_barrier_add_image(&b, "composite.write_to_copy", "composite", r->composite.image, one,
-                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false);
-        gpu_barrier_flush(cmd, &b);
-        t = timed_begin(r, cmd, "readback");
-        copy_to_buffer(cmd, r->composite.image, r->composite.extent, r->readback_linear.buffer);
-        copy_to_buffer(cmd, r->display.image, r->display.extent, r->readback_display.buffer);
-        timed_end(r, cmd, t);
-        b = gpu_barrier_batch_begin("after readback");
-        gpu_barrier_add_buffer(&b, "readback.linear_to_host", "readback_linear", r->readback_linear.buffer,
-                               GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
-        gpu_barrier_add_buffer(&b, "readback.display_to_host", "readback_display", r->readback_display.buffer,
-                               GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
-        gpu_barrier_flush(cmd, &b);
+        record_readback(r, cmd, GPU_USAGE_COLOR_ATTACHMENT_WRITE, "display.write_to_copy", "composite.write_to_copy");
     }
 
     /* 6. An external target (swapchain image): optionally captured (screenshot), then handed to its next user.

@@ -79,8 +79,9 @@ typedef struct bloom_chain {
     VkDescriptorSet up_sets[BLOOM_MAX_MIPS];     /* up_sets[i] samples mip i + 1 */
     VkExtent2D hdr_extent;
 } bloom_chain;
-/* `mips` downsamples (5 by default), fewer if the image is too small for them. */
-void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, uint32_t mips);
+/* `mips` downsamples (5 by default), fewer if the image is too small for them; mip 0 at 1/2 (start 0) or 1/4
+ * (start 1) of the HDR size. */
+void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, uint32_t mips, uint32_t start);
 void bloom_destroy(bloom_chain *b, const pass_shared *s);
 /* Downsample into mip `dst` (from the HDR image for dst 0, else from mip dst - 1). */
 void bloom_record_downsample(const bloom_chain *b, VkCommandBuffer cmd, uint32_t dst, float threshold);

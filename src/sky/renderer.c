@@ -19,24 +19,34 @@ static void create_sized(sky_renderer *r)
     uint32_t hw = (uint32_t)(desc->width * scale + 0.5), hh = (uint32_t)(desc->height * scale + 0.5);
     gpu_image_create(ctx, &r->hdr, "hdr", HDR_FORMAT, hw ? hw : 1, hh ? hh : 1, 1, target_usage);
     sky_pass_set_target(&r->sky, &r->shared, &r->hdr);
+    /* The compute tone map writes the display image as a storage image: 8-bit UNORM (storage images cannot be
+     * sRGB), the shader encodes sRGB, the bytes are the same. */
+    bool compute_tonemap = r->post_kind == POST_PASS_COMPUTE && !desc->external_display;
+    VkImageUsageFlags out_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                  (compute_tonemap ? VK_IMAGE_USAGE_STORAGE_BIT : 0);
     if (!desc->external_display)
-        gpu_image_create(ctx, &r->display, "display", desc->display_format, desc->width, desc->height, 1,
-                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        gpu_image_create(ctx, &r->display, "display", compute_tonemap ? VK_FORMAT_R8G8B8A8_UNORM : desc->display_format,
+                         desc->width, desc->height, 1, out_usage);
     if (desc->readback) {
-        gpu_image_create(ctx, &r->composite, "composite", HDR_FORMAT, desc->width, desc->height, 1,
-                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        gpu_image_create(ctx, &r->composite, "composite", HDR_FORMAT, desc->width, desc->height, 1, out_usage);
         VkDeviceSize pixels = (VkDeviceSize)desc->width * desc->height;
         gpu_buffer_create(ctx, &r->readback_linear, "readback linear", pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         gpu_buffer_create(ctx, &r->readback_display, "readback display", pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     }
-    if (desc->bloom) bloom_create(&r->bloom, &sized, &r->hdr, desc->bloom_mips ? desc->bloom_mips : 5);
+    if (desc->bloom)
+        bloom_create(&r->bloom, &sized, &r->hdr, desc->bloom_mips ? desc->bloom_mips : 5, desc->bloom_quarter ? 1 : 0);
     tonemap_create(&r->tonemap, &sized, r->hdr.view, desc->bloom ? r->bloom.mips.mip_views[0] : r->hdr.view,
                    desc->display_format, desc->readback);
+    if (r->post_kind == POST_PASS_COMPUTE)
+        post_compute_create(&r->post, &r->shared, &r->hdr, desc->bloom ? &r->bloom : NULL,
+                            compute_tonemap ? r->display.view : VK_NULL_HANDLE,
+                            compute_tonemap && desc->readback ? r->composite.view : VK_NULL_HANDLE);
 }
 
 static void destroy_sized(sky_renderer *r)
 {
     const gpu_context *ctx = r->ctx;
+    if (r->post_kind == POST_PASS_COMPUTE) post_compute_destroy(&r->post, &r->shared);
     tonemap_destroy(&r->tonemap, &r->shared);
     if (r->desc.bloom) bloom_destroy(&r->bloom, &r->shared);
     gpu_buffer_destroy(ctx, &r->readback_linear);
@@ -104,6 +114,7 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
     r->ctx = ctx;
     r->desc = *desc;
     if (r->desc.lut.transmittance_width == 0) r->desc.lut = sky_lut_quality_default();
+    r->post_kind = post_pass_resolve(desc->post_pass, ctx);
     pass_shared *s = &r->shared;
     s->ctx = ctx;
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 8},

@@ -6,6 +6,7 @@
 #include "gpu/timing.h"
 #include "sky/atmosphere.h"
 #include "sky/passes.h"
+#include "sky/post.h"
 /* The renderer never reads a view; this include gives the renderer's users (options, quality) the view type. */
 #include "sky/view_params.h"
 
@@ -18,6 +19,9 @@ typedef struct sky_renderer_desc {
     bool readback;               /* keep the linear composite + display image and copy them to host buffers */
     bool external_display;       /* the tone map writes a frame_target (swapchain), no own display image */
     VkFormat display_format;     /* the 8-bit target's format (headless: R8G8B8A8_SRGB) */
+    post_pass_kind post_pass;    /* bloom + tone map as fragment passes or compute dispatches (auto: by device) */
+    bloom_downsample_kind bloom_downsample;  /* compute chain: the downsample in one dispatch, or one per level */
+    bool bloom_quarter;          /* the bloom chain starts at a quarter of the HDR size (default: half) */
 } sky_renderer_desc;
 
 typedef struct sky_renderer {
@@ -28,6 +32,8 @@ typedef struct sky_renderer {
     sky_pass sky;
     bloom_chain bloom;
     tonemap_pass tonemap;
+    post_compute post;           /* the compute post chain (post_kind compute) */
+    post_pass_kind post_kind;    /* desc.post_pass resolved for the device: fragment or compute */
     sky_renderer_desc desc;
     gpu_image hdr;               /* sky pass output, RGBA16F, render_scale x the output size */
     gpu_image display;           /* tone-mapped, 8-bit (headless) */

@@ -1,0 +1,195 @@
+#version 450
+/* Bloom downsample, compute chain: every level of the mip chain in ONE dispatch, in the style of AMD FidelityFX
+ * SPD (single-pass downsampler): workgroup shared memory, and a global atomic counter per tile so that the
+ * workgroup that finishes the last input of a tile goes on to compute it ("the last one continues").
+ *
+ * Work: a task is one 16x16 tile of one level. The dispatch has one workgroup per tile of level 0 (read from the
+ * HDR image through the sampler, exactly as the fragment chain does). Level k >= 1 tile T reads a region of level
+ * k-1 (the 13-tap filter reaches 2.5 texels beyond the tile, so the region spans up to 3x3 tiles of level k-1):
+ * its counter counts those input tiles. A workgroup that has written a tile increments the counters of the
+ * tiles that read it; the one whose increment completes a counter pushes that tile onto its own task stack.
+ * No workgroup ever waits for another (Vulkan promises no forward progress between workgroups, so a spin-wait
+ * could hang): work only moves on to whoever arrives last.
+ *
+ * In-dispatch synchronization (docs/synchronization.md, "Inside the single-pass downsampler"):
+ *  - release: every thread's imageStore of the tile, then memoryBarrierImage() (this invocation's image writes
+ *    are ordered before its later memory operations, as seen by other invocations), then barrier() (all 256
+ *    threads have done so) before any thread touches the counters;
+ *  - the counters are image atomics on a coherent R32UI image: one total order per counter, so exactly one
+ *    workgroup sees the value count - 1;
+ *  - acquire: the mips are declared coherent (their loads bypass incoherent per-unit caches and see what other
+ *    workgroups made available), and the reads of a tile happen only after the atomic that proved its inputs
+ *    complete, separated from it by memoryBarrierImage() and barrier().
+ * Synchronization validation checks barriers between commands; it cannot see any of this (it treats a dispatch
+ * as one access). The tests (post_compare) compare the result with the fragment chain's instead. */
+#extension GL_GOOGLE_include_directive : require
+#include "shared.h"
+#include "bloom_filter.glsl"
+
+#define TILE 16
+#define REGION 44            /* the largest level k-1 region a tile reads: 16 x 2.0625 + 5 + 2 margin < 44 */
+#define STACK 256
+
+layout(local_size_x = TILE, local_size_y = TILE) in;
+layout(set = 0, binding = 0) uniform sampler2D hdr;
+layout(set = 0, binding = 1, rgba16f) uniform coherent image2D mip0;
+layout(set = 0, binding = 2, rgba16f) uniform coherent image2D mip1;
+layout(set = 0, binding = 3, rgba16f) uniform coherent image2D mip2;
+layout(set = 0, binding = 4, rgba16f) uniform coherent image2D mip3;
+layout(set = 0, binding = 5, rgba16f) uniform coherent image2D mip4;
+layout(set = 0, binding = 6, rgba16f) uniform coherent image2D mip5;
+layout(set = 0, binding = 7, rgba16f) uniform coherent image2D mip6;
+layout(set = 0, binding = 8, rgba16f) uniform coherent image2D mip7;
+layout(set = 0, binding = 9, r32ui) uniform coherent uimage2D counters;
+layout(push_constant) uniform Push { PostPush push; };   /* params: x mip count, y threshold */
+
+shared vec3 region[REGION * REGION];
+shared uint stack[STACK];
+shared int stack_size;
+
+/* Constant indices only: no descriptor-array dynamic indexing feature needed. */
+ivec2 mip_size(int k)
+{
+    switch (k) {
+    case 0: return imageSize(mip0); case 1: return imageSize(mip1); case 2: return imageSize(mip2);
+    case 3: return imageSize(mip3); case 4: return imageSize(mip4); case 5: return imageSize(mip5);
+    case 6: return imageSize(mip6); default: return imageSize(mip7);
+    }
+}
+vec3 mip_load(int k, ivec2 p)
+{
+    switch (k) {
+    case 0: return imageLoad(mip0, p).rgb; case 1: return imageLoad(mip1, p).rgb; case 2: return imageLoad(mip2, p).rgb;
+    case 3: return imageLoad(mip3, p).rgb; case 4: return imageLoad(mip4, p).rgb; case 5: return imageLoad(mip5, p).rgb;
+    case 6: return imageLoad(mip6, p).rgb; default: return imageLoad(mip7, p).rgb;
+    }
+}
+void mip_store(int k, ivec2 p, vec3 c)
+{
+    vec4 v = vec4(c, 1.0);
+    switch (k) {
+    case 0: imageStore(mip0, p, v); break; case 1: imageStore(mip1, p, v); break;
+    case 2: imageStore(mip2, p, v); break; case 3: imageStore(mip3, p, v); break;
+    case 4: imageStore(mip4, p, v); break; case 5: imageStore(mip5, p, v); break;
+    case 6: imageStore(mip6, p, v); break; default: imageStore(mip7, p, v); break;
+    }
+}
+
+ivec2 tiles_of(int k) { return (mip_size(k) + TILE - 1) / TILE; }
+
+/* The texels of level k-1 that tile t of level k reads: [lo, hi], clamped to the image. The same formula as
+ * the sampling below (bilinear taps at (x + 0.5) * Ws / Wd + offset, offsets up to 2), one texel of margin. */
+void source_range(int k, ivec2 t, out ivec2 lo, out ivec2 hi)
+{
+    ivec2 wd = mip_size(k), ws = mip_size(k - 1);
+    vec2 r = vec2(ws) / vec2(wd);
+    ivec2 x0 = t * TILE, x1 = min(t * TILE + TILE - 1, wd - 1);
+    lo = ivec2(floor((vec2(x0) + 0.5) * r - 2.5)) - 1;
+    hi = ivec2(floor((vec2(x1) + 0.5) * r + 1.5)) + 2;
+    lo = clamp(lo, ivec2(0), ws - 1);
+    hi = clamp(hi, ivec2(0), ws - 1);
+}
+
+/* Counter index of tile t of level k >= 1: levels 1.. laid end to end, 1024 counters a row. */
+ivec2 counter_coord(int k, ivec2 t)
+{
+    int base = 0;
+    for (int j = 1; j < k; ++j) { ivec2 n = tiles_of(j); base += n.x * n.y; }
+    int idx = base + t.y * tiles_of(k).x + t.x;
+    return ivec2(idx % 1024, idx / 1024);
+}
+
+uint pack_task(int k, ivec2 t) { return uint(k) << 20 | uint(t.y) << 10 | uint(t.x); }
+
+void level0(ivec2 t)
+{
+    ivec2 p = t * TILE + ivec2(gl_LocalInvocationID.xy);
+    ivec2 size = mip_size(0);
+    if (any(greaterThanEqual(p, size))) return;
+    vec2 uv = (vec2(p) + 0.5) / vec2(size), tex = 1.0 / vec2(textureSize(hdr, 0));
+    vec3 s[13];
+    for (int i = 0; i < 13; ++i) s[i] = textureLod(hdr, uv + tex * BLOOM_TAPS[i], 0.0).rgb;
+    mip_store(0, p, bloom_filter13(s, true, push.params.y));
+}
+
+/* Bilinear fetch from the region as the sampler does it (clamp to edge, texel centres at i + 0.5). */
+vec3 region_bilinear(vec2 pos, ivec2 lo, ivec2 hi, ivec2 rsize)
+{
+    vec2 q = pos - 0.5, f = q - floor(q);
+    ivec2 i0 = ivec2(floor(q));
+    ivec2 a = clamp(i0, lo, hi) - lo, b = clamp(i0 + 1, lo, hi) - lo;
+    vec3 c00 = region[a.y * rsize.x + a.x], c10 = region[a.y * rsize.x + b.x];
+    vec3 c01 = region[b.y * rsize.x + a.x], c11 = region[b.y * rsize.x + b.x];
+    return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
+}
+
+void level_k(int k, ivec2 t)
+{
+    ivec2 lo, hi;
+    source_range(k, t, lo, hi);
+    ivec2 rsize = hi - lo + 1;
+    uint lid = gl_LocalInvocationIndex;
+    for (int i = int(lid); i < rsize.x * rsize.y; i += TILE * TILE)
+        region[i] = mip_load(k - 1, lo + ivec2(i % rsize.x, i / rsize.x));
+    barrier();   /* shared memory: the region is complete */
+    ivec2 p = t * TILE + ivec2(gl_LocalInvocationID.xy);
+    ivec2 wd = mip_size(k), ws = mip_size(k - 1);
+    if (all(lessThan(p, wd))) {
+        vec2 centre = (vec2(p) + 0.5) * vec2(ws) / vec2(wd);
+        vec3 s[13];
+        for (int i = 0; i < 13; ++i) s[i] = region_bilinear(centre + BLOOM_TAPS[i], lo, hi, rsize);
+        mip_store(k, p, bloom_filter13(s, false, 0.0));
+    }
+    barrier();   /* shared memory: everyone is done reading the region before the next task overwrites it */
+}
+
+/* Tile t of level k is written: count it in every level k+1 tile that reads it; push those it completes. */
+void finish(int k, ivec2 t)
+{
+    int levels = int(push.params.x);
+    if (k + 1 >= levels) return;
+    memoryBarrierImage();   /* release: this thread's stores before the counter increments below */
+    barrier();              /* ... and every thread's */
+    /* Candidates: a level k+1 tile reads level k tiles [2s - 2, 2s + 2] at most; 7 x 7 around t / 2 is ample. */
+    uint lid = gl_LocalInvocationIndex;
+    if (lid < 49) {
+        ivec2 s = t / 2 + ivec2(int(lid % 7) - 3, int(lid / 7) - 3);
+        ivec2 n = tiles_of(k + 1);
+        if (all(greaterThanEqual(s, ivec2(0))) && all(lessThan(s, n))) {
+            ivec2 lo, hi;
+            source_range(k + 1, s, lo, hi);
+            ivec2 tlo = lo / TILE, thi = hi / TILE;
+            if (all(greaterThanEqual(t, tlo)) && all(lessThanEqual(t, thi))) {
+                uint inputs = uint((thi.x - tlo.x + 1) * (thi.y - tlo.y + 1));
+                uint before = imageAtomicAdd(counters, counter_coord(k + 1, s), 1u);
+                if (before == inputs - 1u) {
+                    int slot = atomicAdd(stack_size, 1);
+                    stack[slot] = pack_task(k + 1, s);
+                }
+            }
+        }
+    }
+    memoryBarrierImage();   /* acquire: the completed tiles' inputs are read only after the counters said so */
+    barrier();
+}
+
+void main()
+{
+    if (gl_LocalInvocationIndex == 0) stack_size = 0;
+    barrier();
+    ivec2 t = ivec2(gl_WorkGroupID.xy);
+    level0(t);
+    finish(0, t);
+    while (true) {
+        int n = stack_size;   /* uniform: read after a barrier, written only between barriers */
+        if (n == 0) break;
+        uint task = stack[n - 1];
+        barrier();
+        if (gl_LocalInvocationIndex == 0) stack_size = n - 1;
+        barrier();
+        int k = int(task >> 20);
+        ivec2 tile = ivec2(int(task & 1023u), int((task >> 10) & 1023u));
+        level_k(k, tile);
+        finish(k, tile);
+    }
+}

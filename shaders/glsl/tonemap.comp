@@ -1,0 +1,40 @@
+#version 450
+/* Tone map, compute chain: one thread per output pixel. Fused with the last bloom upsample: the fragment chain
+ * adds tent(mip 1) onto mip 0 at mip 0's texels and the tone map then samples mip 0 bilinearly; here both are
+ * evaluated at the output pixel (bilinear mip 0 + the tent of mip 1 there), so mip 0 is never written twice.
+ * Writes the display image (8-bit UNORM storage; sRGB encoded here, storage images cannot be sRGB) and, with
+ * VKSKY_COMPOSITE, the scene-linear composite. */
+#extension GL_GOOGLE_include_directive : require
+#include "shared.h"
+#include "bloom_filter.glsl"
+#include "tonemap_ops.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform sampler2D hdr;
+layout(set = 0, binding = 1) uniform sampler2D bloom0;
+layout(set = 0, binding = 2) uniform sampler2D bloom1;
+layout(set = 0, binding = 3, rgba8) uniform writeonly image2D display;
+#ifdef VKSKY_COMPOSITE
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D composite;
+#endif
+layout(push_constant) uniform Push { PostPush push; };
+
+void main()
+{
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(display);
+    if (any(greaterThanEqual(p, size))) return;
+    vec2 uv = (vec2(p) + 0.5) / vec2(size);
+    vec3 color = textureLod(hdr, uv, 0.0).rgb;
+    float strength = push.tonemap.z;
+    if (strength > 0.0) {
+        vec3 b = textureLod(bloom0, uv, 0.0).rgb;
+        if (push.bloom.z > 0.5) b += min(bloom_tent9(bloom1, uv, push.bloom.xy), vec3(65504.0));
+        color += strength * min(b, vec3(65504.0));
+    }
+    color = min(color, vec3(65504.0));
+#ifdef VKSKY_COMPOSITE
+    imageStore(composite, p, vec4(color, 1.0));
+#endif
+    imageStore(display, p, vec4(tonemap_apply(color, push.tonemap), 1.0));
+}
