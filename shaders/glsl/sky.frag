@@ -4,12 +4,14 @@
 #include "atmosphere.glsl"
 #include "sky_bindings.glsl"
 #include "sky_common.glsl"
+#include "projection.glsl"
 
 layout(location = 0) out vec4 out_color;
 
 void main()
 {
-    vec3 v = pixel_view_dir(gl_FragCoord.xy, push);
-    vec3 c = SKY_RADIANCE(push.forward.w, v, push.sun_dir.xyz, push.march);
+    bool inside;
+    vec3 v = pixel_view_dir(gl_FragCoord.xy, push, inside);
+    vec3 c = inside ? SKY_RADIANCE(push.forward.w, v, push.sun_dir.xyz, push.march) : vec3(0.0);
     out_color = vec4(c, 1.0);
 }

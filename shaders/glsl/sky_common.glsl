@@ -17,14 +17,6 @@ vec3 lookup_multiscatter(float h, float mu_s)
     return texture(multiscatter_lut, multiscatter_uv(h, mu_s, vec2(textureSize(multiscatter_lut, 0)))).rgb;
 }
 
-/* View ray of a pixel centre: the ray matrix (camera basis scaled by fov/aspect), never an inverse
- * view-projection at planet scale (seed: "Inverse VP fails at planet-centric coordinates"). */
-vec3 pixel_view_dir(vec2 pixel_centre, SkyPush p)
-{
-    vec2 ndc = vec2(2.0 * pixel_centre.x * p.right.w - 1.0, 1.0 - 2.0 * pixel_centre.y * p.up.w);
-    return normalize(p.forward.xyz + ndc.x * p.right.xyz + ndc.y * p.up.xyz);
-}
-
 /* Angle between two unit vectors, accurate for tiny angles (acos of a dot near 1 is not). */
 float small_angle(vec3 a, vec3 b) { return 2.0 * asin(clamp(0.5 * length(a - b), 0.0, 1.0)); }
 

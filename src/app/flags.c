@@ -6,6 +6,8 @@ const flag flags_table[] = {
     {"--render", ARG_STRING, 0, 0, "FILE   write the frame: .exr (scene-linear half RGBA, ZIP) or .png (tone-mapped 8-bit sRGB); repeatable"},
     {"--width", ARG_INT, 1, 16384, "N      image width in pixels (default 1280)"},
     {"--height", ARG_INT, 1, 16384, "N      image height in pixels (default 720)"},
+    {"--projection", ARG_STRING, 0, 0, "P perspective | equirect | cubemap | fisheye: camera view, 2:1 latitude-longitude map, OpenEXR cube (face = --width), all-sky fisheye (default perspective)"},
+    {"--quiet", ARG_NONE, 0, 0, "         no progress report on stderr"},
     {"--sun-elevation", ARG_DOUBLE, -90, 90, "DEG   sun elevation above the horizon (default 20)"},
     {"--sun-azimuth", ARG_DOUBLE, -360, 360, "DEG   sun azimuth (default 0)"},
     {"--altitude", ARG_DOUBLE, 0, 1e6, "KM    camera altitude above the ground (default 0.001 = 1 m)"},

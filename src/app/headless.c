@@ -1,4 +1,5 @@
 #include "app/headless.h"
+#include "app/tiles.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/png_io.h"
@@ -137,6 +138,18 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
     gpu_buffer_invalidate(r->ctx, &r->readback_display);
 }
 
+/* The end of every run: the context goes, and any validation message fails the run. */
+static int finish(gpu_context *ctx, int status)
+{
+    gpu_context_destroy(ctx);
+    unsigned messages = gpu_validation_message_count();
+    if (messages) {
+        fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
+        if (status == 0) status = 1;
+    }
+    return status;
+}
+
 int headless_run(const options *o)
 {
     char err[512];
@@ -152,6 +165,8 @@ int headless_run(const options *o)
     if (rc != 0) return rc == -2 ? 2 : 1;
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
+    /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/tiles.c). */
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o)) return finish(&ctx, tiles_render(o, &ctx));
 
     sky_renderer r;
     sky_renderer_desc rdesc = {.width = (uint32_t)o->width, .height = (uint32_t)o->height, .bloom = o->view.bloom,
@@ -173,11 +188,5 @@ int headless_run(const options *o)
         status = write_outputs(o, &r);
     }
     sky_renderer_destroy(&r);
-    gpu_context_destroy(&ctx);
-    unsigned messages = gpu_validation_message_count();
-    if (messages) {
-        fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
-        if (status == 0) status = 1;
-    }
-    return status;
+    return finish(&ctx, status);
 }

@@ -1,5 +1,6 @@
 #include "app/options.h"
 #include "app/flags.h"
+#include "app/options_projection.h"
 #include "app/quality.h"
 #include "app/scene.h"
 #include "app/scene_dump.h"
@@ -226,6 +227,7 @@ static int apply(options *o, const flag *f, const char *value)
     else if (!strcmp(n, "--trace-barriers")) o->trace_barriers = true;
     else if (!strcmp(n, "--list-devices")) o->list_devices = true;
     else if (!strcmp(n, "--device")) o->device_index = (int)x;
+    else if (!strcmp(n, "--projection") || !strcmp(n, "--quiet")) return options_projection_apply(o, n, value);
     else if (!strcmp(n, "--help")) o->help = true;
     else if (!strcmp(n, "--version")) o->version = true;
     return 0;
@@ -320,6 +322,7 @@ int options_parse(options *o, int argc, char **argv)
         snprintf(msg, sizeof msg, "%d is below --steps %d; expected a maximum >= the minimum", o->view.max_steps, o->view.steps);
         return bad("--max-steps", msg);
     }
+    if (options_projection_finish(o, argc, argv) != 0) return 2;
     if (o->dump_scene && !o->help && !o->version) exit(scene_dump(o, stdout));   /* --dump-scene: nothing else runs */
     return 0;
 }

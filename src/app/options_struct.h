@@ -41,6 +41,7 @@ typedef struct options {
     bool list_devices;
     int device_index;                           /* -1: pick */
     bool trace_barriers;
+    bool quiet;                                 /* --quiet: no progress on stderr */
     bool help, version;
 } options;
 #endif

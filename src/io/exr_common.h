@@ -3,6 +3,7 @@
 #define VKSKY_IO_EXR_COMMON_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include <openexr.h>
 
@@ -18,5 +19,22 @@ const char *io_exr_msg(exr_result_t rc);
 
 /* Channel name for layer `layer` ("" = the default layer) and component index c (0..3 = R,G,B,A). */
 void io_exr_channel_name(char *out, size_t out_size, const char *layer, int c);
+
+/* Writers' output: OpenEXRCore writes through these callbacks into an fd the writer owns (pwrite at the library's
+   offsets; errno of the first failure kept for the message). */
+typedef struct io_exr_out_stream {
+    int fd;
+    int err_no; /* errno of the first failed write, 0 if none */
+} io_exr_out_stream;
+int64_t io_exr_fd_write(exr_const_context_t ctxt, void *userdata, const void *buffer, uint64_t sz, uint64_t offset,
+                        exr_stream_error_func_ptr_t error_cb);
+void io_exr_fd_destroy(exr_const_context_t ctxt, void *userdata, int failed);
+
+/* The library's compressor wrapped so that a chunk is stored raw unless compression makes it strictly smaller
+   (exr_common.c says why): set enc->encoding_user_data to a wrap holding the original compress_fn. */
+typedef struct io_exr_compress_wrap {
+    exr_result_t (*orig)(exr_encode_pipeline_t *);
+} io_exr_compress_wrap;
+exr_result_t io_exr_compress_no_expand(exr_encode_pipeline_t *enc);
 
 #endif /* VKSKY_IO_EXR_COMMON_H */

@@ -21,63 +21,6 @@
 
 #include <openexr.h>
 
-typedef struct exr_out_stream {
-    int fd;
-    int err_no; /* errno of the first failed write, 0 if none */
-} exr_out_stream;
-
-static int64_t exr_stream_write(exr_const_context_t ctxt, void *userdata, const void *buffer, uint64_t sz,
-                                uint64_t offset, exr_stream_error_func_ptr_t error_cb)
-{
-    exr_out_stream *s = (exr_out_stream *)userdata;
-    const uint8_t *p = (const uint8_t *)buffer;
-    uint64_t done = 0;
-    while (done < sz) {
-        uint64_t want = sz - done;
-        if (want > (uint64_t)1 << 30) want = (uint64_t)1 << 30;
-        ssize_t n = pwrite(s->fd, p + done, (size_t)want, (off_t)(offset + done));
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            int e = (n < 0) ? errno : EIO;
-            if (!s->err_no) s->err_no = e;
-            if (error_cb) error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed: %s", strerror(e));
-            return -1;
-        }
-        done += (uint64_t)n;
-    }
-    return (int64_t)sz;
-}
-
-static void exr_stream_destroy(exr_const_context_t ctxt, void *userdata, int failed)
-{
-    (void)ctxt;
-    (void)userdata;
-    (void)failed; /* the fd is owned and closed by io_write_exr */
-}
-
-/* OpenEXRCore 3.1.x keeps a ZIP-compressed chunk whose compressed size is exactly equal to the raw size, but
-   every reader (Core and the C++ library) treats packed_size == unpacked_size as "stored uncompressed", so such a
-   chunk would read back as garbage (reproducible with small 4-channel chunks). Wrap the library's compressor and
-   store the raw packed data whenever compression does not make the chunk strictly smaller. */
-typedef struct exr_compress_wrap {
-    exr_result_t (*orig)(exr_encode_pipeline_t *);
-} exr_compress_wrap;
-
-static exr_result_t exr_compress_no_expand(exr_encode_pipeline_t *enc)
-{
-    const exr_compress_wrap *wrap = (const exr_compress_wrap *)enc->encoding_user_data;
-    if (!wrap || !wrap->orig) return EXR_ERR_INVALID_ARGUMENT;
-    exr_result_t rc = wrap->orig(enc);
-    if (rc != EXR_ERR_SUCCESS) return rc;
-    if (enc->compressed_bytes >= enc->packed_bytes && enc->compressed_buffer != enc->packed_buffer) {
-        if (!enc->compressed_buffer || !enc->packed_buffer || enc->compressed_alloc_size < enc->packed_bytes)
-            return EXR_ERR_CORRUPT_CHUNK;
-        memcpy(enc->compressed_buffer, enc->packed_buffer, (size_t)enc->packed_bytes);
-        enc->compressed_bytes = (size_t)enc->packed_bytes;
-    }
-    return EXR_ERR_SUCCESS;
-}
-
 int io_write_exr(const char *path, int width, int height, const io_exr_layer *layers, int layer_count, char *err,
                  size_t err_size)
 {
@@ -108,12 +51,12 @@ int io_write_exr(const char *path, int width, int height, const io_exr_layer *la
     int fd = io_atomic_open(path, tmp, sizeof tmp, err, err_size);
     if (fd < 0) return -1;
 
-    exr_out_stream stream = {fd, 0};
+    io_exr_out_stream stream = {fd, 0};
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = io_exr_error_handler;
     init.user_data = &stream;
-    init.write_fn = exr_stream_write;
-    init.destroy_fn = exr_stream_destroy;
+    init.write_fn = io_exr_fd_write;
+    init.destroy_fn = io_exr_fd_destroy;
 
     exr_context_t ctxt = NULL;
     exr_result_t rc;
@@ -197,12 +140,12 @@ int io_write_exr(const char *path, int width, int height, const io_exr_layer *la
             if (!found) rc = EXR_ERR_INVALID_ARGUMENT;
         }
         stage = "encode";
-        exr_compress_wrap wrap = {NULL};
+        io_exr_compress_wrap wrap = {NULL};
         if (rc == EXR_ERR_SUCCESS) rc = exr_encoding_choose_default_routines(ctxt, part, &enc);
         if (rc == EXR_ERR_SUCCESS && enc.compress_fn) {
             wrap.orig = enc.compress_fn;
             enc.encoding_user_data = &wrap;
-            enc.compress_fn = exr_compress_no_expand;
+            enc.compress_fn = io_exr_compress_no_expand;
         }
         if (rc == EXR_ERR_SUCCESS) rc = exr_encoding_run(ctxt, part, &enc);
         exr_encoding_destroy(ctxt, &enc);
