@@ -2,7 +2,7 @@
  * the writers so that other header attributes are added beside it, not inside it. */
 #ifndef VKSKY_IO_EXR_ENVMAP_ATTRS_H
 #define VKSKY_IO_EXR_ENVMAP_ATTRS_H
-#include "io/exr_stream.h"
+#include "io/exr_sky_attrs.h"
 #include <openexr.h>
 
 /* Adds the attributes `a` asks for to part `part` (before exr_write_header). */

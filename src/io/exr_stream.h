@@ -3,23 +3,13 @@
  * renamed at the end; nothing left at `path` on failure). Errors follow io_error.h. */
 #ifndef VKSKY_IO_EXR_STREAM_H
 #define VKSKY_IO_EXR_STREAM_H
+#include "io/exr_sky_attrs.h"
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
 /* Largest side a streamed image may have (a cube map of 16384-pixel faces is 98304 rows). */
 #define IO_STREAM_MAX_DIM (1 << 17)
-
-typedef enum io_envmap { IO_ENVMAP_NONE, IO_ENVMAP_LATLONG, IO_ENVMAP_CUBE } io_envmap;
-
-/* What the header says about the sky beyond the pixels (io/exr_envmap_attrs.c writes it). */
-typedef struct io_exr_sky_attrs {
-    io_envmap envmap;                 /* the standard "envmap" attribute (none: left out) */
-    const char *projection;           /* "vksky:projection" (NULL: left out) */
-    bool has_sun;
-    float sun_direction[3];           /* "vksky:sunDirection": unit vector toward the sun, the map's axes */
-    float sun_illuminance[3];         /* "vksky:sunIlluminance": RGB illuminance at the top of the atmosphere */
-} io_exr_sky_attrs;
 
 typedef struct io_exr_stream io_exr_stream;
 
