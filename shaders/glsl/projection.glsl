@@ -25,7 +25,9 @@ vec3 projection_cube_dir(int face, float a, float b)
  * basis scaled by fov/aspect), never an inverse view-projection at planet scale. */
 vec3 pixel_view_dir(vec2 pixel_centre, SkyPush p, out bool inside)
 {
-    vec2 g = pixel_centre + p.projection.yz;
+    /* precise: the compiler may not fold the offset into later products (a tile's pixel must get the very
+     * direction it gets in the untiled frame, bit for bit). */
+    precise vec2 g = pixel_centre + p.projection.yz;
     int kind = int(p.projection.x);
     inside = true;
     if (kind == VKSKY_PROJECTION_EQUIRECT) {

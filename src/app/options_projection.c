@@ -38,6 +38,15 @@ static bool given(int argc, char **argv, const char *flag)
 int options_projection_finish(options *o, int argc, char **argv)
 {
     int p = o->view.projection;
+    if (o->dump_scene) {
+        /* The sun as a separate light (beside a --no-sun-disc map): what the EXR header's vksky:sunDirection and
+         * vksky:sunIlluminance say. On stderr: stdout stays pure scene JSON. */
+        double d[3];
+        projection_dir_from_angles(o->view.sun_azimuth_deg, o->view.sun_elevation_deg, d);
+        const double *e = o->atmosphere.sun_illuminance;
+        fprintf(stderr, "vksky: sun direction %.6f %.6f %.6f (+Y up, OpenEXR latlong axes), illuminance %g %g %g\n",
+                d[0], d[1], d[2], e[0], e[1], e[2]);
+    }
     if (p == SKY_PROJECTION_PERSPECTIVE) return 0;
     const char *name = projection_words[p];
     /* An environment map looks every way at once: the camera's orientation and field of view do not apply (its
