@@ -85,7 +85,14 @@ grep -q 'ignores --yaw, --pitch and --fov' "$work/stderr" || fail "no note about
 grep -q -- '--height ignored' "$work/stderr" || fail "no note about --height: $(cat "$work/stderr")"
 "$VKSKY" --projection equirect --width 64 --sun-azimuth 90 --sun-elevation 0 --dump-scene >"$work/scene.json" 2>"$work/stderr" ||
     fail "--dump-scene with equirect"
-grep -q 'sun direction' "$work/stderr" || fail "--dump-scene does not print the sun's direction: $(cat "$work/stderr")"
+grep -q 'sun direction 0.000000 0.000000 1.000000' "$work/stderr" ||
+    fail "--dump-scene: sun at azimuth 90 on the horizon is not +Z: $(cat "$work/stderr")"
+# The sun reaching the camera: all of it above the atmosphere, none where the planet hides it (1 degree below the
+# horizontal from 1 m: the horizon dips 0.03 degrees).
+"$VKSKY" --altitude 200 --sun-elevation 5 --dump-scene 2>&1 >/dev/null | grep -q '20 20 20 at the camera' ||
+    fail "--dump-scene from space: sun at the camera is not the full illuminance"
+"$VKSKY" --sun-elevation -1 --dump-scene 2>&1 >/dev/null | grep -q ' 0 0 0 at the camera' ||
+    fail "--dump-scene: a sun below the horizon reaches the camera"
 
 [ $fails -eq 0 ] && echo "envmap_test: ok" || echo "envmap_test: $fails failure(s)"
 [ $fails -eq 0 ]

@@ -52,13 +52,16 @@ static int open_outputs(const options *o, output *outs)
     char err[512];
     double sun[3];
     projection_dir_from_angles(o->view.sun_azimuth_deg, o->view.sun_elevation_deg, sun);
+    double at_camera[3];
+    options_sun_at_camera(o, at_camera);
     int p = o->view.projection;
     io_exr_sky_attrs attrs = {
         .envmap = p == SKY_PROJECTION_EQUIRECT ? IO_ENVMAP_LATLONG : p == SKY_PROJECTION_CUBEMAP ? IO_ENVMAP_CUBE : IO_ENVMAP_NONE,
         .projection = options_projection_name(p), .has_sun = true,
         .sun_direction = {(float)sun[0], (float)sun[1], (float)sun[2]},
         .sun_illuminance = {(float)o->atmosphere.sun_illuminance[0], (float)o->atmosphere.sun_illuminance[1],
-                            (float)o->atmosphere.sun_illuminance[2]}};
+                            (float)o->atmosphere.sun_illuminance[2]},
+        .sun_at_camera = {(float)at_camera[0], (float)at_camera[1], (float)at_camera[2]}};
     for (int i = 0; i < o->output_count; ++i) {
         outs[i].exr = is_exr(o->outputs[i]);
         if (outs[i].exr) outs[i].exr_stream = io_exr_stream_open(o->outputs[i], o->width, o->height, &attrs, err, sizeof err);

@@ -14,7 +14,9 @@ exr_result_t io_exr_add_sky_attrs(exr_context_t ctxt, int part, const io_exr_sky
         exr_attr_v3f_t d = {.x = a->sun_direction[0], .y = a->sun_direction[1], .z = a->sun_direction[2]};
         exr_attr_v3f_t e = {.x = a->sun_illuminance[0], .y = a->sun_illuminance[1], .z = a->sun_illuminance[2]};
         rc = exr_attr_set_v3f(ctxt, part, "vksky:sunDirection", &d);
+        exr_attr_v3f_t c = {.x = a->sun_at_camera[0], .y = a->sun_at_camera[1], .z = a->sun_at_camera[2]};
         if (rc == EXR_ERR_SUCCESS) rc = exr_attr_set_v3f(ctxt, part, "vksky:sunIlluminance", &e);
+        if (rc == EXR_ERR_SUCCESS) rc = exr_attr_set_v3f(ctxt, part, "vksky:sunIlluminanceAtCamera", &c);
     }
     return rc;
 }

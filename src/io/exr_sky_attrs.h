@@ -13,5 +13,7 @@ typedef struct io_exr_sky_attrs {
     bool has_sun;
     float sun_direction[3];           /* "vksky:sunDirection": unit vector toward the sun, the map's axes */
     float sun_illuminance[3];         /* "vksky:sunIlluminance": RGB illuminance at the top of the atmosphere */
+    float sun_at_camera[3];           /* "vksky:sunIlluminanceAtCamera": through the atmosphere to the camera (0 when
+                                         the planet hides the sun): the separate sun light of a --no-sun-disc map */
 } io_exr_sky_attrs;
 #endif
