@@ -8,6 +8,7 @@
 #    cube and perspective.
 #  - Peak memory: a 4096x2048 map under a band budget that forces 64-row bands stays far below the same map in one
 #    band (/usr/bin/time -v's maximum resident set size).
+#  - Ctrl-C stops a banded render between bands and leaves no file.
 #  - Bad input: one line, exit 2, no file; yaw/pitch/fov and --height get a note.
 # Exit 77 (skipped) without python3-openimageio + numpy or GNU time.
 set -u
@@ -72,6 +73,19 @@ echo "peak RSS 4096x2048 equirect: one band ${one} kB, 64-row bands ${banded} kB
 [ "$banded" -gt 0 ] && [ "$banded" -lt $((one - 200000)) ] || fail "banded peak RSS ${banded} kB not 200 MB below one band's ${one} kB"
 [ "$banded" -lt 400000 ] || fail "banded peak RSS ${banded} kB over 400 MB"
 oiiotool --info "$work/big.exr" | grep -q '4096 x 2048' || fail "big map size"
+
+# --- Ctrl-C in a long render: stops between bands, exit 130, nothing left (neither the file nor its temporary) ---
+mkdir "$work/sig"
+VKSKY_TILE_PIXELS=16384 "$VKSKY" --render "$work/sig/s.exr" --render "$work/sig/s.png" --projection equirect \
+    --width 4096 2>"$work/stderr" &
+pid=$!
+for _ in $(seq 1 300); do ls -A "$work/sig" | grep -q tmp && break; sleep 0.1; done
+kill -INT $pid
+wait $pid
+rc=$?
+[ $rc -eq 130 ] || fail "interrupted render: exit $rc, expected 130 ($(cat "$work/stderr"))"
+grep -q 'interrupted after' "$work/stderr" || fail "interrupted render: no message: $(cat "$work/stderr")"
+[ -z "$(ls -A "$work/sig")" ] || fail "interrupted render left files: $(ls -A "$work/sig")"
 
 # --- bad input and notes ---
 "$VKSKY" --render "$work/bad.exr" --projection globe 2>"$work/stderr"

@@ -1,4 +1,7 @@
 /* Band rendering and streaming (see tiles.h). */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L   /* sigaction */
+#endif
 #include "app/tiles.h"
 #include "app/options.h"
 #include "app/options_projection.h"
@@ -7,6 +10,7 @@
 #include "io/png_stream.h"
 #include "sky/projection.h"
 #include "sky/submit.h"
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -83,8 +87,17 @@ static void abort_outputs(const options *o, output *outs)
     }
 }
 
+/* Ctrl-C (or a TERM) in a long render: the band loop stops at the next band and removes the partial files. */
+static volatile sig_atomic_t interrupted;
+static void on_signal(int sig) { interrupted = sig; }
+
 int tiles_render(const options *o, gpu_context *ctx)
 {
+    struct sigaction catch = {.sa_handler = on_signal}, old_int, old_term;
+    sigemptyset(&catch.sa_mask);
+    interrupted = 0;
+    sigaction(SIGINT, &catch, &old_int);
+    sigaction(SIGTERM, &catch, &old_term);
     long budget = tiles_budget();
     int width = o->width, height = o->height;
     int band = tiles_band_rows(width, height, budget);
@@ -104,6 +117,7 @@ int tiles_render(const options *o, gpu_context *ctx)
     output outs[OPTIONS_MAX_OUTPUTS] = {0};
     if (open_outputs(o, outs) != 0) {
         abort_outputs(o, outs);
+        sigaction(SIGINT, &old_int, NULL), sigaction(SIGTERM, &old_term, NULL);
         return 1;
     }
     sky_renderer r;
@@ -137,6 +151,11 @@ int tiles_render(const options *o, gpu_context *ctx)
             }
         }
         progress_update(&prog, y + rows);
+        if (interrupted && status == 0) {
+            fprintf(stderr, "%svksky: interrupted after %d of %d rows; no file written\n", prog.terminal ? "\n" : "",
+                    y + rows, height);
+            status = 128 + interrupted;
+        }
     }
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         int rc = outs[i].exr ? io_exr_stream_finish(outs[i].exr_stream, err, sizeof err)
@@ -147,5 +166,6 @@ int tiles_render(const options *o, gpu_context *ctx)
     if (status == 0) progress_end(&prog);
     abort_outputs(o, outs);
     sky_renderer_destroy(&r);
+    sigaction(SIGINT, &old_int, NULL), sigaction(SIGTERM, &old_term, NULL);
     return status;
 }

@@ -13,6 +13,7 @@ long tiles_budget(void);
 int tiles_band_rows(int width, int height, long budget);
 /* Whether this render goes through the band renderer: an environment-map projection, or more pixels than a band. */
 bool tiles_wanted(const options *o);
-/* Renders every band and streams each output; 0, or 1 (runtime failure, message printed, no partial file). */
+/* Renders every band and streams each output; 0, or 1 (runtime failure, message printed, no partial file), or
+ * 128 + the signal when SIGINT/SIGTERM stopped it (between bands; the partial files removed). */
 int tiles_render(const options *o, gpu_context *ctx);
 #endif
