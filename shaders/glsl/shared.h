@@ -46,6 +46,8 @@ VKSKY_STRUCT(SkyPush) {
                                   exponent p (steps end at t_max (i/N)^p: 1 uniform, 2 quadratic) */
     vec4 march;                /* x: min steps, y: max steps (= min: fixed count), z: sample position in a step
                                   (0.5 midpoint, 0.3 Hillaire), w: km of path at which the count reaches max */
+    vec4 projection;           /* x: VKSKY_PROJECTION_*, yz: this tile's pixel offset in the whole image (right.w
+                                  and up.w are 1 / the whole image's size), w: unused (shaders/glsl/projection.glsl) */
 } VKSKY_END(SkyPush)
 
 /* Composite pass push constants (composite.comp): aerial perspective from the camera to each pixel's point, and
@@ -71,6 +73,12 @@ VKSKY_STRUCT(CompositePush) {
 #define VKSKY_AOV_RAYLEIGH 4       /* in-scattering with the Rayleigh phase (+ its multiple scattering) */
 #define VKSKY_AOV_MIE 5            /* in-scattering with the Mie phase (+ its multiple scattering) */
 #define VKSKY_AOV_COUNT 6
+
+/* How a pixel maps to a view direction (shaders/glsl/projection.glsl; its C twin src/sky/projection.c). */
+#define VKSKY_PROJECTION_PERSPECTIVE 0
+#define VKSKY_PROJECTION_EQUIRECT 1     /* 2:1 latitude-longitude, OpenEXR/OpenImageIO's latlong axes (+Y up) */
+#define VKSKY_PROJECTION_CUBEMAP 2      /* OpenEXR's cube: faces +X -X +Y -Y +Z -Z stacked top to bottom */
+#define VKSKY_PROJECTION_FISHEYE 3      /* equidistant upper hemisphere, zenith at the centre, north up, east left */
 
 /* Bloom push constants. */
 VKSKY_STRUCT(BloomPush) {

@@ -20,19 +20,20 @@ vec4 lookup_multiscatter(float h, float mu_s)
     return vec4(root2 * root2, texel.a);
 }
 
-/* View ray of a pixel centre: the ray matrix (camera basis scaled by fov/aspect), never an inverse
- * view-projection at planet scale (seed: "Inverse VP fails at planet-centric coordinates"). */
-vec3 pixel_view_dir(vec2 pixel_centre, SkyPush p)
-{
-    vec2 ndc = vec2(2.0 * pixel_centre.x * p.right.w - 1.0, 1.0 - 2.0 * pixel_centre.y * p.up.w);
-    return normalize(p.forward.xyz + ndc.x * p.right.xyz + ndc.y * p.up.xyz);
-}
-
 /* The angular size of a texel of the image being rendered (radians), or 0: point sampling (the composite pass).
  * The sky pass sets it (texel_angle) before it evaluates a pixel; sun_drawn_radius reads it. */
 float sky_texel_angle = 0.0;
-/* A perspective image's texel at the view axis, its larger side: 2 tan(fov/2) / height (and the same across). */
-float texel_angle(SkyPush p) { return 2.0 * max(length(p.right.xyz) * p.right.w, length(p.up.xyz) * p.up.w); }
+/* A texel's larger angular side, by projection (projection.glsl; right.w and up.w are 1 / the whole image's size):
+ * perspective at the view axis 2 tan(fov/2) / height (and the same across); equirect 2 pi / width; a cube face's
+ * centre 2 / face size; the equidistant fisheye pi / width. */
+float texel_angle(SkyPush p)
+{
+    int kind = int(p.projection.x);
+    if (kind == VKSKY_PROJECTION_EQUIRECT) return 6.2831853 * p.right.w;
+    if (kind == VKSKY_PROJECTION_CUBEMAP) return 2.0 * p.right.w;
+    if (kind == VKSKY_PROJECTION_FISHEYE) return 3.1415927 * p.right.w;
+    return 2.0 * max(length(p.right.xyz) * p.right.w, length(p.up.xyz) * p.up.w);
+}
 
 /* Angle between two unit vectors, accurate for tiny angles (acos of a dot near 1 is not). */
 float small_angle(vec3 a, vec3 b) { return 2.0 * asin(clamp(0.5 * length(a - b), 0.0, 1.0)); }

@@ -2,6 +2,7 @@
 #include "app/cpu_time.h"
 #include "app/sequence.h"
 #include "app/stop.h"
+#include "app/tiles.h"
 #include "sky/submit.h"
 #include <stdlib.h>
 #include <string.h>
@@ -115,6 +116,19 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
     gpu_buffer_invalidate(r->ctx, &r->readback_display);
 }
 
+/* The end of every run: the context goes, any validation message fails the run, and a stop asked for by a signal
+ * gives its exit status (stop.h). */
+static int finish(gpu_context *ctx, int status)
+{
+    gpu_context_destroy(ctx);
+    unsigned messages = gpu_validation_message_count();
+    if (messages) {
+        fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
+        if (status == 0) status = 1;
+    }
+    return stop_status(status);
+}
+
 int headless_run(const options *given)
 {
     stop_install();
@@ -123,12 +137,21 @@ int headless_run(const options *given)
     options checked = *given;
     if (sequence_check(&checked)) return 2;
     const options *o = &checked;
+    if (o->output_count > 0 && o->bench_frames == 0 && tiles_wanted(o) && sequence_active(o)) {
+        fprintf(stderr, "vksky: --animate/--frame-count/--frame-range: not with an environment map (--projection) or "
+                        "an image over the band budget; render such frames one run each\n");
+        return 2;
+    }
     gpu_context ctx;
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(&ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
+    /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/tiles.c). */
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o)) return finish(&ctx, tiles_render(o, &ctx));
+    /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/tiles.c). */
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o)) return finish(&ctx, tiles_render(o, &ctx));
 
     sky_renderer r;
     sky_renderer_desc rdesc = {.width = (uint32_t)o->width, .height = (uint32_t)o->height, .bloom = o->view.bloom,
@@ -152,11 +175,5 @@ int headless_run(const options *given)
         status = sequence_render(o, &r, render_frames);   /* one frame, or the frames of a sequence */
     }
     sky_renderer_destroy(&r);
-    gpu_context_destroy(&ctx);
-    unsigned messages = gpu_validation_message_count();
-    if (messages) {
-        fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
-        if (status == 0) status = 1;
-    }
-    return stop_status(status);
+    return finish(&ctx, status);
 }

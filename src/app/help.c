@@ -14,7 +14,7 @@ typedef struct help_group {
 
 static const char *const output_flags[] = {"--render", "--width", "--height", "--exposure", "--tonemap", "--no-bloom",
                                            "--bloom-mips", "--bloom-res", "--bloom-downsample", "--scene",
-                                           "--list-scenes", "--dump-scene",
+                                           "--list-scenes", "--dump-scene", "--projection", "--quiet",
                                            "--animate", "--frame-count", "--frame-range", NULL};
 static const char *const camera_flags[] = {"--altitude", "--yaw", "--pitch", "--fov", NULL};
 static const char *const sun_flags[] = {"--sun-elevation", "--sun-azimuth", "--date", "--time", "--utc-offset",

@@ -1,6 +1,7 @@
 #include "app/options.h"
 #include "app/flags.h"
 #include "app/options_sunvis.h"
+#include "app/options_projection.h"
 #include "app/quality.h"
 #include "app/scene.h"
 #include "app/options_tooling.h"
@@ -254,6 +255,7 @@ static int apply(options *o, const flag *f, const char *value)
     else if (!strcmp(n, "--trace-barriers")) o->trace_barriers = true;
     else if (!strcmp(n, "--list-devices")) o->list_devices = true;
     else if (!strcmp(n, "--device")) o->device_index = (int)x;
+    else if (!strcmp(n, "--projection") || !strcmp(n, "--quiet")) return options_projection_apply(o, n, value);
     else if (!strcmp(n, "--help")) o->help = true;
     else if (!strcmp(n, "--version")) o->version = true;
     return 0;
@@ -381,6 +383,7 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         snprintf(msg, sizeof msg, "%d is below --steps %d; expected a maximum >= the minimum", o->view.max_steps, o->view.steps);
         return bad("--max-steps", msg);
     }
+    if (options_projection_finish(o, argc, argv) != 0) return 2;
     /* The --max-error choice, reported only now: every flag has been read and accepted. */
     if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */

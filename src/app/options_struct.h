@@ -57,6 +57,7 @@ typedef struct options {
     bool list_devices;
     int device_index;                           /* -1: pick */
     bool trace_barriers;
+    bool quiet;                                 /* --quiet: no progress on stderr */
     bool help, version;
     /* tooling (issue 14) */
     sun_place place;                            /* --date, --time, ... or the scene's sun.date ...: the sun by SPA */

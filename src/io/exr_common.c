@@ -1,8 +1,15 @@
 /* vksky image I/O: what the OpenEXR writer and reader share: the library's error messages, captured per thread,
    and the channel names of a layer. See exr_common.h. */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
 #include "io/exr_common.h"
 
+#include <errno.h>
 #include <stdio.h>
+#include <string.h>
+#include <sys/types.h>
+#include <unistd.h>
 
 /* The OpenEXRCore error callback delivers messages on the failing thread; keep the last one per thread
    instead of letting the library print to stderr. */
@@ -30,4 +37,52 @@ void io_exr_channel_name(char *out, size_t out_size, const char *layer, int c)
         snprintf(out, out_size, "%s.%c", layer, comp[c]);
     else
         snprintf(out, out_size, "%c", comp[c]);
+}
+
+int64_t io_exr_fd_write(exr_const_context_t ctxt, void *userdata, const void *buffer, uint64_t sz,
+                                uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    io_exr_out_stream *s = (io_exr_out_stream *)userdata;
+    const uint8_t *p = (const uint8_t *)buffer;
+    uint64_t done = 0;
+    while (done < sz) {
+        uint64_t want = sz - done;
+        if (want > (uint64_t)1 << 30) want = (uint64_t)1 << 30;
+        ssize_t n = pwrite(s->fd, p + done, (size_t)want, (off_t)(offset + done));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            int e = (n < 0) ? errno : EIO;
+            if (!s->err_no) s->err_no = e;
+            if (error_cb) error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed: %s", strerror(e));
+            return -1;
+        }
+        done += (uint64_t)n;
+    }
+    return (int64_t)sz;
+}
+
+void io_exr_fd_destroy(exr_const_context_t ctxt, void *userdata, int failed)
+{
+    (void)ctxt;
+    (void)userdata;
+    (void)failed; /* the fd is owned and closed by the writer */
+}
+
+/* OpenEXRCore 3.1.x keeps a ZIP-compressed chunk whose compressed size is exactly equal to the raw size, but
+   every reader (Core and the C++ library) treats packed_size == unpacked_size as "stored uncompressed", so such a
+   chunk would read back as garbage (reproducible with small 4-channel chunks). Wrap the library's compressor and
+   store the raw packed data whenever compression does not make the chunk strictly smaller. */
+exr_result_t io_exr_compress_no_expand(exr_encode_pipeline_t *enc)
+{
+    const io_exr_compress_wrap *wrap = (const io_exr_compress_wrap *)enc->encoding_user_data;
+    if (!wrap || !wrap->orig) return EXR_ERR_INVALID_ARGUMENT;
+    exr_result_t rc = wrap->orig(enc);
+    if (rc != EXR_ERR_SUCCESS) return rc;
+    if (enc->compressed_bytes >= enc->packed_bytes && enc->compressed_buffer != enc->packed_buffer) {
+        if (!enc->compressed_buffer || !enc->packed_buffer || enc->compressed_alloc_size < enc->packed_bytes)
+            return EXR_ERR_CORRUPT_CHUNK;
+        memcpy(enc->compressed_buffer, enc->packed_buffer, (size_t)enc->packed_bytes);
+        enc->compressed_bytes = (size_t)enc->packed_bytes;
+    }
+    return EXR_ERR_SUCCESS;
 }

@@ -40,4 +40,21 @@ int io_exr_write_layers_half(const char *path, int width, int height, const io_e
 /* The attributes of an io_exr_meta (exr_meta.h) onto a part being written, before its header is written. */
 exr_result_t io_exr_set_meta(exr_context_t ctxt, int part, const struct io_exr_meta *meta);
 
+/* Writers' output: OpenEXRCore writes through these callbacks into an fd the writer owns (pwrite at the library's
+   offsets; errno of the first failure kept for the message). */
+typedef struct io_exr_out_stream {
+    int fd;
+    int err_no; /* errno of the first failed write, 0 if none */
+} io_exr_out_stream;
+int64_t io_exr_fd_write(exr_const_context_t ctxt, void *userdata, const void *buffer, uint64_t sz, uint64_t offset,
+                        exr_stream_error_func_ptr_t error_cb);
+void io_exr_fd_destroy(exr_const_context_t ctxt, void *userdata, int failed);
+
+/* The library's compressor wrapped so that a chunk is stored raw unless compression makes it strictly smaller
+   (exr_common.c says why): set enc->encoding_user_data to a wrap holding the original compress_fn. */
+typedef struct io_exr_compress_wrap {
+    exr_result_t (*orig)(exr_encode_pipeline_t *);
+} io_exr_compress_wrap;
+exr_result_t io_exr_compress_no_expand(exr_encode_pipeline_t *enc);
+
 #endif /* VKSKY_IO_EXR_COMMON_H */

@@ -23,6 +23,9 @@ typedef struct sky_view {
     int tonemap;                            /* VKSKY_TONEMAP_* */
     bool bloom;
     double bloom_strength, bloom_threshold;
+    int projection;                         /* sky_projection (sky/projection.h): pixel -> direction */
+    int tile_x, tile_y;                     /* tiled renders: this frame's pixel offset in the whole image */
+    int whole_width, whole_height;          /* tiled renders: the whole image (0: the frame is the whole image) */
 } sky_view;
 
 sky_view sky_view_default(void);
