@@ -3,7 +3,7 @@
 # multilayer file (camera from its worldToCamera/worldToNDC) and from two files (camera from flags): both exit 0
 # under validation, agree with each other, and their layers satisfy composite = beauty * T + rayleigh + mie
 # (composite_check), and their sky pixels are a plain sky render of the same camera; OpenImageIO lists every
-# layer. Every bad input: exit 2, one line on stderr naming the
+# layer; the scene in km, Y up or 500 m higher (--world-unit/--world-up/--ground-altitude) composites the same. Every bad input: exit 2, one line on stderr naming the
 # problem, no output file (and no temporary) left.
 #
 #   composite_test.sh VKSKY GEN_COMPOSITE_SCENE COMPOSITE_CHECK
@@ -75,6 +75,24 @@ if command -v oiiotool >/dev/null; then
         fail "tiled float composite: exit $? ($(cat "$work/err"))"
     oiiotool "$work/out/multi.exr" "$work/out/tiled.exr" --fail 0.001 --diff >"$work/diff" 2>&1 ||
         fail "tiled float input vs scanline half input: $(tail -n 3 "$work/diff")"
+    # The world conventions: the same scene re-expressed in other units, axes or ground height composites to the
+    # same image (every layer, within 1e-3 absolute: fp16 near 1): positions in km with --world-unit 1000; Y up
+    # ((x, y, z) -> (x, z, -y), a rotation) with --world-up y; everything 500 m higher with --ground-altitude -0.5.
+    # (--yaw/--pitch and the sun are in the local frame, unchanged.)
+    CAM_ANGLES=(--yaw -90 --pitch -3 --fov 40)
+    conv() {   # conv NAME OIIOTOOL-OPS -- VKSKY-ARGS...
+        local name=$1 ops=() ; shift
+        while [ "$1" != "--" ]; do ops+=("$1"); shift; done; shift
+        oiiotool "$S/position.exr" "${ops[@]}" -o "$work/pos_$name.exr" || { fail "$name: oiiotool"; return; }
+        "$VKSKY" --composite "$S/beauty.exr" --position "$work/pos_$name.exr" "$@" "${CAM_ANGLES[@]}" \
+            --render "$work/out/$name.exr" "${SUN[@]}" --validate 2>"$work/err" ||
+            { fail "$name composite: exit $? ($(cat "$work/err"))"; return; }
+        oiiotool "$work/out/two.exr" "$work/out/$name.exr" --fail 0.001 --diff >"$work/diff" 2>&1 ||
+            fail "$name: not the same composite as metres, Z up, ground at 0: $(tail -n 3 "$work/diff")"
+    }
+    conv km --mulc 0.001 -- --world-unit 1000 --camera-position -0.0035,-0.0085,0.2188
+    conv yup --ch R,B,G --chnames R,G,B --mulc 1,1,-1 -- --world-up y --camera-position -3.5,218.8,8.5
+    conv ground --addc 0,0,500 -- --ground-altitude -0.5 --camera-position -3.5,-8.5,718.8
     # A plain sky render with --aovs carries the same layers.
     "$VKSKY" --render "$work/out/aovs.exr" --width 64 --height 36 --aovs --validate 2>"$work/err" ||
         fail "--aovs render: exit $? ($(cat "$work/err"))"
