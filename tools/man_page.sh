@@ -61,7 +61,12 @@ Azimuths (\fB\-\-sun\-azimuth\fR, \fB\-\-yaw\fR) turn clockwise seen from above,
 \fB\-\-yaw 0\fR looking north, 90 is east, 180 south, 270 west. A sun placed by date and place uses the
 compass azimuth of the Solar Position Algorithm unchanged.
 .SH EXIT STATUS
-0 success; 1 a failed render or validation message; 2 bad input (one line on stderr).
+0 success; 1 a failed render or validation message; 2 bad input (one line on stderr);
+130 / 143 stopped by SIGINT (Ctrl\-C) / SIGTERM. A stop ends every mode cleanly: the window between frames, a
+headless render after the frame on the device, \fB\-\-bench\fR between frames (no figures printed), a sequence
+between frames (the frames it finished stay), \fB\-\-reference\fR between pixels; the device is waited for and
+everything made is destroyed; no partial output and no temporary file is left (outputs are written to a
+temporary and renamed into place when whole). A second signal ends the program at once.
 .SH ENVIRONMENT
 .TP
 .B VKSKY_VALIDATION=1

@@ -2,6 +2,7 @@
  * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
  * stderr and exit status 2, before any output file exists. */
 #include "app/composite_app.h"
+#include "app/stop.h"
 #include "io/exr_layers.h"
 #include "io/exr_read.h"
 #include "io/atomic_file.h"
@@ -214,6 +215,7 @@ static int frames_from_env(void)
 static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32_t width, uint32_t height,
                      bool readback)
 {
+    stop_install();   /* SIGINT/SIGTERM from here on: the output is not renamed into place; exit 130/143 */
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
@@ -240,7 +242,7 @@ static int gpu_end(gpu_context *ctx, sky_renderer *r, int status)
         fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
         if (status == 0) status = 1;
     }
-    return status;
+    return stop_status(status);
 }
 
 /* The composite RGBA at the top level (or `top` when given), the AOVs as RGB layers (io/exr_layers.h: half, the

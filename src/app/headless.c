@@ -1,6 +1,7 @@
 #include "app/headless.h"
 #include "app/cpu_time.h"
 #include "app/sequence.h"
+#include "app/stop.h"
 #include "sky/submit.h"
 #include <stdlib.h>
 #include <string.h>
@@ -30,12 +31,12 @@ static void bench(const options *o, sky_renderer *r)
 
     /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. */
     frame_desc f = {.view = &o->view};
-    for (int i = 0; i < 3; ++i) sky_renderer_render(r, &f);
+    for (int i = 0; i < 3 && !stop_requested(); ++i) sky_renderer_render(r, &f);
 
     /* LUT passes, measured on their own (a frame recomputes them only when the atmosphere changes). */
     frame_desc with_luts = {.view = &o->view, .force_luts = true};
     double *lut_ms[2] = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double))};
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n && !stop_requested(); ++i) {
         sky_renderer_render(r, &with_luts);
         uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
         for (uint32_t k = 0; k < c; ++k) {
@@ -46,7 +47,7 @@ static void bench(const options *o, sky_renderer *r)
     /* Steady-state frames. The process's CPU time over them too: on a CPU device (lavapipe) that is the frame's
      * work whatever else the machine runs, where wall and timestamp times grow with the machine's load. */
     double cpu_start = process_cpu_ms();
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < n && !stop_requested(); ++i) {
         wall[i] = sky_renderer_render(r, &f);
         uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
         double total = 0;
@@ -64,14 +65,15 @@ static void bench(const options *o, sky_renderer *r)
         }
         gpu_total[i] = total;
     }
-    double cpu_per_frame = (process_cpu_ms() - cpu_start) / n;
-    if (r->timer.enabled) {
+    if (stop_requested()) n = 0;   /* the graceful stop: no figures from a cut-short run */
+    double cpu_per_frame = n ? (process_cpu_ms() - cpu_start) / n : 0.0;
+    if (n && r->timer.enabled) {
         printf("pass transmittance_lut gpu_ms %.4f\n", median(lut_ms[0], n));
         if (r->variant.multiscatter) printf("pass multiscatter_lut gpu_ms %.4f\n", median(lut_ms[1], n));
         for (int p = 0; p < pass_count; ++p) printf("pass %s gpu_ms %.4f\n", names[p], median(per_pass[p], n));
     }
-    printf("frame gpu_ms %.4f wall_ms %.4f\n", r->timer.enabled ? median(gpu_total, n) : -1.0, median(wall, n));
-    printf("frame cpu_ms %.4f\n", cpu_per_frame);
+    if (n) printf("frame gpu_ms %.4f wall_ms %.4f\n", r->timer.enabled ? median(gpu_total, n) : -1.0, median(wall, n));
+    if (n) printf("frame cpu_ms %.4f\n", cpu_per_frame);
     for (int p = 0; p < pass_count; ++p) free(per_pass[p]);
     free(lut_ms[0]);
     free(lut_ms[1]);
@@ -115,6 +117,7 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
 
 int headless_run(const options *given)
 {
+    stop_install();
     /* Refuse bad frames and unwritable outputs before any expensive work (exit 2, nothing written): every frame's
      * options and files, one frame's or a sequence's (whose quality choice may then serve all its frames). */
     options checked = *given;
@@ -140,7 +143,9 @@ int headless_run(const options *given)
     if (o->trace_passes) r.pass_trace = stdout;
 
     int status = 0;
-    if (o->bench_frames > 0) {
+    if (stop_requested()) {
+        /* Stopped while the device and the renderer were made: nothing to render. */
+    } else if (o->bench_frames > 0) {
         gpu_barrier_trace(NULL);
         bench(o, &r);
     } else {
@@ -153,5 +158,5 @@ int headless_run(const options *given)
         fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
         if (status == 0) status = 1;
     }
-    return status;
+    return stop_status(status);
 }

@@ -1,6 +1,7 @@
 /* vksky: a physically based sky (Hillaire 2020) over raw Vulkan. */
 #include "app/composite_app.h"
 #include "app/headless.h"
+#include "app/stop.h"
 #include "app/options.h"
 #include "app/window.h"
 #include "app/reference_run.h"
@@ -17,6 +18,7 @@ int main(int argc, char **argv)
     if (o.help) {
         options_print_help(stdout);
         composite_options_print_help(stdout);
+        stop_print_help(stdout);
         return 0;
     }
     if (o.version) {

@@ -1,5 +1,6 @@
 #include "app/reference_run.h"
 #include "app/exr_header.h"
+#include "app/stop.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/half_float.h"
@@ -42,7 +43,8 @@ static void *render_rows(void *arg)
         int y = job->next_row++;
         pthread_mutex_unlock(&job->lock);
         if (y >= o->height) return NULL;
-        for (int x = 0; x < o->width; ++x) {
+        /* The graceful stop, between pixels: a path-traced pixel can take long, a row much longer. */
+        for (int x = 0; x < o->width && !stop_requested(); ++x) {
             double dir[3], rgb[3], err[3];
             ref_pixel_dir(x, y, o->width, o->height, o->view.yaw_deg * DEG, o->view.pitch_deg * DEG,
                           o->view.fov_deg * DEG, dir);
@@ -57,6 +59,7 @@ static void *render_rows(void *arg)
 int reference_run(const options *o)
 {
     char err[512];
+    stop_install();
     for (int i = 0; i < o->output_count; ++i) {
         size_t n = strlen(o->outputs[i]);
         if (n < 4 || strcasecmp(o->outputs[i] + n - 4, ".exr") != 0) {
@@ -74,6 +77,7 @@ int reference_run(const options *o)
         double view[3], rgb[3], e[3];
         ref_dir(o->view.yaw_deg * DEG, o->view.pitch_deg * DEG, view);
         radiance(o, view, job.sun, rgb, e);
+        if (stop_requested()) return stop_status(0);
         if (o->path_trace) printf("%.9g %.9g %.9g stderr %.3g %.3g %.3g\n", rgb[0], rgb[1], rgb[2], e[0], e[1], e[2]);
         else printf("%.9g %.9g %.9g\n", rgb[0], rgb[1], rgb[2]);
         return 0;
@@ -91,12 +95,20 @@ int reference_run(const options *o)
     for (int i = 0; i < THREADS; ++i) pthread_create(&threads[i], NULL, render_rows, &job);
     for (int i = 0; i < THREADS; ++i) pthread_join(threads[i], NULL);
     pthread_mutex_destroy(&job.lock);
+    if (stop_requested()) {   /* rows left unrendered: write nothing */
+        free(job.rgba);
+        return stop_status(0);
+    }
     uint16_t *half = malloc(pixels * 4 * sizeof(uint16_t));
     for (size_t i = 0; i < pixels * 4; ++i) half[i] = io_float_to_half(job.rgba[i]);
     free(job.rgba);
     int status = 0;
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         io_exr_layer layer = {.name = "", .rgba_half = half};
+        if (stop_requested()) {   /* the graceful stop: no further output (stop_status says why) */
+            status = 1;
+            break;
+        }
         exr_header h;   /* how it was made (app/exr_header.h): the command line says --reference */
         if (exr_header_build(&h, o, -1) != 0) {
             fprintf(stderr, "vksky: %s: out of memory for the EXR header\n", o->outputs[i]);
@@ -104,11 +116,11 @@ int reference_run(const options *o)
             break;
         }
         if (io_write_exr_meta(o->outputs[i], o->width, o->height, &layer, 1, &h.meta, err, sizeof err) != 0) {
-            fprintf(stderr, "vksky: %s\n", err);
+            if (!stop_requested()) fprintf(stderr, "vksky: %s\n", err);   /* else stop_status says why */
             status = 1;
         }
         exr_header_free(&h);
     }
     free(half);
-    return status;
+    return stop_status(status);
 }

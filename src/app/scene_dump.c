@@ -42,16 +42,18 @@ static void arr(builder *b, cJSON *parent, const char *key, const double *v, int
     if (a && !b->ok) cJSON_Delete(a);
 }
 
-/* The simplest form that is exactly the profile: exponential, tent, or the two layers. */
+/* The simplest form that is exactly the profile and that loads back: exponential, tent, or the two layers. A layers
+ * profile can be an exponential or a tent whose parameter is outside that form's range (one exponential layer with
+ * exp_scale_per_km -124 is a 0.008 km scale height, below HEIGHT_MIN): it stays layers (found by fuzz_scene). */
 static void dump_density(builder *b, cJSON *species, const model_density_profile *p)
 {
     cJSON *d = obj(b, species, "density");
     double x, y;
     if (!d) return;
-    if (model_profile_as_exponential(p, &x)) {
+    if (model_profile_as_exponential(p, &x) && x >= HEIGHT_MIN && x <= HEIGHT_MAX) {
         str(b, d, "profile", "exponential");
         num(b, d, "scale_height_km", x);
-    } else if (model_profile_as_tent(p, &x, &y)) {
+    } else if (model_profile_as_tent(p, &x, &y) && x >= 0.0 && x <= HEIGHT_MAX && y >= HEIGHT_MIN && y <= HEIGHT_MAX) {
         str(b, d, "profile", "tent");
         num(b, d, "center_km", x);
         num(b, d, "half_width_km", y);

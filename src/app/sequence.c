@@ -4,6 +4,7 @@
 #include "app/options.h"
 #include "app/options_sequence.h"
 #include "app/quality.h"
+#include "app/stop.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/png_io.h"
@@ -142,6 +143,7 @@ static int write_outputs(const options *o, const sky_renderer *r, int frame, boo
         if (!frame_path(o->outputs[i], frame, path, sizeof path)) return 1;   /* checked before */
         if (i == 0) snprintf(first, sizeof first, "%s", path), *first_path = first;
         int rc;
+        if (stop_requested()) return 1;   /* the graceful stop: no further output (one being written is dropped) */
         if (is_exr(path)) {
             exr_header h;
             if (exr_header_build(&h, o, sequence ? frame : -1) != 0) {
@@ -155,7 +157,7 @@ static int write_outputs(const options *o, const sky_renderer *r, int frame, boo
             rc = io_write_png(path, o->width, o->height, r->readback_display.mapped, 1, err, sizeof err);
         }
         if (rc != 0) {
-            fprintf(stderr, "vksky: %s\n", err);
+            if (!stop_requested()) fprintf(stderr, "vksky: %s\n", err);   /* else stop_status (app/stop.h) says why */
             return 1;
         }
     }
@@ -167,7 +169,7 @@ int sequence_render(const options *base, sky_renderer *r, sequence_render_fn ren
     bool sequence = sequence_active(base);
     int count = frame_count(base), done = 0, lut_computations = 0;
     int range = base->frame_last - base->frame_first + 1;
-    for (int i = base->frame_first; i <= base->frame_last; ++i) {
+    for (int i = base->frame_first; i <= base->frame_last && !stop_requested(); ++i) {   /* stop: between frames */
         options f;
         if (sequence_frame_options(base, i, &f)) return 1;   /* parsed before (sequence_check): not expected */
         /* Same values: the renderer keeps its LUTs (their hash is unchanged) and its pipelines. */
@@ -185,6 +187,7 @@ int sequence_render(const options *base, sky_renderer *r, sequence_render_fn ren
             fprintf(stderr, "vksky: frame %d (%d of %d; %d/%d of this job): %s, LUTs %s\n", i, i + 1, count, done,
                     range, path, luts ? "computed" : "reused");
     }
+    if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
     if (sequence)
         fprintf(stderr, "vksky: %d frame%s rendered; LUTs computed %d time%s\n", done, done == 1 ? "" : "s",
                 lut_computations, lut_computations == 1 ? "" : "s");

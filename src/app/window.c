@@ -19,6 +19,7 @@
 #include "app/cpu_time.h"
 #include "app/window_app.h"
 #include "app/window.h"
+#include "app/stop.h"
 #include "io/atomic_file.h"
 #include "io/png_io.h"
 #include "sky/frame.h"
@@ -56,7 +57,7 @@ static void on_framebuffer_size(GLFWwindow *w, int width, int height)
 static void swapchain_recreate(app *a)
 {
     VK_CHECK(vkDeviceWaitIdle(a->ctx.device));
-    if (!swapchain_create(&a->sc, &a->ctx, a->surface, a->window, a->test.resize)) {
+    if (!swapchain_create(&a->sc, &a->ctx, a->surface, a->window, a->test.resize || a->test.report)) {
         /* The surface has no area yet (minimised, or the resize still on its way): stay dirty, don't spin. */
         glfwWaitEventsTimeout(0.05);
         return;
@@ -280,12 +281,15 @@ static bool window_minimized(app *a)
            !glfwGetWindowAttrib(a->window, GLFW_VISIBLE);
 }
 
-/* Sleep in the event queue until the window is back (no spinning). The test hook restores it itself. */
+/* Sleep in the event queue until the window is back (no spinning). The test hook restores it itself. The wait has
+ * a timeout because GLFW's untimed wait retries when a signal interrupts it: the graceful stop (stop.h) is seen
+ * within STOP_POLL_S. */
+#define STOP_POLL_S 0.25
 static void wait_while_minimized(app *a)
 {
-    while (!glfwWindowShouldClose(a->window) && window_minimized(a)) {
+    while (!glfwWindowShouldClose(a->window) && !stop_requested() && window_minimized(a)) {
         if (!a->test.minimized_waits) {
-            glfwWaitEvents();
+            glfwWaitEventsTimeout(STOP_POLL_S);
             continue;
         }
         glfwWaitEventsTimeout(0.05);
@@ -305,6 +309,7 @@ static void run_loop(app *a)
     bool quitting = false;
     for (;;) {
         glfwPollEvents();
+        if (stop_requested()) break;   /* SIGINT/SIGTERM: no further frame, no screenshot; shut_down waits idle */
         quitting = quitting || glfwWindowShouldClose(a->window) || (o->frames && a->presented >= o->frames);
         /* Closing with --screenshot: one last frame carries the capture, so it is the image on screen. */
         if (quitting && !o->screenshot) break;
@@ -390,7 +395,7 @@ static int start_rendering(app *a)
 {
     const options *o = a->o;
     a->sc.format = swapchain_choose_format(&a->ctx, a->surface);
-    if (!swapchain_create(&a->sc, &a->ctx, a->surface, a->window, a->test.resize)) {
+    if (!swapchain_create(&a->sc, &a->ctx, a->surface, a->window, a->test.resize || a->test.report)) {
         /* Created minimised: start at the requested size; the loop recreates once the window has an area. */
         a->sc.extent = (VkExtent2D){(uint32_t)o->width, (uint32_t)o->height};
         a->swapchain_dirty = true;
@@ -459,6 +464,8 @@ int window_run(const options *o)
     a = (app){.o = o};
     const char *test = getenv("VKSKY_TEST_RESIZE");
     a.test.resize = test && strcmp(test, "1") == 0;
+    a.test.report = (test = getenv("VKSKY_TEST_REPORT")) && strcmp(test, "1") == 0;
+    stop_install();
     a.test.last_frame = -1;
     int rc = open_window(&a);
     if (rc == 0) rc = open_device(&a);
@@ -479,5 +486,5 @@ int window_run(const options *o)
         fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
         if (rc == 0) rc = 1;
     }
-    return rc;
+    return stop_status(rc);
 }

@@ -17,6 +17,10 @@
 #include <sys/types.h>
 #include <unistd.h>
 
+static const volatile sig_atomic_t *cancel_flag;
+
+void io_atomic_set_cancel(const volatile sig_atomic_t *flag) { cancel_flag = flag; }
+
 /* Splits `path` into a directory (for stat/access: "." when there is no slash) and the length of the
    directory prefix including its trailing slash (0 when there is none). Returns -1 when the basename is
    empty or the path is too long. */
@@ -129,6 +133,12 @@ int io_atomic_open(const char *path, char *tmp, size_t tmp_size, char *err, size
    `fd` is always closed. */
 int io_atomic_commit(int fd, const char *tmp, const char *path, char *err, size_t err_size)
 {
+    /* A stop asked for while the file was written: whole or not at all, so not at all. */
+    if (cancel_flag && *cancel_flag) {
+        io_atomic_abort(fd, tmp);
+        io_set_err(err, err_size, "cannot write '%s': interrupted", path);
+        return -1;
+    }
     if (fd >= 0) {
         if (fsync(fd) != 0 && errno != EINVAL && errno != EROFS) {
             int e = errno;

@@ -5,6 +5,7 @@
 #ifndef VKSKY_IO_ATOMIC_FILE_H
 #define VKSKY_IO_ATOMIC_FILE_H
 
+#include <signal.h>
 #include <stddef.h>
 
 #ifdef __cplusplus
@@ -24,6 +25,10 @@ int io_atomic_commit(int fd, const char *tmp, const char *path, char *err, size_
 
 /* Gives up: closes `fd` (if >= 0) and removes the temp file. */
 void io_atomic_abort(int fd, const char *tmp);
+
+/* A flag (set by a signal handler: the graceful stop) that, once nonzero, makes io_atomic_commit abandon the file it
+   is about to rename into place: removes the temp file and fails with "interrupted". NULL (the default): never. */
+void io_atomic_set_cancel(const volatile sig_atomic_t *flag);
 
 #ifdef __cplusplus
 }
