@@ -259,9 +259,13 @@ static bool window_mode(int argc, char **argv)
 {
     static const char *const headless[] = {"--render", "--bench", "--reference", "--help", "--version",
                                            "--list-devices", "--dump-scene", "--list-scenes"};
+    /* The flag itself or FLAG=VALUE: --render-scale is no --render (a window with --render-scale starts from the
+     * window's preset, not from --quality auto). */
     for (int i = 1; i < argc; ++i)
-        for (size_t k = 0; k < sizeof headless / sizeof headless[0]; ++k)
-            if (!strncmp(argv[i], headless[k], strlen(headless[k]))) return false;
+        for (size_t k = 0; k < sizeof headless / sizeof headless[0]; ++k) {
+            size_t n = strlen(headless[k]);
+            if (!strncmp(argv[i], headless[k], n) && (argv[i][n] == '\0' || argv[i][n] == '=')) return false;
+        }
     return true;
 }
 
