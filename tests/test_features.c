@@ -189,18 +189,28 @@ int main(void)
         CHECK(memcmp(none.centre, plain.centre, sizeof plain.centre) == 0, "a zero extra species changed the image");
     }
 
-    /* LUTs follow the atmosphere: a changed Rayleigh coefficient recomputes them, a changed Mie g does not. */
+    /* LUTs follow the atmosphere: a changed Rayleigh coefficient recomputes them, a changed Mie g does not with the
+     * lesson's model (isotropic multi-scattering LUT) and does with the penumbra's (its first bounce has the real
+     * phases, issue 17). */
     {
         sky_renderer r;
         sky_renderer_desc desc = {.width = N, .height = N, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
         sky_renderer_create(&r, &ctx, &desc);
-        sky_renderer_set_atmosphere(&r, &earth, SUN_RADIUS_RAD);
+        model_atmosphere lesson = earth;
+        lesson.sun_visibility = MODEL_SUN_VISIBILITY_LESSON_FADE;
+        sky_renderer_set_atmosphere(&r, &lesson, SUN_RADIUS_RAD);
         frame_desc fd = {.view = &v};
         sky_renderer_render(&r, &fd);
-        model_atmosphere g = earth;
+        model_atmosphere g = lesson;
         g.mie_g = 0.5;
         sky_renderer_set_atmosphere(&r, &g, SUN_RADIUS_RAD);
-        CHECK(!sky_renderer_luts_dirty(&r), "Mie g made the LUTs dirty");
+        CHECK(!sky_renderer_luts_dirty(&r), "Mie g made the LUTs dirty (lesson's model)");
+        sky_renderer_set_atmosphere(&r, &earth, SUN_RADIUS_RAD);
+        sky_renderer_render(&r, &fd);
+        g = earth;
+        g.mie_g = 0.5;
+        sky_renderer_set_atmosphere(&r, &g, SUN_RADIUS_RAD);
+        CHECK(sky_renderer_luts_dirty(&r), "Mie g did not make the penumbra's LUTs dirty");
         model_atmosphere thicker = earth;
         thicker.rayleigh_scattering[2] *= 1.1;
         sky_renderer_set_atmosphere(&r, &thicker, SUN_RADIUS_RAD);

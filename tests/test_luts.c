@@ -59,7 +59,11 @@ int main(void)
             double h, mu_s, ref[3];
             ref_multiscatter_texel_params(&a, ms_i[i], ms_j[j], MN, MN, &h, &mu_s);
             ref_multiscatter(&a, h, mu_s, 8, 20, 2000, ref);
-            const float *gpu = ms + 4 * (ms_j[j] * MN + ms_i[i]);
+            const float *stored = ms + 4 * (ms_j[j] * MN + ms_i[i]);
+            /* The LUT holds Psi^(1/4) (shaders/glsl/multiscatter_lut.comp). */
+            double gpu[3];
+            for (int c = 0; c < 3; ++c)
+                gpu[c] = pow(stored[c], 4.0);
             for (int c = 0; c < 3; ++c) {
                 /* fp16 storage and the LUT-interpolated transmittance vs direct integration. */
                 double tol = 0.02 * ref[c] + 2e-6;

@@ -23,7 +23,8 @@ static const quality_measurement *row_of(const quality_measurement *table, int c
 
 static void check_table(const quality_measurement *table, int count, bool cpu_device, const char *device)
 {
-    for (int scene = 0; scene < 6; ++scene) {
+    for (int scene = 0; scene < QUALITY_SCENE_COUNT; ++scene) {
+        if (!row_of(table, count, "medium", scene)) continue;   /* a class this table has no rows for */
         const quality_scene *s = &quality_scenes[scene];
         double measured = 0;
         const quality_config *q = quality_auto(quality_class_bit(s->altitude_km, s->sun_elevation_deg), cpu_device,
@@ -57,18 +58,21 @@ static void check_table(const quality_measurement *table, int count, bool cpu_de
  * dearest class. Searched here over the sweep's configurations by name, not over table rows as quality.c does. */
 static void check_sets(const quality_measurement *table, int count, bool cpu_device, const char *device)
 {
-    double budget[6];
-    for (int c = 0; c < 6; ++c) {
+    double budget[QUALITY_SCENE_COUNT];
+    for (int c = 0; c < QUALITY_SCENE_COUNT; ++c) {
         double best = INFINITY;
         for (int i = 0; i < count; ++i)
             if (table[i].scene == c) best = fmin(best, table[i].err_mean);
         budget[c] = fmax(0.01, 1.25 * best);
     }
-    unsigned sets[16];
+    unsigned measured_classes = 0;   /* the classes this table has rows for */
+    for (int i = 0; i < count; ++i) measured_classes |= 1u << table[i].scene;
+    unsigned sets[24];
     int set_count = 0;
-    for (int a = 0; a < 6; ++a)
-        for (int b = a + 1; b < 6 && set_count < 15; b += 2) sets[set_count++] = 1u << a | 1u << b;
-    sets[set_count++] = 0x3f;
+    for (int a = 0; a < QUALITY_SCENE_COUNT; ++a)
+        for (int b = a + 1; b < QUALITY_SCENE_COUNT && set_count < 23; b += 2)
+            if (measured_classes >> a & 1u && measured_classes >> b & 1u) sets[set_count++] = 1u << a | 1u << b;
+    sets[set_count++] = measured_classes;
     for (int k = 0; k < set_count; ++k) {
         double measured = 0;
         const quality_config *q = quality_auto(sets[k], cpu_device, &measured);
@@ -77,7 +81,7 @@ static void check_sets(const quality_measurement *table, int count, bool cpu_dev
             const char *name = n < 0 ? quality_presets[n + 4].name : quality_sweep[n].name;
             double cost = 0;
             bool serves = true;
-            for (int c = 0; c < 6; ++c) {
+            for (int c = 0; c < QUALITY_SCENE_COUNT; ++c) {
                 if (!(sets[k] >> c & 1u)) continue;
                 const quality_measurement *m = row_of(table, count, name, c);
                 serves = serves && m && m->err_mean <= budget[c];
@@ -89,7 +93,7 @@ static void check_sets(const quality_measurement *table, int count, bool cpu_dev
               q ? q->name : "nothing", cheapest);
         if (!q) continue;
         double cost = 0;
-        for (int c = 0; c < 6; ++c) {
+        for (int c = 0; c < QUALITY_SCENE_COUNT; ++c) {
             if (!(sets[k] >> c & 1u)) continue;
             const quality_measurement *m = row_of(table, count, q->name, c);
             CHECK(m && m->err_mean <= budget[c], "%s set 0x%x: '%s' is over %s's budget", device, sets[k], q->name,

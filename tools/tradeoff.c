@@ -1,7 +1,8 @@
 /* tools/tradeoff: the speed/accuracy trade, measured.
  *
  * For every configuration (the presets and a sweep of the knobs) and every scene of the fixed set (noon,
- * afternoon, sunset, twilight, 10 km at the horizon, 400 km at the limb):
+ * afternoon, sunset (sun +2), twilight (-4), 10 km at the horizon, 400 km at the limb, the sun on the horizon (0),
+ * twilight at -2; quality_scenes):
  *   - GPU time: per-pass timestamps, median over --frames frames after warm-up, at --size (no readback);
  *   - error: a small frame (--error-size, bloom off) against the converged CPU reference of the same view:
  *     relative luminance error over sky pixels (mean, p95, max) and mean CIEDE2000 of the tone-mapped images.
@@ -14,7 +15,7 @@
  *
  *   tradeoff [--size WxH] [--error-size WxH] [--error-render WxH] [--frames N] [--csv FILE]
  *            [--emit-table FILE] [--cost gpu|cpu] [--configs a,b,...] [--scenes noon,...]
- *            [--device N]
+ *            [--device N] [--sun-visibility penumbra|lesson-fade]
  */
 #include "app/cpu_time.h"
 #include "app/quality.h"
@@ -222,7 +223,7 @@ int main(int argc, char **argv)
 {
     int tw = 1920, th = 1080, ew = 96, eh = 54, rw = 0, rh = 0, frames = 30, device = -1;
     const char *csv = "tradeoff.csv", *table = NULL, *configs = NULL, *scenes = NULL;
-    bool cost_cpu = false;
+    bool cost_cpu = false, lesson = false;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         if (!v) { fprintf(stderr, "tradeoff: %s needs a value\n", a); return 2; }
@@ -236,6 +237,8 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--configs")) configs = v, ++i;
         else if (!strcmp(a, "--scenes")) scenes = v, ++i;
         else if (!strcmp(a, "--device")) device = atoi(v), ++i;
+        else if (!strcmp(a, "--sun-visibility") && (!strcmp(v, "penumbra") || !strcmp(v, "lesson-fade")))
+            lesson = !strcmp(v, "lesson-fade"), ++i;
         else { fprintf(stderr, "tradeoff: bad argument %s %s\n", a, v); return 2; }
     }
     gpu_context ctx;
@@ -248,12 +251,13 @@ int main(int argc, char **argv)
             ctx.props.deviceName, tw, th, frames, ew, eh, rw, rh);
     model_atmosphere a;
     model_atmosphere_earth(&a);
+    if (lesson) a.sun_visibility = MODEL_SUN_VISIBILITY_LESSON_FADE;
     int nconf = 4 + quality_sweep_count;
-    row *rows = calloc((size_t)nconf * 6, sizeof *rows);
+    row *rows = calloc((size_t)nconf * QUALITY_SCENE_COUNT, sizeof *rows);
     int count = 0;
-    float *refs[6];
-    unsigned char *masks[6];
-    for (int s = 0; s < 6; ++s) {
+    float *refs[QUALITY_SCENE_COUNT];
+    unsigned char *masks[QUALITY_SCENE_COUNT];
+    for (int s = 0; s < QUALITY_SCENE_COUNT; ++s) {
         refs[s] = NULL, masks[s] = NULL;
         if (!wanted(scenes, quality_scenes[s].name)) continue;
         refs[s] = reference_image(&a, &quality_scenes[s], &grid);
@@ -266,7 +270,7 @@ int main(int argc, char **argv)
     for (int c = 0; c < nconf; ++c) {
         const quality_config *q = c < 4 ? &quality_presets[c] : &quality_sweep[c - 4];
         if (!wanted(configs, q->name)) continue;
-        for (int s = 0; s < 6; ++s) {
+        for (int s = 0; s < QUALITY_SCENE_COUNT; ++s) {
             if (!refs[s]) continue;
             row *r = &rows[count++];
             r->config = q->name;

@@ -20,6 +20,7 @@ layout(constant_id = VKSKY_SPEC_OZONE_PROFILE) const int OZONE_PROFILE = VKSKY_P
 layout(constant_id = VKSKY_SPEC_EXTRA_SPECIES) const int EXTRA_SPECIES = 0;
 layout(constant_id = VKSKY_SPEC_EXTRA0_PROFILE) const int EXTRA0_PROFILE = VKSKY_PROFILE_GENERAL;
 layout(constant_id = VKSKY_SPEC_EXTRA1_PROFILE) const int EXTRA1_PROFILE = VKSKY_PROFILE_GENERAL;
+layout(constant_id = VKSKY_SPEC_SUN_VISIBILITY) const int SUN_VISIBILITY = VKSKY_SUN_VISIBILITY_PENUMBRA;
 
 const float PI = 3.14159265358979;
 /* The multi-scattering LUT clamps its altitude to 10 m (seed bug 1: no sphere-sampled ray may start exactly on
@@ -143,12 +144,7 @@ vec3 step_integral(vec3 sigma, float dt, vec3 step_transmittance)
     return mix(exact, vec3(dt) * (1.0 - 0.5 * x), lessThan(x, vec3(1e-4)));
 }
 
-/* Earth shadow with the horizon fade (seed bugs 5 and 9): 0 when the ground blocks the sun. */
-float earth_shadow(float h, float mu_s)
-{
-    float lit = ray_hits_ground(h, mu_s) ? 0.0 : 1.0;
-    return lit * clamp(mu_s * 10.0 + 0.5, 0.0, 1.0);
-}
+#include "sun_visibility.glsl"
 
 /* Texel-centre sub-UV: unit x in [0,1] <-> texture coordinate; exact inverses, texel k sits at x = k/(n-1). */
 float unit_to_sub_uv(float x, float n) { return 0.5 / n + x * (n - 1.0) / n; }

@@ -108,7 +108,10 @@ VKSKY_STRUCT(PostPush) {
 #define VKSKY_SPEC_EXTRA_SPECIES 11     /* how many extra species (0 .. VKSKY_MAX_EXTRA) */
 #define VKSKY_SPEC_EXTRA0_PROFILE 12
 #define VKSKY_SPEC_EXTRA1_PROFILE 13
-#define VKSKY_SPEC_COUNT 13             /* IDs 1 .. 13 */
+#define VKSKY_SPEC_SUN_VISIBILITY 14   /* VKSKY_SUN_VISIBILITY_*: the penumbra or the lesson's horizon fade */
+#define VKSKY_SPEC_COUNT 14             /* IDs 1 .. 14 */
+#define VKSKY_SUN_VISIBILITY_PENUMBRA 0 /* = MODEL_SUN_VISIBILITY_* (src/model/sun_visibility.h) */
+#define VKSKY_SUN_VISIBILITY_LESSON_FADE 1
 #define VKSKY_MIE_PHASE_HG 0
 #define VKSKY_MIE_PHASE_CORNETTE_SHANKS 1
 

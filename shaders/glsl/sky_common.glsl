@@ -12,9 +12,12 @@ vec3 lookup_transmittance(float h, float mu)
                                             float(textureSize(ground_irradiance_lut, 0).x)), 0.5)).rgb
 #endif
 
-vec3 lookup_multiscatter(float h, float mu_s)
+/* The LUT holds Psi^(1/4) (multiscatter_lut.comp says why) and, in alpha, the second bounce's anisotropy D. */
+vec4 lookup_multiscatter(float h, float mu_s)
 {
-    return texture(multiscatter_lut, multiscatter_uv(h, mu_s, vec2(textureSize(multiscatter_lut, 0)))).rgb;
+    vec4 texel = texture(multiscatter_lut, multiscatter_uv(h, mu_s, vec2(textureSize(multiscatter_lut, 0))));
+    vec3 root2 = texel.rgb * texel.rgb;
+    return vec4(root2 * root2, texel.a);
 }
 
 /* View ray of a pixel centre: the ray matrix (camera basis scaled by fov/aspect), never an inverse
@@ -115,14 +118,26 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
         float mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
         Medium m = sample_medium(h_t);
         vec3 step_t = exp(-m.extinction * dt);
-        vec3 sun_t = lookup_transmittance(h_t, mu_s_t);
-        vec3 psi = HAS_MULTISCATTER ? lookup_multiscatter(h_t, mu_s_t) : vec3(0.0);
-        /* Single scattering is shadowed by the planet (seed bug 5); multiple scattering is already integrated
-         * over the sphere, shadow included, in the LUT (seed bug 9). */
-        vec3 sun_single = earth_shadow(h_t, mu_s_t) * sun_t;
+        float mu_t;
+        float visible = sun_visibility(h_t, mu_s_t, mu_t);
+        vec3 sun_t = lookup_transmittance(h_t, mu_t);
+        vec4 psi_d = HAS_MULTISCATTER ? lookup_multiscatter(h_t, mu_s_t) : vec4(0.0);
+        /* The second bounce's anisotropy on the Rayleigh part: the view direction in the sample's frame (v_x toward
+         * the sun's azimuth, v_y across it), factor 1 + (3/8) D (v_x^2 - v_y^2); D = 0 for the lesson's model. */
+        float f_r = 1.0;
+        if (SUN_VISIBILITY != VKSKY_SUN_VISIBILITY_LESSON_FADE && psi_d.a != 0.0) {
+            float mu_v = clamp((r * mu + t) / r_t, -1.0, 1.0);
+            float sin2s = (1.0 - mu_s_t) * (1.0 + mu_s_t);
+            float v_x = sin2s > 1e-8 ? (nu - mu_v * mu_s_t) * inversesqrt(sin2s) : 0.0;
+            float v_y2 = max(0.0, (1.0 - mu_v) * (1.0 + mu_v) - v_x * v_x);
+            f_r = 1.0 + 0.375 * psi_d.a * (v_x * v_x - v_y2);
+        }
+        /* Single scattering is shadowed by the planet (seed bug 5), the penumbra included; multiple scattering is
+         * already integrated over the sphere, shadow included, in the LUT (seed bug 9). */
+        vec3 sun_single = visible * sun_t;
         vec3 weight = atmo.sun.rgb * seg.throughput * step_integral(m.extinction, dt, step_t);
-        seg.rayleigh += weight * m.rayleigh * (sun_single * phase_r + psi);
-        seg.mie += weight * m.mie * (sun_single * phase_m + psi);
+        seg.rayleigh += weight * m.rayleigh * (sun_single * phase_r + psi_d.rgb * f_r);
+        seg.mie += weight * m.mie * (sun_single * phase_m + psi_d.rgb);
         seg.throughput *= step_t;
     }
     return seg;
@@ -135,7 +150,9 @@ vec3 lit_ground(MarchSegment seg)
 {
     if (!HAS_GROUND || !seg.hits_ground) return vec3(0.0);
     float mu_s_g = clamp((seg.r * seg.mu_s + seg.t_max * seg.nu) / ground_radius(), -1.0, 1.0);
-    vec3 sun_g = lookup_transmittance(0.0, mu_s_g) * earth_shadow(0.0, mu_s_g) * max(mu_s_g, 0.0);
+    float mu_t_g;
+    float visible_g = sun_visibility(0.0, mu_s_g, mu_t_g);
+    vec3 sun_g = lookup_transmittance(0.0, mu_t_g) * visible_g * max(mu_t_g, 0.0);
     return seg.throughput * atmo.sun.rgb * (sun_g + GROUND_SKY_IRRADIANCE(mu_s_g)) * atmo.ground.rgb / PI;
 }
 

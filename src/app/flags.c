@@ -59,6 +59,7 @@ const flag flags_table[] = {
     {"--sun-angular-radius", ARG_DOUBLE, 0.01, 10, "DEG sun disc angular radius (default 0.265)"},
     {"--limb-darkening", ARG_DOUBLE, 0, 1, "U   sun limb darkening coefficient (default 0.6)"},
     {"--no-sun-disc", ARG_NONE, 0, 0, "     leave the sun disc out"},
+    {"--sun-visibility", ARG_STRING, 0, 0, "M penumbra | lesson-fade: the sun's visibility at each point, the fraction of its disc above the horizon, or the lesson's fade (default penumbra)"},
     {"--no-multiscatter", ARG_NONE, 0, 0, " single scattering only (no multi-scattering term or LUT)"},
     {"--reference", ARG_NONE, 0, 0, "       CPU reference (double precision, no LUTs): print R G B along the view axis, or with --render write a reference image"},
     {"--path-trace", ARG_NONE, 0, 0, "      with --reference: Monte Carlo path tracer of the same medium, all scattering orders"},

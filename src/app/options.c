@@ -1,5 +1,6 @@
 #include "app/options.h"
 #include "app/flags.h"
+#include "app/options_sunvis.h"
 #include "app/quality.h"
 #include "app/scene.h"
 #include "app/options_tooling.h"
@@ -232,6 +233,10 @@ static int apply(options *o, const flag *f, const char *value)
         int k = parse_word(n, value, w, 3);
         if (k < 0) return 2;
         o->mie_phase = k == 1;
+    } else if (!strcmp(n, "--sun-visibility")) {
+        int k = parse_word(n, value, sunvis_words, SUNVIS_WORD_COUNT);
+        if (k < 0) return 2;
+        o->atmosphere.sun_visibility = k;
     } else if (!strcmp(n, "--sun-angular-radius")) o->sun_angular_radius_deg = x;
     else if (!strcmp(n, "--limb-darkening")) o->limb_darkening = x;
     else if (!strcmp(n, "--no-sun-disc")) o->sun_disc = false;

@@ -44,7 +44,10 @@ typedef struct quality_scene {
     const char *name;
     double altitude_km, sun_elevation_deg, yaw_deg, pitch_deg, fov_deg, exposure_ev;
 } quality_scene;
-extern const quality_scene quality_scenes[6];
+/* Noon, afternoon, sunset (+2), twilight (-4), 10 km, 400 km, then (issue 17) the sun on the horizon (0) and
+ * twilight at -2: indices are the table's scene numbers (quality_table.h), so new scenes go at the end. */
+#define QUALITY_SCENE_COUNT 8
+extern const quality_scene quality_scenes[QUALITY_SCENE_COUNT];
 /* The scene class a view belongs to (nearest by sun elevation and altitude). */
 int quality_scene_class(double altitude_km, double sun_elevation_deg);
 

@@ -3,6 +3,7 @@
 #include "app/scene.h"
 #include "app/quality.h"
 #include "app/scene_sun.h"
+#include "app/options_sunvis.h"
 #include "app/scene_validate.h"
 #include "app/exr_names.h"
 #include "io/exr_meta.h"
@@ -455,7 +456,7 @@ static int syntax_error(const scene_ctx *c, const char *text, size_t len, const 
 int scene_load(const char *path, options *o)
 {
     static const char *const names[] = {"description", "planet", "species", "multiple_scattering", "sun", "camera",
-                                        "output", "quality"};
+                                        "output", "quality", "sun_visibility"};
     scene_ctx c = {.o = o};
     scene_printable(c.file, sizeof c.file, path);
     char *text = NULL;
@@ -497,6 +498,8 @@ int scene_load(const char *path, options *o)
     if (scene_get_object(&c, root, "planet", "", &section) || (section && parse_planet(&c, section))) goto done;
     if (scene_get_object(&c, root, "species", "", &section) || (section && parse_species(&c, section))) goto done;
     if (scene_get_bool(&c, root, "multiple_scattering", "", &o->multiple_scattering)) goto done;
+    if (scene_get_word(&c, root, "sun_visibility", "", sunvis_words, SUNVIS_WORD_COUNT, &o->atmosphere.sun_visibility))
+        goto done;
     if (scene_get_object(&c, root, "sun", "", &section) || (section && parse_sun(&c, section))) goto done;
     if (scene_get_object(&c, root, "camera", "", &section) || (section && parse_camera(&c, section))) goto done;
     if (scene_get_object(&c, root, "output", "", &section) || (section && parse_output(&c, section))) goto done;

@@ -2,6 +2,7 @@
 #include "app/scene_dump.h"
 #include "app/scene_sun.h"
 #include "app/scene.h"
+#include "app/options_sunvis.h"
 #include "app/scene_validate.h"
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -123,6 +124,7 @@ int scene_dump(const options *o, FILE *out)
     }
 
     boolean(&b, root, "multiple_scattering", o->multiple_scattering);
+    str(&b, root, "sun_visibility", sunvis_name(a->sun_visibility));
 
     cJSON *sun = obj(&b, root, "sun");
     if (!scene_sun_by_place(o)) {   /* else the date and place give them (scene_sun_dump) */

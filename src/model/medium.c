@@ -27,6 +27,8 @@ void model_atmosphere_earth(model_atmosphere *o)
     o->ozone_absorption[1] = 1.881e-3;
     o->ozone_absorption[2] = 0.085e-3;
     o->ozone_density = model_profile_tent(25.0, 15.0);
+    o->sun_angular_radius = MODEL_SUN_ANGULAR_RADIUS_DEFAULT;
+    o->sun_visibility = MODEL_SUN_VISIBILITY_PENUMBRA;
 }
 
 model_density_profile model_profile_exponential(double scale_height)

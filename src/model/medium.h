@@ -7,6 +7,8 @@
 #ifndef VKSKY_MODEL_MEDIUM_H
 #define VKSKY_MODEL_MEDIUM_H
 
+#include "model/sun_visibility.h"
+
 #include <stdbool.h>
 
 #ifdef __cplusplus
@@ -34,8 +36,10 @@ typedef struct model_atmosphere {
     double ozone_absorption[3];
     model_density_profile rayleigh_density, mie_density, ozone_density;
     int extra_count;                  /* 0 .. MODEL_MAX_EXTRA_SPECIES */
+    int sun_visibility;               /* MODEL_SUN_VISIBILITY_PENUMBRA (default) or _LESSON_FADE (sun_visibility.h) */
     model_extra_species extra[MODEL_MAX_EXTRA_SPECIES];
     double sun_illuminance[3];
+    double sun_angular_radius;        /* rad, the sun disc's (the penumbra's width); default 0.265 degrees */
 } model_atmosphere;
 
 double model_density(const model_density_profile *p, double altitude);

@@ -84,6 +84,8 @@ static int mus_crossings(const model_atmosphere *a, double h, double mu, double 
 
 int ray_cuts(const model_atmosphere *a, double h, double mu, double mus, double nu, double tend, double *cuts)
 {
+    if (a->sun_visibility != MODEL_SUN_VISIBILITY_LESSON_FADE)
+        return 0;
     int n = shadow_crossings(a, h, mu, mus, nu, tend, cuts);
     n += mus_crossings(a, h, mu, mus, nu, tend, -0.05, cuts + n);
     n += mus_crossings(a, h, mu, mus, nu, tend, 0.05, cuts + n);

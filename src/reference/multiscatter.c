@@ -99,9 +99,10 @@ static void ms_split_step(const model_atmosphere *a, const sun_table *st, int su
             ray_point(a, h, r, mu, tm, &rt, &ht);
             ht = clampd(ht, 0.0, atmo_height(a));
             double mst = rt > 0.0 ? clampd((r * mus + tm * nu) / rt, -1.0, 1.0) : mus;
-            double vis = sun_visibility_rho2(rho2_of(a, ht), rt, mst) * (hi - lo) / (t1 - t0);
+            double mut;
+            double vis = sun_visibility_at(a, rho2_of(a, ht), rt, mst, &mut) * (hi - lo) / (t1 - t0);
             if (vis > 0.0) {
-                sun_T(a, st, sun_steps, ht, mst, T);
+                sun_T(a, st, sun_steps, ht, mut, T);
                 for (int c = 0; c < 3; ++c)
                     out[c] += vis * T[c];
             }
@@ -112,29 +113,45 @@ static void ms_split_step(const model_atmosphere *a, const sun_table *st, int su
 
 int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int count, int n_az,
                      const polar_rule *pr, int steps, int graded, int sun_steps, const sun_table *st,
-                     double (*out)[3])
+                     double (*out)[3], double *aniso)
 {
     const double top = atmo_height(a), H = bruneton_H(a), r = a->bottom_radius + h;
     const int n_half = (n_az + 1) / 2;
     const size_t n_rays = (size_t)count * (size_t)n_half;
-    double *az = malloc(sizeof(double) * (2 * (size_t)n_half + 2 * (size_t)count + (MAX_CUTS + 2) * n_rays) +
+    double *az = malloc(sizeof(double) * (2 * (size_t)n_half + 2 * (size_t)count + (MAX_CUTS + 4) * n_rays) +
                         sizeof(int) * 2 * n_rays);
     double(*L)[3] = calloc((size_t)count, sizeof *L);
+    /* The second bounce's anisotropy (aniso != NULL, the penumbra's model): per sun cosine, the green channel of L2
+     * weighted by dir_x^2 - dir_y^2 (x: toward the sun's azimuth, y: across it, both horizontal). */
+    double *L2x = aniso ? calloc((size_t)count, sizeof *L2x) : NULL;
     double F[3] = {0.0, 0.0, 0.0};
     double row[SUN_TABLE_NX][3]; /* the sun table interpolated along x_r for the current sample */
     for (int q = 0; q < count; ++q)
         out[q][0] = out[q][1] = out[q][2] = 0.0;
-    if (!az || !L) {
+    if (!az || !L || (aniso && !L2x)) {
         free(az);
         free(L);
+        free(L2x);
         return 0;
     }
     double *cos_az = az, *w_az = az + n_half, *sin_s = az + 2 * n_half, *cos_s = sin_s + count;
+    double cos2_az[512];
     double *cut = cos_s + count;             /* [q][i][MAX_CUTS + 1]: ray_cuts of each (sun, azimuth) ray */
     double *nu_qi = cut + (MAX_CUTS + 1) * n_rays; /* [q][i] */
-    int *next_cut = (int *)(nu_qi + n_rays);       /* [q][i]: first cut not behind the current step */
+    double *pr_qi = nu_qi + n_rays, *pm_qi = pr_qi + n_rays; /* [q][i]: first-bounce phases (see below) */
+    int *next_cut = (int *)(pm_qi + n_rays);       /* [q][i]: first cut not behind the current step */
+    /* The first scattering of the second order (sunlight scattered at the sample toward the point): the lesson's
+     * isotropic phase, or with the penumbra the real Rayleigh and Mie phases of its angle, whose cosine is
+     * nu = dir.sun (docs/model.md "Multiple scattering"): in the earth's shadow the light comes from lit air
+     * toward the sun, forward-scattered, which the isotropic phase underestimates (Mie's forward lobe most). Where
+     * the point itself is lit, the isotropic first bounce stays (Hillaire's: it balances the isotropic second
+     * one; the real phase alone there costs up to 4 % in daylight): the weight of the real phase is the point's
+     * own sun occlusion, 1 - visibility (vis_q). */
+    const int real_phase = a->sun_visibility != MODEL_SUN_VISIBILITY_LESSON_FADE;
     for (int i = 0; i < n_half; ++i) {
         cos_az[i] = cos(2.0 * REF_PI * (i + 0.5) / n_az);
+        if (i < 512)
+            cos2_az[i] = cos(4.0 * REF_PI * (i + 0.5) / n_az); /* cos(2 az): (dir_x^2 - dir_y^2) / sin^2(phi) */
         w_az[i] = ((2 * i + 1 == n_az) ? 1.0 : 2.0) * 2.0 * REF_PI / n_az;
     }
     for (int q = 0; q < count; ++q) {
@@ -148,26 +165,33 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
         int ground = hit_ground(a, h, mu, &tend);
         if (!ground)
             tend = dist_to_top(a, h, mu);
-        for (int q = 0; q < count; ++q)
+        for (int q = 0; q < count; ++q) {
+            double mt, vis_q = real_phase ? sun_visibility_at(a, rho2_of(a, h), r, cos_s[q], &mt) : 1.0;
             for (int i = 0; i < n_half; ++i) {
                 size_t qi = (size_t)q * n_half + i;
                 double *cq = cut + (MAX_CUTS + 1) * qi;
                 nu_qi[qi] = cos_az[i] * sin_phi * sin_s[q] + mu * cos_s[q];
+                double iso = 1.0 / (4.0 * REF_PI), shade = 1.0 - vis_q;
+                pr_qi[qi] = iso + shade * (phase_rayleigh(nu_qi[qi]) - iso);
+                pm_qi[qi] = iso + shade * (phase_hg(a->mie_g, nu_qi[qi]) - iso);
                 int nc = graded ? ray_cuts(a, h, mu, cos_s[q], nu_qi[qi], tend, cq) : 0;
                 cq[nc] = INFINITY; /* sentinel */
                 next_cut[qi] = 0;
             }
+        }
         double Tv[3] = {1.0, 1.0, 1.0};
         for (int k = 0; k < steps; ++k) {
-            double t, dt, rt, ht, w[3];
+            double t, dt, rt, ht, w[3], wr[3], wm[3];
             medium m;
             ray_step(a, h, mu, tend, ground, graded, steps, k, &t, &dt);
             ray_point(a, h, r, mu, t, &rt, &ht);
             ht = clampd(ht, 0.0, top);
             medium_at(a, ht, &m);
             for (int c = 0; c < 3; ++c) {
-                double f = step_integral(m.ext[c], dt) * m.scat[c] * Tv[c];
-                w[c] = f * wj / (4.0 * REF_PI); /* isotropic phase */
+                double si = step_integral(m.ext[c], dt) * Tv[c], f = si * m.scat[c];
+                w[c] = f * wj / (4.0 * REF_PI); /* (only to skip empty steps) */
+                wr[c] = si * m.sr[c] * wj;       /* times the first-bounce phase, per (sun, azimuth) */
+                wm[c] = si * m.sm[c] * wj;
                 F[c] += f * wj * 2.0 * REF_PI;  /* every azimuth of this polar node has the same f */
                 Tv[c] *= exp(-m.ext[c] * dt);
             }
@@ -193,7 +217,8 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
             double ka = (r + t * mu) / rt, kb = t * sin_phi / rt;
             for (int q = 0; q < count; ++q) {
                 double A = ka * cos_s[q], B = kb * sin_s[q];
-                double acc[3] = {0.0, 0.0, 0.0};
+                double acc[3] = {0.0, 0.0, 0.0}, accm[3] = {0.0, 0.0, 0.0}; /* Rayleigh-phase, Mie-phase parts */
+                double ax = 0.0, axm = 0.0; /* green, times cos(2 az) */
                 for (int i = 0; i < n_half; ++i) {
                     double T[3];
                     size_t qi = (size_t)q * n_half + i;
@@ -208,12 +233,18 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
                         while (ci[nx + nc] < t1)
                             ++nc;
                         ms_split_step(a, st, sun_steps, h, r, mu, cos_s[q], nu_qi[qi], t0, t1, ci + nx, nc, T);
-                        for (int c = 0; c < 3; ++c)
-                            acc[c] += w_az[i] * T[c];
+                        for (int c = 0; c < 3; ++c) {
+                            acc[c] += w_az[i] * pr_qi[qi] * T[c];
+                            accm[c] += w_az[i] * pm_qi[qi] * T[c];
+                        }
+                        if (L2x && i < 512) {
+                            ax += w_az[i] * pr_qi[qi] * T[1] * cos2_az[i];
+                            axm += w_az[i] * pm_qi[qi] * T[1] * cos2_az[i];
+                        }
                         continue;
                     }
                     double mst = clampd(A + B * cos_az[i], -1.0, 1.0);
-                    double vis = sun_visibility_rho2(rho2, rt, mst);
+                    double vis = sun_visibility_at(a, rho2, rt, mst, &mst); /* mst: where the transmittance is read */
                     if (vis <= 0.0)
                         continue;
                     if (st) {
@@ -240,15 +271,23 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
                         sun_T(a, NULL, sun_steps, ht, mst, T);
                     }
                     vis *= w_az[i];
-                    for (int c = 0; c < 3; ++c)
-                        acc[c] += vis * T[c];
+                    for (int c = 0; c < 3; ++c) {
+                        acc[c] += vis * pr_qi[qi] * T[c];
+                        accm[c] += vis * pm_qi[qi] * T[c];
+                    }
+                    if (L2x && i < 512) {
+                        ax += vis * pr_qi[qi] * T[1] * cos2_az[i];
+                        axm += vis * pm_qi[qi] * T[1] * cos2_az[i];
+                    }
                 }
                 for (int c = 0; c < 3; ++c)
-                    L[q][c] += w[c] * acc[c];
+                    L[q][c] += wr[c] * acc[c] + wm[c] * accm[c];
+                if (L2x)
+                    L2x[q] += (wr[1] * ax + wm[1] * axm) * sin_phi * sin_phi;
             }
         }
     }
-    /* L and F are integrals over the sphere (L carries the isotropic phase 1/(4 pi)); the model's average over
+    /* L and F are integrals over the sphere (L carries the first bounce's phase); the model's average over
      * directions divides both by 4 pi. f_ms < 1 always (sigma_s <= sigma_t). */
     for (int q = 0; q < count; ++q)
         for (int c = 0; c < 3; ++c) {
@@ -256,8 +295,16 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
             double v = L[q][c] / (4.0 * REF_PI) / (1.0 - fms);
             out[q][c] = (v > 0.0 && isfinite(v)) ? v : 0.0;
         }
+    /* D = (E[dir_x^2 - dir_y^2] of L2, green) (1 - f_ms) (the second order's share of Psi) x the point's own sun
+     * occlusion (the anisotropy is applied where the first bounce's real phases are: in the shadow). */
+    for (int q = 0; aniso && q < count; ++q) {
+        double mt, shade = 1.0 - sun_visibility_at(a, rho2_of(a, h), r, cos_s[q], &mt);
+        double d = L[q][1] > 0.0 ? L2x[q] / L[q][1] * (1.0 - F[1] / (4.0 * REF_PI)) * shade : 0.0;
+        aniso[q] = isfinite(d) ? clampd(d, -1.0, 1.0) : 0.0;
+    }
     free(az);
     free(L);
+    free(L2x);
     return 1;
 }
 
@@ -274,7 +321,7 @@ static void multiscatter_at(const model_atmosphere *a, double h, double mu_s, po
         sun_steps = 1;
     if (pr) {
         multiscatter_row(a, h, &ms, 1, n_az, pr, graded ? ms_steps_for(steps, ms) : steps, graded, sun_steps, NULL,
-                         res);
+                         res, NULL);
         free(pr->mu);
     }
     for (int c = 0; c < 3; ++c)

@@ -123,6 +123,8 @@ void pt_radiance(const model_atmosphere *a, double altitude, const double view_d
         C->albedo = s->ground_albedo > 0.0 ? s->ground_albedo : 0.0;
         C->max_bounces = s->max_bounces;
         memcpy(C->sun, sd, sizeof sd);
+        double half = 0.5 * (a->sun_angular_radius > 0.0 ? a->sun_angular_radius : 0.0);
+        C->sun_cap = 2.0 * sin(half) * sin(half);
     }
 
     /* Camera, or the point where the view ray enters the atmosphere. */

@@ -106,7 +106,8 @@ void sun_table_eval(const sun_table *t, const model_atmosphere *a, double h, dou
 #define PSI_COLS (PSI_SEG0 + PSI_SEG1 + PSI_SEG2)
 
 struct psi_table {
-    double v[PSI_ROWS][PSI_COLS][3]; /* segments side by side; the shared end nodes are stored twice */
+    double v[PSI_ROWS][PSI_COLS][4]; /* segments side by side; the shared end nodes are stored twice; [3]: the
+                                        second bounce's anisotropy D (multiscatter_row), 0 for the lesson's model */
 };
 
 static const int psi_seg_n[3] = {PSI_SEG0, PSI_SEG1, PSI_SEG2};
@@ -163,7 +164,8 @@ static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int 
 {
     psi_table *t = malloc(sizeof *t);
     const sun_table *st = sun_table_get(a);
-    double mus[PSI_COLS], res[PSI_COLS][3];
+    double mus[PSI_COLS], res[PSI_COLS][3], an[PSI_COLS];
+    const int lesson = a->sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE;
     int ok = t && st;
     for (int seg = 0; seg < 3; ++seg)
         for (int i = 0; i < psi_seg_n[seg]; ++i)
@@ -182,15 +184,18 @@ static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int 
         /* every column once (the shared segment ends are evaluated twice: cheap, and keeps this simple); the
          * twilight columns (segment 0) with twice the steps, as ref_multiscatter_converged does */
         ok = multiscatter_row(a, h, mus, PSI_SEG0, ms_azimuths(sqrt_dirs), &pr, ms_steps_for(steps, -1.0), 1, 0,
-                              st, res) &&
+                              st, res, lesson ? NULL : an) &&
              multiscatter_row(a, h, mus + PSI_SEG0, PSI_COLS - PSI_SEG0, ms_azimuths(sqrt_dirs), &pr, steps, 1, 0,
-                              st, res + PSI_SEG0);
+                              st, res + PSI_SEG0, lesson ? NULL : an + PSI_SEG0);
         free(pr.mu);
         for (int c = 0; c < 3; ++c) /* the shared node -0.05 belongs to the 1x-steps side (continuity) */
             res[PSI_SEG0 - 1][c] = res[PSI_SEG0][c];
-        for (int i = 0; i < PSI_COLS; ++i)
+        an[PSI_SEG0 - 1] = an[PSI_SEG0];
+        for (int i = 0; i < PSI_COLS; ++i) {
             for (int c = 0; c < 3; ++c)
                 t->v[j][i][c] = log(fmax(res[i][c], 1e-300));
+            t->v[j][i][3] = lesson ? 0.0 : an[i];
+        }
     }
     if (!ok) {
         free(t);
@@ -199,7 +204,8 @@ static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int 
     return t;
 }
 
-void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3])
+void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3],
+                    double *aniso)
 {
     double u;
     h = ms_altitude(a, h);
@@ -211,7 +217,7 @@ void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, dou
      * of segment 1, the lower end of segment 2), h in y at the bottom row: mirror ghosts there. */
     cubic_taps(u * (psi_seg_n[seg] - 1), psi_seg_n[seg], seg >= 1, seg <= 1, ix, wx);
     cubic_taps(y * (PSI_ROWS - 1), PSI_ROWS, 1, 0, iy, wy);
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 4; ++c) {
         double s = 0.0, lo = INFINITY, hi = -INFINITY;
         for (int b = 0; b < 4; ++b)
             for (int k = 0; k < 4; ++k) {
@@ -221,7 +227,10 @@ void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, dou
                 hi = v > hi ? v : hi;
             }
         s = clampd(s, lo, hi);
-        out[c] = s < -690.0 ? 0.0 : exp(s);
+        if (c == 3)
+            *aniso = s;
+        else
+            out[c] = s < -690.0 ? 0.0 : exp(s);
     }
 }
 
@@ -241,9 +250,11 @@ static unsigned long long g_psi_clock;
 
 const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps)
 {
-    /* Psi is per unit sun illuminance and isotropic: the key leaves out E and g. */
+    /* Psi is per unit sun illuminance: the key leaves out E, and g where the first bounce is isotropic (the
+     * lesson's model; the penumbra's uses the real phases, multiscatter.c). */
     model_atmosphere a = *a_in;
-    a.mie_g = 0.0;
+    if (a.sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE)
+        a.mie_g = 0.0;
     a.sun_illuminance[0] = a.sun_illuminance[1] = a.sun_illuminance[2] = 0.0;
     psi_cache_slot *victim = &g_psi_cache[0];
     for (int i = 0; i < PSI_CACHE_SLOTS; ++i) {

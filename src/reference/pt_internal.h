@@ -25,6 +25,7 @@ typedef struct pt_ctx {
     double bEs[MODEL_MAX_EXTRA_SPECIES], bEa[MODEL_MAX_EXTRA_SPECIES]; /* extra species: scattering, absorption */
     double g, E, albedo;
     double sun[3];
+    double sun_cap;  /* 1 - cos(sun angular radius) = 2 sin^2(R/2): the sun's cone, sampled uniformly (0: a point) */
     int max_bounces;
 } pt_ctx;
 

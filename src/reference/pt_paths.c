@@ -235,18 +235,35 @@ static double transmittance_rt(const pt_ctx *C, const pt_ray *R, pt_rng *g)
     return T;
 }
 
-/* Sun visibility times (an estimate of) the sun transmittance at distance t along R. */
+static void dir_around(const double n[3], double cos_t, double phi, double out[3]);
+
+/* A direction toward the sun: uniform over its disc (the cone of angular radius R, by solid angle), so that the
+ * planet hides the disc gradually (the penumbra) as it does in nature; the centre when the sun is a point. */
+static void sun_sample(const pt_ctx *C, pt_rng *g, double d[3])
+{
+    if (C->sun_cap > 0.0) {
+        double u = u01(g), v = u01(g);
+        dir_around(C->sun, 1.0 - u * C->sun_cap, 2.0 * PT_PI * v, d);
+    } else {
+        memcpy(d, C->sun, 3 * sizeof *d);
+    }
+}
+
+/* Sun visibility times (an estimate of) the sun transmittance at distance t along R, toward a point of the sun's
+ * disc. */
 static double sun_term(const pt_ctx *C, const pt_ray *R, double t, pt_rng *g)
 {
     double q, rt;
     double h = ray_alt(C, R, t, &q, &rt);
     double p[3] = {R->p[0] + t * R->d[0], R->p[1] + t * R->d[1], R->p[2] + t * R->d[2]};
-    double bs = dot3(p, C->sun);
+    double sd[3];
+    sun_sample(C, g, sd);
+    double bs = dot3(p, sd);
     if (bs < 0.0 && q <= bs * bs)
-        return 0.0; /* the planet blocks the sun (inclusive test) */
+        return 0.0; /* the planet blocks this point of the sun (inclusive test) */
     pt_ray S;
     memcpy(S.p, p, sizeof p);
-    memcpy(S.d, C->sun, sizeof S.d);
+    memcpy(S.d, sd, sizeof S.d);
     S.rho2 = q;
     S.r = rt;
     S.h = h;
@@ -404,10 +421,12 @@ double trace_path(const pt_ctx *C, const pt_ray *start, pt_rng *g)
                 ng[i] = pg[i] / len;
                 pg[i] = ng[i] * C->Rb;
             }
-            double cs = dot3(ng, C->sun);
+            double sd[3];
+            sun_sample(C, g, sd);
+            double cs = dot3(ng, sd);
             if (nee && cs > 0.0) {
                 pt_ray S;
-                ray_set(C, &S, pg, 0.0, C->sun);
+                ray_set(C, &S, pg, 0.0, sd);
                 double Ts = transmittance_rt(C, &S, g);
                 L += w * Tr * C->albedo / PT_PI * C->E * cs * Ts;
             }

@@ -78,21 +78,32 @@ static void sky_step(sky_ray *s, double t, double dt)
     ht = clampd(ht, 0.0, atmo_height(a));
     double mst = rt > 0.0 ? clampd((s->r * s->mus + t * s->nu) / rt, -1.0, 1.0) : s->mus;
     medium_at(a, ht, &m);
-    double vis = sun_visibility_rho2(rho2_of(a, ht), rt, mst);
+    double mut;
+    double vis = sun_visibility_at(a, rho2_of(a, ht), rt, mst, &mut);
     double Ts[3] = {0.0, 0.0, 0.0}, ps[3] = {0.0, 0.0, 0.0};
     if (vis > 0.0) {
         double tau[3];
-        optical_depth(a, ht, mst, s->sun_steps, tau);
+        optical_depth(a, ht, mut, s->sun_steps, tau);
         for (int c = 0; c < 3; ++c)
             Ts[c] = exp(-tau[c]);
     }
-    if (s->psi)
-        psi_table_eval(s->psi, a, ht, mst, ps);
+    double fr = 1.0; /* the second bounce's anisotropy on the Rayleigh part of the Psi term */
+    if (s->psi) {
+        double D;
+        psi_table_eval(s->psi, a, ht, mst, ps, &D);
+        if (D != 0.0 && rt > 0.0) {
+            /* the view direction in the sample's frame: v_z = mu_v, v_x toward the sun's azimuth, v_y across */
+            double muv = clampd((s->r * s->mu + t) / rt, -1.0, 1.0), sin2s = (1.0 - mst) * (1.0 + mst);
+            double vx = sin2s > 1e-12 ? (s->nu - muv * mst) / sqrt(sin2s) : 0.0;
+            double vy2 = fmax(0.0, (1.0 - muv) * (1.0 + muv) - vx * vx);
+            fr = 1.0 + 0.375 * D * (vx * vx - vy2);
+        }
+    }
     /* Psi multiplies the total scattering coefficient, sr + sm: each group takes its own share, so the two parts
-     * add up to the whole source. */
+     * add up to the whole source (the anisotropy factor on the Rayleigh share). */
     for (int c = 0; c < 3; ++c) {
         double w = a->sun_illuminance[c] * s->Tv[c] * step_integral(m.ext[c], dt);
-        s->Lr[c] += w * m.sr[c] * (vis * Ts[c] * s->pr + ps[c]);
+        s->Lr[c] += w * m.sr[c] * (vis * Ts[c] * s->pr + ps[c] * fr);
         s->Lm[c] += w * m.sm[c] * (vis * Ts[c] * s->pm + ps[c]);
         s->Tv[c] *= exp(-m.ext[c] * dt);
     }

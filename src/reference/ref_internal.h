@@ -98,18 +98,33 @@ static inline void ray_point(const model_atmosphere *a, double h, double r, doub
     *ht = q / (s + a->bottom_radius);
 }
 
-/* Earth shadow (inclusive ground test toward the sun) times the horizon fade, at a point (rho2 = h (2Rb + h)). */
-static inline double sun_visibility_rho2(double rho2, double r, double mus)
+/* Sun visibility of the atmosphere's model (model/sun_visibility.h) at a point (rho2 = h (2Rb + h), r = Rb + h) and
+ * *mu_t, the sun zenith cosine at which to read the sun's transmittance. The lesson's fade: the earth shadow
+ * (inclusive ground test toward the sun) times saturate(10 mu_s + 0.5). The penumbra: the visible fraction of the
+ * disc, with two exact early outs that cost no trigonometry in the integrators' inner loops (asin(mu_s) >= mu_s for
+ * mu_s >= 0, and asin(mu_s) <= mu_s, atan(rho / Rb) <= rho / Rb below). */
+static inline double sun_visibility_at(const model_atmosphere *a, double rho2, double r, double mus, double *mu_t)
 {
-    if (mus < 0.0 && rho2 <= r * r * mus * mus)
+    *mu_t = mus;
+    if (a->sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE) {
+        if (mus < 0.0 && rho2 <= r * r * mus * mus)
+            return 0.0;
+        return clampd(10.0 * mus + 0.5, 0.0, 1.0);
+    }
+    double R = a->sun_angular_radius;
+    if (mus >= R && R > 0.0)
+        return 1.0;
+    double rho = sqrt(rho2 > 0.0 ? rho2 : 0.0);
+    if (mus + rho / a->bottom_radius <= -R)
         return 0.0;
-    return clampd(10.0 * mus + 0.5, 0.0, 1.0);
+    return model_sun_visibility(MODEL_SUN_VISIBILITY_PENUMBRA, rho, r, a->bottom_radius, mus, R, mu_t);
 }
 
-/* Where the sun visibility of the model is not smooth along a ray: the earth's shadow boundary (a jump) and
- * mu_s = -0.05 / +0.05 (the kinks of the horizon fade). Up to 6 distances in (0, tend), sorted. Integrating each
+/* Where the sun visibility of the lesson's model is not smooth along a ray: the earth's shadow boundary (a jump)
+ * and mu_s = -0.05 / +0.05 (the kinks of the horizon fade). Up to 6 distances in (0, tend), sorted. Integrating each
  * piece separately keeps the midpoint rule second-order (a jump inside a step makes it first order, a kink
- * makes its error erratic). */
+ * makes its error erratic). The penumbra is smooth (its width, 2R ~ 60 km of path at the ground, spans many
+ * steps): no cuts. */
 #define MAX_CUTS 6
 int ray_cuts(const model_atmosphere *a, double h, double mu, double mus, double nu, double tend, double *cuts);
 
@@ -195,7 +210,7 @@ int polar_horizon(const model_atmosphere *a, double h, int n, polar_rule *p);
  * contribute equally, so only half of them are evaluated. Returns 0 when out of memory (out = 0). */
 int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int count, int n_az,
                      const polar_rule *pr, int steps, int graded, int sun_steps, const sun_table *st,
-                     double (*out)[3]);
+                     double (*out)[3], double *aniso);
 
 /* The 10 m altitude clamp of every Psi evaluation. */
 static inline double ms_altitude(const model_atmosphere *a, double h) { return clampd(h, 0.01, atmo_height(a)); }
@@ -219,6 +234,10 @@ typedef struct psi_table psi_table;
 const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps);
 
 /* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does). */
-void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3]);
+/* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does), and *aniso, the second bounce's
+ * anisotropy D: the Rayleigh part of the Psi term is scaled by 1 + (3/8) D (v_x^2 - v_y^2) for a view direction v
+ * with components v_x toward the sun's azimuth and v_y across it (docs/model.md). */
+void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3],
+                    double *aniso);
 
 #endif /* VKSKY_REF_INTERNAL_H */

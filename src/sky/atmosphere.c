@@ -16,6 +16,9 @@ sky_features sky_features_default(void)
 }
 
 _Static_assert(VKSKY_MAX_EXTRA == MODEL_MAX_EXTRA_SPECIES, "one limit on extra species for the GPU and the reference");
+_Static_assert(VKSKY_SUN_VISIBILITY_PENUMBRA == MODEL_SUN_VISIBILITY_PENUMBRA &&
+                   VKSKY_SUN_VISIBILITY_LESSON_FADE == MODEL_SUN_VISIBILITY_LESSON_FADE,
+               "one numbering of the sun visibility models");
 
 static bool any3(const double v[3]) { return v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0; }
 
@@ -54,6 +57,8 @@ sky_variant sky_variant_of(const model_atmosphere *a, const sky_features *f)
         .extra_species = extras,
         .extra_profile = {extras > 0 ? profile_kind(&a->extra[0].density) : VKSKY_PROFILE_GENERAL,
                           extras > 1 ? profile_kind(&a->extra[1].density) : VKSKY_PROFILE_GENERAL},
+        .sun_visibility = a->sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE ? VKSKY_SUN_VISIBILITY_LESSON_FADE
+                                                                               : VKSKY_SUN_VISIBILITY_PENUMBRA,
     };
 }
 
@@ -104,15 +109,19 @@ static uint64_t fnv1a(uint64_t h, const void *data, size_t size)
     return h;
 }
 
-uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p)
+uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p, int sun_visibility)
 {
-    /* Everything but the sun's illuminance, size and limb (the LUTs are per unit illuminance) and the Mie g
-     * (the LUTs use the isotropic phase); the ground albedo counts (the multi-scattering ground bounce). */
+    /* Everything but the sun's illuminance and limb (the LUTs are per unit illuminance) and, for the lesson's model
+     * (isotropic phase), the Mie g; the ground albedo counts (the multi-scattering ground bounce), and so does the
+     * sun's size (the penumbra's width; the visibility model itself is a pipeline variant, rebuilt with them). The
+     * penumbra's MS LUT scatters its first bounce with the real phases: g counts there. */
+    bool real_phase = sun_visibility != VKSKY_SUN_VISIBILITY_LESSON_FADE;
     const vksky_vec4 fields[] = {p->radii, p->rayleigh_scattering, p->mie_scattering,
                                  {p->mie_absorption.x, p->mie_absorption.y, p->mie_absorption.z, 0},
                                  p->ozone_absorption, p->lut_steps, {p->ground.x, p->ground.y, p->ground.z, 0},
                                  /* the ground-irradiance LUT marches the sky with the Mie phase */
-                                 {p->ground.x + p->ground.y + p->ground.z > 0.0f ? p->mie_absorption.w : 0.0f, 0, 0, 0}};
+                                 {p->ground.x + p->ground.y + p->ground.z > 0.0f || real_phase ? p->mie_absorption.w : 0.0f, 0, 0, 0},
+                                 {p->sun.w, 0, 0, 0}};
     uint64_t h = 1469598103934665603ull;
     h = fnv1a(h, fields, sizeof fields);
     h = fnv1a(h, p->extra_scattering, sizeof p->extra_scattering);

@@ -39,10 +39,12 @@ typedef struct sky_variant {
     int32_t profile[3];           /* VKSKY_PROFILE_* of Rayleigh, Mie, ozone */
     int32_t extra_species;        /* extra species evaluated (0 .. VKSKY_MAX_EXTRA) */
     int32_t extra_profile[VKSKY_MAX_EXTRA];
+    int32_t sun_visibility;       /* VKSKY_SUN_VISIBILITY_* (the model's sun_visibility) */
 } sky_variant;
 sky_variant sky_variant_of(const model_atmosphere *a, const sky_features *f);
 void sky_atmosphere_pack(const model_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,
                          const sky_features *f, AtmosphereParams *out);
-/* FNV-1a of the packed block's LUT-relevant part: LUTs are recomputed only when it changes. */
-uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p);
+/* FNV-1a of the packed block's LUT-relevant part (for the variant's VKSKY_SUN_VISIBILITY_*): LUTs are recomputed
+ * only when it changes. */
+uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p, int sun_visibility);
 #endif

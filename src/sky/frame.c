@@ -136,7 +136,7 @@ void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force)
 {
     if (force || sky_renderer_luts_dirty(r)) {
         record_luts(r, cmd);
-        r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere);
+        r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
         r->luts_valid = true;
     }
 }

@@ -94,7 +94,8 @@ static void build_variant(sky_renderer *r)
         {VKSKY_SPEC_OZONE_PROFILE, offsetof(sky_variant, profile[2]), sizeof v->profile[2]},
         {VKSKY_SPEC_EXTRA_SPECIES, offsetof(sky_variant, extra_species), sizeof v->extra_species},
         {VKSKY_SPEC_EXTRA0_PROFILE, offsetof(sky_variant, extra_profile[0]), sizeof v->extra_profile[0]},
-        {VKSKY_SPEC_EXTRA1_PROFILE, offsetof(sky_variant, extra_profile[1]), sizeof v->extra_profile[1]}};
+        {VKSKY_SPEC_EXTRA1_PROFILE, offsetof(sky_variant, extra_profile[1]), sizeof v->extra_profile[1]},
+        {VKSKY_SPEC_SUN_VISIBILITY, offsetof(sky_variant, sun_visibility), sizeof v->sun_visibility}};
     for (int i = 0; i < VKSKY_SPEC_COUNT; ++i)
         r->spec_entries[i] = (VkSpecializationMapEntry){map[i].id, (uint32_t)map[i].offset, map[i].size};
     r->spec = (VkSpecializationInfo){.mapEntryCount = VKSKY_SPEC_COUNT, .pMapEntries = r->spec_entries, .dataSize = sizeof *v, .pData = v};
@@ -193,5 +194,5 @@ void sky_renderer_set_features(sky_renderer *r, const sky_features *f)
 
 bool sky_renderer_luts_dirty(const sky_renderer *r)
 {
-    return !r->luts_valid || r->lut_hash != sky_atmosphere_lut_hash(&r->atmosphere);
+    return !r->luts_valid || r->lut_hash != sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
 }
