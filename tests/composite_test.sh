@@ -36,6 +36,20 @@ read -r -a CAMERA <"$S/camera.txt"
 "$VKSKY" --render "$work/out/sky.exr" --width 240 --height 135 --altitude 0.2188 --yaw -90 --pitch -3 --fov 40 \
     --sky-mode march --render-scale 1 --no-bloom "${SUN[@]}" --validate || fail "plain sky render: exit $?"
 "$CHECK" "$work/out/two.exr" "$S/render.exr" "$work/out/sky.exr" || fail "two-file composite: layers or sky pixels"
+# Hillaire's froxel volume (--aerial-perspective volume; its accuracy: ctest ap_volume): exit 0, silent, the
+# layers add up and the sky pixels are the same sky; auto takes it when --max-error allows its measured error.
+"$VKSKY" --composite "$S/beauty.exr" --position "$S/position.exr" "${CAMERA[@]}" --render "$work/out/vol.exr" \
+    "${SUN[@]}" --aerial-perspective volume --validate 2>"$work/err" || fail "volume composite: exit $? ($(cat "$work/err"))"
+[ ! -s "$work/err" ] || fail "volume composite: stderr not empty: $(cat "$work/err")"
+"$CHECK" "$work/out/vol.exr" "$S/render.exr" "$work/out/sky.exr" || fail "volume composite: layers or sky pixels"
+"$VKSKY" --composite "$S/render.exr" --render "$work/out/auto.exr" "${SUN[@]}" --max-error 0.05 --validate \
+    2>"$work/err" || fail "auto composite: exit $? ($(cat "$work/err"))"
+grep -q "allows the volume 16x16x16" "$work/err" ||
+    fail "auto with --max-error 0.05: did not take the cheapest volume (src/app/ap_trade_table.h): $(cat "$work/err")"
+"$VKSKY" --composite "$S/render.exr" --render "$work/out/auto.exr" "${SUN[@]}" --max-error 0.003 --validate \
+    2>"$work/err" || fail "auto composite, --max-error 0.003: exit $? ($(cat "$work/err"))"
+grep -q "auto: no measured froxel volume" "$work/err" ||
+    fail "auto with --max-error 0.003: expected the march: $(cat "$work/err")"
 # Without an orientation: geometry composited, sky pixels keep the beauty, one note on stderr.
 "$VKSKY" --composite "$S/beauty.exr" --position "$S/position.exr" --camera-position -3.5,-8.5,218.8 \
     --render "$work/out/noorient.exr" --validate 2>"$work/err" || fail "composite without orientation: exit $?"
@@ -105,7 +119,12 @@ expect_bad "camera below a raised ground" "inside the planet" --composite "$S/re
 expect_bad "no camera" "--camera-position" --composite "$S/beauty.exr" --position "$S/position.exr" "${OUT[@]}"
 expect_bad "PNG output" "--render FILE.exr" --composite "$S/render.exr" --render "$work/out/bad.png"
 expect_bad "no output" "--render FILE.exr" --composite "$S/render.exr"
-expect_bad "volume not built" "not built yet" --composite "$S/render.exr" --aerial-perspective volume "${OUT[@]}"
+expect_bad "volume without an orientation" "orientation is unknown" --composite "$S/beauty.exr" \
+    --position "$S/position.exr" --camera-position -3.5,-8.5,218.8 --aerial-perspective volume "${OUT[@]}"
+expect_bad "--ap-volume-size" "WxHxD" --composite "$S/render.exr" --ap-volume-size 32x32 "${OUT[@]}"
+expect_bad "--ap-volume-size 0" "WxHxD" --composite "$S/render.exr" --ap-volume-size 0x32x32 "${OUT[@]}"
+expect_bad "--ap-volume-range" "km in" --composite "$S/render.exr" --ap-volume-range 0 "${OUT[@]}"
+expect_bad "--ap-volume-slices" "linear or quadratic" --composite "$S/render.exr" --ap-volume-slices cubic "${OUT[@]}"
 expect_bad "unknown method" "march, volume or auto" --composite "$S/render.exr" --aerial-perspective fast "${OUT[@]}"
 expect_bad "--position alone" "only with --composite" --position "$S/position.exr" "${OUT[@]}"
 expect_bad "--world-up" "y or z" --composite "$S/render.exr" --world-up x "${OUT[@]}"

@@ -13,6 +13,10 @@ layout(set = 0, binding = 5) uniform sampler2D ground_irradiance_lut;
 layout(set = 0, binding = 3) uniform sampler2D composite_in;
 layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D composite_out;
 layout(push_constant) uniform Push { CompositePush push; };
+#ifdef AERIAL_VOLUME
+/* --aerial-perspective volume: the froxel volume (ap_volume.comp), trilinear, clamped. */
+layout(set = 0, binding = 6) uniform sampler3D ap_volume;
+#endif
 
 #include "sky_common.glsl"
 #include "aerial.glsl"
@@ -51,7 +55,12 @@ void main()
                       dot(push.world_to_march[2].xyz, dw));
         float dist = length(d);
         vec3 v = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
+#ifdef AERIAL_VOLUME
+        Aerial a;
+        if (!aerial_volume_lookup(v, dist, push, a)) a = aerial_march(h, v, s, dist, push.march, push.sun_dir.w);
+#else
         Aerial a = aerial_march(h, v, s, dist, push.march, push.sun_dir.w);
+#endif
         transmittance = a.transmittance;
         rayleigh = a.rayleigh;
         mie = a.mie;

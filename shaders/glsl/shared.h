@@ -109,9 +109,11 @@ VKSKY_STRUCT(PostPush) {
 #define VKSKY_SPEC_EXTRA0_PROFILE 12
 #define VKSKY_SPEC_EXTRA1_PROFILE 13
 #define VKSKY_SPEC_SUN_VISIBILITY 14   /* VKSKY_SUN_VISIBILITY_*: the penumbra or the lesson's horizon fade */
-#define VKSKY_SPEC_COUNT 14             /* IDs 1 .. 14 */
+#define VKSKY_SPEC_COUNT 14             /* IDs 1 .. 14: the scene's variant (every pipeline of the renderer) */
 #define VKSKY_SUN_VISIBILITY_PENUMBRA 0 /* = MODEL_SUN_VISIBILITY_* (src/model/sun_visibility.h) */
 #define VKSKY_SUN_VISIBILITY_LESSON_FADE 1
+#define VKSKY_SPEC_AP_RANGE 15          /* the aerial-perspective volume's (ap_volume.c): its range in km */
+#define VKSKY_SPEC_AP_DISTRIBUTION 16   /* and its slice distribution exponent (1 linear, 2 quadratic) */
 #define VKSKY_MIE_PHASE_HG 0
 #define VKSKY_MIE_PHASE_CORNETTE_SHANKS 1
 

@@ -288,22 +288,26 @@ static int compare_double(const void *a, const void *b)
  * built once by the first frame), one line per pass like the sky's benchmark. */
 static void bench(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames)
 {
-    enum { PASSES = 3 };
-    static const char *const names[PASSES] = {"composite_upload", "composite", "composite_readback"};
-    double *ms = calloc((size_t)frames * PASSES, sizeof *ms), read[GPU_TIMER_MAX];
+    enum { PASSES = 4 };
+    static const char *const names[PASSES] = {"ap_volume", "composite_upload", "composite", "composite_readback"};
+    double *ms = calloc((size_t)frames * (PASSES + 1), sizeof *ms), read[GPU_TIMER_MAX];
     if (!ms) return;
+    double *wall = ms + (size_t)frames * PASSES;   /* submit -> fence (lavapipe's timestamps miss compute work) */
     for (int i = 0; i < 3; ++i) sky_composite_render(r, c, push, 1);   /* warm-up: LUTs, shader compiles, clocks */
     for (int i = 0; i < frames; ++i) {
-        sky_composite_render(r, c, push, 1);
+        wall[i] = sky_composite_render(r, c, push, 1);
         uint32_t count = gpu_timer_read(r->ctx, &r->timer, read);
         for (uint32_t k = 0; k < count; ++k)
             for (int p = 0; p < PASSES; ++p)
                 if (!strcmp(r->timer.names[k], names[p])) ms[p * frames + i] = read[k];
     }
-    for (int p = 0; p < PASSES && r->timer.enabled; ++p) {
+    for (int p = c->has_volume ? 0 : 1; p < PASSES && r->timer.enabled; ++p) {
         qsort(ms + p * frames, (size_t)frames, sizeof *ms, compare_double);
         printf("pass %s gpu_ms %.4f (%ux%u)\n", names[p], ms[p * frames + frames / 2], c->width, c->height);
     }
+    qsort(wall, (size_t)frames, sizeof *wall, compare_double);
+    printf("composite frame wall_ms %.3f (submit to fence, median of %d; %s)\n", wall[frames / 2], frames,
+           c->has_volume ? "volume" : "march");
     free(ms);
 }
 
@@ -311,6 +315,34 @@ static bool is_exr(const char *path)
 {
     size_t n = strlen(path);
     return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
+}
+
+/* The froxel volume's shape for --aerial-perspective (volume, or auto when --max-error allows it), or NULL: a
+ * march per pixel. -1 (after one line on stderr): volume asked for without a known camera orientation. */
+static int pick_volume(const options *o, const composite_options *co, bool oriented, ap_volume_desc *desc,
+                       const ap_volume_desc **out)
+{
+    *out = NULL;
+    char why[300] = "";
+    unsigned size[3] = {co->ap_size[0], co->ap_size[1], co->ap_size[2]};
+    double range = co->ap_range_km, distribution = co->ap_distribution;
+    bool want = co->aerial == AERIAL_VOLUME ||
+                (co->aerial == AERIAL_AUTO && composite_auto_volume(co, o->max_error, size, &range, &distribution,
+                                                                    why, sizeof why));
+    if (want && !oriented) {
+        if (co->aerial == AERIAL_VOLUME) {
+            fprintf(stderr, "vksky: --aerial-perspective volume: the froxel volume covers the camera's frustum, whose "
+                            "orientation is unknown (no worldToCamera, no --yaw/--pitch); give it, or use march\n");
+            return -1;
+        }
+        want = false;
+        snprintf(why, sizeof why, "the camera's orientation is unknown: the march");
+    }
+    if (co->aerial == AERIAL_AUTO && o->max_error > 0.0) fprintf(stderr, "vksky: --aerial-perspective auto: %s\n", why);
+    if (!want) return 0;
+    *desc = (ap_volume_desc){size[0], size[1], size[2], (float)range, (float)distribution};
+    *out = desc;
+    return 0;
 }
 
 int composite_run(const options *o, const composite_options *co)
@@ -381,6 +413,12 @@ int composite_run(const options *o, const composite_options *co)
         if (!co->has_fov) v.fov_y_deg = matrix_fov;
     }
 
+    ap_volume_desc vol_desc;
+    const ap_volume_desc *vol = NULL;
+    if (pick_volume(o, co, v.oriented, &vol_desc, &vol) != 0) {
+        status = 2;
+        goto done_info;
+    }
     gpu_context ctx;
     sky_renderer r;
     /* Inputs, before the GPU: a bad pixel pass fails fast. */
@@ -421,7 +459,7 @@ int composite_run(const options *o, const composite_options *co)
 
     if ((status = gpu_begin(o, &ctx, &r, 1, 1, false)) != 0) goto done_pixels;
     sky_composite c;
-    if (sky_composite_create(&c, &r, (uint32_t)w, (uint32_t)h, err, sizeof err) != 0) {
+    if (sky_composite_create(&c, &r, (uint32_t)w, (uint32_t)h, vol, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --composite: %s\n", err);
         status = gpu_end(&ctx, &r, 2);
         goto done_pixels;
@@ -446,7 +484,7 @@ done_info:
     return status;
 }
 
-int composite_aovs_run(const options *o)
+int composite_aovs_run(const options *o, const composite_options *co)
 {
     char err[600];
     bool any_exr = false;
@@ -477,8 +515,13 @@ int composite_aovs_run(const options *o)
     CompositePush push;
     composite_push(&v, o->atmosphere.bottom_radius, (uint32_t)o->width, (uint32_t)o->height, &push);
     push.forward.w = (float)o->view.altitude_km;   /* exactly the sky pass's altitude */
+    /* The volume only with --aerial-perspective volume: there is no geometry to sample it, but the frame is the
+     * composite's with the volume pass in it (barrier tests, docs/synchronization.md). */
+    ap_volume_desc vol = {co->ap_size[0], co->ap_size[1], co->ap_size[2], (float)co->ap_range_km,
+                          (float)co->ap_distribution};
     sky_composite c;
-    if (sky_composite_create(&c, &r, (uint32_t)o->width, (uint32_t)o->height, err, sizeof err) != 0) {
+    if (sky_composite_create(&c, &r, (uint32_t)o->width, (uint32_t)o->height,
+                             co->aerial == AERIAL_VOLUME ? &vol : NULL, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --aovs: %s\n", err);
         return gpu_end(&ctx, &r, 2);
     }

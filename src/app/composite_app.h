@@ -8,5 +8,5 @@
 int composite_run(const options *o, const composite_options *co);
 /* A plain sky render whose EXR outputs also carry the AOV layers (the composite pass over a frame with no
  * geometry). */
-int composite_aovs_run(const options *o);
+int composite_aovs_run(const options *o, const composite_options *co);
 #endif

@@ -45,7 +45,7 @@ int main(int argc, char **argv)
         return 2;
     }
     if (co.input) return composite_run(&o, &co);
-    if (co.aovs) return composite_aovs_run(&o);
+    if (co.aovs) return composite_aovs_run(&o, &co);
     if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);
     if (o.frames || o.screenshot) {
         fprintf(stderr, "vksky: %s: only for the interactive window (not with --render or --bench)\n",

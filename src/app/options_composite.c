@@ -1,7 +1,9 @@
 #include "app/options_composite.h"
+#include "app/ap_trade_table.h"
 #include "app/help.h"
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -20,7 +22,10 @@ static const composite_flag composite_flags[] = {
     {"--world-up", true, "y|z        with --composite: the world's up axis (default z); the ground is the plane up = 0"},
     {"--ground-altitude", true, "KM with --composite: altitude of the world's ground plane (default 0)"},
     {"--camera-position", true, "X,Y,Z with --composite: camera position in world units, when the EXR has no worldToCamera; --yaw/--pitch/--fov give its orientation (sky pixels)"},
-    {"--aerial-perspective", true, "M march | volume | auto: camera->point by a march per pixel (accurate) or the froxel volume (fast; not built yet) (default auto = march)"},
+    {"--aerial-perspective", true, "M march | volume | auto: camera->point by a march per pixel (accurate) or Hillaire's froxel volume (fast; docs/readme/apvolume.md); auto: the cheapest measured one within --max-error, else the march (default auto)"},
+    {"--ap-volume-size", true, "WxHxD  the froxel volume's size (default 32x32x32; 1 to 512 each)"},
+    {"--ap-volume-range", true, "KM   the froxel volume's depth range (default 32; farther points are marched)"},
+    {"--ap-volume-slices", true, "linear|quadratic the froxel volume's slice spacing (default quadratic, Hillaire's)"},
     {"--aovs", false, "              with --render FILE.exr (a plain sky render): also write the layers sky, sun_disk, transmittance, rayleigh, mie"},
 };
 enum { COMPOSITE_FLAG_COUNT = sizeof composite_flags / sizeof composite_flags[0] };
@@ -69,6 +74,7 @@ static bool parse_triple(const char *text, double out[3])
 
 static int take(composite_options *co, const char *name, const char *value)
 {
+    if (!strncmp(name, "--ap-volume-", 12)) co->ap_shape_given = true;
     if (!strcmp(name, "--composite")) co->input = value;
     else if (!strcmp(name, "--position")) co->position = value;
     else if (!strcmp(name, "--beauty-layer")) co->beauty_layer = value;
@@ -93,13 +99,27 @@ static int take(composite_options *co, const char *name, const char *value)
         else if (!strcmp(value, "volume")) co->aerial = AERIAL_VOLUME;
         else if (!strcmp(value, "auto")) co->aerial = AERIAL_AUTO;
         else return bad(name, "' is not a method; expected march, volume or auto", value);
+    } else if (!strcmp(name, "--ap-volume-size")) {
+        char tail = 0;
+        unsigned *z = co->ap_size;
+        if (sscanf(value, "%ux%ux%u%c", &z[0], &z[1], &z[2], &tail) != 3 || z[0] < 1 || z[1] < 1 || z[2] < 1 ||
+            z[0] > 512 || z[1] > 512 || z[2] > 512)
+            return bad(name, "' is not a volume size; expected WxHxD froxels, 1 to 512 each (e.g. 32x32x32)", value);
+    } else if (!strcmp(name, "--ap-volume-range")) {
+        if (!parse_double(value, &co->ap_range_km) || !(co->ap_range_km >= 0.01 && co->ap_range_km <= 1000.0))
+            return bad(name, "' is not a range; expected km in [0.01, 1000]", value);
+    } else if (!strcmp(name, "--ap-volume-slices")) {
+        if (!strcmp(value, "linear")) co->ap_distribution = 1.0;
+        else if (!strcmp(value, "quadratic")) co->ap_distribution = 2.0;
+        else return bad(name, "' is not a slice spacing; expected linear or quadratic", value);
     } else if (!strcmp(name, "--aovs")) co->aovs = true;
     return 0;
 }
 
 int composite_options_extract(composite_options *co, int *argc, char **argv)
 {
-    *co = (composite_options){.world_unit_m = 1.0, .up_axis = 2, .aerial = AERIAL_AUTO};
+    *co = (composite_options){.world_unit_m = 1.0, .up_axis = 2, .aerial = AERIAL_AUTO, .ap_size = {32, 32, 32},
+                              .ap_range_km = 32.0, .ap_distribution = 2.0};
     const char *needs_composite = NULL;
     int out = 1;
     for (int i = 1; i < *argc; ++i) {
@@ -122,7 +142,9 @@ int composite_options_extract(composite_options *co, int *argc, char **argv)
             value = argv[++i];
         }
         if (take(co, a, value) != 0) return 2;
-        if (strcmp(a, "--composite") && strcmp(a, "--aovs") && strcmp(a, "--aerial-perspective") && !needs_composite)
+        /* The aerial-perspective method and its volume apply to --aovs too (the same composite frame). */
+        if (strcmp(a, "--composite") && strcmp(a, "--aovs") && strcmp(a, "--aerial-perspective") &&
+            strncmp(a, "--ap-volume-", 12) && !needs_composite)
             needs_composite = a;
     }
     argv[out] = NULL;
@@ -131,7 +153,35 @@ int composite_options_extract(composite_options *co, int *argc, char **argv)
     if (co->input && co->aovs) return bad("--aovs", "not with --composite (its output always has the AOV layers)", NULL);
     if (co->input && co->has_size)
         return bad(co->has_size ? "--width/--height" : "", "not with --composite (the size is the input's)", NULL);
-    if (co->aerial == AERIAL_VOLUME)
-        return bad("--aerial-perspective", "volume: the froxel volume is not built yet; use march or auto", NULL);
     return 0;
+}
+
+bool composite_auto_volume(const composite_options *co, double max_error, unsigned size[3], double *range_km,
+                           double *distribution, char *why, size_t why_size)
+{
+    if (!(max_error > 0.0)) {
+        snprintf(why, why_size, "no --max-error: the accurate march");
+        return false;
+    }
+    /* The march, unless a measured volume shape (the one the flags gave, if any) is cheaper within the error. */
+    const ap_trade *march = &ap_trade_table[0], *best = march;
+    for (int i = 1; i < AP_TRADE_COUNT; ++i) {
+        const ap_trade *t = &ap_trade_table[i];
+        bool shape_ok = !co->ap_shape_given || (t->size[0] == co->ap_size[0] && t->size[1] == co->ap_size[1] &&
+                                                t->size[2] == co->ap_size[2] && t->range_km == co->ap_range_km &&
+                                                t->distribution == co->ap_distribution);
+        if (shape_ok && t->err_mean <= max_error && t->gpu_ms < best->gpu_ms) best = t;
+    }
+    if (best == march) {
+        snprintf(why, why_size, "no measured froxel volume%s is within --max-error %g (the march: %.2g): the march",
+                 co->ap_shape_given ? " of the shape given" : "", max_error, march->err_mean);
+        return false;
+    }
+    memcpy(size, best->size, sizeof best->size);
+    *range_km = best->range_km, *distribution = best->distribution;
+    snprintf(why, why_size, "--max-error %g allows the volume %ux%ux%u %s (measured error %.2g vs the march's %.2g; "
+             "%.2f ms vs %.2f ms at 1080p on an H100)", max_error, size[0], size[1], size[2],
+             best->distribution == 1.0 ? "linear" : "quadratic", best->err_mean, march->err_mean, best->gpu_ms,
+             march->gpu_ms);
+    return true;
 }

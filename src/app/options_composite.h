@@ -22,11 +22,20 @@ typedef struct composite_options {
     bool has_size;                  /* --width or --height given */
     bool aovs;                      /* --aovs: a plain sky render also writes the AOV layers */
     aerial_method aerial;           /* --aerial-perspective march|volume|auto (default auto) */
+    unsigned ap_size[3];            /* --ap-volume-size WxHxD: froxels (default 32x32x32) */
+    double ap_range_km;             /* --ap-volume-range KM (default 32) */
+    double ap_distribution;         /* --ap-volume-slices linear|quadratic: 1 or 2 (default quadratic) */
+    bool ap_shape_given;            /* any of the three given */
 } composite_options;
 
 /* Takes this module's flags (and their values) out of argv, compacting it and updating *argc; notes the shared
  * flags it cares about. 0, or 2 after one line on stderr (bad value, missing value, a flag that needs
  * --composite). */
 int composite_options_extract(composite_options *co, int *argc, char **argv);
+/* --aerial-perspective auto: the cheapest method of the measured trade (ap_trade_table.h, tools/tradeoff_aerial)
+ * whose error is <= --max-error (0: not given -> the march); true with the volume's shape in size/range/slices
+ * (only the shape the flags gave, when they gave one). why[why_size] gets the reason, for a note on stderr. */
+bool composite_auto_volume(const composite_options *co, double max_error, unsigned size[3], double *range_km,
+                           double *distribution, char *why, size_t why_size);
 void composite_options_print_help(FILE *out);
 #endif

@@ -25,12 +25,13 @@ VkExtent2D gpu_mip_extent(VkExtent2D base, uint32_t mip)
     return (VkExtent2D){w ? w : 1, h ? h : 1};
 }
 
-static VkImageView make_view(const gpu_context *ctx, VkImage image, VkFormat format, VkImageSubresourceRange range)
+static VkImageView make_view(const gpu_context *ctx, VkImage image, VkImageViewType type, VkFormat format,
+                             VkImageSubresourceRange range)
 {
     VkImageViewCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
         .image = image,
-        .viewType = VK_IMAGE_VIEW_TYPE_2D,
+        .viewType = type,
         .format = format,
         .subresourceRange = range,
     };
@@ -39,15 +40,16 @@ static VkImageView make_view(const gpu_context *ctx, VkImage image, VkFormat for
     return view;
 }
 
-void gpu_image_create(const gpu_context *ctx, gpu_image *img, const char *name, VkFormat format, uint32_t width,
-                      uint32_t height, uint32_t mips, VkImageUsageFlags usage)
+/* A 2D image with `mips` levels, or a 3D image (depth > 1 or type 3D) of one level. */
+static void image_create(const gpu_context *ctx, gpu_image *img, const char *name, VkImageType type, VkFormat format,
+                         uint32_t width, uint32_t height, uint32_t depth, uint32_t mips, VkImageUsageFlags usage)
 {
-    *img = (gpu_image){.format = format, .extent = {width, height}, .mip_levels = mips, .name = name};
+    *img = (gpu_image){.format = format, .extent = {width, height}, .depth = depth, .mip_levels = mips, .name = name};
     VkImageCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
-        .imageType = VK_IMAGE_TYPE_2D,
+        .imageType = type,
         .format = format,
-        .extent = {width, height, 1},
+        .extent = {width, height, depth},
         .mipLevels = mips,
         .arrayLayers = 1,
         .samples = VK_SAMPLE_COUNT_1_BIT,
@@ -65,17 +67,30 @@ void gpu_image_create(const gpu_context *ctx, gpu_image *img, const char *name, 
     };
     VK_CHECK(vkAllocateMemory(ctx->device, &alloc, NULL, &img->memory));
     VK_CHECK(vkBindImageMemory(ctx->device, img->image, img->memory, 0));
-    img->view = make_view(ctx, img->image, format, gpu_color_range(0, mips));
+    VkImageViewType view_type = type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
+    img->view = make_view(ctx, img->image, view_type, format, gpu_color_range(0, mips));
     /* Every mip has a view, a one-mip image too (its whole-image view): a chain that shrank to one level on a
      * tiny image must never hand a null view to a descriptor or an attachment. */
     for (uint32_t m = 0; m < mips && mips > 1; ++m) {
-        img->mip_views[m] = make_view(ctx, img->image, format, gpu_color_range(m, 1));
+        img->mip_views[m] = make_view(ctx, img->image, view_type, format, gpu_color_range(m, 1));
         gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)img->mip_views[m], name);
     }
     if (mips == 1) img->mip_views[0] = img->view;
     gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE, (uint64_t)img->image, name);
     gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE_VIEW, (uint64_t)img->view, name);
     gpu_set_name(ctx, VK_OBJECT_TYPE_DEVICE_MEMORY, (uint64_t)img->memory, name);
+}
+
+void gpu_image_create(const gpu_context *ctx, gpu_image *img, const char *name, VkFormat format, uint32_t width,
+                      uint32_t height, uint32_t mips, VkImageUsageFlags usage)
+{
+    image_create(ctx, img, name, VK_IMAGE_TYPE_2D, format, width, height, 1, mips, usage);
+}
+
+void gpu_image_create_3d(const gpu_context *ctx, gpu_image *img, const char *name, VkFormat format, uint32_t width,
+                         uint32_t height, uint32_t depth, VkImageUsageFlags usage)
+{
+    image_create(ctx, img, name, VK_IMAGE_TYPE_3D, format, width, height, depth, 1, usage);
 }
 
 void gpu_image_destroy(const gpu_context *ctx, gpu_image *img)

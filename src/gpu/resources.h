@@ -12,6 +12,7 @@ typedef struct gpu_image {
     VkImageView mip_views[GPU_MAX_MIPS];  /* one view per mip (never null for m < mip_levels): never sample and render the same subresource */
     VkFormat format;
     VkExtent2D extent;
+    uint32_t depth;                   /* 1, or the depth of a 3D image */
     uint32_t mip_levels;
     const char *name;
 } gpu_image;
@@ -26,6 +27,9 @@ typedef struct gpu_buffer {
 
 void gpu_image_create(const gpu_context *ctx, gpu_image *img, const char *name, VkFormat format, uint32_t width,
                       uint32_t height, uint32_t mips, VkImageUsageFlags usage);
+/* A 3D image, one level (a froxel volume). */
+void gpu_image_create_3d(const gpu_context *ctx, gpu_image *img, const char *name, VkFormat format, uint32_t width,
+                         uint32_t height, uint32_t depth, VkImageUsageFlags usage);
 void gpu_image_destroy(const gpu_context *ctx, gpu_image *img);
 /* A host-visible buffer (uniforms, readback). */
 void gpu_buffer_create(const gpu_context *ctx, gpu_buffer *buf, const char *name, VkDeviceSize size,

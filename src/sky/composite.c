@@ -4,12 +4,14 @@
  * layer: one upload, one dispatch writing every layer, one copy back, and one barrier per hazard. */
 #include "sky/composite.h"
 #include "composite_comp.h"
+#include "composite_volume_comp.h"
 #include "sky/frame.h"
 #include "sky/submit.h"
 #include "sky/view_params.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <time.h>
 
 static const double DEG = 3.14159265358979323846 / 180.0;
 
@@ -141,8 +143,8 @@ double composite_push(const composite_view *v, double bottom_radius_km, uint32_t
 
 /* --- The pass ------------------------------------------------------------------------------------------- */
 
-int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint32_t height, char *err,
-                         size_t err_size)
+int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint32_t height,
+                         const ap_volume_desc *volume, char *err, size_t err_size)
 {
     const gpu_context *ctx = r->ctx;
     memset(c, 0, sizeof *c);
@@ -152,6 +154,8 @@ int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint
                  width, height, VKSKY_AOV_COUNT, limit / VKSKY_AOV_COUNT);
         return -1;
     }
+    if (volume && ap_volume_create(&c->volume, r, volume, err, err_size) != 0) return -1;
+    c->has_volume = volume != NULL;
     c->width = width, c->height = height;
     gpu_image_create(ctx, &c->input, "composite_in", VK_FORMAT_R32G32B32A32_SFLOAT, width, 2 * height, 1,
                      VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
@@ -169,14 +173,15 @@ int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint
                                  .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
     VK_CHECK(vkCreateSampler(ctx->device, &sinfo, NULL, &c->nearest));
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4},
+                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5},
                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
     VkDescriptorPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1,
                                         .poolSizeCount = 3, .pPoolSizes = sizes};
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, NULL, &c->pool));
     const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    VkDescriptorType types[] = {UBO, SAMPLED, SAMPLED, SAMPLED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, SAMPLED};
-    c->set_layout = gpu_set_layout(ctx, types, 6, VK_SHADER_STAGE_COMPUTE_BIT, "composite");
+    /* Binding 6, the volume, only in the volume variant (composite.comp with AERIAL_VOLUME). */
+    VkDescriptorType types[] = {UBO, SAMPLED, SAMPLED, SAMPLED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, SAMPLED, SAMPLED};
+    c->set_layout = gpu_set_layout(ctx, types, c->has_volume ? 7 : 6, VK_SHADER_STAGE_COMPUTE_BIT, "composite");
     c->layout = gpu_pipeline_layout(ctx, c->set_layout, sizeof(CompositePush), VK_SHADER_STAGE_COMPUTE_BIT, "composite");
     c->set = gpu_alloc_set(ctx, c->pool, c->set_layout, "composite");
     const pass_shared *s = &r->shared;
@@ -186,8 +191,17 @@ int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint
     gpu_write_sampled(ctx, c->set, 3, c->input.view, c->nearest);
     gpu_write_storage(ctx, c->set, 4, c->output.view);
     gpu_write_sampled(ctx, c->set, 5, r->luts.ground_irradiance_view, s->linear_clamp);
-    VkShaderModule m = gpu_shader_module(ctx, spv_composite_comp, sizeof spv_composite_comp, "composite.comp");
-    c->pipeline = gpu_compute_pipeline_spec(ctx, c->layout, m, s->spec, "composite");
+    VkShaderModule m;
+    if (c->has_volume) {
+        gpu_write_sampled(ctx, c->set, 6, c->volume.image.view, s->linear_clamp);
+        ap_volume_spec spec;
+        ap_volume_spec_make(s->spec, volume, &spec);
+        m = gpu_shader_module(ctx, spv_composite_volume_comp, sizeof spv_composite_volume_comp, "composite.comp");
+        c->pipeline = gpu_compute_pipeline_spec(ctx, c->layout, m, &spec.info, "composite (volume)");
+    } else {
+        m = gpu_shader_module(ctx, spv_composite_comp, sizeof spv_composite_comp, "composite.comp");
+        c->pipeline = gpu_compute_pipeline_spec(ctx, c->layout, m, s->spec, "composite");
+    }
     vkDestroyShaderModule(ctx->device, m, NULL);
     return 0;
 }
@@ -206,6 +220,7 @@ void sky_composite_destroy(sky_composite *c, const sky_renderer *r)
     gpu_buffer_destroy(ctx, &c->readback);
     gpu_image_destroy(ctx, &c->input);
     gpu_image_destroy(ctx, &c->output);
+    if (c->has_volume) ap_volume_destroy(&c->volume, r);
     memset(c, 0, sizeof *c);
 }
 
@@ -242,9 +257,18 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     /* 1. LUTs, only when the atmosphere changed (frame.c): afterwards readable by compute shaders. */
     frame_record_luts(r, cmd, force_luts);
 
-    /* (--aerial-perspective volume plugs in here: the froxel volume's compute pass, after the LUTs it reads and
-     * before the composite pass samples it, with its own named barriers; composite.comp then takes the camera ->
-     * point values from it instead of aerial_march, see aerial.glsl.) */
+    /* 1b. --aerial-perspective volume: the froxel volume, marched once per froxel (reads the LUTs). The previous
+     * frame's composite pass sampled it (WAR); every texel is rewritten: UNDEFINED -> GENERAL. */
+    uint32_t t;
+    if (c->has_volume) {
+        gpu_barrier_batch vb = gpu_barrier_batch_begin("before ap_volume");
+        gpu_barrier_add_image(&vb, "ap_volume.to_storage", "ap_volume", c->volume.image.image, one,
+                              GPU_USAGE_COMPUTE_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+        gpu_barrier_flush(cmd, &vb);
+        t = pass_begin(r, cmd, "ap_volume");
+        ap_volume_dispatch(&c->volume, cmd, push);
+        pass_end(r, cmd, t);
+    }
 
     /* 2. Upload. The previous frame's composite pass sampled the input image (WAR); it is fully rewritten:
      * UNDEFINED -> TRANSFER_DST. (The host wrote the upload buffer before the submit: the submit makes that
@@ -253,15 +277,19 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     gpu_barrier_add_image(&b, "composite_in.to_upload", "composite_in", c->input.image, one,
                           GPU_USAGE_COMPUTE_SAMPLED, GPU_USAGE_TRANSFER_DST, true);
     gpu_barrier_flush(cmd, &b);
-    uint32_t t = pass_begin(r, cmd, "composite_upload");
+    t = pass_begin(r, cmd, "composite_upload");
     VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                 .imageExtent = {c->width, 2 * c->height, 1}};
     vkCmdCopyBufferToImage(cmd, c->upload.buffer, c->input.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     pass_end(r, cmd, t);
 
     /* 3. The copy wrote the inputs; the composite shader samples them: RAW + layout. The previous frame's
-     * readback copy read the layer image (WAR); every texel is rewritten: UNDEFINED -> GENERAL. */
+     * readback copy read the layer image (WAR); every texel is rewritten: UNDEFINED -> GENERAL. The volume pass
+     * wrote the volume; the composite shader samples it: RAW + layout. */
     b = gpu_barrier_batch_begin("before composite");
+    if (c->has_volume)
+        gpu_barrier_add_image(&b, "ap_volume.write_to_sample", "ap_volume", c->volume.image.image, one,
+                              GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_SAMPLED, false);
     gpu_barrier_add_image(&b, "composite_in.upload_to_read", "composite_in", c->input.image, one,
                           GPU_USAGE_TRANSFER_DST, GPU_USAGE_COMPUTE_SAMPLED, false);
     gpu_barrier_add_image(&b, "aovs.to_storage", "aovs", c->output.image, one, GPU_USAGE_TRANSFER_SRC,
@@ -292,7 +320,7 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     gpu_barrier_flush(cmd, &b);
 }
 
-void sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames)
+double sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames)
 {
     VkCommandBuffer cmd = gpu_begin_commands(r->ctx);
     for (int i = 0; i < (frames > 1 ? frames : 1) && i < 16; ++i) {
@@ -306,6 +334,10 @@ void sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush
         }
         composite_frame_record(r, c, cmd, push, i > 0);
     }
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     gpu_submit_and_wait(r->ctx, cmd);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
     gpu_buffer_invalidate(r->ctx, &c->readback);
+    return (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6;
 }

@@ -6,6 +6,7 @@
  * constants in composite_push(); nothing planet-scale reaches the shader. */
 #ifndef VKSKY_SKY_COMPOSITE_H
 #define VKSKY_SKY_COMPOSITE_H
+#include "sky/ap_volume.h"
 #include "sky/renderer.h"
 
 /* The world of the rendered image, its camera and sun. */
@@ -46,13 +47,16 @@ typedef struct sky_composite {
     VkPipelineLayout layout;
     VkPipeline pipeline;
     VkDescriptorSet set;
+    bool has_volume;                /* --aerial-perspective volume: the froxel volume, sampled per pixel */
+    ap_volume volume;
 } sky_composite;
 
 /* Build the pass for images of width x height over the renderer's LUTs (set the renderer's atmosphere and
- * features first: the pipeline carries their variant). Returns 0, or -1 when the device cannot hold the images
- * (the message in err). */
-int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint32_t height, char *err,
-                         size_t err_size);
+ * features first: the pipeline carries their variant); `volume` non-NULL: camera -> point from the froxel volume
+ * of that shape (ap_volume.h; the push's camera must be oriented), NULL: a march per pixel. Returns 0, or -1 when
+ * the device cannot hold the images (the message in err). */
+int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint32_t height,
+                         const ap_volume_desc *volume, char *err, size_t err_size);
 void sky_composite_destroy(sky_composite *c, const sky_renderer *r);
 /* Where to write the inputs before rendering: width x height RGBA beauty floats, then width x height position
  * floats (xyz, w ignored), top row first. */
@@ -63,6 +67,7 @@ const float *sky_composite_layer(const sky_composite *c, int k);
 /* The composite frame, in order, with its barriers (composite.c). */
 void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer cmd, const CompositePush *push,
                             bool force_luts);
-/* Record `frames` frames (tests: VKSKY_FRAMES) into one command buffer, submit, wait, read back. */
-void sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames);
+/* Record `frames` frames (tests: VKSKY_FRAMES) into one command buffer, submit, wait, read back. Returns wall
+ * milliseconds from submit to fence. */
+double sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames);
 #endif
