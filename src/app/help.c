@@ -19,8 +19,7 @@ static const char *const output_flags[] = {"--render", "--width", "--height", "-
 static const char *const camera_flags[] = {"--altitude", "--yaw", "--pitch", "--fov", NULL};
 static const char *const sun_flags[] = {"--sun-elevation", "--sun-azimuth", "--date", "--time", "--utc-offset",
                                         "--latitude", "--longitude", "--elevation-m", "--sun-illuminance",
-                                        "--sun-angular-radius", "--limb-darkening", "--no-sun-disc", "--sun-visibility",
-                                        NULL};
+                                        "--sun-angular-radius", "--limb-darkening", "--no-sun-disc", NULL};
 static const char *const atmosphere_flags[] = {"--rayleigh-scale", "--mie-scale", "--ozone-scale", "--mie-g",
                                                "--mie-phase", "--ground-albedo", "--no-multiscatter", "--sun-visibility",
                                                NULL};
