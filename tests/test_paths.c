@@ -26,7 +26,8 @@ static test_frame render_with(gpu_context *ctx, const quality_scene *s, sky_mode
     if (preset) {
         double scale;
         int mips;
-        quality_apply(preset, &v, &lut, &scale, &mips);
+        bool quarter;
+        quality_apply(preset, &v, &lut, &scale, &mips, &quarter);
         v.bloom = true;
     } else {
         v.mode = mode;

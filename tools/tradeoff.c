@@ -144,7 +144,7 @@ static sky_renderer make_renderer(gpu_context *ctx, const quality_config *q, sky
                               .display_format = VK_FORMAT_R8G8B8A8_SRGB};
     int bloom_mips = 5;
     desc.lut = sky_lut_quality_default();
-    quality_apply(q, v, &desc.lut, &desc.render_scale, &bloom_mips);
+    quality_apply(q, v, &desc.lut, &desc.render_scale, &bloom_mips, &desc.bloom_quarter);
     desc.bloom_mips = (uint32_t)bloom_mips;
     sky_renderer r;
     sky_renderer_create(&r, ctx, &desc);

@@ -266,9 +266,13 @@ static bool window_mode(int argc, char **argv)
 {
     static const char *const headless[] = {"--render", "--bench", "--reference", "--help", "--version",
                                            "--list-devices", "--dump-scene", "--list-scenes"};
+    /* The flag itself or FLAG=VALUE: --render-scale is no --render (a window with --render-scale starts from the
+     * window's preset, not from --quality auto). */
     for (int i = 1; i < argc; ++i)
-        for (size_t k = 0; k < sizeof headless / sizeof headless[0]; ++k)
-            if (!strncmp(argv[i], headless[k], strlen(headless[k]))) return false;
+        for (size_t k = 0; k < sizeof headless / sizeof headless[0]; ++k) {
+            size_t n = strlen(headless[k]);
+            if (!strncmp(argv[i], headless[k], n) && (argv[i][n] == '\0' || argv[i][n] == '=')) return false;
+        }
     return true;
 }
 
@@ -301,7 +305,8 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
      * measured front's point for the scene kind, chosen once the view is known); a scene and the flags override
      * either. */
     bool window = window_mode(argc, argv);
-    if (window) quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips);
+    if (window)
+        quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
     const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
     double picked_error = 0.0;
     char picked_scene[96] = "";
@@ -337,7 +342,7 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         }
         /* --quality / --max-error replace the scene's whole quality section; without them the scene's preset (applied
          * by scene_load, under the scene's knobs) stays. */
-        if (q) quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips);
+        if (q) quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
         else o->quality = scene_quality;
     }
     for (int i = 1; i < argc; ++i) {

@@ -17,6 +17,7 @@ typedef struct quality_config {
     bool lut_f32;
     double render_scale;
     int bloom_mips;
+    bool bloom_quarter;                    /* the bloom chain from a quarter-size mip 0 (--bloom-res quarter) */
 } quality_config;
 
 /* low, medium, high, ultra, lesson, cpu (NULL if unknown; "auto" is not a fixed configuration: quality_auto). */
@@ -27,14 +28,16 @@ extern const quality_config quality_presets[4];
 extern const quality_config quality_lesson;
 /* --quality cpu: the measured point for a CPU device (lavapipe 1280x720, quality_table_cpu.h): medium's LUTs, a
  * 96x54 sky-view LUT, the sky at half size (at 1280x720 the half-size sky adds < 0.05 % to the mean error: the
- * sky-view LUT is coarser than a half-size pixel). */
-#define QUALITY_CPU_CONFIG "medium-skyview96-scale0.5"
+ * sky-view LUT is coarser than a half-size pixel), the bloom chain from a quarter-size mip 0 (a fifth less CPU a
+ * frame than from half size: docs/readme/post.md). */
+#define QUALITY_CPU_CONFIG "medium-skyview96-scale0.5-bloomq"
 /* The configurations tools/tradeoff sweeps (presets included). */
 extern const quality_config quality_sweep[];
 extern const int quality_sweep_count;
 
 /* Apply a configuration's knobs to a view and a renderer description. */
-void quality_apply(const quality_config *q, sky_view *v, sky_lut_quality *lut, double *render_scale, int *bloom_mips);
+void quality_apply(const quality_config *q, sky_view *v, sky_lut_quality *lut, double *render_scale, int *bloom_mips,
+                   bool *bloom_quarter);
 
 /* The scene set of the trade-off measurement. */
 typedef struct quality_scene {

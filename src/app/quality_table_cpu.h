@@ -59,5 +59,14 @@ static const quality_measurement quality_table_cpu[] = {
     {"medium-skyview96-scale0.5", 3, 40.6412, 0.46649, 0.60238},
     {"medium-skyview96-scale0.5", 4, 40.7037, 0.00533, 0.00922},
     {"medium-skyview96-scale0.5", 5, 139.7313, 0.00164, 0.01457},
+    /* Measured later (same command, --configs medium-skyview96-scale0.5,medium-skyview96-scale0.5-bloomq; CSV
+     * docs/perf/lavapipe-post/tradeoff_lavapipe_720_bloomq.csv): the quarter-size bloom. In that run
+     * medium-skyview96-scale0.5 cost 41.6-43.9 ms (146 at 400 km), its errors as above. */
+    {"medium-skyview96-scale0.5-bloomq", 0, 34.2215, 0.00836, 0.01049},
+    {"medium-skyview96-scale0.5-bloomq", 1, 33.8587, 0.00945, 0.01787},
+    {"medium-skyview96-scale0.5-bloomq", 2, 33.8513, 0.00410, 0.00676},
+    {"medium-skyview96-scale0.5-bloomq", 3, 33.6422, 0.46649, 0.60238},
+    {"medium-skyview96-scale0.5-bloomq", 4, 34.0630, 0.00533, 0.00922},
+    {"medium-skyview96-scale0.5-bloomq", 5, 140.7413, 0.00164, 0.01457},
 };
-static const int quality_table_cpu_count = 54;
+static const int quality_table_cpu_count = 60;

@@ -281,7 +281,7 @@ static int parse_quality(const scene_ctx *c, const cJSON *q)
     static const char *const names[] = {
         "preset", "sky_mode", "sky_pass", "steps", "max_steps", "steps_ramp_km", "step_distribution", "sample_offset",
         "skyview_lut", "skyview_steps", "transmittance_lut", "transmittance_steps", "multiscatter_lut",
-        "multiscatter_directions", "multiscatter_steps", "lut_format", "render_scale", "bloom_mips"};
+        "multiscatter_directions", "multiscatter_steps", "lut_format", "render_scale", "bloom_mips", "bloom_res"};
     options *o = c->o;
     sky_view *v = &o->view;
     sky_lut_quality *lut = &o->lut;
@@ -292,10 +292,11 @@ static int parse_quality(const scene_ctx *c, const cJSON *q)
     if (scene_get_word(c, q, "preset", "quality", preset_words, COUNT(preset_words), &preset)) return 2;
     if (preset >= 0) {
         const quality_config *qc = quality_preset(preset_words[preset]);
-        quality_apply(qc, v, lut, &o->render_scale, &o->bloom_mips);
+        quality_apply(qc, v, lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
         o->quality = qc->name;
     }
-    int mode = (int)v->mode, pass = (int)v->pass_kind, f32 = lut->lut_f32 ? 1 : 0;
+    int mode = (int)v->mode, pass = (int)v->pass_kind, f32 = lut->lut_f32 ? 1 : 0, quarter = o->bloom_quarter ? 1 : 0;
+    static const char *const bloom_res_words[] = {"half", "quarter"};   /* as --bloom-res */
     int dirs = lut->multiscatter_sqrt_dirs * lut->multiscatter_sqrt_dirs;
     scene_range max_steps = scene_flag_range("--max-steps", true);
     max_steps.min = 0;   /* 0: a fixed count (the dump writes it) */
@@ -315,7 +316,8 @@ static int parse_quality(const scene_ctx *c, const cJSON *q)
         scene_get_int(c, q, "multiscatter_steps", "quality", scene_flag_range("--multiscatter-steps", true), &lut->multiscatter_steps) ||
         scene_get_word(c, q, "lut_format", "quality", lut_format_words, COUNT(lut_format_words), &f32) ||
         scene_get_number(c, q, "render_scale", "quality", scene_flag_range("--render-scale", false), &o->render_scale) ||
-        scene_get_int(c, q, "bloom_mips", "quality", scene_flag_range("--bloom-mips", true), &o->bloom_mips))
+        scene_get_int(c, q, "bloom_mips", "quality", scene_flag_range("--bloom-mips", true), &o->bloom_mips) ||
+        scene_get_word(c, q, "bloom_res", "quality", bloom_res_words, COUNT(bloom_res_words), &quarter))
         return 2;
     int root = (int)(sqrt((double)dirs) + 0.5);
     if (root * root != dirs)
@@ -324,6 +326,7 @@ static int parse_quality(const scene_ctx *c, const cJSON *q)
     v->mode = (sky_mode_choice)mode;
     v->pass_kind = (sky_pass_kind)pass;
     lut->lut_f32 = f32 == 1;
+    o->bloom_quarter = quarter == 1;
     lut->multiscatter_sqrt_dirs = root;
     if (v->max_steps != 0 && v->max_steps < v->steps)
         return scene_fail(c, cJSON_GetObjectItemCaseSensitive(q, "max_steps") ? "quality.max_steps" : "quality.steps",

@@ -171,6 +171,7 @@ int scene_dump(const options *o, FILE *out)
     str(&b, q, "lut_format", lut->lut_f32 ? "f32" : "f16");
     num(&b, q, "render_scale", o->render_scale);
     num(&b, q, "bloom_mips", o->bloom_mips);
+    str(&b, q, "bloom_res", o->bloom_quarter ? "quarter" : "half");
 
     char *text = b.ok ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
