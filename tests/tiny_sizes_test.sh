@@ -58,11 +58,15 @@ for preset in "${presets[@]}"; do
             awk -v p="$last" 'BEGIN { n = split(p, c, " "); ok = n == 3;
                 for (i = 1; i <= n; ++i) if (!(c[i] + 0 > 0 && c[i] + 0 < 1e4)) ok = 0; exit !ok }' ||
                 fail "$what: last pixel not a finite positive radiance: '$last'"
-            # The sky is rendered at the preset's render scale (low: 0.5, rounded) and the tone map samples it at
-            # the output's pixel centres: only where that image has a pixel on the view axis too (both sizes odd)
-            # is the centre pixel the axis's radiance (7x3 at low renders 4x2: its centre blends the ground).
-            hw=$w hh=$h
-            [ "$preset" = low ] && hw=$(((w + 1) / 2)) hh=$(((h + 1) / 2))
+            # The sky is rendered at the preset's render scale (low: 0.5; the default on a CPU device picks 0.5 too:
+            # --dump-scene says), rounded to nearest, and the tone map samples it at the output's pixel centres:
+            # only where that image has a pixel on the view axis too (both sizes odd) is the centre pixel the
+            # axis's radiance (7x3 at 0.5 renders 4x2: its centre blends the ground).
+            scale=$("$VKSKY" --dump-scene --width "$w" --height "$h" "${qflag[@]}" |
+                awk -F: '/"render_scale"/ { gsub(/[ \t,]/, "", $2); print $2 }')
+            [ -n "$scale" ] || fail "$what: --dump-scene names no render_scale"
+            read -r hw hh < <(awk -v w="$w" -v h="$h" -v s="${scale:-1}" 'BEGIN {
+                a = int(w * s + 0.5); b = int(h * s + 0.5); print (a ? a : 1), (b ? b : 1) }')
             if [ $((w % 2)) -eq 1 ] && [ $((h % 2)) -eq 1 ] && [ $((hw % 2)) -eq 1 ] && [ $((hh % 2)) -eq 1 ]; then
                 centre=$("$PROBE" "$out" $((w / 2)) $((h / 2)))
                 awk -v p="$centre" -v r="$ref_r $ref_g $ref_b" -v tol=$TOL 'BEGIN {

@@ -45,7 +45,7 @@ const flag flags_table[] = {
     {"--multiscatter-steps", ARG_INT, 1, 4096, "N steps per direction (default 20)"},
     {"--lut-format", ARG_STRING, 0, 0, "F  f16 | f32: RGBA16F or RGBA32F LUTs (default f16)"},
     {"--bloom-mips", ARG_INT, 1, 8, "N   bloom downsample passes (default 5)"},
-    {"--render-scale", ARG_DOUBLE, 0.1, 1, "S sky rendered at S x the output size, upsampled by the tone map (default 1)"},
+    {"--render-scale", ARG_DOUBLE, 0.1, 1, "S sky rendered at S x the output size (full size where the shorter axis would get < 32 pixels), upsampled by the tone map (default 1)"},
     {"--mie-g", ARG_DOUBLE, -0.999, 0.999, "G       Mie Henyey-Greenstein asymmetry (default 0.8)"},
     {"--rayleigh-scale", ARG_DOUBLE, 0, 1000, "S Rayleigh density scale (default 1)"},
     {"--mie-scale", ARG_DOUBLE, 0, 1000, "S      Mie (aerosol) density scale (default 1)"},

@@ -324,7 +324,8 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
         gpu_barrier_add_image(&b, "skyview.write_to_sample", "skyview_lut", r->luts.skyview.image, one,
                               GPU_USAGE_COMPUTE_STORAGE_WRITE, sky_reads, false);
     gpu_barrier_flush(cmd, &b);
-    SkyPush push = sky_view_push(v, r->hdr.extent.width, r->hdr.extent.height);
+    SkyPush push = sky_view_push(v, r->hdr.extent.width, r->hdr.extent.height,
+                                 (double)r->desc.width / (double)r->desc.height);
     t = timed_begin(r, cmd, "sky");
     sky_pass_record(&r->sky, cmd, kind, mode, &r->hdr, &push);
     timed_end(r, cmd, t);

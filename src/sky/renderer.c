@@ -1,5 +1,6 @@
 /* The renderer's resources and their lifetime (see sky/renderer.h). */
 #include "sky/renderer.h"
+#include <math.h>
 #include "sky/shaders.h"
 #include <stddef.h>
 #include <string.h>
@@ -15,7 +16,14 @@ static void create_sized(sky_renderer *r)
     /* Colour attachment (fragment sky), storage (compute sky), sampled (bloom, tone map). */
     VkImageUsageFlags target_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
                                      VK_IMAGE_USAGE_SAMPLED_BIT;
+    /* Render scale buys time on large images; on small ones it saves nothing worth having and a few sky texels
+     * cannot hold the view (a 7x3 frame at half size: 4x2 texels, the centre pixel between a sky and a ground
+     * row). So where the scale would leave the shorter axis under MIN_SCALED_SKY texels, the sky is rendered at
+     * the output's size. */
+    enum { MIN_SCALED_SKY = 32 };
     double scale = desc->render_scale > 0.0 ? desc->render_scale : 1.0;
+    double shorter = desc->width < desc->height ? desc->width : desc->height;
+    if (shorter * scale < MIN_SCALED_SKY) scale = 1.0;
     uint32_t hw = (uint32_t)(desc->width * scale + 0.5), hh = (uint32_t)(desc->height * scale + 0.5);
     gpu_image_create(ctx, &r->hdr, "hdr", HDR_FORMAT, hw ? hw : 1, hh ? hh : 1, 1, target_usage);
     sky_pass_set_target(&r->sky, &r->shared, &r->hdr);

@@ -12,7 +12,7 @@
 
 typedef struct sky_renderer_desc {
     uint32_t width, height;      /* output size */
-    double render_scale;         /* the sky is rendered at this fraction of the output size (0: 1), upsampled by the tone map */
+    double render_scale;         /* the sky is rendered at this fraction of the output size (0: 1; 1 where the shorter axis would keep < 32 texels), upsampled by the tone map */
     sky_lut_quality lut;         /* LUT sizes, format, steps (zeroed: the defaults) */
     bool bloom;                  /* allocate the bloom chain (no bloom: no passes, no mip chain) */
     uint32_t bloom_mips;         /* downsample passes (0: 5) */

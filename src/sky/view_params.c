@@ -38,12 +38,12 @@ void sky_view_basis(const sky_view *v, double f[3], double right[3], double up[3
     up[2] = right[0] * f[1] - right[1] * f[0];
 }
 
-SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height)
+SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height, double aspect)
 {
     /* The ray matrix: camera basis scaled by tan(fov/2) and the aspect ratio, built in double. */
     double f[3], right[3], up[3];
     sky_view_basis(v, f, right, up);
-    double ty = tan(0.5 * v->fov_deg * DEG), tx = ty * (double)width / (double)height;
+    double ty = tan(0.5 * v->fov_deg * DEG), tx = ty * aspect;
     double sun[3];
     dir_from_angles(v->sun_azimuth_deg, v->sun_elevation_deg, sun);
     int max_steps = v->max_steps > v->steps ? v->max_steps : v->steps;
@@ -58,7 +58,7 @@ SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height)
 
 SkyPush sky_view_skyview_push(const sky_view *v)
 {
-    SkyPush p = sky_view_push(v, 1, 1);
+    SkyPush p = sky_view_push(v, 1, 1, 1.0);
     p.march = (vksky_vec4){(float)v->skyview_steps, (float)v->skyview_steps, (float)v->sample_offset,
                            (float)v->steps_ramp_km};
     return p;

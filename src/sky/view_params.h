@@ -35,8 +35,9 @@ sky_mode sky_view_resolve_mode(const sky_view *v, double atmosphere_top_km);
 /* The camera's unit basis in the world (+Y up): forward (the view axis), right = forward x +Y, up = right x forward.
  * A pixel's ray is forward + x tan(fov/2) aspect right + y tan(fov/2) up, x and y in [-1, 1] (y = 1: top row). */
 void sky_view_basis(const sky_view *v, double forward[3], double right[3], double up[3]);
-/* Camera + sun -> the sky pass's push constants (the ray matrix built from the camera basis). */
-SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height);
+/* Camera + sun -> the sky pass's push constants (the ray matrix built from the camera basis). width x height: the
+ * sky image's texels; aspect: the output image's width / height (a scaled sky rounds its size, not the view). */
+SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height, double aspect);
 /* The sky-view LUT pass's push constants (its own march settings). */
 SkyPush sky_view_skyview_push(const sky_view *v);
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader);
