@@ -1,11 +1,9 @@
 /* The tone map's read of the sky (HDR) image at an output pixel, shared by the fragment and compute tone maps.
  * At render scale 1 the output pixel is a texel centre and this is that texel. Below 1 it is a bilinear upsample
- * that does not blend across a class boundary (the sky pass's alpha: 0 ground, 1 sky, 2 sun disc): where the
- * four taps are not all of one class, the output pixel takes its nearest texel, so the horizon and the sun's edge
- * stay sharp (moved at most half a sky texel) instead of blending ground into the sky and the disc into its
- * surroundings. The bilinear sample's own alpha decides, with no extra fetch: with classes 0, 1, 2 and positive
- * weights it is within 1e-3 of 0, 1 or 2 only where the taps agree (or, rarely, where ground and disc taps balance
- * exactly: plain bilinear there). One fetch, not a weighted four: lavapipe runs a branch's body whenever any pixel
+ * that does not blend across a class boundary (the sky pass's alpha: 0 ground, 1 sky): where the four taps are not
+ * all of one class, the output pixel takes its nearest texel, so the horizon stays sharp (moved at most half a sky
+ * texel) instead of blending ground into the sky. The bilinear sample's own alpha decides, with no extra fetch:
+ * with classes 0 and 1 and positive weights it is within 1e-3 of 0 or 1 only where the taps agree. One fetch, not a weighted four: lavapipe runs a branch's body whenever any pixel
  * of its 8-wide group takes it, so each extra fetch costs every pixel (measured at 1280x720: nearest +4.6 ms of
  * CPU a frame, the class-weighted four +13 ms); within one texel a class varies little. */
 vec3 hdr_upsample(sampler2D hdr, vec2 uv)

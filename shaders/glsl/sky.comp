@@ -13,6 +13,7 @@ void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, imageSize(hdr_out)))) return;
+    sky_texel_angle = texel_angle(push);
     vec3 v = pixel_view_dir(vec2(p) + 0.5, push);
     vec3 c = SKY_RADIANCE(push.forward.w, v, push.sun_dir.xyz, push.march);
     imageStore(hdr_out, p, vec4(c, SKY_CLASS(push.forward.w, v, push.sun_dir.xyz)));   /* alpha: the class */

@@ -9,6 +9,7 @@ layout(location = 0) out vec4 out_color;
 
 void main()
 {
+    sky_texel_angle = texel_angle(push);
     vec3 v = pixel_view_dir(gl_FragCoord.xy, push);
     vec3 c = SKY_RADIANCE(push.forward.w, v, push.sun_dir.xyz, push.march);
     out_color = vec4(c, SKY_CLASS(push.forward.w, v, push.sun_dir.xyz));   /* alpha: the class */
