@@ -123,12 +123,31 @@ pid=$!
 wait_for handler_installed "$pid" || fail "path trace: handler never installed"
 sleep 1
 stop_and_check "path trace" TERM 143 10 "$work/p"
-# ... and the converged model's rows (--reference without --path-trace), SIGINT.
+# ... the converged model (--reference without --path-trace) while it builds its multiple-scattering table (about 2 s
+# of CPU before the row threads start; the build looks at the flag between its rows: ref_set_cancel), SIGTERM:
+# stopped within 1 s, where waiting for the table would take longer ...
+mkdir -p "$work/t"
+"$VKSKY" --reference --width 256 --height 256 --render "$work/t/ref.exr" >"$work/t/out" 2>"$work/t/err" &
+pid=$!
+wait_for handler_installed "$pid" || fail "reference table: handler never installed"
+t_tasks=$(ls "/proc/$pid/task" 2>/dev/null | wc -l)
+sleep 0.2
+if [ "$(ls "/proc/$pid/task" 2>/dev/null | wc -l)" -eq "$t_tasks" ]; then   # no row thread yet: still the table
+    stop_and_check "reference table" TERM 143 1.0 "$work/t"
+else
+    kill "$pid"; wait "$pid"
+    echo "reference table: built before the signal could land (a fast machine): not checked"
+fi
+# ... and its rows, SIGINT, once its two row threads run.
 mkdir -p "$work/m"
 "$VKSKY" --reference --width 2048 --height 2048 --render "$work/m/ref.exr" >"$work/m/out" 2>"$work/m/err" &
 pid=$!
 wait_for handler_installed "$pid" || fail "reference: handler never installed"
-sleep 1
+tasks() { ls "/proc/$pid/task" 2>/dev/null | wc -l; }
+base_tasks=$(tasks)
+row_threads() { [ "$(tasks)" -ge $((base_tasks + 2)) ]; }
+wait_for row_threads || fail "reference: the row threads never started"
+sleep 0.5
 stop_and_check "reference rows" INT 130 10 "$work/m"
 
 # 4. A sequence of 1000 frames: SIGINT once two frames are written. It stops between frames: the frames it finished

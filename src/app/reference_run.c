@@ -85,10 +85,17 @@ int reference_run(const options *o)
     size_t pixels = (size_t)o->width * o->height;
     job.rgba = malloc(pixels * 4 * sizeof(float));
     pthread_mutex_init(&job.lock, NULL);
-    /* The reference's multi-scattering table is built lazily: build it once before the threads share it. */
+    /* The reference's multi-scattering table is built lazily: build it once before the threads share it. A stop
+     * during the build leaves no table (ref_set_cancel): then no thread may start (each would build one, and
+     * building is not thread-safe); the flag is set whenever the build was cut short. */
     {
         double view[3] = {0, 1, 0}, rgb[3], e[3];
         radiance(o, view, job.sun, rgb, e);
+    }
+    if (stop_requested()) {
+        free(job.rgba);
+        pthread_mutex_destroy(&job.lock);
+        return stop_status(0);
     }
     enum { THREADS = 2 };
     pthread_t threads[THREADS];

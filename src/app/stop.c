@@ -2,6 +2,7 @@
  * of object a handler may write); everything else happens on the main path when it next looks at the flag. */
 #include "app/stop.h"
 #include "io/atomic_file.h"
+#include "reference/ref_atmosphere.h"
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
@@ -26,6 +27,7 @@ void stop_install(void)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     io_atomic_set_cancel(&stop_signal);
+    ref_set_cancel(&stop_signal);   /* the reference's table builds (seconds) stop between rows */
 }
 
 bool stop_requested(void) { return stop_signal != 0; }

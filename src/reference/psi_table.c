@@ -48,12 +48,29 @@ void cubic_taps(double f, int n, int mirror_lo, int mirror_hi, int idx[4], doubl
     }
 }
 
+/* ref_set_cancel: the flag a table build looks at between rows. */
+static const volatile sig_atomic_t *g_cancel;
+
+void ref_set_cancel(const volatile sig_atomic_t *flag)
+{
+    g_cancel = flag;
+}
+
+static int cancelled(void)
+{
+    return g_cancel && *g_cancel;
+}
+
 sun_table *sun_table_build(const model_atmosphere *a)
 {
     sun_table *t = malloc(sizeof *t);
     if (!t)
         return NULL;
-    for (int j = 0; j < SUN_TABLE_NY; ++j)
+    for (int j = 0; j < SUN_TABLE_NY; ++j) {
+        if (cancelled()) {
+            free(t);
+            return NULL;
+        }
         for (int i = 0; i < SUN_TABLE_NX; ++i) {
             double h, mu, tau[3];
             bruneton_params(a, (double)i / (SUN_TABLE_NX - 1), (double)j / (SUN_TABLE_NY - 1), &h, &mu);
@@ -61,6 +78,7 @@ sun_table *sun_table_build(const model_atmosphere *a)
             for (int c = 0; c < 3; ++c)
                 t->T[j][i][c] = exp(-tau[c]);
         }
+    }
     return t;
 }
 
@@ -175,6 +193,10 @@ static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int 
     mus[PSI_SEG0 + PSI_SEG1 - 1] = mus[PSI_SEG0 + PSI_SEG1] = 0.05;
     mus[PSI_COLS - 1] = 1.0;
     for (int j = 0; ok && j < PSI_ROWS; ++j) {
+        if (cancelled()) {
+            ok = 0;
+            break;
+        }
         double h = psi_row_h(a, j);
         polar_rule pr;
         if (!polar_horizon(a, h, sqrt_dirs, &pr)) {

@@ -15,6 +15,7 @@
 #define VKSKY_REF_ATMOSPHERE_H
 
 #include "model/medium.h"
+#include <signal.h>
 #include <stdbool.h>
 
 #ifdef __cplusplus
@@ -87,6 +88,11 @@ ref_quality ref_quality_converged(void);
  * (ms_sqrt_dirs, ms_steps). Error the table adds: <= 4e-5 in daylight, <= 2e-4 down to sun -6 deg. */
 void ref_sky_radiance(const model_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
                       ref_quality q, double out_rgb[3]);
+
+/* The graceful stop (app/stop.h): while *flag is non-zero, a table being built (Psi, the sun's transmittance) stops
+ * at its next row and none is kept, so radiance computed from then on lacks multiple scattering: the caller, which
+ * looks at the same flag, discards it. NULL (the default) turns this off. */
+void ref_set_cancel(const volatile sig_atomic_t *flag);
 
 /* Aerial perspective to a point: from camera altitude `altitude` along the unit view direction (local frame, up =
  * +Y) to the point `distance` km away, with the sun toward sun_dir. L_point_seen = L_point T + S with S =
