@@ -303,12 +303,12 @@ int main(int argc, char **argv)
             if (!cost_cpu)
                 fprintf(t, "typedef struct quality_measurement { const char *config; int scene; double gpu_ms, err_mean, err_p95; } quality_measurement;\n");
             fprintf(t, "static const quality_measurement %s[] = {\n", name);
-            int emitted = 0;
             for (int i = 0; i < count; ++i)
-                if (isfinite(rows[i].err.mean) && ++emitted)
+                if (isfinite(rows[i].err.mean))
                     fprintf(t, "    {\"%s\", %d, %.4f, %.5f, %.5f},\n", rows[i].config, rows[i].scene,
                             cost_cpu ? rows[i].cpu_ms : rows[i].sky_ms, rows[i].err.mean, rows[i].err.p95);
-            fprintf(t, "};\nstatic const int %s_count = %d;\n", name, emitted);
+            /* The count from the array itself: a row added or removed by hand (a re-measured class) keeps it true. */
+            fprintf(t, "};\nstatic const int %s_count = (int)(sizeof %s / sizeof %s[0]);\n", name, name, name);
             fclose(t);
         }
     }

@@ -179,4 +179,4 @@ static const quality_measurement quality_table[] = {
     {"march32-scale0.5", 6, 5.8846, 0.01753, 0.03282},
     {"march32-scale0.5", 7, 5.2393, 0.02301, 0.04942},
 };
-static const int quality_table_count = 176;
+static const int quality_table_count = (int)(sizeof quality_table / sizeof quality_table[0]);

@@ -10,6 +10,7 @@
 #define _GNU_SOURCE
 #include "app/options.h"
 #include "app/scene_dump.h"
+#include "gpu/context.h"
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,6 +19,17 @@
 #include <unistd.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+/* --quality auto asks the Vulkan loader which kind of device there is (gpu_device_type), and lavapipe brings in
+ * LLVM, which stays loaded (nodelete) and whose C++ translation units construct the standard streams on first load,
+ * bound to whatever `stderr` is at that moment: inside a parse, the capture's memory stream, closed right after; at
+ * exit the C++ runtime flushes it (a SEGV in std::ios_base::Init's destructor). So the harness asks once before any
+ * capture: the driver loads with the real stderr, and the answer is cached for the process. */
+__attribute__((constructor)) static void fuzz_probe_device_first(void)
+{
+    VkPhysicalDeviceType type;
+    (void)gpu_device_type(-1, &type);
+}
 
 static void fuzz_fail(const char *what, const char *detail)
 {
