@@ -20,7 +20,8 @@ int main(void)
     sky_renderer_render(&r, &f);
 
     enum { TW = 256, TH = 64, MN = 32 };   /* the default LUT sizes */
-    static float trans[TW * TH * 4], ms[MN * MN * 4];
+    /* The multi-scattering LUT is two MN x MN halves side by side: Psi^(1/4) and D, then the other moments. */
+    static float trans[TW * TH * 4], ms[2 * MN * MN * 4];
     test_read_lut(&r, 0, trans);
     test_read_lut(&r, 1, ms);
 
@@ -47,11 +48,18 @@ int main(void)
     printf("transmittance: %d texels, max abs error %.2e\n", checked, worst);
     CHECK(checked >= 20, "only %d texels checked", checked);
 
-    /* Multi-scattering: every texel finite and >= 0; compared with the reference at the same counts. */
+    /* Multi-scattering: every value finite, Psi >= 0 and the moments within [-1, 1] (each is an expectation of a
+     * function of the direction bounded by 1, times a share <= 1); Psi compared with the reference at the same
+     * counts. */
     int bad = 0;
-    for (int i = 0; i < MN * MN * 4; ++i)
-        if (!isfinite(ms[i]) || ms[i] < 0.0f) ++bad;
-    CHECK(bad == 0, "%d multiscatter LUT values are NaN, Inf or negative", bad);
+    for (int y = 0; y < MN; ++y)
+        for (int x = 0; x < 2 * MN; ++x)
+            for (int c = 0; c < 4; ++c) {
+                float v = ms[4 * (y * 2 * MN + x) + c];
+                int is_psi = x < MN && c < 3;
+                if (!isfinite(v) || (is_psi ? v < 0.0f : fabsf(v) > 1.0f)) ++bad;
+            }
+    CHECK(bad == 0, "%d multiscatter LUT values are NaN, Inf, a negative Psi or a moment outside [-1, 1]", bad);
     double worst_rel = 0.0;
     int ms_i[] = {0, 5, 16, 24, 31}, ms_j[] = {0, 1, 8, 20, 31};
     for (size_t i = 0; i < 5; ++i)
@@ -59,7 +67,7 @@ int main(void)
             double h, mu_s, ref[3];
             ref_multiscatter_texel_params(&a, ms_i[i], ms_j[j], MN, MN, &h, &mu_s);
             ref_multiscatter(&a, h, mu_s, 8, 20, 2000, ref);
-            const float *stored = ms + 4 * (ms_j[j] * MN + ms_i[i]);
+            const float *stored = ms + 4 * (ms_j[j] * 2 * MN + ms_i[i]);
             /* The LUT holds Psi^(1/4) (shaders/glsl/multiscatter_lut.comp). */
             double gpu[3];
             for (int c = 0; c < 3; ++c)

@@ -1,12 +1,17 @@
 #version 450
 /* Multi-scattering LUT (Hillaire 2020, section 5.5): Psi(h, mu_s) = L_2nd / (1 - f_ms), per unit sun
- * illuminance, from 64 sphere directions x 20 steps per texel. Reads the transmittance LUT. */
+ * illuminance, from 64 sphere directions x 20 steps per texel, and the second bounce's moments of L_2nd's
+ * directions (docs/model.md). Two N x N halves side by side: left Psi^(1/4) and D, right Q_zz, Q_xz, m_x, m_z.
+ * Reads the transmittance LUT. */
 #extension GL_GOOGLE_include_directive : require
 #include "atmosphere.glsl"
 
 /* One workgroup per texel, its 64 threads share the sphere directions (Hillaire's layout): per-thread work
  * stays small at any direction count, and a shared-memory sum combines them. */
 #define THREADS 64
+#ifndef PHASE_CELL
+#define PHASE_CELL 4
+#endif
 layout(local_size_x = THREADS) in;
 layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
 #ifndef LUT_FORMAT
@@ -17,29 +22,31 @@ layout(set = 0, binding = 2, LUT_FORMAT) uniform writeonly image2D multiscatter_
 shared vec3 shared_l[THREADS];
 shared vec3 shared_f[THREADS];
 shared float shared_x[THREADS];
+shared vec4 shared_m[THREADS];
 
 void main()
 {
     ivec2 texel = ivec2(gl_WorkGroupID.xy);
     uint thread = gl_LocalInvocationIndex;
-    vec2 size = vec2(imageSize(multiscatter_out));
+    vec2 size = vec2(imageSize(multiscatter_out)) * vec2(0.5, 1.0);   /* one half: N x N */
     vec2 t_size = vec2(textureSize(transmittance_lut, 0));
     vec2 uv = (vec2(texel) + 0.5) / size;
     float mu_s = multiscatter_mu_s_of_x(sub_uv_to_unit(uv.x, size.x));
     /* Seed bug 1: clamp 10 m above the ground so no direction starts exactly on the sphere. */
     float h = clamp(multiscatter_h_of_y(sub_uv_to_unit(uv.y, size.y)), MULTISCATTER_MIN_ALTITUDE, top_altitude());
     vec3 sun = vec3(sqrt(max(0.0, 1.0 - mu_s * mu_s)), mu_s, 0.0);
-    /* The weight of the real phases in the first bounce: the point's own sun occlusion (0 for the lesson's model:
-     * isotropic; see the reference's multiscatter.c and docs/model.md). */
-    float mu_t_point;
-    float shade = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE ? 0.0 : 1.0 - sun_visibility(h, mu_s, mu_t_point);
+    const bool real_phase = SUN_VISIBILITY != VKSKY_SUN_VISIBILITY_LESSON_FADE;
 
     int sqrt_dirs = int(atmo.lut_steps.z);
     int dir_count = sqrt_dirs * sqrt_dirs;
     int steps = int(atmo.lut_steps.y);
     vec3 l_2nd = vec3(0.0);
     vec3 f_ms = vec3(0.0);
-    float l_x = 0.0;   /* green L2 weighted by dir_x^2 - dir_z^2 (toward the sun's azimuth vs across it) */
+    /* Green L2 weighted by the moments' functions of the direction, in the texel's frame x toward the sun's
+     * azimuth, y up, z across: D by dir_x^2 - dir_z^2; Q_zz (up) by dir_y^2 - 1/3, Q_xz by dir_x dir_y; the
+     * first moment by dir_x and dir_y. */
+    float l_x = 0.0;
+    vec4 l_m = vec4(0.0);
     for (int d = int(thread); d < dir_count; d += THREADS) {
         int i = d / sqrt_dirs, j = d - i * sqrt_dirs;
         float theta = 2.0 * PI * (float(i) + 0.5) / float(sqrt_dirs);
@@ -53,11 +60,28 @@ void main()
         float dt = t_max / float(steps);
         vec3 throughput = vec3(1.0);
         vec3 l_dir = vec3(0.0);
-        /* The first bounce's phase (sunlight scattered at the sample toward the texel's point, cosine nu):
-         * isotropic where the point is lit, the real Rayleigh and Mie phases where it is in the earth's shadow
-         * (docs/model.md "Multiple scattering"): there the light comes forward-scattered from lit air sunward. */
-        float phase_r = 1.0 / (4.0 * PI) + shade * (rayleigh_phase(nu) - 1.0 / (4.0 * PI));
-        float phase_m = 1.0 / (4.0 * PI) + shade * (mie_phase(nu, atmo.mie_absorption.w) - 1.0 / (4.0 * PI));
+        /* The first bounce's phase (sunlight scattered at the sample toward the texel's point, cosine nu): the
+         * lesson's isotropic one, or the real Rayleigh and Mie phases, which give L2 its true directions (docs/model.md
+         * "Multiple scattering"; the moments below carry them into the second bounce). */
+        float phase_r = 1.0 / (4.0 * PI), phase_m = 1.0 / (4.0 * PI);
+        if (real_phase) {
+            /* The phases' mean over the direction's cell (PHASE_CELL^2 midpoints): with few directions the point
+             * value of Mie's forward lobe, narrower than a cell, aliases (the reference's cell_phases). */
+            phase_r = 0.0;
+            phase_m = 0.0;
+            for (int a = 0; a < PHASE_CELL; ++a) {
+                float mu_a = 1.0 - 2.0 * (float(j) + (float(a) + 0.5) / float(PHASE_CELL)) / float(sqrt_dirs);
+                float sin_a = sqrt(max(0.0, 1.0 - mu_a * mu_a));
+                for (int b = 0; b < PHASE_CELL; ++b) {
+                    float theta_b = 2.0 * PI * (float(i) + (float(b) + 0.5) / float(PHASE_CELL)) / float(sqrt_dirs);
+                    float nu_ab = cos(theta_b) * sin_a * sun.x + mu_a * sun.y;
+                    phase_r += rayleigh_phase(nu_ab);
+                    phase_m += mie_phase(nu_ab, atmo.mie_absorption.w);
+                }
+            }
+            phase_r /= float(PHASE_CELL * PHASE_CELL);
+            phase_m /= float(PHASE_CELL * PHASE_CELL);
+        }
         for (int k = 0; k < steps; ++k) {
             float t = (float(k) + 0.5) * dt;
             float r_t;
@@ -86,10 +110,12 @@ void main()
         }
         l_2nd += l_dir;
         l_x += l_dir.g * (dir.x * dir.x - dir.z * dir.z);
+        l_m += l_dir.g * vec4(dir.y * dir.y - 1.0 / 3.0, dir.x * dir.y, dir.x, dir.y);
     }
     shared_l[thread] = l_2nd;
     shared_f[thread] = f_ms;
     shared_x[thread] = l_x;
+    shared_m[thread] = l_m;
     /* Tree sum over the workgroup; barrier() orders the shared-memory writes and reads between steps. */
     for (uint stride = THREADS / 2; stride > 0; stride /= 2) {
         barrier();
@@ -97,6 +123,7 @@ void main()
             shared_l[thread] += shared_l[thread + stride];
             shared_f[thread] += shared_f[thread + stride];
             shared_x[thread] += shared_x[thread + stride];
+            shared_m[thread] += shared_m[thread + stride];
         }
     }
     if (thread != 0) return;
@@ -109,9 +136,13 @@ void main()
      * orders of magnitude over a few texels, and the sampler's linear interpolation of Psi itself overshoots there
      * (the sky low opposite the sun at twilight, 4 % at sun -4 deg); interpolating the fourth root follows a
      * near-exponential fall 4x better, and fp16 keeps the small values' relative precision. */
-    /* Alpha: the second bounce's anisotropy D = E[dir_x^2 - dir_z^2] of L2 (green) x (1 - f_ms) (L2's share of Psi)
-     * x the point's own occlusion (only in the shadow, as the first bounce's real phases): the view march scales the
-     * Rayleigh part of the Psi term by 1 + (3/8) D (v_x^2 - v_y^2) (docs/model.md). 0 for the lesson's model. */
-    float aniso = shared_l[0].g > 0.0 ? shared_x[0] / shared_l[0].g * (1.0 - f_ms.g) * shade : 0.0;
-    imageStore(multiscatter_out, texel, vec4(sqrt(sqrt(min(psi, vec3(FP16_MAX)))), clamp(aniso, -1.0, 1.0)));
+    /* The second bounce's moments: each E[f(dir)] over L2 (green) x 1 - f_ms^2, the share of Psi that keeps L2's
+     * angular distribution (the second and third orders; later ones tend to isotropy: docs/model.md); the view
+     * march turns them into a factor on each phase's part of the Psi term (ms_phase_factor, sky_common.glsl).
+     * All 0 for the lesson's model (its second bounce is isotropic). */
+    float share = real_phase && shared_l[0].g > 0.0 ? (1.0 - f_ms.g * f_ms.g) / shared_l[0].g : 0.0;
+    float d = clamp(shared_x[0] * share, -1.0, 1.0);
+    vec4 moments = clamp(shared_m[0] * share, vec4(-1.0), vec4(1.0));
+    imageStore(multiscatter_out, texel, vec4(sqrt(sqrt(min(psi, vec3(FP16_MAX)))), d));
+    imageStore(multiscatter_out, texel + ivec2(int(size.x), 0), moments);
 }

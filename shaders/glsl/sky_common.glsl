@@ -12,12 +12,50 @@ vec3 lookup_transmittance(float h, float mu)
                                             float(textureSize(ground_irradiance_lut, 0).x)), 0.5)).rgb
 #endif
 
-/* The LUT holds Psi^(1/4) (multiscatter_lut.comp says why) and, in alpha, the second bounce's anisotropy D. */
-vec4 lookup_multiscatter(float h, float mu_s)
+/* Psi and the second bounce's moments at a point (docs/model.md "Multiple scattering"). */
+struct MultiScatter {
+    vec3 psi;       /* per unit sun illuminance */
+    float d;        /* E[w_x^2 - w_y^2] of L2 x its share of Psi (x toward the sun's azimuth, y across, z up) */
+    vec4 moments;   /* Q_zz = E[w_z^2] - 1/3, Q_xz = E[w_x w_z], m_x = E[w_x], m_z = E[w_z], likewise weighted */
+};
+
+/* The LUT's two halves (multiscatter_lut.comp): Psi^(1/4) and D on the left, the other moments on the right; the
+ * sub-UV of one N x N half, halved, stays within it. The lesson's model has no moments (one fetch). */
+MultiScatter lookup_multiscatter(float h, float mu_s)
 {
-    vec4 texel = texture(multiscatter_lut, multiscatter_uv(h, mu_s, vec2(textureSize(multiscatter_lut, 0))));
-    vec3 root2 = texel.rgb * texel.rgb;
-    return vec4(root2 * root2, texel.a);
+    vec2 half_size = vec2(textureSize(multiscatter_lut, 0)) * vec2(0.5, 1.0);
+    vec2 uv = multiscatter_uv(h, mu_s, half_size) * vec2(0.5, 1.0);
+    vec4 left = texture(multiscatter_lut, uv);
+    vec3 root2 = left.rgb * left.rgb;
+    MultiScatter ms;
+    ms.psi = root2 * root2;
+    ms.d = left.a;
+    ms.moments = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE ? vec4(0.0)
+                                                                    : texture(multiscatter_lut, uv + vec2(0.5, 0.0));
+    return ms;
+}
+
+/* The Mie phase's Legendre coefficients k1, k2 (p = sum (2l + 1) k_l P_l / (4 pi)): Henyey-Greenstein g, g^2;
+ * Cornette-Shanks, in closed form from (1 + nu^2) times HG's series (docs/model.md). */
+vec2 mie_legendre_12(float g)
+{
+    float g2 = g * g;
+    if (MIE_PHASE == VKSKY_MIE_PHASE_CORNETTE_SHANKS)
+        return vec2(3.0 * g * (4.0 + g2) / (5.0 * (2.0 + g2)),
+                    3.0 * (32.0 / 21.0 * g2 + 12.0 / 35.0 * g2 * g2 + 2.0 / 15.0) / (4.0 + 2.0 * g2));
+    return vec2(g, g2);
+}
+
+/* The factor on one phase's part of the Psi term for a view direction v (v_x toward the sun's azimuth, v_z up)
+ * from the second bounce's moments: the phase averaged over L2's directions relative to the isotropic 1/(4 pi),
+ * L2 cut to its spherical harmonics of degree <= 2: 1 + 3 k1 v.m + (15/2) k2 v.Q.v (Rayleigh: k = (0, 1/10),
+ * exact). Never below 0. The reference's ms_phase_factor is the same. */
+float ms_phase_factor(MultiScatter ms, float v_x, float v_z, vec2 k)
+{
+    float v_y2 = max(0.0, (1.0 - v_z) * (1.0 + v_z) - v_x * v_x);
+    float vqv = 0.5 * ms.d * (v_x * v_x - v_y2) + 0.5 * ms.moments.x * (3.0 * v_z * v_z - 1.0) +
+                2.0 * ms.moments.y * v_x * v_z;
+    return max(0.0, 1.0 + 3.0 * k.x * (v_x * ms.moments.z + v_z * ms.moments.w) + 7.5 * k.y * vqv);
 }
 
 /* The angular size of a texel of the image being rendered (radians), or 0: point sampling (the composite pass).
@@ -103,6 +141,7 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     float r = seg.r;
     float phase_r = rayleigh_phase(nu);
     float phase_m = mie_phase(nu, atmo.mie_absorption.w);
+    vec2 mie_k = mie_legendre_12(atmo.mie_absorption.w);
     /* Step boundaries at t_stop (i/N)^p: p = 1 uniform, p = 2 Hillaire's quadratic spacing, which puts short
      * steps near the camera where an upward or horizontal ray meets the dense, thin Mie layer. A ray that
      * enters from space starts in the thinnest air, so it keeps uniform steps. */
@@ -122,23 +161,24 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
         float mu_t;
         float visible = sun_visibility(h_t, mu_s_t, mu_t);
         vec3 sun_t = lookup_transmittance(h_t, mu_t);
-        vec4 psi_d = HAS_MULTISCATTER ? lookup_multiscatter(h_t, mu_s_t) : vec4(0.0);
-        /* The second bounce's anisotropy on the Rayleigh part: the view direction in the sample's frame (v_x toward
-         * the sun's azimuth, v_y across it), factor 1 + (3/8) D (v_x^2 - v_y^2); D = 0 for the lesson's model. */
-        float f_r = 1.0;
-        if (SUN_VISIBILITY != VKSKY_SUN_VISIBILITY_LESSON_FADE && psi_d.a != 0.0) {
+        MultiScatter ms = MultiScatter(vec3(0.0), 0.0, vec4(0.0));
+        if (HAS_MULTISCATTER) ms = lookup_multiscatter(h_t, mu_s_t);
+        /* The second bounce's anisotropy: the view direction in the sample's frame (v_x toward the sun's azimuth,
+         * v_z = mu_v up) and each phase's factor on its part of the Psi term; 1 for the lesson's model. */
+        float f_r = 1.0, f_m = 1.0;
+        if (HAS_MULTISCATTER && SUN_VISIBILITY != VKSKY_SUN_VISIBILITY_LESSON_FADE) {
             float mu_v = clamp((r * mu + t) / r_t, -1.0, 1.0);
             float sin2s = (1.0 - mu_s_t) * (1.0 + mu_s_t);
             float v_x = sin2s > 1e-8 ? (nu - mu_v * mu_s_t) * inversesqrt(sin2s) : 0.0;
-            float v_y2 = max(0.0, (1.0 - mu_v) * (1.0 + mu_v) - v_x * v_x);
-            f_r = 1.0 + 0.375 * psi_d.a * (v_x * v_x - v_y2);
+            f_r = ms_phase_factor(ms, v_x, mu_v, vec2(0.0, 0.1));
+            f_m = ms_phase_factor(ms, v_x, mu_v, mie_k);
         }
         /* Single scattering is shadowed by the planet (seed bug 5), the penumbra included; multiple scattering is
          * already integrated over the sphere, shadow included, in the LUT (seed bug 9). */
         vec3 sun_single = visible * sun_t;
         vec3 weight = atmo.sun.rgb * seg.throughput * step_integral(m.extinction, dt, step_t);
-        seg.rayleigh += weight * m.rayleigh * (sun_single * phase_r + psi_d.rgb * f_r);
-        seg.mie += weight * m.mie * (sun_single * phase_m + psi_d.rgb);
+        seg.rayleigh += weight * m.rayleigh * (sun_single * phase_r + ms.psi * f_r);
+        seg.mie += weight * m.mie * (sun_single * phase_m + ms.psi * f_m);
         seg.throughput *= step_t;
     }
     return seg;

@@ -124,8 +124,9 @@ void sun_table_eval(const sun_table *t, const model_atmosphere *a, double h, dou
 #define PSI_COLS (PSI_SEG0 + PSI_SEG1 + PSI_SEG2)
 
 struct psi_table {
-    double v[PSI_ROWS][PSI_COLS][4]; /* segments side by side; the shared end nodes are stored twice; [3]: the
-                                        second bounce's anisotropy D (multiscatter_row), 0 for the lesson's model */
+    double v[PSI_ROWS][PSI_COLS][3 + MS_MOMENTS]; /* segments side by side; the shared end nodes are stored twice;
+                                                     [3..]: the second bounce's moments (multiscatter_row), 0 for
+                                                     the lesson's model */
 };
 
 static const int psi_seg_n[3] = {PSI_SEG0, PSI_SEG1, PSI_SEG2};
@@ -182,7 +183,7 @@ static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int 
 {
     psi_table *t = malloc(sizeof *t);
     const sun_table *st = sun_table_get(a);
-    double mus[PSI_COLS], res[PSI_COLS][3], an[PSI_COLS];
+    double mus[PSI_COLS], res[PSI_COLS][3], an[PSI_COLS][MS_MOMENTS];
     const int lesson = a->sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE;
     int ok = t && st;
     for (int seg = 0; seg < 3; ++seg)
@@ -212,11 +213,13 @@ static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int 
         free(pr.mu);
         for (int c = 0; c < 3; ++c) /* the shared node -0.05 belongs to the 1x-steps side (continuity) */
             res[PSI_SEG0 - 1][c] = res[PSI_SEG0][c];
-        an[PSI_SEG0 - 1] = an[PSI_SEG0];
+        for (int k = 0; k < MS_MOMENTS; ++k)
+            an[PSI_SEG0 - 1][k] = an[PSI_SEG0][k];
         for (int i = 0; i < PSI_COLS; ++i) {
             for (int c = 0; c < 3; ++c)
                 t->v[j][i][c] = log(fmax(res[i][c], 1e-300));
-            t->v[j][i][3] = lesson ? 0.0 : an[i];
+            for (int k = 0; k < MS_MOMENTS; ++k)
+                t->v[j][i][3 + k] = lesson ? 0.0 : an[i][k];
         }
     }
     if (!ok) {
@@ -227,7 +230,7 @@ static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int 
 }
 
 void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3],
-                    double *aniso)
+                    double mom[MS_MOMENTS])
 {
     double u;
     h = ms_altitude(a, h);
@@ -239,7 +242,7 @@ void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, dou
      * of segment 1, the lower end of segment 2), h in y at the bottom row: mirror ghosts there. */
     cubic_taps(u * (psi_seg_n[seg] - 1), psi_seg_n[seg], seg >= 1, seg <= 1, ix, wx);
     cubic_taps(y * (PSI_ROWS - 1), PSI_ROWS, 1, 0, iy, wy);
-    for (int c = 0; c < 4; ++c) {
+    for (int c = 0; c < 3 + MS_MOMENTS; ++c) {
         double s = 0.0, lo = INFINITY, hi = -INFINITY;
         for (int b = 0; b < 4; ++b)
             for (int k = 0; k < 4; ++k) {
@@ -249,8 +252,8 @@ void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, dou
                 hi = v > hi ? v : hi;
             }
         s = clampd(s, lo, hi);
-        if (c == 3)
-            *aniso = s;
+        if (c >= 3)
+            mom[c - 3] = s;
         else
             out[c] = s < -690.0 ? 0.0 : exp(s);
     }

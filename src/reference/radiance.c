@@ -66,6 +66,20 @@ typedef struct sky_ray {
     double Lr[3], Lm[3]; /* in-scattering by phase: Rayleigh-phase species, Mie (each with its Psi share) */
 } sky_ray;
 
+/* The factor on a phase's part of the Psi term for a view direction v (v_x toward the sun's azimuth, v_z up,
+ * v_y^2 = 1 - v_x^2 - v_z^2) from the second bounce's moments (docs/model.md "The second bounce"): the phase
+ * averaged over L2's directions relative to the isotropic 1/(4 pi), with L2 cut to its spherical harmonics of
+ * degree <= 2 (the moments): 1 + 3 k1 v.m + (15/2) k2 v.Q.v, k_l the phase's Legendre coefficients (Rayleigh: 0,
+ * 1/10, exact, as its phase has no higher degree; Henyey-Greenstein: g, g^2). Never below 0. */
+double ms_phase_factor(const double mom[MS_MOMENTS], double vx, double vz, double k1, double k2)
+{
+    double vy2 = fmax(0.0, (1.0 - vz) * (1.0 + vz) - vx * vx);
+    /* v.Q.v with Q_xx - Q_yy = D, Q_xx + Q_yy = -Q_zz */
+    double vqv = 0.5 * mom[MS_D] * (vx * vx - vy2) + 0.5 * mom[MS_QZZ] * (3.0 * vz * vz - 1.0) +
+                 2.0 * mom[MS_QXZ] * vx * vz;
+    return fmax(0.0, 1.0 + 3.0 * k1 * (vx * mom[MS_MX] + vz * mom[MS_MZ]) + 7.5 * k2 * vqv);
+}
+
 /* One midpoint step [t - dt/2, t + dt/2] of the view march (per-step analytic integration). */
 static void sky_step(sky_ray *s, double t, double dt)
 {
@@ -87,24 +101,24 @@ static void sky_step(sky_ray *s, double t, double dt)
         for (int c = 0; c < 3; ++c)
             Ts[c] = exp(-tau[c]);
     }
-    double fr = 1.0; /* the second bounce's anisotropy on the Rayleigh part of the Psi term */
+    double fr = 1.0, fm = 1.0; /* the second bounce's anisotropy on the Rayleigh and Mie parts of the Psi term */
     if (s->psi) {
-        double D;
-        psi_table_eval(s->psi, a, ht, mst, ps, &D);
-        if (D != 0.0 && rt > 0.0) {
+        double mom[MS_MOMENTS];
+        psi_table_eval(s->psi, a, ht, mst, ps, mom);
+        if (rt > 0.0) {
             /* the view direction in the sample's frame: v_z = mu_v, v_x toward the sun's azimuth, v_y across */
             double muv = clampd((s->r * s->mu + t) / rt, -1.0, 1.0), sin2s = (1.0 - mst) * (1.0 + mst);
             double vx = sin2s > 1e-12 ? (s->nu - muv * mst) / sqrt(sin2s) : 0.0;
-            double vy2 = fmax(0.0, (1.0 - muv) * (1.0 + muv) - vx * vx);
-            fr = 1.0 + 0.375 * D * (vx * vx - vy2);
+            fr = ms_phase_factor(mom, vx, muv, 0.0, 0.1);
+            fm = ms_phase_factor(mom, vx, muv, a->mie_g, a->mie_g * a->mie_g);
         }
     }
     /* Psi multiplies the total scattering coefficient, sr + sm: each group takes its own share, so the two parts
-     * add up to the whole source (the anisotropy factor on the Rayleigh share). */
+     * add up to the whole source (each with its phase's anisotropy factor). */
     for (int c = 0; c < 3; ++c) {
         double w = a->sun_illuminance[c] * s->Tv[c] * step_integral(m.ext[c], dt);
         s->Lr[c] += w * m.sr[c] * (vis * Ts[c] * s->pr + ps[c] * fr);
-        s->Lm[c] += w * m.sm[c] * (vis * Ts[c] * s->pm + ps[c]);
+        s->Lm[c] += w * m.sm[c] * (vis * Ts[c] * s->pm + ps[c] * fm);
         s->Tv[c] *= exp(-m.ext[c] * dt);
     }
 }

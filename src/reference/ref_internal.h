@@ -201,6 +201,16 @@ typedef struct polar_rule {
  * sqrt(mu_h - mu) behaviour of the ground distance at grazing. */
 int polar_horizon(const model_atmosphere *a, double h, int n, polar_rule *p);
 
+/* The second bounce's angular moments at a point (docs/model.md "The second bounce's anisotropy"), in the point's
+ * frame x toward the sun's azimuth, y across it, z up, of the second order's incoming light L2 (green), times the
+ * share of Psi that keeps L2's distribution (the 2nd and 3rd orders: 1 - f_ms^2): D = E[w_x^2 - w_y^2], Q_zz = E[w_z^2] - 1/3, Q_xz = E[w_x w_z] (the traceless
+ * second moment; y is a mirror plane, so the other components vanish), m_x = E[w_x], m_z = E[w_z] (the first). */
+enum { MS_D, MS_QZZ, MS_QXZ, MS_MX, MS_MZ, MS_MOMENTS };
+
+/* The model's scheme averages the first bounce's phases over PHASE_CELL^2 points of each direction's cell (the GPU's
+ * multiscatter_lut.comp has the same constant). */
+#define MS_PHASE_CELL 4
+
 /* Psi(h, mu_s[q]) for `count` sun cosines at one (already clamped) altitude: n_az azimuths (midpoints in theta,
  * as the model) times the polar rule, `steps` steps per direction (uniform, or graded with the steps that
  * straddle the earth's shadow integrated piecewise). The nested sun transmittance is integrated directly with
@@ -210,7 +220,7 @@ int polar_horizon(const model_atmosphere *a, double h, int n, polar_rule *p);
  * contribute equally, so only half of them are evaluated. Returns 0 when out of memory (out = 0). */
 int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int count, int n_az,
                      const polar_rule *pr, int steps, int graded, int sun_steps, const sun_table *st,
-                     double (*out)[3], double *aniso);
+                     double (*out)[3], double (*mom)[MS_MOMENTS]);
 
 /* The 10 m altitude clamp of every Psi evaluation. */
 static inline double ms_altitude(const model_atmosphere *a, double h) { return clampd(h, 0.01, atmo_height(a)); }
@@ -233,11 +243,10 @@ typedef struct psi_table psi_table;
  * out of memory. Building is not thread-safe; looking up an existing table is. */
 const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps);
 
-/* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does). */
-/* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does), and *aniso, the second bounce's
- * anisotropy D: the Rayleigh part of the Psi term is scaled by 1 + (3/8) D (v_x^2 - v_y^2) for a view direction v
- * with components v_x toward the sun's azimuth and v_y across it (docs/model.md). */
+/* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does), and mom, the second bounce's moments
+ * (all 0 for the lesson's model); ms_phase_factors turns them into the factors on the Psi term. */
 void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3],
-                    double *aniso);
+                    double mom[MS_MOMENTS]);
+double ms_phase_factor(const double mom[MS_MOMENTS], double vx, double vz, double k1, double k2);
 
 #endif /* VKSKY_REF_INTERNAL_H */

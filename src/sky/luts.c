@@ -20,7 +20,9 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
     gpu_image_create(ctx, &l->transmittance, "transmittance LUT", format, (uint32_t)q->transmittance_width,
                      (uint32_t)q->transmittance_height, 1, usage);
     if (multiscatter)
-        gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format, (uint32_t)q->multiscatter_size,
+        /* Two N x N halves side by side: Psi (and D) left, the second bounce's other moments right (one image, one
+         * descriptor, one barrier; the texel-centre sub-UV keeps each half's bilinear taps inside it). */
+        gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format, 2u * (uint32_t)q->multiscatter_size,
                          (uint32_t)q->multiscatter_size, 1, usage);
     l->multiscatter_view = multiscatter ? l->multiscatter.view : l->transmittance.view;
     gpu_image_create(ctx, &l->skyview, "skyview LUT", HDR_FORMAT, (uint32_t)q->skyview_width,
@@ -115,7 +117,7 @@ void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd)
     /* One 64-thread workgroup per texel (the threads share the sphere directions). */
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_layout, 0, 1, &l->multiscatter_set, 0, NULL);
-    vkCmdDispatch(cmd, l->multiscatter.extent.width, l->multiscatter.extent.height, 1);
+    vkCmdDispatch(cmd, l->multiscatter.extent.width / 2, l->multiscatter.extent.height, 1);   /* a workgroup a texel */
 }
 
 void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *push)
