@@ -1,5 +1,5 @@
 /* --quality auto (issue 16): for every scene class the configuration it picks is a point on the measured
- * speed/accuracy front of that class, in the table of each device kind (quality_table.h: sky GPU ms on an H200;
+ * speed/accuracy front of that class, in the table of each device kind (quality_table.h: sky GPU ms on an H100;
  * quality_table_cpu.h: CPU ms per frame on lavapipe; both measured by tools/tradeoff): no measured configuration is
  * both faster and more accurate, its error is within the stated budget (max(1 %, 1.25 x the best error of the
  * class)), and nothing cheaper meets that budget. The lesson's preset still resolves by name. No GPU. */
