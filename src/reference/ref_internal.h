@@ -203,8 +203,9 @@ int polar_horizon(const model_atmosphere *a, double h, int n, polar_rule *p);
 
 /* The second bounce's angular moments at a point (docs/model.md "The second bounce's anisotropy"), in the point's
  * frame x toward the sun's azimuth, y across it, z up, of the second order's incoming light L2 (green), times the
- * share of Psi that keeps L2's distribution (the 2nd and 3rd orders: 1 - f_ms^2): D = E[w_x^2 - w_y^2], Q_zz = E[w_z^2] - 1/3, Q_xz = E[w_x w_z] (the traceless
- * second moment; y is a mirror plane, so the other components vanish), m_x = E[w_x], m_z = E[w_z] (the first). */
+ * share of Psi that keeps L2's distribution (the 2nd and 3rd orders: 1 - f_ms^2): D = E[w_x^2 - w_y^2],
+ * Q_zz = E[w_z^2] - 1/3, Q_xz = E[w_x w_z] (the traceless second moment; y is a mirror plane, so the other
+ * components vanish), m_x = E[w_x], m_z = E[w_z] (the first). */
 enum { MS_D, MS_QZZ, MS_QXZ, MS_MX, MS_MZ, MS_MOMENTS };
 
 /* The model's scheme averages the first bounce's phases over PHASE_CELL^2 points of each direction's cell (the GPU's
@@ -244,7 +245,7 @@ typedef struct psi_table psi_table;
 const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps);
 
 /* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does), and mom, the second bounce's moments
- * (all 0 for the lesson's model); ms_phase_factors turns them into the factors on the Psi term. */
+ * (all 0 for the lesson's model); ms_phase_factor turns them into the factors on the Psi term. */
 void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3],
                     double mom[MS_MOMENTS]);
 double ms_phase_factor(const double mom[MS_MOMENTS], double vx, double vz, double k1, double k2);
