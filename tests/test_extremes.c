@@ -82,11 +82,11 @@ static result run_case(gpu_context *ctx, const extreme_case *c)
         int count = (int)(e.width * e.height * 4);
         float *lut = malloc(sizeof(float) * (size_t)count);
         test_read_lut(&r, which, lut);
-        /* The multi-scattering LUT's second bounce moments (alpha of its left half, all of its right half) are
+        /* The multi-scattering LUT's second bounce moments (alpha of its first part, all of the other parts) are
          * signed, within [-1, 1]; everything else is >= 0. */
         for (int i = 0; i < count; ++i) {
             int x = (i / 4) % (int)e.width, c = i % 4;
-            int signed_moment = which == 1 && (c == 3 || x >= (int)e.width / 2);
+            int signed_moment = which == 1 && (c == 3 || x >= (int)e.width / VKSKY_MULTISCATTER_PARTS);
             if (!isfinite(lut[i]) || (signed_moment ? fabsf(lut[i]) > 1.0f : lut[i] < 0.0f)) out.finite = false;
         }
         free(lut);

@@ -70,9 +70,10 @@ int main(void)
     no_ms.multiple_scattering = false;
     run ms_off = render(&ctx, &earth, &no_ms, v, true);
     CHECK(ms_off.variant.multiscatter == VK_FALSE && base.variant.multiscatter == VK_TRUE, "variant unchanged");
-    /* The multi-scattering LUT is an atlas of two N x N halves (Psi and D | the second bounce's moments), N = 32. */
-    CHECK(ms_off.ms_extent.width == 0 && base.ms_extent.width == 2 * 32 && base.ms_extent.height == 32,
-          "multiscatter image allocated without multi-scattering (%u), or not the 64x32 atlas (%ux%u)", ms_off.ms_extent.width,
+    /* The multi-scattering LUT is an atlas of three N x N parts (Psi and D | the second bounce's other moments | its
+     * zonal moments), N = 32. */
+    CHECK(ms_off.ms_extent.width == 0 && base.ms_extent.width == 3 * 32 && base.ms_extent.height == 32,
+          "multiscatter image allocated without multi-scattering (%u), or not the 96x32 atlas (%ux%u)", ms_off.ms_extent.width,
           base.ms_extent.width, base.ms_extent.height);
     CHECK(!strstr(ms_off.first_passes, "multiscatter_lut") && strstr(base.first_passes, "multiscatter_lut"),
           "multi-scattering LUT pass recorded without multi-scattering:\n%s", ms_off.first_passes);

@@ -20,8 +20,10 @@ int main(void)
     sky_renderer_render(&r, &f);
 
     enum { TW = 256, TH = 64, MN = 32 };   /* the default LUT sizes */
-    /* The multi-scattering LUT is two MN x MN halves side by side: Psi^(1/4) and D, then the other moments. */
-    static float trans[TW * TH * 4], ms[2 * MN * MN * 4];
+    /* The multi-scattering LUT is VKSKY_MULTISCATTER_PARTS MN x MN parts side by side: Psi^(1/4) and D, the other
+     * moments of degree <= 2, the zonal moments. */
+    enum { MW = VKSKY_MULTISCATTER_PARTS * MN };
+    static float trans[TW * TH * 4], ms[MW * MN * 4];
     test_read_lut(&r, 0, trans);
     test_read_lut(&r, 1, ms);
 
@@ -53,9 +55,9 @@ int main(void)
      * counts. */
     int bad = 0;
     for (int y = 0; y < MN; ++y)
-        for (int x = 0; x < 2 * MN; ++x)
+        for (int x = 0; x < MW; ++x)
             for (int c = 0; c < 4; ++c) {
-                float v = ms[4 * (y * 2 * MN + x) + c];
+                float v = ms[4 * (y * MW + x) + c];
                 int is_psi = x < MN && c < 3;
                 if (!isfinite(v) || (is_psi ? v < 0.0f : fabsf(v) > 1.0f)) ++bad;
             }
@@ -67,7 +69,7 @@ int main(void)
             double h, mu_s, ref[3];
             ref_multiscatter_texel_params(&a, ms_i[i], ms_j[j], MN, MN, &h, &mu_s);
             ref_multiscatter(&a, h, mu_s, 8, 20, 2000, ref);
-            const float *stored = ms + 4 * (ms_j[j] * 2 * MN + ms_i[i]);
+            const float *stored = ms + 4 * (ms_j[j] * MW + ms_i[i]);
             /* The LUT holds Psi^(1/4) (shaders/glsl/multiscatter_lut.comp). */
             double gpu[3];
             for (int c = 0; c < 3; ++c)

@@ -114,6 +114,18 @@ Medium sample_medium(float h)
 
 float rayleigh_phase(float nu) { return 3.0 / (16.0 * PI) * (1.0 + nu * nu); }
 
+/* Legendre polynomials P_3 .. P_6 of x (the multi-scattering LUT's zonal moments, docs/model.md). */
+vec4 legendre_3456(float x)
+{
+    float x2 = x * x;
+    float p2 = 1.5 * x2 - 0.5;
+    float p3 = (2.5 * x2 - 1.5) * x;
+    float p4 = (7.0 * x * p3 - 3.0 * p2) / 4.0;
+    float p5 = (9.0 * x * p4 - 4.0 * p3) / 5.0;
+    float p6 = (11.0 * x * p5 - 5.0 * p4) / 6.0;
+    return vec4(p3, p4, p5, p6);
+}
+
 /* Cornette-Shanks: Henyey-Greenstein with a Rayleigh-like (1 + nu^2) factor, normalised. */
 float cornette_shanks_phase(float nu, float g)
 {

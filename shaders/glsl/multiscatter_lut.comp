@@ -1,8 +1,8 @@
 #version 450
 /* Multi-scattering LUT (Hillaire 2020, section 5.5): Psi(h, mu_s) = L_2nd / (1 - f_ms), per unit sun
  * illuminance, from 64 sphere directions x 20 steps per texel, and the second bounce's moments of L_2nd's
- * directions (docs/model.md). Two N x N halves side by side: left Psi^(1/4) and D, right Q_zz, Q_xz, m_x, m_z.
- * Reads the transmittance LUT. */
+ * directions (docs/model.md). Three N x N parts side by side (VKSKY_MULTISCATTER_PARTS): Psi^(1/4) and D;
+ * Q_zz, Q_xz, m_x, m_z; the zonal moments E[P_l(w_up)] of degrees 3 to 6. Reads the transmittance LUT. */
 #extension GL_GOOGLE_include_directive : require
 #include "atmosphere.glsl"
 
@@ -23,12 +23,13 @@ shared vec3 shared_l[THREADS];
 shared vec3 shared_f[THREADS];
 shared float shared_x[THREADS];
 shared vec4 shared_m[THREADS];
+shared vec4 shared_z[THREADS];
 
 void main()
 {
     ivec2 texel = ivec2(gl_WorkGroupID.xy);
     uint thread = gl_LocalInvocationIndex;
-    vec2 size = vec2(imageSize(multiscatter_out)) * vec2(0.5, 1.0);   /* one half: N x N */
+    vec2 size = vec2(imageSize(multiscatter_out)) * vec2(1.0 / float(VKSKY_MULTISCATTER_PARTS), 1.0); /* a part */
     vec2 t_size = vec2(textureSize(transmittance_lut, 0));
     vec2 uv = (vec2(texel) + 0.5) / size;
     float mu_s = multiscatter_mu_s_of_x(sub_uv_to_unit(uv.x, size.x));
@@ -47,6 +48,9 @@ void main()
      * first moment by dir_x and dir_y. */
     float l_x = 0.0;
     vec4 l_m = vec4(0.0);
+    /* ... and by the Legendre polynomials P_3 .. P_6 of dir_y (the zonal moments: L2's part symmetric about the
+     * vertical, the bright band of long paths along the horizon, to the degree Mie's forward lobe needs). */
+    vec4 l_z = vec4(0.0);
     for (int d = int(thread); d < dir_count; d += THREADS) {
         int i = d / sqrt_dirs, j = d - i * sqrt_dirs;
         float theta = 2.0 * PI * (float(i) + 0.5) / float(sqrt_dirs);
@@ -111,11 +115,13 @@ void main()
         l_2nd += l_dir;
         l_x += l_dir.g * (dir.x * dir.x - dir.z * dir.z);
         l_m += l_dir.g * vec4(dir.y * dir.y - 1.0 / 3.0, dir.x * dir.y, dir.x, dir.y);
+        l_z += l_dir.g * legendre_3456(dir.y);
     }
     shared_l[thread] = l_2nd;
     shared_f[thread] = f_ms;
     shared_x[thread] = l_x;
     shared_m[thread] = l_m;
+    shared_z[thread] = l_z;
     /* Tree sum over the workgroup; barrier() orders the shared-memory writes and reads between steps. */
     for (uint stride = THREADS / 2; stride > 0; stride /= 2) {
         barrier();
@@ -124,6 +130,7 @@ void main()
             shared_f[thread] += shared_f[thread + stride];
             shared_x[thread] += shared_x[thread + stride];
             shared_m[thread] += shared_m[thread + stride];
+            shared_z[thread] += shared_z[thread + stride];
         }
     }
     if (thread != 0) return;
@@ -143,6 +150,8 @@ void main()
     float share = real_phase && shared_l[0].g > 0.0 ? (1.0 - f_ms.g * f_ms.g) / shared_l[0].g : 0.0;
     float d = clamp(shared_x[0] * share, -1.0, 1.0);
     vec4 moments = clamp(shared_m[0] * share, vec4(-1.0), vec4(1.0));
+    vec4 zonal = clamp(shared_z[0] * share, vec4(-1.0), vec4(1.0));
     imageStore(multiscatter_out, texel, vec4(sqrt(sqrt(min(psi, vec3(FP16_MAX)))), d));
     imageStore(multiscatter_out, texel + ivec2(int(size.x), 0), moments);
+    imageStore(multiscatter_out, texel + ivec2(2 * int(size.x), 0), zonal);
 }

@@ -122,6 +122,9 @@ VKSKY_STRUCT(PostPush) {
 #define VKSKY_SUN_VISIBILITY_LESSON_FADE 1
 #define VKSKY_SPEC_AP_RANGE 15          /* the aerial-perspective volume's (ap_volume.c): its range in km */
 #define VKSKY_SPEC_AP_DISTRIBUTION 16   /* and its slice distribution exponent (1 linear, 2 quadratic) */
+/* The multi-scattering LUT is an atlas of this many N x N parts side by side (multiscatter_lut.comp): Psi^(1/4)
+ * and D; Q_zz, Q_xz, m_x, m_z; the zonal moments of degrees 3 to 6. */
+#define VKSKY_MULTISCATTER_PARTS 3
 #define VKSKY_MIE_PHASE_HG 0
 #define VKSKY_MIE_PHASE_CORNETTE_SHANKS 1
 

@@ -17,45 +17,73 @@ struct MultiScatter {
     vec3 psi;       /* per unit sun illuminance */
     float d;        /* E[w_x^2 - w_y^2] of L2 x its share of Psi (x toward the sun's azimuth, y across, z up) */
     vec4 moments;   /* Q_zz = E[w_z^2] - 1/3, Q_xz = E[w_x w_z], m_x = E[w_x], m_z = E[w_z], likewise weighted */
+    vec4 zonal;     /* E[P_l(w_z)] for l = 3 .. 6, likewise weighted */
 };
 
-/* The LUT's two halves (multiscatter_lut.comp): Psi^(1/4) and D on the left, the other moments on the right; the
- * sub-UV of one N x N half, halved, stays within it. The lesson's model has no moments (one fetch). */
+/* The LUT's three parts (multiscatter_lut.comp): Psi^(1/4) and D, the other moments of degree <= 2, the zonal
+ * moments; the sub-UV of one N x N part, scaled by 1/3, stays within it. The lesson's model has no moments (one
+ * fetch). */
 MultiScatter lookup_multiscatter(float h, float mu_s)
 {
-    vec2 half_size = vec2(textureSize(multiscatter_lut, 0)) * vec2(0.5, 1.0);
-    vec2 uv = multiscatter_uv(h, mu_s, half_size) * vec2(0.5, 1.0);
+    const float part = 1.0 / float(VKSKY_MULTISCATTER_PARTS);
+    vec2 part_size = vec2(textureSize(multiscatter_lut, 0)) * vec2(part, 1.0);
+    vec2 uv = multiscatter_uv(h, mu_s, part_size) * vec2(part, 1.0);
     vec4 left = texture(multiscatter_lut, uv);
     vec3 root2 = left.rgb * left.rgb;
     MultiScatter ms;
     ms.psi = root2 * root2;
     ms.d = left.a;
-    ms.moments = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE ? vec4(0.0)
-                                                                    : texture(multiscatter_lut, uv + vec2(0.5, 0.0));
+    bool lesson = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE;
+    ms.moments = lesson ? vec4(0.0) : texture(multiscatter_lut, uv + vec2(part, 0.0));
+    ms.zonal = lesson ? vec4(0.0) : texture(multiscatter_lut, uv + vec2(2.0 * part, 0.0));
     return ms;
 }
 
-/* The Mie phase's Legendre coefficients k1, k2 (p = sum (2l + 1) k_l P_l / (4 pi)): Henyey-Greenstein g, g^2;
- * Cornette-Shanks, in closed form from (1 + nu^2) times HG's series (docs/model.md). */
-vec2 mie_legendre_12(float g)
+/* A phase's Legendre coefficients k_1 .. k_6 (p = sum (2l + 1) k_l P_l / (4 pi)). */
+struct PhaseLegendre {
+    vec2 low;    /* k_1, k_2 */
+    vec4 zonal;  /* k_3 .. k_6 */
+};
+const PhaseLegendre RAYLEIGH_LEGENDRE = PhaseLegendre(vec2(0.0, 0.1), vec4(0.0)); /* exact: degree 2 */
+
+/* The Mie phase's: Henyey-Greenstein g^l; Cornette-Shanks, (3 / (2 (2 + g^2))) (1 + nu^2) times HG's series,
+ * re-expanded with nu^2 P_l = a_l P_(l+2) + b_l P_l + c_l P_(l-2) (docs/model.md). */
+PhaseLegendre mie_legendre(float g)
 {
-    float g2 = g * g;
-    if (MIE_PHASE == VKSKY_MIE_PHASE_CORNETTE_SHANKS)
-        return vec2(3.0 * g * (4.0 + g2) / (5.0 * (2.0 + g2)),
-                    3.0 * (32.0 / 21.0 * g2 + 12.0 / 35.0 * g2 * g2 + 2.0 / 15.0) / (4.0 + 2.0 * g2));
-    return vec2(g, g2);
+    float hg[9];  /* (2l + 1) g^l, l = 0 .. 8 */
+    float gl = 1.0;
+    for (int l = 0; l <= 8; ++l) {
+        hg[l] = float(2 * l + 1) * gl;
+        gl *= g;
+    }
+    float k[7];
+    for (int l = 1; l <= 6; ++l) {
+        if (MIE_PHASE == VKSKY_MIE_PHASE_CORNETTE_SHANKS) {
+            float fl = float(l), below = fl - 2.0, above = fl + 2.0;
+            float b = (2.0 * fl * fl + 2.0 * fl - 1.0) / ((2.0 * fl - 1.0) * (2.0 * fl + 3.0));
+            float a = (below + 1.0) * (below + 2.0) / ((2.0 * below + 1.0) * (2.0 * below + 3.0));
+            float c = above * (above - 1.0) / ((2.0 * above - 1.0) * (2.0 * above + 1.0));
+            float sum = hg[l] * (1.0 + b) + (l >= 2 ? hg[max(l - 2, 0)] * a : 0.0) + hg[l + 2] * c;
+            k[l] = 3.0 / (2.0 * (2.0 + g * g)) * sum / float(2 * l + 1);
+        } else {
+            k[l] = hg[l] / float(2 * l + 1);
+        }
+    }
+    return PhaseLegendre(vec2(k[1], k[2]), vec4(k[3], k[4], k[5], k[6]));
 }
 
 /* The factor on one phase's part of the Psi term for a view direction v (v_x toward the sun's azimuth, v_z up)
  * from the second bounce's moments: the phase averaged over L2's directions relative to the isotropic 1/(4 pi),
- * L2 cut to its spherical harmonics of degree <= 2: 1 + 3 k1 v.m + (15/2) k2 v.Q.v (Rayleigh: k = (0, 1/10),
+ * L2 cut to its spherical harmonics of degree <= 2 and its zonal part to degree 6:
+ * 1 + 3 k1 v.m + (15/2) k2 v.Q.v + sum_(l=3..6) (2l + 1) k_l E[P_l(w_z)] P_l(v_z) (Rayleigh: k = (0, 1/10),
  * exact). Never below 0. The reference's ms_phase_factor is the same. */
-float ms_phase_factor(MultiScatter ms, float v_x, float v_z, vec2 k)
+float ms_phase_factor(MultiScatter ms, float v_x, float v_z, PhaseLegendre k)
 {
     float v_y2 = max(0.0, (1.0 - v_z) * (1.0 + v_z) - v_x * v_x);
     float vqv = 0.5 * ms.d * (v_x * v_x - v_y2) + 0.5 * ms.moments.x * (3.0 * v_z * v_z - 1.0) +
                 2.0 * ms.moments.y * v_x * v_z;
-    return max(0.0, 1.0 + 3.0 * k.x * (v_x * ms.moments.z + v_z * ms.moments.w) + 7.5 * k.y * vqv);
+    float zonal = dot(vec4(7.0, 9.0, 11.0, 13.0) * k.zonal * ms.zonal, legendre_3456(v_z));
+    return max(0.0, 1.0 + 3.0 * k.low.x * (v_x * ms.moments.z + v_z * ms.moments.w) + 7.5 * k.low.y * vqv + zonal);
 }
 
 /* The angular size of a texel of the image being rendered (radians), or 0: point sampling (the composite pass).
@@ -141,7 +169,7 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     float r = seg.r;
     float phase_r = rayleigh_phase(nu);
     float phase_m = mie_phase(nu, atmo.mie_absorption.w);
-    vec2 mie_k = mie_legendre_12(atmo.mie_absorption.w);
+    PhaseLegendre mie_k = mie_legendre(atmo.mie_absorption.w);
     /* Step boundaries at t_stop (i/N)^p: p = 1 uniform, p = 2 Hillaire's quadratic spacing, which puts short
      * steps near the camera where an upward or horizontal ray meets the dense, thin Mie layer. A ray that
      * enters from space starts in the thinnest air, so it keeps uniform steps. */
@@ -161,7 +189,7 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
         float mu_t;
         float visible = sun_visibility(h_t, mu_s_t, mu_t);
         vec3 sun_t = lookup_transmittance(h_t, mu_t);
-        MultiScatter ms = MultiScatter(vec3(0.0), 0.0, vec4(0.0));
+        MultiScatter ms = MultiScatter(vec3(0.0), 0.0, vec4(0.0), vec4(0.0));
         if (HAS_MULTISCATTER) ms = lookup_multiscatter(h_t, mu_s_t);
         /* The second bounce's anisotropy: the view direction in the sample's frame (v_x toward the sun's azimuth,
          * v_z = mu_v up) and each phase's factor on its part of the Psi term; 1 for the lesson's model. */
@@ -170,7 +198,7 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
             float mu_v = clamp((r * mu + t) / r_t, -1.0, 1.0);
             float sin2s = (1.0 - mu_s_t) * (1.0 + mu_s_t);
             float v_x = sin2s > 1e-8 ? (nu - mu_v * mu_s_t) * inversesqrt(sin2s) : 0.0;
-            f_r = ms_phase_factor(ms, v_x, mu_v, vec2(0.0, 0.1));
+            f_r = ms_phase_factor(ms, v_x, mu_v, RAYLEIGH_LEGENDRE);
             f_m = ms_phase_factor(ms, v_x, mu_v, mie_k);
         }
         /* Single scattering is shadowed by the planet (seed bug 5), the penumbra included; multiple scattering is

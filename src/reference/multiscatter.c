@@ -71,6 +71,16 @@ int polar_horizon(const model_atmosphere *a, double h, int n, polar_rule *p)
     return 1;
 }
 
+/* P_0(x) .. P_n(x) by Bonnet's recurrence. */
+void legendre_upto(double x, int n, double *p)
+{
+    p[0] = 1.0;
+    if (n >= 1)
+        p[1] = x;
+    for (int l = 2; l <= n; ++l)
+        p[l] = ((2 * l - 1) * x * p[l - 1] - (l - 1) * p[l - 2]) / l;
+}
+
 /* Sun transmittance at a point: direct (sun_steps) or from the sun table. */
 static void sun_T(const model_atmosphere *a, const sun_table *st, int sun_steps, double h, double mu, double T[3])
 {
@@ -186,6 +196,8 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
     for (int j = 0; j < pr->count; ++j) {
         double mu = pr->mu[j], wj = pr->w[j];
         double sin_phi = sqrt(fmax(0.0, (1.0 - mu) * (1.0 + mu)));
+        double pl_mu[MS_ZONAL_LAST + 1]; /* Legendre P_l(mu) for the zonal moments */
+        legendre_upto(mu, MS_ZONAL_LAST, pl_mu);
         double tend;
         int ground = hit_ground(a, h, mu, &tend);
         if (!ground)
@@ -315,6 +327,8 @@ int multiscatter_row(const model_atmosphere *a, double h, const double *mus, int
                     L[q][c] += wr[c] * acc[c] + wm[c] * accm[c];
                 if (L2m) {
                     double l0 = wr[1] * acc[1] + wm[1] * accm[1], l1 = wr[1] * a1 + wm[1] * a1m;
+                    for (int l = MS_ZONAL_FIRST; l <= MS_ZONAL_LAST; ++l)
+                        L2m[q][MS_Z3 + l - MS_ZONAL_FIRST] += l0 * pl_mu[l];
                     L2m[q][MS_D] += (wr[1] * ax + wm[1] * axm) * sin_phi * sin_phi;
                     L2m[q][MS_QZZ] += l0 * (mu * mu - 1.0 / 3.0);
                     L2m[q][MS_QXZ] += l1 * sin_phi * mu;

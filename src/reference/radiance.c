@@ -64,20 +64,27 @@ typedef struct sky_ray {
     const psi_table *psi;
     double Tv[3];
     double Lr[3], Lm[3]; /* in-scattering by phase: Rayleigh-phase species, Mie (each with its Psi share) */
+    double k_rayleigh[MS_ZONAL_LAST], k_mie[MS_ZONAL_LAST]; /* the phases' Legendre coefficients k_1 .. k_6 */
 } sky_ray;
 
 /* The factor on a phase's part of the Psi term for a view direction v (v_x toward the sun's azimuth, v_z up,
  * v_y^2 = 1 - v_x^2 - v_z^2) from the second bounce's moments (docs/model.md "The second bounce"): the phase
  * averaged over L2's directions relative to the isotropic 1/(4 pi), with L2 cut to its spherical harmonics of
- * degree <= 2 (the moments): 1 + 3 k1 v.m + (15/2) k2 v.Q.v, k_l the phase's Legendre coefficients (Rayleigh: 0,
- * 1/10, exact, as its phase has no higher degree; Henyey-Greenstein: g, g^2). Never below 0. */
-double ms_phase_factor(const double mom[MS_MOMENTS], double vx, double vz, double k1, double k2)
+ * degree <= 2 (the moments) and its zonal part (symmetric about the vertical) to degree 6: 1 + 3 k1 v.m +
+ * (15/2) k2 v.Q.v + sum over l = 3..6 of (2l + 1) k_l E[P_l(w_z)] P_l(v_z), k_l the phase's Legendre coefficients
+ * (Rayleigh: 0, 1/10 and no higher, exact; Henyey-Greenstein: g^l). Never below 0. */
+double ms_phase_factor(const double mom[MS_MOMENTS], double vx, double vz, const double k[MS_ZONAL_LAST])
 {
     double vy2 = fmax(0.0, (1.0 - vz) * (1.0 + vz) - vx * vx);
     /* v.Q.v with Q_xx - Q_yy = D, Q_xx + Q_yy = -Q_zz */
     double vqv = 0.5 * mom[MS_D] * (vx * vx - vy2) + 0.5 * mom[MS_QZZ] * (3.0 * vz * vz - 1.0) +
                  2.0 * mom[MS_QXZ] * vx * vz;
-    return fmax(0.0, 1.0 + 3.0 * k1 * (vx * mom[MS_MX] + vz * mom[MS_MZ]) + 7.5 * k2 * vqv);
+    double f = 1.0 + 3.0 * k[0] * (vx * mom[MS_MX] + vz * mom[MS_MZ]) + 7.5 * k[1] * vqv;
+    double pl[MS_ZONAL_LAST + 1];
+    legendre_upto(vz, MS_ZONAL_LAST, pl);
+    for (int l = MS_ZONAL_FIRST; l <= MS_ZONAL_LAST; ++l)
+        f += (2 * l + 1) * k[l - 1] * mom[MS_Z3 + l - MS_ZONAL_FIRST] * pl[l];
+    return fmax(0.0, f);
 }
 
 /* One midpoint step [t - dt/2, t + dt/2] of the view march (per-step analytic integration). */
@@ -109,8 +116,8 @@ static void sky_step(sky_ray *s, double t, double dt)
             /* the view direction in the sample's frame: v_z = mu_v, v_x toward the sun's azimuth, v_y across */
             double muv = clampd((s->r * s->mu + t) / rt, -1.0, 1.0), sin2s = (1.0 - mst) * (1.0 + mst);
             double vx = sin2s > 1e-12 ? (s->nu - muv * mst) / sqrt(sin2s) : 0.0;
-            fr = ms_phase_factor(mom, vx, muv, 0.0, 0.1);
-            fm = ms_phase_factor(mom, vx, muv, a->mie_g, a->mie_g * a->mie_g);
+            fr = ms_phase_factor(mom, vx, muv, s->k_rayleigh);
+            fm = ms_phase_factor(mom, vx, muv, s->k_mie);
         }
     }
     /* Psi multiplies the total scattering coefficient, sr + sm: each group takes its own share, so the two parts
@@ -131,7 +138,9 @@ static void sky_march(const model_atmosphere *a, double h, double mu, double mus
                       int view_steps, int sun_steps, const psi_table *psi, ref_aerial *out)
 {
     sky_ray s = {a, h, a->bottom_radius + h, mu, mus, nu, phase_rayleigh(nu), phase_hg(a->mie_g, nu),
-                 sun_steps, psi, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+                 sun_steps, psi, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.1}, {0.0}};
+    for (int l = 1; l <= MS_ZONAL_LAST; ++l)
+        s.k_mie[l - 1] = pow(a->mie_g, l); /* Henyey-Greenstein */
     double tend, cuts[MAX_CUTS];
     int ground = hit_ground(a, h, mu, &tend);
     if (!ground)

@@ -206,7 +206,15 @@ int polar_horizon(const model_atmosphere *a, double h, int n, polar_rule *p);
  * share of Psi that keeps L2's distribution (the 2nd and 3rd orders: 1 - f_ms^2): D = E[w_x^2 - w_y^2],
  * Q_zz = E[w_z^2] - 1/3, Q_xz = E[w_x w_z] (the traceless second moment; y is a mirror plane, so the other
  * components vanish), m_x = E[w_x], m_z = E[w_z] (the first). */
-enum { MS_D, MS_QZZ, MS_QXZ, MS_MX, MS_MZ, MS_MOMENTS };
+enum { MS_D, MS_QZZ, MS_QXZ, MS_MX, MS_MZ, MS_Z3, MS_Z4, MS_Z5, MS_Z6, MS_MOMENTS };
+/* ... and the zonal moments of degrees 3 to 6, MS_Z3 + (l - 3) = E[P_l(w_z)] likewise weighted: the part of L2
+ * that is symmetric about the vertical (the bright band of long paths along the horizon) to a higher degree, for
+ * Mie's forward lobe, whose Legendre coefficients g^l fall slowly (docs/model.md). */
+#define MS_ZONAL_FIRST 3
+#define MS_ZONAL_LAST 6
+
+/* P_0(x) .. P_n(x) into p[0 .. n]. */
+void legendre_upto(double x, int n, double *p);
 
 /* The model's scheme averages the first bounce's phases over PHASE_CELL^2 points of each direction's cell (the GPU's
  * multiscatter_lut.comp has the same constant). */
@@ -248,6 +256,7 @@ const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int 
  * (all 0 for the lesson's model); ms_phase_factor turns them into the factors on the Psi term. */
 void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3],
                     double mom[MS_MOMENTS]);
-double ms_phase_factor(const double mom[MS_MOMENTS], double vx, double vz, double k1, double k2);
+/* k: the phase's Legendre coefficients k_1 .. k_6 (Rayleigh: 0, 1/10, 0, ...; Henyey-Greenstein: g^l). */
+double ms_phase_factor(const double mom[MS_MOMENTS], double vx, double vz, const double k[MS_ZONAL_LAST]);
 
 #endif /* VKSKY_REF_INTERNAL_H */

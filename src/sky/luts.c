@@ -20,10 +20,12 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
     gpu_image_create(ctx, &l->transmittance, "transmittance LUT", format, (uint32_t)q->transmittance_width,
                      (uint32_t)q->transmittance_height, 1, usage);
     if (multiscatter)
-        /* Two N x N halves side by side: Psi (and D) left, the second bounce's other moments right (one image, one
-         * descriptor, one barrier; the texel-centre sub-UV keeps each half's bilinear taps inside it). */
-        gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format, 2u * (uint32_t)q->multiscatter_size,
-                         (uint32_t)q->multiscatter_size, 1, usage);
+        /* VKSKY_MULTISCATTER_PARTS N x N parts side by side: Psi (and D), the second bounce's other moments, its
+         * zonal moments (one image, one descriptor, one barrier; the texel-centre sub-UV keeps each part's
+         * bilinear taps inside it). */
+        gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format,
+                         VKSKY_MULTISCATTER_PARTS * (uint32_t)q->multiscatter_size, (uint32_t)q->multiscatter_size, 1,
+                         usage);
     l->multiscatter_view = multiscatter ? l->multiscatter.view : l->transmittance.view;
     gpu_image_create(ctx, &l->skyview, "skyview LUT", HDR_FORMAT, (uint32_t)q->skyview_width,
                      (uint32_t)q->skyview_height, 1, usage);
@@ -117,7 +119,7 @@ void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd)
     /* One 64-thread workgroup per texel (the threads share the sphere directions). */
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_layout, 0, 1, &l->multiscatter_set, 0, NULL);
-    vkCmdDispatch(cmd, l->multiscatter.extent.width / 2, l->multiscatter.extent.height, 1);   /* a workgroup a texel */
+    vkCmdDispatch(cmd, l->multiscatter.extent.width / VKSKY_MULTISCATTER_PARTS, l->multiscatter.extent.height, 1);   /* a workgroup a texel */
 }
 
 void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *push)
