@@ -30,6 +30,25 @@ typedef struct row {
     double target;     /* the bound, asserted */
 } row;
 
+/* One row measured: both models (the converged reference) and the path tracer (seed `seed`) from 1 m; the
+ * luminances of the penumbra model, the lesson's fade and the tracer, and the tracer's standard error. */
+typedef struct measured { double model, fade, pt, pt_se; } measured;
+
+static measured measure(const model_atmosphere *pen, const model_atmosphere *fade, const row *r,
+                        unsigned long long seed)
+{
+    double v[3], s[3], M[3], F[3], P[3], se[3];
+    ref_dir(r->az * DEG, r->el * DEG, v);
+    ref_dir(0.0, r->sun_el * DEG, s);
+    ref_sky_radiance(pen, 0.001, v, s, ref_quality_converged(), M);
+    ref_sky_radiance(fade, 0.001, v, s, ref_quality_converged(), F);
+    pt_settings ps = {r->samples, seed, 0.0, 0, 2};
+    pt_radiance(pen, 0.001, v, s, &ps, P, se);
+    measured m = {lum(M), lum(F), lum(P), 0.0};
+    m.pt_se = sqrt(0.2126 * 0.2126 * se[0] * se[0] + 0.7152 * 0.7152 * se[1] * se[1] + 0.0722 * 0.0722 * se[2] * se[2]);
+    return m;
+}
+
 int main(void)
 {
     const row rows[] = {
@@ -54,16 +73,8 @@ int main(void)
     int failures = 0;
     for (int i = 0; i < n; ++i) {
         const row *r = &rows[i];
-        double v[3], s[3], M[3], F[3], P[3], se[3];
-        ref_dir(r->az * DEG, r->el * DEG, v);
-        ref_dir(0.0, r->sun_el * DEG, s);
-        ref_sky_radiance(&pen, 0.001, v, s, ref_quality_converged(), M);
-        ref_sky_radiance(&fade, 0.001, v, s, ref_quality_converged(), F);
-        pt_settings ps = {r->samples, 1717ull + 31ull * (unsigned long long)i, 0.0, 0, 2};
-        pt_radiance(&pen, 0.001, v, s, &ps, P, se);
-        double Lp = lum(P), Lm = lum(M), Lf = lum(F);
-        double sL = sqrt(0.2126 * 0.2126 * se[0] * se[0] + 0.7152 * 0.7152 * se[1] * se[1] +
-                         0.0722 * 0.0722 * se[2] * se[2]);
+        measured m = measure(&pen, &fade, r, 1717ull + 31ull * (unsigned long long)i);
+        double Lp = m.pt, Lm = m.model, Lf = m.fade, sL = m.pt_se;
         double err = (Lm - Lp) / Lp, err_fade = (Lf - Lp) / Lp;
         double margin = 3.0 * fabs(Lm / Lp) * sL / Lp; /* 3 sigma of the ratio */
         int ok = fabs(err) <= r->target + margin;
@@ -85,16 +96,9 @@ int main(void)
     };
     for (int i = 0; i < (int)(sizeof day / sizeof day[0]); ++i) {
         const row *r = &day[i];
-        double v[3], s[3], M[3], F[3], P[3], se[3];
-        ref_dir(r->az * DEG, r->el * DEG, v);
-        ref_dir(0.0, r->sun_el * DEG, s);
-        ref_sky_radiance(&pen, 0.001, v, s, ref_quality_converged(), M);
-        ref_sky_radiance(&fade, 0.001, v, s, ref_quality_converged(), F);
-        pt_settings ps = {r->samples, 4242ull + 31ull * (unsigned long long)i, 0.0, 0, 2};
-        pt_radiance(&pen, 0.001, v, s, &ps, P, se);
-        double Lp = lum(P), sL = sqrt(0.2126 * 0.2126 * se[0] * se[0] + 0.7152 * 0.7152 * se[1] * se[1] +
-                                      0.0722 * 0.0722 * se[2] * se[2]);
-        double err = (lum(M) - Lp) / Lp, err_fade = (lum(F) - Lp) / Lp, margin = 3.0 * sL / Lp;
+        measured m = measure(&pen, &fade, r, 4242ull + 31ull * (unsigned long long)i);
+        double Lp = m.pt, sL = m.pt_se;
+        double err = (m.model - Lp) / Lp, err_fade = (m.fade - Lp) / Lp, margin = 3.0 * sL / Lp;
         int ok = fabs(err) <= fabs(err_fade) + margin;
         printf("sun %+4.0f %-14s penumbra %+6.2f%%  lesson fade %+6.2f%%  (PT stderr %.3f%%): no worse %s\n", r->sun_el,
                r->view, 100 * err, 100 * err_fade, 100 * sL / Lp, ok ? "ok" : "FAIL");
