@@ -107,6 +107,7 @@ char *exr_header_command_line(int argc, char **argv)
                 continue;
             }
             if (!strncmp(argv[i], "--frame-range=", 14)) continue;
+            if (!strcmp(argv[i], "--skip-existing")) continue;   /* how a job resumed, not what the frame is */
             if (out) out[n] = ' ';
             ++n;
             n += quoted(argv[i], out ? out + n : NULL);

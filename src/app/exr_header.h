@@ -25,7 +25,8 @@ typedef struct exr_header {
 /* The header of frame `frame` (-1: not a sequence) rendered from *o. 0 ok, 1 out of memory. exr_header_free after. */
 int exr_header_build(exr_header *h, const options *o, int frame);
 void exr_header_free(exr_header *h);
-/* The command line as one shell-quoted string, the program as "vksky", without --frame-range (which only says which
- * job of a sequence rendered a frame: the frames of any split are the same files). malloc'd; NULL: out of memory. */
+/* The command line as one shell-quoted string, the program as "vksky", without --frame-range and --skip-existing
+ * (which only say which job of a sequence rendered a frame and whether it resumed: the frames of any split, resumed
+ * or not, are the same files). malloc'd; NULL: out of memory. */
 char *exr_header_command_line(int argc, char **argv);
 #endif

@@ -7,6 +7,7 @@ const flag flags_table[] = {
     {"--animate", ARG_STRING, 0, 0, "PARAM=FROM:TO  animate a numeric flag (sun-elevation, yaw, altitude, exposure, mie-g, ...) or time (local clock, decimal hours, with --date) linearly over the frames; repeatable"},
     {"--frame-count", ARG_INT, 1, 1000000, "N  frames of the sequence (default 1); with N > 1 each --render needs one %d (e.g. sky_%04d.exr), the frame number"},
     {"--frame-range", ARG_STRING, 0, 0, "A:B  render only frames A to B (inclusive, from 0) of the sequence: split it across jobs"},
+    {"--skip-existing", ARG_NONE, 0, 0, "  render only the frames whose files are missing (an EXR of another frame or scene is rendered again): resume a sequence"},
     {"--width", ARG_INT, 1, 16384, "N      image width in pixels (default 1280)"},
     {"--height", ARG_INT, 1, 16384, "N      image height in pixels (default 720)"},
     {"--projection", ARG_STRING, 0, 0, "P perspective | equirect | cubemap | fisheye: camera view, 2:1 latitude-longitude map, OpenEXR cube (face = --width), all-sky fisheye (default perspective)"},

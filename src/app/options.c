@@ -278,10 +278,14 @@ static bool window_mode(int argc, char **argv)
 
 /* Will the run's device (--device N, or the default choice) be a CPU implementation? Asked of a bare instance,
  * only when --quality auto chooses: its measured tables differ by device kind. No device: the GPU table (the run
- * reports the missing device itself). */
-static bool device_is_cpu(const options *o)
+ * reports the missing device itself). A sequence: the GPU table on every device, so that its frames are the same
+ * files wherever each job of a farm ran (docs/sequences.md). VKSKY_QUALITY_TABLE=cpu|gpu (tests) forces the answer. */
+static bool device_is_cpu(const options *o, int argc, char **argv)
 {
     if (o->reference || o->help || o->version || o->list_devices) return false;   /* no device in this run */
+    if (options_sequence_named(argc, argv)) return false;
+    const char *forced = getenv("VKSKY_QUALITY_TABLE");
+    if (forced && *forced) return !strcmp(forced, "cpu");
     VkPhysicalDeviceType type;
     return gpu_device_type(o->device_index, &type) == 0 && type == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
@@ -324,7 +328,7 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         unsigned classes = quality_classes ? quality_classes
                                            : quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
         if (automatic) {
-            q = quality_auto(classes, device_is_cpu(o), &measured);
+            q = quality_auto(classes, device_is_cpu(o, argc, argv), &measured);
             o->quality = NULL;
             o->quality_auto = true;
             o->quality_classes = classes;

@@ -112,7 +112,19 @@ int options_sequence_apply(options *o, const char *n, const char *value, double 
     if (!strcmp(n, "--animate")) return parse_animate(o, value);
     if (!strcmp(n, "--frame-count")) return o->frame_count = (int)x, 0;
     if (!strcmp(n, "--frame-range")) return parse_range(o, value);
+    if (!strcmp(n, "--skip-existing")) return o->skip_existing = true, 0;
     return -1;
+}
+
+bool options_sequence_named(int argc, char **argv)
+{
+    static const char *const names[] = {"--animate", "--frame-count", "--frame-range"};
+    for (int i = 1; i < argc; ++i)
+        for (size_t k = 0; k < sizeof names / sizeof names[0]; ++k) {
+            size_t n = strlen(names[k]);
+            if (!strncmp(argv[i], names[k], n) && (argv[i][n] == '\0' || argv[i][n] == '=')) return true;
+        }
+    return false;
 }
 
 int options_sequence_resolve(options *o)
@@ -120,6 +132,11 @@ int options_sequence_resolve(options *o)
     int count = o->frame_count > 0 ? o->frame_count : 1;
     bool sequence = count > 1 || o->animate_count > 0 || o->frame_range_set;
     if (!o->frame_range_set) o->frame_first = 0, o->frame_last = count - 1;
+    if (o->skip_existing && !sequence) {
+        fprintf(stderr, "vksky: --skip-existing: only with a sequence (--frame-count, --animate or --frame-range), whose "
+                        "frames it resumes\n");
+        return 2;
+    }
     if (sequence && (o->output_count == 0 || o->bench_frames || o->reference)) {
         fprintf(stderr, "vksky: %s: only with --render (a sequence of frames written to files; not with --bench, "
                         "--reference or the window)\n",

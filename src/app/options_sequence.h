@@ -1,5 +1,6 @@
-/* The flags of a sequence (issue 14 item 4): --animate PARAM=FROM:TO, --frame-count N, --frame-range A:B, and the
- * printf-style --render patterns they need. Hooks called by options.c; the frames themselves: app/sequence. */
+/* The flags of a sequence (issue 14 item 4): --animate PARAM=FROM:TO, --frame-count N, --frame-range A:B,
+ * --skip-existing (issue 30), and the printf-style --render patterns they need. Hooks called by options.c; the
+ * frames themselves: app/sequence. */
 #ifndef VKSKY_APP_OPTIONS_SEQUENCE_H
 #define VKSKY_APP_OPTIONS_SEQUENCE_H
 #include "app/options_struct.h"
@@ -11,6 +12,10 @@ int options_sequence_apply(options *o, const char *flag_name, const char *value,
 /* After all flags: the frame range inside the sequence, a frame-number pattern in every --render when N > 1, only
  * with --render. 0 ok, 2 bad (one line printed). */
 int options_sequence_resolve(options *o);
+/* Does the command line name a sequence flag (--animate, --frame-count, --frame-range, whatever its value)? Asked
+ * before any flag is applied: --quality auto chooses a sequence's configuration from the scene alone, the same on
+ * every device (docs/sequences.md), so that the frames of a split sequence do not depend on where each job ran. */
+bool options_sequence_named(int argc, char **argv);
 
 /* A --render value's frame number: 0 no conversion, 1 exactly one %d (flags '0', a width up to 9: %04d, %6d), -1 any
  * other use of '%' ("%%" is a literal '%'). */

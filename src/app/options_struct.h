@@ -70,6 +70,7 @@ typedef struct options {
     int frame_count;                            /* --frame-count N (default 1) */
     int frame_first, frame_last;                /* --frame-range A:B, inclusive (default 0 : N-1) */
     bool frame_range_set;
+    bool skip_existing;                         /* --skip-existing: frames already written whole are kept (resume) */
     int argc;                                   /* the command line: a frame's options re-parse it, EXRs record it */
     char **argv;
 } options;

@@ -4,6 +4,7 @@
 #include "app/options.h"
 #include "app/options_sequence.h"
 #include "app/quality.h"
+#include "app/sequence_resume.h"
 #include "app/stop.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
@@ -167,11 +168,16 @@ static int write_outputs(const options *o, const sky_renderer *r, int frame, boo
 int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render)
 {
     bool sequence = sequence_active(base);
-    int count = frame_count(base), done = 0, lut_computations = 0;
+    int count = frame_count(base), done = 0, skipped = 0, lut_computations = 0;
     int range = base->frame_last - base->frame_first + 1;
     for (int i = base->frame_first; i <= base->frame_last && !stop_requested(); ++i) {   /* stop: between frames */
         options f;
         if (sequence_frame_options(base, i, &f)) return 1;   /* parsed before (sequence_check): not expected */
+        /* --skip-existing: a frame this job wrote before (whole, by the atomic rename) is kept (sequence_resume.h). */
+        if (base->skip_existing && sequence_resume_skip(&f, i, count, done + skipped + 1, range)) {
+            ++skipped;
+            continue;
+        }
         /* Same values: the renderer keeps its LUTs (their hash is unchanged) and its pipelines. */
         sky_renderer_set_atmosphere(r, &f.atmosphere, options_sun_radius_rad(&f));
         sky_features features = options_features(&f);
@@ -184,12 +190,14 @@ int sequence_render(const options *base, sky_renderer *r, sequence_render_fn ren
         if (write_outputs(&f, r, i, sequence, &path) != 0) return 1;
         ++done;
         if (sequence)
-            fprintf(stderr, "vksky: frame %d (%d of %d; %d/%d of this job): %s, LUTs %s\n", i, i + 1, count, done,
-                    range, path, luts ? "computed" : "reused");
+            fprintf(stderr, "vksky: frame %d (%d of %d; %d/%d of this job): %s, LUTs %s\n", i, i + 1, count,
+                    done + skipped, range, path, luts ? "computed" : "reused");
     }
     if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
+    char skips[48] = "";   /* resumed: the frames kept count too */
+    if (base->skip_existing) snprintf(skips, sizeof skips, ", %d skipped (written before)", skipped);
     if (sequence)
-        fprintf(stderr, "vksky: %d frame%s rendered; LUTs computed %d time%s\n", done, done == 1 ? "" : "s",
+        fprintf(stderr, "vksky: %d frame%s rendered%s; LUTs computed %d time%s\n", done, done == 1 ? "" : "s", skips,
                 lut_computations, lut_computations == 1 ? "" : "s");
     return 0;
 }

@@ -34,6 +34,39 @@ exr_result_t io_exr_set_meta(exr_context_t ctxt, int part, const io_exr_meta *m)
     return rc;
 }
 
+/* The header of `path` opened for reading (0), or -1 + err. */
+static int open_header(const char *path, exr_context_t *ctxt, char *err, size_t err_size)
+{
+    *ctxt = NULL;
+    if (io_check_readable(path, err, err_size) != 0) return -1;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = io_exr_error_handler;
+    io_exr_clear_msg();
+    exr_result_t rc = exr_start_read(ctxt, path, &init);
+    if (rc != EXR_ERR_SUCCESS) {
+        io_set_err(err, err_size, "cannot read '%s': not an OpenEXR file (%s)", io_safe_path(path), io_exr_msg(rc));
+        if (*ctxt) exr_finish(ctxt);
+        return -1;
+    }
+    return 0;
+}
+
+int io_exr_read_int_attr(const char *path, const char *name, int *out, char *err, size_t err_size)
+{
+    exr_context_t ctxt;
+    if (!out || !name) {
+        io_set_err(err, err_size, "cannot read '%s': NULL argument", io_safe_path(path));
+        return -1;
+    }
+    if (open_header(path, &ctxt, err, err_size) != 0) return -1;
+    const exr_attribute_t *attr = NULL;
+    int found = 1;
+    if (exr_get_attribute_by_name(ctxt, 0, name, &attr) == EXR_ERR_SUCCESS && attr && attr->type == EXR_ATTR_INT)
+        *out = attr->i, found = 0;
+    exr_finish(&ctxt);
+    return found;
+}
+
 int io_exr_read_string_attr(const char *path, const char *name, char **out, char *err, size_t err_size)
 {
     const char *p = io_safe_path(path);
@@ -42,17 +75,8 @@ int io_exr_read_string_attr(const char *path, const char *name, char **out, char
         io_set_err(err, err_size, "cannot read '%s': NULL argument", p);
         return -1;
     }
-    if (io_check_readable(path, err, err_size) != 0) return -1;
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = io_exr_error_handler;
-    exr_context_t ctxt = NULL;
-    io_exr_clear_msg();
-    exr_result_t rc = exr_start_read(&ctxt, path, &init);
-    if (rc != EXR_ERR_SUCCESS) {
-        io_set_err(err, err_size, "cannot read '%s': not an OpenEXR file (%s)", p, io_exr_msg(rc));
-        if (ctxt) exr_finish(&ctxt);
-        return -1;
-    }
+    exr_context_t ctxt;
+    if (open_header(path, &ctxt, err, err_size) != 0) return -1;
     const exr_attribute_t *attr = NULL;
     int found = 1;
     if (exr_get_attribute_by_name(ctxt, 0, name, &attr) == EXR_ERR_SUCCESS && attr && attr->type == EXR_ATTR_STRING &&

@@ -31,6 +31,9 @@ typedef struct io_exr_meta {
    it). Returns 0 when found, 1 when the file has no such string attribute (*out NULL), -1 when the file cannot be read
    as an EXR (err gets the reason, e.g. "cannot read 'x.exr': not an OpenEXR file"). */
 int io_exr_read_string_attr(const char *path, const char *name, char **out, char *err, size_t err_size);
+/* The int attribute `name` of the first part (e.g. "vksky:frame") into *out: 0 found, 1 none of that name and type,
+   -1 not readable as an EXR (err). */
+int io_exr_read_int_attr(const char *path, const char *name, int *out, char *err, size_t err_size);
 
 #ifdef __cplusplus
 }
