@@ -33,7 +33,7 @@ work=$(mktemp -d /tmp/vksky-farm.XXXXXX)
 chmod 755 "$work"   # munged wants its socket's directory searchable by all
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
-munged_pid= ctld_pid= slurmd_pid=
+munged_pid='' ctld_pid='' slurmd_pid=''
 
 # Stops what this test started: jobs first (a step outlives slurmd), then the daemons by their process ids.
 stop_all() {
@@ -48,7 +48,7 @@ stop_all() {
         kill -KILL "$pid" 2>/dev/null
         wait "$pid" 2>/dev/null
     done
-    munged_pid= ctld_pid= slurmd_pid=
+    munged_pid='' ctld_pid='' slurmd_pid=''
 }
 # The processes with their working directory or command line under $work (a task or a step left behind).
 leftovers() {

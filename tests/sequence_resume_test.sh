@@ -8,7 +8,8 @@
 #     its frame's scene is the single render's under the GPU table (the documented rule).
 #  2. --skip-existing: frames whose files exist are kept (not written again: same inodes) and counted; a missing file,
 #     an EXR of another frame, of another scene or not an EXR at all is rendered again, with a note for each file
-#     that exists; the result equals the uninterrupted render byte for byte. Only with a sequence: one line, exit 2.
+#     that exists; the result equals the uninterrupted render byte for byte. Two jobs with overlapping ranges at once
+#     give the same files too. Only with a sequence: one line, exit 2.
 # Every render under the validation layer with synchronization validation (VKSKY_VALIDATION=1).
 set -u
 VKSKY=$(realpath "${1:?usage: sequence_resume_test.sh VKSKY EXR_PIXELS}")
@@ -82,6 +83,20 @@ rm f_003.exr
 "$VKSKY" "${SEQ[@]}" --frame-range 2:4 --skip-existing 2>err || fail "the range resume failed"
 grep -q '^vksky: 1 frame rendered, 2 skipped (written before); LUTs computed 1 time$' err || fail "range resume: $(tail -1 err)"
 cmp -s f_003.exr ../whole/f_003.exr || fail "frame 3 of a range resume differs"
+cd "$work" || exit 1
+
+# Two jobs whose ranges overlap, at once: each file is written whole by one of them (temp name, rename), and both
+# write the same bytes, so the result is the whole render's.
+mkdir overlap && cd overlap || exit 1
+"$VKSKY" "${SEQ[@]}" --frame-range 0:3 2>err1 &
+first=$!
+"$VKSKY" "${SEQ[@]}" --frame-range 2:5 2>err2 || fail "the second overlapping job failed: $(cat err2)"
+wait $first || fail "the first overlapping job failed: $(cat err1)"
+rm -f err1 err2
+diff <(ls -A ../whole) <(ls -A .) >/dev/null || fail "overlapping jobs left other files: $(ls -A)"
+for f in ../whole/*; do
+    cmp -s "$f" "${f##*/}" || fail "overlapping jobs' ${f##*/} differs from the whole render's"
+done
 cd "$work" || exit 1
 
 # Only with a sequence: one line, exit 2, no file.
