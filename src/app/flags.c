@@ -74,6 +74,8 @@ const flag flags_table[] = {
     {"--trace-passes", ARG_NONE, 0, 0, "  list the passes the frame records"},
     {"--list-devices", ARG_NONE, 0, 0, "  list Vulkan devices and exit"},
     {"--device", ARG_INT, 0, 63, "N     use device N of --list-devices (default: discrete > integrated > CPU)"},
+    {"--threads", ARG_INT, 1, 1024, "N     threads that compress EXR chunks (default: the cores available); the files are the same for every N"},
+    {"--exr-compression", ARG_STRING, 0, 0, "C zip | zips | piz | pxr24 | b44 | b44a | rle | none: the EXR compression (default zip; pxr24, b44, b44a are lossy; DWAA/DWAB: OpenEXR 3.1's C library cannot write them)"},
     {"--help", ARG_NONE, 0, 0, "          this text"},
     {"--version", ARG_NONE, 0, 0, "       print the version"},
 };

@@ -70,6 +70,9 @@ typedef struct options {
     int frame_count;                            /* --frame-count N (default 1) */
     int frame_first, frame_last;                /* --frame-range A:B, inclusive (default 0 : N-1) */
     bool frame_range_set;
+    /* throughput (issue 27): app/options_throughput.c */
+    int threads;                                /* --threads N: EXR encode threads (0: the cores available) */
+    int exr_compression;                        /* --exr-compression: exr_compression_t + 1 (0: not given, ZIP) */
     int argc;                                   /* the command line: a frame's options re-parse it, EXRs record it */
     char **argv;
 } options;
