@@ -1,5 +1,6 @@
 #include "app/headless.h"
 #include "app/cpu_time.h"
+#include "app/frame_ring.h"
 #include "app/sequence.h"
 #include "app/stop.h"
 #include "app/tiles.h"
@@ -172,7 +173,10 @@ int headless_run(const options *given)
         gpu_barrier_trace(NULL);
         bench(o, &r);
     } else {
-        status = sequence_render(o, &r, render_frames);   /* one frame, or the frames of a sequence */
+        /* One frame, or the frames of a sequence: pipelined through the readback ring (app/frame_ring.h) unless
+         * the tests' VKSKY_FRAMES loop records frames its own way. */
+        int slots = getenv("VKSKY_FRAMES") ? 0 : frame_ring_slots_wanted();
+        status = sequence_render(o, &r, render_frames, slots, o->trace_barriers ? stdout : NULL);
     }
     sky_renderer_destroy(&r);
     return finish(&ctx, status);
