@@ -35,10 +35,20 @@ static const struct {
     {"dwab", EXR_COMPRESSION_DWAB},
 };
 
-int io_exr_compression_parse(const char *name)
+int io_exr_compression_parse(const char *name, int *zip_level)
 {
-    for (size_t i = 0; name && i < sizeof compressions / sizeof *compressions; ++i)
-        if (!strcasecmp(name, compressions[i].name)) return compressions[i].value;
+    *zip_level = 0;
+    if (!name) return -1;
+    size_t n = strcspn(name, ":");
+    for (size_t i = 0; i < sizeof compressions / sizeof *compressions; ++i) {
+        if (strlen(compressions[i].name) != n || strncasecmp(name, compressions[i].name, n)) continue;
+        int v = compressions[i].value;
+        if (!name[n]) return v;
+        bool zlib = v == EXR_COMPRESSION_ZIP || v == EXR_COMPRESSION_ZIPS;
+        if (!zlib || name[n + 1] < '1' || name[n + 1] > '9' || name[n + 2]) return -1;
+        *zip_level = name[n + 1] - '0';
+        return v;
+    }
     return -1;
 }
 

@@ -202,6 +202,9 @@ int io_exr_write_layers_half(const char *path, int width, int height, const io_e
     rc = exr_initialize_required_attr_simple(ctxt, part, width, height,
                                              (exr_compression_t)io_encode_settings_get().exr_compression);
     if (rc != EXR_ERR_SUCCESS) goto fail;
+    stage = "compression";
+    rc = io_exr_apply_compression_level(ctxt, part);
+    if (rc != EXR_ERR_SUCCESS) goto fail;
     if (meta) {
         stage = "attributes";
         rc = io_exr_set_meta(ctxt, part, meta);

@@ -77,6 +77,7 @@ io_exr_stream *io_exr_stream_open(const char *path, int width, int height, const
         io_exr_channel_name(name, sizeof name, "", c);
         rc = exr_add_channel(s->ctxt, part, name, EXR_PIXEL_HALF, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
     }
+    if (rc == EXR_ERR_SUCCESS) rc = io_exr_apply_compression_level(s->ctxt, part);
     if (rc == EXR_ERR_SUCCESS) rc = io_exr_add_sky_attrs(s->ctxt, part, attrs);
     if (rc == EXR_ERR_SUCCESS) rc = exr_write_header(s->ctxt);
     if (rc == EXR_ERR_SUCCESS) rc = exr_get_scanlines_per_chunk(s->ctxt, part, &s->lines_per_chunk);
