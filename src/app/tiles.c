@@ -187,14 +187,10 @@ int tiles_render(const options *o, gpu_context *ctx)
     if (o->render_scale != 1.0 && scale_given && !o->quiet)
         fprintf(stderr, "vksky: note: --render-scale %g ignored: banded renders are rendered at full size\n", o->render_scale);
     view.whole_width = width, view.whole_height = height;
-    /* Pipelined (app/frame_ring.h): band k+1 renders while band k is written. Each slot holds a band's readback,
-     * so the bands are cut `slots` times smaller: the same memory as the serial loop's one band. (Bloom and the
-     * notes above go by the serial band count: the image is the same either way.) */
+    /* Pipelined (app/frame_ring.h): band k+1 renders while band k is written. The bands keep their height (a
+     * cube or perspective band's pixels depend on it by up to an fp16 ulp, and the files must equal the serial
+     * loop's); each slot past the first adds one band's readback buffers (12 bytes a pixel). */
     int slots = bands > 1 ? frame_ring_slots_wanted() : 0;
-    if (slots >= 2) {
-        band = tiles_band_rows(width, height, budget / slots);
-        bands = (height + band - 1) / band;
-    }
 
     output outs[OPTIONS_MAX_OUTPUTS] = {0};
     if (open_outputs(o, outs) != 0) {
