@@ -59,8 +59,9 @@ same serial ring2 "sequence, 2 slots"
 same serial ring3 "sequence, 3 slots"
 [ "$(files serial | wc -l)" -eq 10 ] || fail "the serial sequence wrote $(files serial | wc -l) files, expected 10"
 frame_lines() { grep -o 'frame [0-9]* (' "$work/$1/stderr" | tr '\n' ' '; }
-[ "$(frame_lines serial)" = "$(frame_lines ring2)" ] && [ -n "$(frame_lines serial)" ] ||
+if [ -z "$(frame_lines serial)" ] || [ "$(frame_lines serial)" != "$(frame_lines ring2)" ]; then
     fail "per-frame lines differ: '$(frame_lines serial)' vs '$(frame_lines ring2)'"
+fi
 
 # 2. The uniform block rewritten every frame (ring.drain).
 run mserial VKSKY_READBACK_SLOTS=1 -- "${MEDIUM[@]}" --render f%02d.exr || fail "serial medium sequence exited $?"
