@@ -22,7 +22,10 @@ measure() {
     rm -rf "$scratch/o"; mkdir -p "$scratch/o"
     local t0 t1 rss
     t0=$(date +%s.%N)
-    /usr/bin/time -f '%M' -o "$scratch/rss" "$bin" "$@" >"$scratch/stdout" 2>"$scratch/stderr" ||
+    local timer=()
+    [ -x /usr/bin/time ] && timer=(/usr/bin/time -f '%M' -o "$scratch/rss")
+    echo -1 >"$scratch/rss"
+    "${timer[@]}" "$bin" "$@" >"$scratch/stdout" 2>"$scratch/stderr" ||
         { echo "case $name FAILED: $(tail -1 "$scratch/stderr")"; return; }
     t1=$(date +%s.%N)
     rss=$(tail -1 "$scratch/rss")
