@@ -254,7 +254,7 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
             break;
         }
         renderer_inputs in;
-        memset(&in, 0, sizeof in);   /* compared bytewise: padding too */
+        memset(&in, 0, sizeof in);   /* compared bytewise: a difference in padding alone costs a needless drain */
         in.atmosphere = j->f.atmosphere, in.sun_radius = options_sun_radius_rad(&j->f);
         in.features = options_features(&j->f);
         if (!have_last || memcmp(&in, &last, sizeof in)) {
