@@ -102,11 +102,13 @@ char *exr_header_command_line(int argc, char **argv)
         char *out = pass ? text : NULL;
         n += quoted("vksky", out ? out + n : NULL);
         for (int i = 1; i < argc; ++i) {
-            if (!strcmp(argv[i], "--frame-range")) {
+            /* Flags that never change the image or the file's bytes (which frames a job renders, how many
+             * threads encode): left out, so that every job and every thread count writes the same file. */
+            if (!strcmp(argv[i], "--frame-range") || !strcmp(argv[i], "--threads")) {
                 ++i;
                 continue;
             }
-            if (!strncmp(argv[i], "--frame-range=", 14)) continue;
+            if (!strncmp(argv[i], "--frame-range=", 14) || !strncmp(argv[i], "--threads=", 10)) continue;
             if (!strcmp(argv[i], "--skip-existing")) continue;   /* how a job resumed, not what the frame is */
             if (out) out[n] = ' ';
             ++n;

@@ -11,7 +11,7 @@ const flag flags_table[] = {
     {"--width", ARG_INT, 1, 16384, "N      image width in pixels (default 1280)"},
     {"--height", ARG_INT, 1, 16384, "N      image height in pixels (default 720)"},
     {"--projection", ARG_STRING, 0, 0, "P perspective | equirect | cubemap | fisheye: camera view, 2:1 latitude-longitude map, OpenEXR cube (face = --width), all-sky fisheye (default perspective)"},
-    {"--quiet", ARG_NONE, 0, 0, "         no progress report on stderr"},
+    {"--quiet", ARG_NONE, 0, 0, "         no progress report and no per-frame lines on stderr"},
     {"--sun-elevation", ARG_DOUBLE, -90, 90, "DEG   sun elevation above the horizon (default 20)"},
     {"--sun-azimuth", ARG_DOUBLE, -360, 360, "DEG   sun azimuth, clockwise seen from above: with --yaw 0 as north, 90 is east (default 0)"},
     {"--date", ARG_STRING, 0, 0, "YYYY-MM-DD  the sun by date and place (NREL SPA): local date; needs --time, --latitude, --longitude; not with --sun-elevation/--sun-azimuth"},
@@ -75,6 +75,8 @@ const flag flags_table[] = {
     {"--trace-passes", ARG_NONE, 0, 0, "  list the passes the frame records"},
     {"--list-devices", ARG_NONE, 0, 0, "  list Vulkan devices and exit"},
     {"--device", ARG_INT, 0, 63, "N     use device N of --list-devices (default: discrete > integrated > CPU)"},
+    {"--threads", ARG_INT, 1, 1024, "N     threads that compress EXR chunks (default: the cores available); the files are the same for every N"},
+    {"--exr-compression", ARG_STRING, 0, 0, "C zip | zips | piz | pxr24 | b44 | b44a | rle | none: the EXR compression (default zip; zip:1 .. zip:9 a zlib level, default 6: zip:1 writes 1.5x the bytes in a fifth of the time; pxr24, b44, b44a are lossy; DWAA/DWAB: OpenEXR 3.1's C library cannot write them)"},
     {"--help", ARG_NONE, 0, 0, "          this text"},
     {"--version", ARG_NONE, 0, 0, "       print the version"},
 };

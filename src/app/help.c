@@ -16,7 +16,7 @@ static const char *const output_flags[] = {"--render", "--width", "--height", "-
                                            "--bloom-mips", "--bloom-res", "--bloom-downsample", "--scene",
                                            "--list-scenes", "--dump-scene", "--projection", "--quiet",
                                            "--animate", "--frame-count", "--frame-range",
-                                           "--skip-existing", NULL};
+                                           "--skip-existing", "--threads", "--exr-compression", NULL};
 static const char *const camera_flags[] = {"--altitude", "--yaw", "--pitch", "--fov", NULL};
 static const char *const sun_flags[] = {"--sun-elevation", "--sun-azimuth", "--date", "--time", "--utc-offset",
                                         "--latitude", "--longitude", "--elevation-m", "--sun-illuminance",

@@ -1,4 +1,5 @@
 /* vksky: a physically based sky (Hillaire 2020) over raw Vulkan. */
+#include "app/options_throughput.h"
 #include "app/composite_app.h"
 #include "app/headless.h"
 #include "app/stop.h"
@@ -25,6 +26,7 @@ int main(int argc, char **argv)
         printf("vksky %s\n", VKSKY_VERSION);
         return 0;
     }
+    options_throughput_install(&o);   /* --threads, --exr-compression: how every file of the run is encoded */
     if (o.list_scenes) return scene_list(stdout);
     if (o.list_devices) return gpu_list_devices(stdout) == 0 ? 0 : 1;
     if (o.path_trace && !o.reference) {

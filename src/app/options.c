@@ -6,6 +6,7 @@
 #include "app/scene.h"
 #include "app/options_tooling.h"
 #include "app/options_sequence.h"
+#include "app/options_throughput.h"
 #include "app/help.h"
 #include "app/scene_dump.h"
 #include "gpu/context.h"
@@ -136,6 +137,8 @@ static int apply(options *o, const flag *f, const char *value)
     int handled = options_tooling_apply(o, n, value, x);   /* the sun by date and place, --list-scenes */
     if (handled >= 0) return handled;
     handled = options_sequence_apply(o, n, value, x);   /* --animate, --frame-count, --frame-range */
+    if (handled >= 0) return handled;
+    handled = options_throughput_apply(o, n, value, x);   /* --threads, --exr-compression */
     if (handled >= 0) return handled;
     if (!strcmp(n, "--render")) {
         if (!has_extension(value, ".exr") && !has_extension(value, ".png"))

@@ -137,9 +137,10 @@ int options_sequence_resolve(options *o)
                         "frames it resumes\n");
         return 2;
     }
-    if (sequence && (o->output_count == 0 || o->bench_frames || o->reference)) {
-        fprintf(stderr, "vksky: %s: only with --render (a sequence of frames written to files; not with --bench, "
-                        "--reference or the window)\n",
+    /* With --bench as well, the sequence is the benchmark's frames to disk (issue 27: frames/s). */
+    if (sequence && (o->output_count == 0 || o->reference)) {
+        fprintf(stderr, "vksky: %s: only with --render (a sequence of frames written to files, --bench: timed; not "
+                        "with --reference or the window)\n",
                 o->animate_count ? "--animate" : o->frame_range_set ? "--frame-range" : "--frame-count");
         return 2;
     }

@@ -71,6 +71,10 @@ typedef struct options {
     int frame_first, frame_last;                /* --frame-range A:B, inclusive (default 0 : N-1) */
     bool frame_range_set;
     bool skip_existing;                         /* --skip-existing: frames already written whole are kept (resume) */
+    /* throughput (issue 27): app/options_throughput.c */
+    int threads;                                /* --threads N: EXR encode threads (0: the cores available) */
+    int exr_compression;                        /* --exr-compression: exr_compression_t + 1 (0: not given, ZIP) */
+    int zip_level;                              /* --exr-compression zip:N: zlib level (0: zlib's default, 6) */
     int argc;                                   /* the command line: a frame's options re-parse it, EXRs record it */
     char **argv;
 } options;

@@ -1,6 +1,7 @@
 /* The frames of a sequence (sequence.h). */
 #include "app/sequence.h"
 #include "app/exr_header.h"
+#include "app/frame_ring.h"
 #include "app/options.h"
 #include "app/options_sequence.h"
 #include "app/quality.h"
@@ -135,7 +136,7 @@ static bool is_exr(const char *path)
 }
 
 /* The frame's files; EXRs with the header that says how they were made (exr_header.h). */
-static int write_outputs(const options *o, const sky_renderer *r, int frame, bool sequence, const char **first_path)
+static int write_outputs(const options *o, const frame_ring_pixels *px, int frame, bool sequence, const char **first_path)
 {
     static char first[PATH_MAX];
     char err[512];
@@ -151,11 +152,11 @@ static int write_outputs(const options *o, const sky_renderer *r, int frame, boo
                 fprintf(stderr, "vksky: %s: out of memory for the EXR header\n", path);
                 return 1;
             }
-            io_exr_layer layer = {.name = "", .rgba_half = r->readback_linear.mapped};
+            io_exr_layer layer = {.name = "", .rgba_half = px->linear};
             rc = io_write_exr_meta(path, o->width, o->height, &layer, 1, &h.meta, err, sizeof err);
             exr_header_free(&h);
         } else {
-            rc = io_write_png(path, o->width, o->height, r->readback_display.mapped, 1, err, sizeof err);
+            rc = io_write_png(path, o->width, o->height, px->display, 1, err, sizeof err);
         }
         if (rc != 0) {
             if (!stop_requested()) fprintf(stderr, "vksky: %s\n", err);   /* else stop_status (app/stop.h) says why */
@@ -165,7 +166,24 @@ static int write_outputs(const options *o, const sky_renderer *r, int frame, boo
     return 0;
 }
 
-int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render)
+/* A frame's progress line (not with --quiet). */
+static void frame_line(const options *base, int i, int done, const char *path, bool luts)
+{
+    if (base->quiet) return;
+    fprintf(stderr, "vksky: frame %d (%d of %d; %d/%d of this job): %s, LUTs %s\n", i, i + 1, frame_count(base), done,
+            base->frame_last - base->frame_first + 1, path, luts ? "computed" : "reused");
+}
+
+static void summary_line(const options *base, int done, int skipped, int lut_computations)
+{
+    if (base->quiet) return;
+    char skips[48] = "";   /* resumed: the frames kept count too */
+    if (base->skip_existing) snprintf(skips, sizeof skips, ", %d skipped (written before)", skipped);
+    fprintf(stderr, "vksky: %d frame%s rendered%s; LUTs computed %d time%s\n", done, done == 1 ? "" : "s", skips,
+            lut_computations, lut_computations == 1 ? "" : "s");
+}
+
+static int sequence_render_serial(const options *base, sky_renderer *r, sequence_render_fn render)
 {
     bool sequence = sequence_active(base);
     int count = frame_count(base), done = 0, skipped = 0, lut_computations = 0;
@@ -187,17 +205,109 @@ int sequence_render(const options *base, sky_renderer *r, sequence_render_fn ren
         frame_desc desc = {.view = &f.view};
         render(r, &desc);
         const char *path = "";
-        if (write_outputs(&f, r, i, sequence, &path) != 0) return 1;
+        frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
+        if (write_outputs(&f, &px, i, sequence, &path) != 0) return 1;
         ++done;
-        if (sequence)
-            fprintf(stderr, "vksky: frame %d (%d of %d; %d/%d of this job): %s, LUTs %s\n", i, i + 1, count,
-                    done + skipped, range, path, luts ? "computed" : "reused");
+        if (sequence) frame_line(base, i, done + skipped, path, luts);
     }
     if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
-    char skips[48] = "";   /* resumed: the frames kept count too */
-    if (base->skip_existing) snprintf(skips, sizeof skips, ", %d skipped (written before)", skipped);
-    if (sequence)
-        fprintf(stderr, "vksky: %d frame%s rendered%s; LUTs computed %d time%s\n", done, done == 1 ? "" : "s", skips,
-                lut_computations, lut_computations == 1 ? "" : "s");
+    if (sequence) summary_line(base, done, skipped, lut_computations);
     return 0;
+}
+
+/* The pipelined loop's job for a frame: what the consumer needs to write it. */
+typedef struct frame_job {
+    options f;
+    int frame;
+    bool luts;
+} frame_job;
+
+typedef struct consumer_state {
+    const options *base;
+    int done;      /* frames written by the consumer */
+    int skipped;   /* frames kept (--skip-existing): counted by the producer while the consumer is idle */
+} consumer_state;
+
+/* frame_ring_consume_fn: a frame's files and its line, on the ring's thread, in frame order. */
+static int consume_frame(void *user, const frame_ring_pixels *px, void *job)
+{
+    consumer_state *c = user;
+    const frame_job *j = job;
+    const char *path = "";
+    if (stop_requested() || write_outputs(&j->f, px, j->frame, true, &path) != 0) return 1;
+    ++c->done;
+    frame_line(c->base, j->frame, c->done + c->skipped, path, j->luts);
+    return 0;
+}
+
+/* What the renderer is given per frame; a change means a host write of the uniform block (ring.drain first). */
+typedef struct renderer_inputs {
+    model_atmosphere atmosphere;
+    double sun_radius;
+    sky_features features;
+} renderer_inputs;
+
+/* The pipelined loop (frame_ring.h): frame N+1 renders while frame N is written. Same frames, same files, same
+ * order and lines as the serial loop. */
+static int sequence_render_ring(const options *base, sky_renderer *r, int slots, FILE *trace)
+{
+    consumer_state state = {.base = base};
+    frame_ring ring;
+    if (frame_ring_create(&ring, r, slots, consume_frame, &state, trace)) return 1;
+    int lut_computations = 0, status = 0;
+    renderer_inputs last;
+    bool have_last = false;
+    for (int i = base->frame_first; i <= base->frame_last && !stop_requested() && status == 0; ++i) {
+        frame_job *j = calloc(1, sizeof *j);
+        if (!j || sequence_frame_options(base, i, &j->f)) {
+            free(j);
+            status = 1;
+            break;
+        }
+        /* --skip-existing: the progress lines stay in frame order and the counts settled, so the frames before this
+         * one are written (the consumer idle) before a kept frame's line is printed. Only where the files exist. */
+        if (base->skip_existing && sequence_resume_exists(&j->f, i)) {
+            status = frame_ring_settle(&ring);
+            if (status == 0 && sequence_resume_skip(&j->f, i, frame_count(base), state.done + state.skipped + 1,
+                                                    base->frame_last - base->frame_first + 1)) {
+                ++state.skipped;
+                free(j);
+                continue;
+            }
+            if (status) {
+                free(j);
+                break;
+            }
+        }
+        renderer_inputs in;
+        memset(&in, 0, sizeof in);   /* compared bytewise: a difference in padding alone costs a needless drain */
+        in.atmosphere = j->f.atmosphere, in.sun_radius = options_sun_radius_rad(&j->f);
+        in.features = options_features(&j->f);
+        if (!have_last || memcmp(&in, &last, sizeof in)) {
+            /* The uniform block (and maybe pipelines, LUTs) change: no frame in flight may still read them. */
+            if (have_last) frame_ring_drain(&ring);
+            sky_renderer_set_atmosphere(r, &j->f.atmosphere, in.sun_radius);
+            sky_renderer_set_features(r, &in.features);
+            last = in, have_last = true;
+        }
+        j->frame = i;
+        j->luts = sky_renderer_luts_dirty(r);
+        lut_computations += j->luts;
+        /* The view lives in push constants, recorded into this frame's command buffer: j->f outlives the record. */
+        frame_desc desc = {.view = &j->f.view};
+        status = frame_ring_submit(&ring, &desc, j);
+    }
+    int consumed = frame_ring_finish(&ring);
+    if (status == 0) status = consumed;
+    if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
+    if (status == 0) summary_line(base, state.done, state.skipped, lut_computations);
+    return status;
+}
+
+int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render, int slots, FILE *trace)
+{
+    /* The ring pays off from two frames on; one frame (and the tests' VKSKY_FRAMES loop) keeps the serial path. */
+    if (slots >= 2 && sequence_active(base) && base->frame_last > base->frame_first)
+        return sequence_render_ring(base, r, slots, trace);
+    return sequence_render_serial(base, r, render);
 }

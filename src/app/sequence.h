@@ -6,6 +6,7 @@
 #define VKSKY_APP_SEQUENCE_H
 #include "app/options_struct.h"
 #include "sky/frame.h"
+#include <stdio.h>
 
 /* Whether the options ask for a sequence (progress lines, frame numbers in the EXR header). */
 bool sequence_active(const options *o);
@@ -19,6 +20,9 @@ int sequence_check(options *base);
 
 typedef void (*sequence_render_fn)(sky_renderer *r, const frame_desc *f);
 /* Render the range's frames with r (made for base), writing each frame's outputs; the LUTs are recomputed only when a
- * frame changes their inputs (counted; stderr: a line per frame and a summary in a sequence). 0 ok, 1 failed. */
-int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render);
+ * frame changes their inputs (counted; stderr: a line per frame and a summary in a sequence, not with --quiet). With
+ * slots >= 2, a sequence of two frames or more is pipelined (app/frame_ring.h: frame N+1 renders while frame N is
+ * written; the same files, bytes and order); trace: the ring's waits (--trace-barriers; NULL: none). `render` is the
+ * serial loop's (the tests' VKSKY_FRAMES). 0 ok, 1 failed. */
+int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render, int slots, FILE *trace);
 #endif

@@ -54,6 +54,17 @@ static bool exr_is_this_frame(const char *path, const options *f, int frame, cha
     return same;
 }
 
+bool sequence_resume_exists(const options *f, int frame)
+{
+    for (int k = 0; k < f->output_count; ++k) {
+        char path[PATH_MAX];
+        struct stat st;
+        if (!frame_file(f->outputs[k], frame, path, sizeof path) || stat(path, &st) != 0 || !S_ISREG(st.st_mode))
+            return false;
+    }
+    return f->output_count > 0;
+}
+
 bool sequence_resume_skip(const options *f, int frame, int count, int job_done, int job_size)
 {
     char first[PATH_MAX] = "";

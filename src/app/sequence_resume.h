@@ -12,5 +12,7 @@
  * frame of that scene: true, and the progress line of a skipped frame goes to stderr ("frame F (F+1 of count;
  * job_done/job_size of this job): FILE, skipped (written before)"). Else false: render it (a note on stderr when a
  * file exists but is not this job's). */
+/* Every --render file of frame `frame` exists (a candidate for sequence_resume_skip; no output, no note). */
+bool sequence_resume_exists(const options *f, int frame);
 bool sequence_resume_skip(const options *f, int frame, int count, int job_done, int job_size);
 #endif

@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/tiles.h"
+#include "app/frame_ring.h"
 #include "app/stop.h"
 #include "app/options.h"
 #include "app/options_projection.h"
@@ -87,6 +88,84 @@ static void abort_outputs(const options *o, output *outs)
     }
 }
 
+/* What writing a band needs: the outputs and the progress line. */
+typedef struct bands_state {
+    const options *o;
+    output *outs;
+    progress *prog;
+    int stopped_line;   /* a stop ended the line of a terminal's progress */
+} bands_state;
+
+/* A band's rows (y .. y + rows) into every output, in order. 0, or 1 with the message printed. */
+static int write_band(bands_state *st, const frame_ring_pixels *px, int y, int rows)
+{
+    char err[512];
+    for (int i = 0; i < st->o->output_count; ++i) {
+        output *out = &st->outs[i];
+        int rc = out->exr ? io_exr_stream_rows(out->exr_stream, px->linear, rows, err, sizeof err)
+                          : io_png_stream_rows(out->png_stream, px->display, rows, err, sizeof err);
+        if (rc != 0) {
+            *out = (output){0};   /* the stream aborted itself */
+            fprintf(stderr, "vksky: %s\n", err);
+            return 1;
+        }
+    }
+    progress_update(st->prog, y + rows);
+    /* Ctrl-C or a TERM (app/stop.c): the band loop stops at the next band and removes the partial files; the
+     * caller's stop_status says so and exits 130 / 143. */
+    if (stop_requested()) {
+        if (st->prog->terminal && !st->stopped_line++) fputc('\n', stderr);
+        return 1;
+    }
+    return 0;
+}
+
+static int bands_serial(bands_state *st, sky_renderer *r, sky_view *view, int band)
+{
+    int height = st->o->height, status = 0;
+    for (int y = 0; y < height && status == 0; y += band) {
+        view->tile_x = 0, view->tile_y = y;
+        frame_desc f = {.view = view};
+        sky_renderer_render(r, &f);
+        frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
+        status = write_band(st, &px, y, height - y < band ? height - y : band);
+    }
+    return status;
+}
+
+typedef struct band_job {
+    int y, rows;
+} band_job;
+
+/* frame_ring_consume_fn: a band's rows, on the ring's thread, in band order. */
+static int consume_band(void *user, const frame_ring_pixels *px, void *job)
+{
+    const band_job *j = job;
+    return write_band(user, px, j->y, j->rows);
+}
+
+static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band, int slots)
+{
+    frame_ring ring;
+    if (frame_ring_create(&ring, r, slots, consume_band, st, st->o->trace_barriers ? stdout : NULL)) return 1;
+    int height = st->o->height, status = 0;
+    for (int y = 0; y < height && status == 0 && !stop_requested(); y += band) {
+        band_job *j = malloc(sizeof *j);
+        if (!j) {
+            status = 1;
+            break;
+        }
+        *j = (band_job){y, height - y < band ? height - y : band};
+        /* The band's offset is a push constant, recorded into this band's command buffer. */
+        view->tile_x = 0, view->tile_y = y;
+        frame_desc f = {.view = view};
+        status = frame_ring_submit(&ring, &f, j);
+    }
+    int consumed = frame_ring_finish(&ring);
+    if (status == 0) status = consumed;
+    return status || stop_requested() ? 1 : 0;
+}
+
 int tiles_render(const options *o, gpu_context *ctx)
 {
     long budget = tiles_budget();
@@ -108,6 +187,10 @@ int tiles_render(const options *o, gpu_context *ctx)
     if (o->render_scale != 1.0 && scale_given && !o->quiet)
         fprintf(stderr, "vksky: note: --render-scale %g ignored: banded renders are rendered at full size\n", o->render_scale);
     view.whole_width = width, view.whole_height = height;
+    /* Pipelined (app/frame_ring.h): band k+1 renders while band k is written. The bands keep their height (a
+     * cube or perspective band's pixels depend on it by up to an fp16 ulp, and the files must equal the serial
+     * loop's); each slot past the first adds one band's readback buffers (12 bytes a pixel). */
+    int slots = bands > 1 ? frame_ring_slots_wanted() : 0;
 
     output outs[OPTIONS_MAX_OUTPUTS] = {0};
     if (open_outputs(o, outs) != 0) {
@@ -128,30 +211,9 @@ int tiles_render(const options *o, gpu_context *ctx)
     snprintf(what, sizeof what, "rendering %s (%dx%d, %d bands)", o->output_count ? o->outputs[0] : "", width, height, bands);
     progress prog;
     progress_begin(&prog, stderr, o->quiet || bands < 2, what, height);
-    int status = 0;
+    bands_state st = {o, outs, &prog, 0};
+    int status = slots >= 2 ? bands_ring(&st, &r, &view, band, slots) : bands_serial(&st, &r, &view, band);
     char err[512];
-    for (int y = 0; y < height && status == 0; y += band) {
-        view.tile_x = 0, view.tile_y = y;
-        frame_desc f = {.view = &view};
-        sky_renderer_render(&r, &f);
-        int rows = height - y < band ? height - y : band;
-        for (int i = 0; i < o->output_count && status == 0; ++i) {
-            int rc = outs[i].exr ? io_exr_stream_rows(outs[i].exr_stream, r.readback_linear.mapped, rows, err, sizeof err)
-                                 : io_png_stream_rows(outs[i].png_stream, r.readback_display.mapped, rows, err, sizeof err);
-            if (rc != 0) {
-                outs[i] = (output){0};   /* the stream aborted itself */
-                fprintf(stderr, "vksky: %s\n", err);
-                status = 1;
-            }
-        }
-        progress_update(&prog, y + rows);
-        /* Ctrl-C or a TERM (app/stop.c): the band loop stops at the next band and removes the partial files;
-         * the caller's stop_status says so and exits 130 / 143. */
-        if (stop_requested() && status == 0) {
-            if (prog.terminal) fputc('\n', stderr);
-            status = 1;
-        }
-    }
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         int rc = outs[i].exr ? io_exr_stream_finish(outs[i].exr_stream, err, sizeof err)
                              : io_png_stream_finish(outs[i].png_stream, err, sizeof err);

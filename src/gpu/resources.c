@@ -117,9 +117,14 @@ void gpu_buffer_create(const gpu_context *ctx, gpu_buffer *buf, const char *name
     VK_CHECK(vkCreateBuffer(ctx->device, &info, NULL, &buf->buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx->device, buf->buffer, &req);
-    /* Readback prefers cached memory (fast host reads), coherent is a bonus. */
-    uint32_t type = find_memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT,
-                                     VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    /* Host-visible buffers are read back (renders, LUTs) far more than written: prefer HOST_CACHED memory, which
+     * the CPU reads at memory speed; uncached (write-combined) memory, what a discrete GPU typically offers as
+     * plain HOST_VISIBLE | HOST_COHERENT, is read many times slower (issue 27). Cached and coherent first, then
+     * coherent (as before: host writers such as the composite upload rely on it), then any host-visible type. */
+    VkMemoryPropertyFlags visible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT, coherent = VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    uint32_t type = find_memory_type(ctx, req.memoryTypeBits, visible, coherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+    if (!(ctx->memory.memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT))
+        type = find_memory_type(ctx, req.memoryTypeBits, visible, coherent);
     buf->coherent = (ctx->memory.memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
     VkMemoryAllocateInfo alloc = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = type};

@@ -3,6 +3,7 @@
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #endif
+#include "io/encode_settings.h"
 #include "io/exr_common.h"
 
 #include <errno.h>
@@ -85,4 +86,10 @@ exr_result_t io_exr_compress_no_expand(exr_encode_pipeline_t *enc)
         enc->compressed_bytes = (size_t)enc->packed_bytes;
     }
     return EXR_ERR_SUCCESS;
+}
+
+exr_result_t io_exr_apply_compression_level(exr_context_t ctxt, int part)
+{
+    int level = io_encode_settings_get().zip_level;
+    return level > 0 ? exr_set_zip_compression_level(ctxt, part, level) : EXR_ERR_SUCCESS;
 }

@@ -50,6 +50,9 @@ int64_t io_exr_fd_write(exr_const_context_t ctxt, void *userdata, const void *bu
                         exr_stream_error_func_ptr_t error_cb);
 void io_exr_fd_destroy(exr_const_context_t ctxt, void *userdata, int failed);
 
+/* The zlib level of the process's settings (encode_settings.h) onto a part being written (nothing if default). */
+exr_result_t io_exr_apply_compression_level(exr_context_t ctxt, int part);
+
 /* The library's compressor wrapped so that a chunk is stored raw unless compression makes it strictly smaller
    (exr_common.c says why): set enc->encoding_user_data to a wrap holding the original compress_fn. */
 typedef struct io_exr_compress_wrap {

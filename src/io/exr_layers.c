@@ -9,11 +9,14 @@
 #include "io/exr_layers.h"
 
 #include "io/atomic_file.h"
+#include "io/encode_settings.h"
 #include "io/exr_common.h"
+#include "io/exr_parallel.h"
 #include "io/half_float.h"
 #include "io/io_error.h"
 
 #include <errno.h>
+#include <stdbool.h>
 #include <limits.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -58,28 +61,8 @@ static void stream_destroy(exr_const_context_t ctxt, void *userdata, int failed)
     (void)failed; /* the fd is owned and closed by the writer */
 }
 
-/* OpenEXRCore 3.1.x keeps a ZIP-compressed chunk whose compressed size is exactly equal to the raw size, but
-   every reader (Core and the C++ library) treats packed_size == unpacked_size as "stored uncompressed", so such a
-   chunk would read back as garbage (reproducible with small 4-channel chunks). Wrap the library's compressor and
-   store the raw packed data whenever compression does not make the chunk strictly smaller. */
-typedef struct compress_wrap {
-    exr_result_t (*orig)(exr_encode_pipeline_t *);
-} compress_wrap;
-
-static exr_result_t compress_no_expand(exr_encode_pipeline_t *enc)
-{
-    const compress_wrap *wrap = (const compress_wrap *)enc->encoding_user_data;
-    if (!wrap || !wrap->orig) return EXR_ERR_INVALID_ARGUMENT;
-    exr_result_t rc = wrap->orig(enc);
-    if (rc != EXR_ERR_SUCCESS) return rc;
-    if (enc->compressed_bytes >= enc->packed_bytes && enc->compressed_buffer != enc->packed_buffer) {
-        if (!enc->compressed_buffer || !enc->packed_buffer || enc->compressed_alloc_size < enc->packed_bytes)
-            return EXR_ERR_CORRUPT_CHUNK;
-        memcpy(enc->compressed_buffer, enc->packed_buffer, (size_t)enc->packed_bytes);
-        enc->compressed_bytes = (size_t)enc->packed_bytes;
-    }
-    return EXR_ERR_SUCCESS;
-}
+/* A chunk that compression does not make smaller is stored raw: io_exr_compress_no_expand (exr_common.c says
+   why), applied to every chunk by io_exr_encode_chunks. */
 
 /* Channel k (0..3 = R, G, B, A) of layer `l`: which layer and component an encoder channel name stands for. */
 static int find_channel(const io_exr_write_layer *layers, int layer_count, const char *name, int *layer, int *comp)
@@ -117,6 +100,26 @@ static void feed_channel(exr_coding_channel_info_t *ci, const io_exr_write_layer
     }
     ci->user_data_type = EXR_PIXEL_HALF;
     ci->user_bytes_per_element = (int16_t)sizeof(uint16_t);
+}
+
+typedef struct feed_state {
+    const io_exr_write_layer *layers;
+    int layer_count, width, lines_per_chunk;
+    uint16_t *scratch;
+} feed_state;
+
+/* io_exr_feed_fn: the chunk's channels (sorted by name in the file) mapped back to (layer, component) by name. */
+static exr_result_t feed_chunk(void *user, exr_encode_pipeline_t *enc, int y, int rows)
+{
+    const feed_state *fs = user;
+    for (int ch = 0; ch < enc->channel_count; ++ch) {
+        exr_coding_channel_info_t *ci = &enc->channels[ch];
+        int l = 0, c = 0;
+        if (!find_channel(fs->layers, fs->layer_count, ci->channel_name, &l, &c)) return EXR_ERR_INVALID_ARGUMENT;
+        feed_channel(ci, &fs->layers[l], c, fs->width, y, rows,
+                     fs->scratch + (size_t)ch * (size_t)fs->lines_per_chunk * (size_t)fs->width);
+    }
+    return EXR_ERR_SUCCESS;
 }
 
 /* Everything a writer is given, checked before a file is opened. 0, or -1 + err. */
@@ -196,7 +199,11 @@ int io_exr_write_layers_half(const char *path, int width, int height, const io_e
     rc = exr_add_part(ctxt, "", EXR_STORAGE_SCANLINE, &part);
     if (rc != EXR_ERR_SUCCESS) goto fail;
     stage = "header";
-    rc = exr_initialize_required_attr_simple(ctxt, part, width, height, EXR_COMPRESSION_ZIP);
+    rc = exr_initialize_required_attr_simple(ctxt, part, width, height,
+                                             (exr_compression_t)io_encode_settings_get().exr_compression);
+    if (rc != EXR_ERR_SUCCESS) goto fail;
+    stage = "compression";
+    rc = io_exr_apply_compression_level(ctxt, part);
     if (rc != EXR_ERR_SUCCESS) goto fail;
     if (meta) {
         stage = "attributes";
@@ -231,42 +238,15 @@ int io_exr_write_layers_half(const char *path, int width, int height, const io_e
         rc = EXR_ERR_OUT_OF_MEMORY;
         goto fail;
     }
-
-    for (int y = 0; y < height; y += lines_per_chunk) {
-        exr_chunk_info_t cinfo;
-        exr_encode_pipeline_t enc;
-        memset(&cinfo, 0, sizeof cinfo);
-        memset(&enc, 0, sizeof enc);
-        stage = "chunk info";
-        rc = exr_write_scanline_chunk_info(ctxt, part, y, &cinfo);
-        if (rc != EXR_ERR_SUCCESS) goto fail;
-        stage = "encode init";
-        rc = exr_encoding_initialize(ctxt, part, &cinfo, &enc);
-        if (rc != EXR_ERR_SUCCESS) goto fail;
-
-        /* The channel list is sorted by name in the file; map each back to (layer, component) by name. */
-        for (int ch = 0; ch < enc.channel_count && rc == EXR_ERR_SUCCESS; ++ch) {
-            exr_coding_channel_info_t *ci = &enc.channels[ch];
-            int l = 0, c = 0;
-            if (!find_channel(layers, layer_count, ci->channel_name, &l, &c)) {
-                rc = EXR_ERR_INVALID_ARGUMENT;
-                break;
-            }
-            feed_channel(ci, &layers[l], c, width, cinfo.start_y, cinfo.height,
-                         scratch + (size_t)ch * (size_t)lines_per_chunk * (size_t)width);
-        }
-        stage = "encode";
-        compress_wrap wrap = {NULL};
-        if (rc == EXR_ERR_SUCCESS) rc = exr_encoding_choose_default_routines(ctxt, part, &enc);
-        if (rc == EXR_ERR_SUCCESS && enc.compress_fn) {
-            wrap.orig = enc.compress_fn;
-            enc.encoding_user_data = &wrap;
-            enc.compress_fn = compress_no_expand;
-        }
-        if (rc == EXR_ERR_SUCCESS) rc = exr_encoding_run(ctxt, part, &enc);
-        exr_encoding_destroy(ctxt, &enc);
-        if (rc != EXR_ERR_SUCCESS) goto fail;
-    }
+    /* Half layers are read in place, so their chunks compress on worker threads (exr_parallel.h); float layers
+     * are converted into the one scratch buffer a chunk at a time, so those are encoded on this thread. */
+    bool any_f32 = false;
+    for (int l = 0; l < layer_count; ++l) any_f32 |= layers[l].f32 != NULL;
+    feed_state fs = {layers, layer_count, width, lines_per_chunk, scratch};
+    stage = "encode";
+    rc = io_exr_encode_chunks(ctxt, part, 0, (height + lines_per_chunk - 1) / lines_per_chunk, lines_per_chunk,
+                              feed_chunk, &fs, any_f32 ? 1 : io_encode_threads());
+    if (rc != EXR_ERR_SUCCESS) goto fail;
 
     free(scratch);
     scratch = NULL;

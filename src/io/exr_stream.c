@@ -1,12 +1,15 @@
 /* vksky image I/O: the streamed EXR writer (see exr_stream.h). Rows arrive in bands of any height; whole chunks
- * (ZIP: 16 rows) are encoded as soon as they are complete, the remainder waits in a one-chunk buffer. */
+ * (ZIP: 16 rows) are encoded as soon as they are complete, on the encode threads (exr_parallel.h); the remainder
+ * waits in a one-chunk buffer. The compression is the process's (encode_settings.h: ZIP unless --exr-compression). */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "io/exr_stream.h"
 #include "io/atomic_file.h"
 #include "io/exr_common.h"
+#include "io/encode_settings.h"
 #include "io/exr_envmap_attrs.h"
+#include "io/exr_parallel.h"
 #include "io/io_error.h"
 
 #include <limits.h>
@@ -67,12 +70,14 @@ io_exr_stream *io_exr_stream_open(const char *path, int width, int height, const
     exr_result_t rc = exr_start_write(&s->ctxt, s->tmp, EXR_WRITE_FILE_DIRECTLY, &init);
     if (rc != EXR_ERR_SUCCESS) return fail(s, "start", rc, err, err_size), NULL;
     rc = exr_add_part(s->ctxt, "", EXR_STORAGE_SCANLINE, &part);
-    if (rc == EXR_ERR_SUCCESS) rc = exr_initialize_required_attr_simple(s->ctxt, part, width, height, EXR_COMPRESSION_ZIP);
+    if (rc == EXR_ERR_SUCCESS) rc = exr_initialize_required_attr_simple(s->ctxt, part, width, height,
+                                                 (exr_compression_t)io_encode_settings_get().exr_compression);
     for (int c = 0; c < 4 && rc == EXR_ERR_SUCCESS; ++c) {
         char name[8];
         io_exr_channel_name(name, sizeof name, "", c);
         rc = exr_add_channel(s->ctxt, part, name, EXR_PIXEL_HALF, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
     }
+    if (rc == EXR_ERR_SUCCESS) rc = io_exr_apply_compression_level(s->ctxt, part);
     if (rc == EXR_ERR_SUCCESS) rc = io_exr_add_sky_attrs(s->ctxt, part, attrs);
     if (rc == EXR_ERR_SUCCESS) rc = exr_write_header(s->ctxt);
     if (rc == EXR_ERR_SUCCESS) rc = exr_get_scanlines_per_chunk(s->ctxt, part, &s->lines_per_chunk);
@@ -82,36 +87,35 @@ io_exr_stream *io_exr_stream_open(const char *path, int width, int height, const
     return s;
 }
 
-/* Encodes the chunk starting at row y from rows of `rgba_half` (stride width * 4). */
-static exr_result_t write_chunk(io_exr_stream *s, int y, const uint16_t *rgba_half)
+typedef struct rows_src {
+    int width, y;               /* the row `base` holds */
+    const uint16_t *base;       /* interleaved RGBA half rows, stride width * 4 */
+} rows_src;
+
+/* io_exr_feed_fn: the channels are stored sorted by name (A, B, G, R): each matched by its name. */
+static exr_result_t feed_rows(void *user, exr_encode_pipeline_t *enc, int y, int rows)
 {
-    exr_chunk_info_t cinfo;
-    exr_encode_pipeline_t enc;
-    memset(&cinfo, 0, sizeof cinfo);
-    memset(&enc, 0, sizeof enc);
-    exr_result_t rc = exr_write_scanline_chunk_info(s->ctxt, 0, y, &cinfo);
-    if (rc == EXR_ERR_SUCCESS) rc = exr_encoding_initialize(s->ctxt, 0, &cinfo, &enc);
-    if (rc != EXR_ERR_SUCCESS) return rc;
-    /* The channels are stored sorted by name (A, B, G, R): match each by its name. */
-    for (int ch = 0; ch < enc.channel_count; ++ch) {
-        exr_coding_channel_info_t *ci = &enc.channels[ch];
+    const rows_src *src = user;
+    (void)rows;
+    const uint16_t *first = src->base + (size_t)(y - src->y) * (size_t)src->width * 4;
+    for (int ch = 0; ch < enc->channel_count; ++ch) {
+        exr_coding_channel_info_t *ci = &enc->channels[ch];
         int c = ci->channel_name[0] == 'R' ? 0 : ci->channel_name[0] == 'G' ? 1 : ci->channel_name[0] == 'B' ? 2 : 3;
         ci->user_pixel_stride = 4 * (int32_t)sizeof(uint16_t);
-        ci->user_line_stride = s->width * 4 * (int32_t)sizeof(uint16_t);
+        ci->user_line_stride = src->width * 4 * (int32_t)sizeof(uint16_t);
         ci->user_data_type = EXR_PIXEL_HALF;
         ci->user_bytes_per_element = (int16_t)sizeof(uint16_t);
-        ci->encode_from_ptr = (const uint8_t *)(rgba_half + c);
+        ci->encode_from_ptr = (const uint8_t *)(first + c);
     }
-    io_exr_compress_wrap wrap = {NULL};
-    rc = exr_encoding_choose_default_routines(s->ctxt, 0, &enc);
-    if (rc == EXR_ERR_SUCCESS && enc.compress_fn) {
-        wrap.orig = enc.compress_fn;
-        enc.encoding_user_data = &wrap;
-        enc.compress_fn = io_exr_compress_no_expand;
-    }
-    if (rc == EXR_ERR_SUCCESS) rc = exr_encoding_run(s->ctxt, 0, &enc);
-    exr_encoding_destroy(s->ctxt, &enc);
-    return rc;
+    return EXR_ERR_SUCCESS;
+}
+
+/* Encodes `count` chunks, the first at row y, from rows of `rgba_half` starting at that row (on the encode threads:
+ * exr_parallel.h). */
+static exr_result_t write_chunks(io_exr_stream *s, int y, int count, const uint16_t *rgba_half)
+{
+    rows_src src = {s->width, y, rgba_half};
+    return io_exr_encode_chunks(s->ctxt, 0, y, count, s->lines_per_chunk, feed_rows, &src, io_encode_threads());
 }
 
 int io_exr_stream_rows(io_exr_stream *s, const uint16_t *rgba_half, int rows, char *err, size_t err_size)
@@ -128,14 +132,20 @@ int io_exr_stream_rows(io_exr_stream *s, const uint16_t *rgba_half, int rows, ch
         int chunk_rows = s->height - chunk_y < lpc ? s->height - chunk_y : lpc;
         exr_result_t rc = EXR_ERR_SUCCESS;
         if (s->pending == 0 && rows >= chunk_rows) {
-            /* A whole chunk in the caller's band: encode it in place. */
-            rc = write_chunk(s, chunk_y, rgba_half);
-            rgba_half += (size_t)chunk_rows * row_values, rows -= chunk_rows, s->next_row += chunk_rows;
+            /* Whole chunks in the caller's band (the image's last, shorter chunk included): encoded in place. */
+            int whole = 0, taken = 0;
+            while (chunk_y + taken < s->height) {
+                int n = s->height - (chunk_y + taken) < lpc ? s->height - (chunk_y + taken) : lpc;
+                if (rows - taken < n) break;
+                taken += n, ++whole;
+            }
+            rc = write_chunks(s, chunk_y, whole, rgba_half);
+            rgba_half += (size_t)taken * row_values, rows -= taken, s->next_row += taken;
         } else {
             int take = chunk_rows - s->pending < rows ? chunk_rows - s->pending : rows;
             memcpy(s->chunk + (size_t)s->pending * row_values, rgba_half, (size_t)take * row_values * sizeof(uint16_t));
             rgba_half += (size_t)take * row_values, rows -= take, s->pending += take, s->next_row += take;
-            if (s->pending == chunk_rows) rc = write_chunk(s, chunk_y, s->chunk), s->pending = 0;
+            if (s->pending == chunk_rows) rc = write_chunks(s, chunk_y, 1, s->chunk), s->pending = 0;
         }
         if (rc != EXR_ERR_SUCCESS) return fail(s, "encode", rc, err, err_size);
     }

@@ -1,0 +1,77 @@
+/* The readback ring (issue 27): a pipelined frame loop for sequences and banded renders. The GPU renders frame N+1
+ * while a consumer thread reads back and writes frame N. A CPU consumer and a GPU producer share a few readback
+ * buffers; three waits hand them over (docs/synchronization.md, "The readback ring"):
+ *
+ *   ring.gpu_done   the consumer waits for the frame's fence before it reads the slot's buffers (GPU -> host, RAW);
+ *   ring.slot_free  the producer waits for the consumer to release a slot before recording into it again
+ *                   (host -> GPU, WAR; also frees its command buffer and resets its fence only when nobody waits);
+ *   ring.drain      the producer waits for every frame in flight before the host rewrites what they read (the
+ *                   atmosphere uniform block: WAR).
+ *
+ * Each is printed by --trace-barriers ("sync <name> ...") and can be left out by VKSKY_DROP_BARRIER=<name> (the drop
+ * tests: tests/readback_ring_test.sh). Frames are consumed in submission order, so the files are written in the
+ * serial loop's order with the same bytes. */
+#ifndef VKSKY_APP_FRAME_RING_H
+#define VKSKY_APP_FRAME_RING_H
+#include "sky/frame.h"
+#include <pthread.h>
+#include <stdio.h>
+
+#define FRAME_RING_MAX_SLOTS 4
+
+/* What the consumer reads: the frame's linear (RGBA half) and display (RGBA8) pixels, as the renderer lays them out
+ * (renderer.h: readback_linear, readback_display). */
+typedef struct frame_ring_pixels {
+    const uint16_t *linear;
+    const uint8_t *display;
+} frame_ring_pixels;
+
+/* The consumer: called on the ring's thread, in submission order, once per frame; `job` is the producer's (freed by
+ * the ring afterwards with free()). Non-zero: the ring stops (later frames are not consumed) and reports it. */
+typedef int (*frame_ring_consume_fn)(void *user, const frame_ring_pixels *px, void *job);
+
+typedef struct frame_ring_slot {
+    gpu_buffer linear, display;
+    VkCommandBuffer cmd;         /* NULL: not recorded since its last reuse */
+    VkFence fence;
+    void *job;
+} frame_ring_slot;
+
+typedef struct frame_ring {
+    sky_renderer *r;
+    gpu_buffer own_linear, own_display;   /* the renderer's buffers (slot 0's), given back at the end */
+    int count;
+    frame_ring_slot slots[FRAME_RING_MAX_SLOTS];
+    frame_ring_consume_fn consume;
+    void *user;
+    FILE *trace;                 /* --trace-barriers: one "sync" line per wait */
+    const char *drop;            /* VKSKY_DROP_BARRIER: a wait to leave out (tests) */
+    int delay_ms;                /* VKSKY_RING_DELAY_MS: the consumer dawdles (widens races for the drop tests) */
+    pthread_t thread;
+    pthread_mutex_t lock;
+    pthread_cond_t changed;
+    long submitted, consumed;    /* frames handed over / released by the consumer */
+    int status;                  /* the first non-zero consumer result */
+    bool closing, started;
+} frame_ring;
+
+/* The number of slots a run uses: VKSKY_READBACK_SLOTS (0 or 1: the serial loop, no ring; default 2). */
+int frame_ring_slots_wanted(void);
+/* A ring of `slots` (2..FRAME_RING_MAX_SLOTS) over r (made with readback); starts the consumer thread. 0, or 1 with
+ * a line printed. */
+int frame_ring_create(frame_ring *ring, sky_renderer *r, int slots, frame_ring_consume_fn consume, void *user,
+                      FILE *trace);
+/* Records f into the next slot (after ring.slot_free), submits it, and hands `job` (malloc'd) to the consumer.
+ * Returns the consumer's status so far (non-zero: stop submitting; the job was freed). */
+int frame_ring_submit(frame_ring *ring, const frame_desc *f, void *job);
+/* ring.drain: waits until the GPU has finished every frame submitted so far (before the host rewrites what they
+ * read). */
+void frame_ring_drain(frame_ring *ring);
+/* Wait until the consumer has written every frame submitted so far (e.g. before a line that must follow theirs).
+ * Returns the consumer's status. */
+int frame_ring_settle(frame_ring *ring);
+
+/* Waits for the consumer to finish every frame, stops the thread, frees the slots, gives the renderer its buffers
+ * back. Returns the consumer's status. */
+int frame_ring_finish(frame_ring *ring);
+#endif

@@ -1,0 +1,24 @@
+/* vksky image I/O: how images are encoded (issue 27): worker threads for EXR chunks and the EXR compression. Process-
+ * wide, set once by the app before any file is written (like the barrier trace and drop controls of gpu/); every
+ * writer reads them. The defaults are today's files: ZIP, and as many threads as cores are available. */
+#ifndef VKSKY_IO_ENCODE_SETTINGS_H
+#define VKSKY_IO_ENCODE_SETTINGS_H
+
+typedef struct io_encode_settings {
+    int threads;          /* EXR chunk compression threads; 0: the cores available to the process */
+    int exr_compression;  /* an exr_compression_t (openexr.h); EXR_COMPRESSION_ZIP by default */
+    int zip_level;        /* zlib level 1..9 for ZIP and ZIPS; 0: zlib's default (6) */
+} io_encode_settings;
+
+void io_encode_settings_set(const io_encode_settings *s);
+io_encode_settings io_encode_settings_get(void);
+/* The thread count in effect: settings' threads, or the cores available (sched_getaffinity), at least 1. */
+int io_encode_threads(void);
+/* The compression named `name` (zip, zips, piz, rle, none, pxr24, b44, b44a, dwaa, dwab): its exr_compression_t,
+ * or -1 for any other name; zip and zips may carry a zlib level, "zip:1" .. "zip:9" (*zip_level; else 0). The
+ * inverse, io_exr_compression_name: "?" for an unknown value. */
+int io_exr_compression_parse(const char *name, int *zip_level);
+const char *io_exr_compression_name(int compression);
+/* Whether this OpenEXRCore can write it (3.1 reads DWAA/DWAB but cannot write them). */
+int io_exr_compression_writable(int compression);
+#endif

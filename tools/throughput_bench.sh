@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Throughput to disk (issue 27 item 4): frames/s of sequences by resolution, format and setting, HDRI seconds by
+# size, the first image's latency, EXR compression size vs time. A benchmark, not a test: run it on an idle machine
+# and name the device, the driver and the cores with the figures (docs/performance.md, "Throughput to disk").
+#
+#   tools/throughput_bench.sh VKSKY [BASELINE_VKSKY] [OUT_DIR]
+#
+# Files go to a scratch directory (removed at the end); one line per measurement on stdout:
+#   case <name> frames <n> wall_s <s> frames_per_s <f> bytes_per_frame <b> [peak_mb <m>]
+# SEQ_FRAMES (default 120) sets the sequences' length; QUICK=1 runs only the headline cases.
+set -u
+V=${1:?usage: throughput_bench.sh VKSKY [BASELINE_VKSKY] [OUT_DIR]}
+BASE=${2:-}
+scratch=$(mktemp -d "${3:-${TMPDIR:-/tmp}}/vksky_tp.XXXXXX")
+trap 'rm -rf "$scratch"' EXIT
+N=${SEQ_FRAMES:-120}
+ANIM=(--animate sun-elevation=-6:30 --quiet)
+
+# measure NAME FRAMES BIN ARGS...: wall time of the whole run (start-up included), files' bytes, peak RSS.
+measure() {
+    local name=$1 frames=$2 bin=$3; shift 3
+    rm -rf "$scratch/o"; mkdir -p "$scratch/o"
+    local t0 t1 rss
+    t0=$(date +%s.%N)
+    local timer=()
+    [ -x /usr/bin/time ] && timer=(/usr/bin/time -f '%M' -o "$scratch/rss")
+    echo -1 >"$scratch/rss"
+    "${timer[@]}" "$bin" "$@" >"$scratch/stdout" 2>"$scratch/stderr" ||
+        { echo "case $name FAILED: $(tail -1 "$scratch/stderr")"; return; }
+    t1=$(date +%s.%N)
+    rss=$(tail -1 "$scratch/rss")
+    local bytes
+    bytes=$(du -sb "$scratch/o" | awk '{print $1}')
+    awk -v n="$name" -v f="$frames" -v a="$t0" -v b="$t1" -v by="$bytes" -v r="$rss" 'BEGIN {
+        s = b - a; printf "case %s frames %d wall_s %.3f frames_per_s %.2f bytes_per_frame %d peak_mb %.0f\n",
+        n, f, s, f / s, by / f, r / 1024 }'
+    grep '^sequence ' "$scratch/stdout" | sed "s/^/  $name: /"
+}
+
+seq_case() {   # seq_case NAME BIN W H EXT FRAMES [ARGS...]
+    local name=$1 bin=$2 w=$3 h=$4 ext=$5 frames=$6; shift 6
+    measure "$name" "$frames" "$bin" --width "$w" --height "$h" "${ANIM[@]}" --frame-count "$frames" \
+        --render "$scratch/o/f%04d.$ext" "$@"
+}
+
+nproc_all=$(nproc)
+echo "host cores $nproc_all"
+"$V" --list-devices | head -3
+"$V" --width 16 --height 16 --render "$scratch/warm.exr" >/dev/null 2>&1   # driver and shader caches warm
+
+# Headline: 720p and 1080p EXR sequences; the baseline binary beside them when given.
+[ -n "$BASE" ] && seq_case base_720p_exr "$BASE" 1280 720 exr 60
+seq_case 720p_exr "$V" 1280 720 exr "$N"
+[ -n "$BASE" ] && seq_case base_1080p_exr "$BASE" 1920 1080 exr 30
+seq_case 1080p_exr "$V" 1920 1080 exr "$N"
+seq_case 720p_exr_bench "$V" 1280 720 exr "$N" --bench 30
+[ "${QUICK:-0}" = 1 ] && exit 0
+
+# What each part buys: the ring off (serial loop), one encode thread, both.
+VKSKY_READBACK_SLOTS=1 seq_case 720p_exr_serial "$V" 1280 720 exr "$N"
+seq_case 720p_exr_threads1 "$V" 1280 720 exr "$N" --threads 1
+VKSKY_READBACK_SLOTS=1 seq_case 720p_exr_serial_threads1 "$V" 1280 720 exr "$N" --threads 1
+seq_case 720p_png "$V" 1280 720 png "$N"
+seq_case 320x180_exr "$V" 320 180 exr "$N"
+seq_case 4k_exr "$V" 3840 2160 exr 30
+
+# EXR compression: size vs time (1080p).
+for c in zip zip:1 zip:4 zips piz pxr24 b44 rle none; do
+    seq_case "1080p_exr_$c" "$V" 1920 1080 exr 60 --exr-compression "$c"
+done
+
+# HDRIs (equirect, banded), and the first image.
+for w in 4096 8192 16384; do
+    measure "equirect_$w" 1 "$V" --projection equirect --width "$w" --render "$scratch/o/e.exr" --quiet
+done
+[ -n "$BASE" ] && measure base_equirect_16384 1 "$BASE" --projection equirect --width 16384 --render "$scratch/o/e.exr" --quiet
+for i in 1 2 3; do measure "first_1080p_exr_$i" 1 "$V" --width 1920 --height 1080 --render "$scratch/o/a.exr"; done
+[ -n "$BASE" ] && measure base_first_1080p_exr 1 "$BASE" --width 1920 --height 1080 --render "$scratch/o/a.exr"
+exit 0
