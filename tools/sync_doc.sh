@@ -54,7 +54,7 @@ for id in $configs; do
         head -n 5 "$tmp/err.$id" >&2
         exit 1
     fi
-    grep -E '^(pass|barrier) ' "$tmp/out.$id" >"$tmp/trace.$id" || true
+    grep -E '^(pass|barrier|batch) ' "$tmp/out.$id" >"$tmp/trace.$id" || true
     [ -s "$tmp/trace.$id" ] || { echo "sync_doc: config $id: the trace is empty" >&2; exit 1; }
 done
 
@@ -98,6 +98,32 @@ function load_list(file,   line, f, n, i, key, rest) {
     }
     close(file)
 }
+# The mutation matrix: mres[name SUBSEP config SUBSEP field] = result (tests/barrier_mutations.txt).
+function load_mutations(file,   line, f, name, field) {
+    while ((getline line < file) > 0) {
+        if (line ~ /^#/ || line ~ /^[ \t]*$/) continue
+        split(line, f, " "); name = f[1]; sub(/:.*/, "", name); field = f[1]; sub(/^[^:]*:/, "", field)
+        if (field ~ /=/) continue
+        mres[name SUBSEP f[2] SUBSEP field] = f[3]
+    }
+    close(file)
+}
+# What the proof of one barrier is: a weakened mask reported as a hazard; only its layout (or its own transition)
+# seen; or nothing (the drop list's note says why). `key` = name SUBSEP config of its drop test.
+function proof(name, key,   k, cfg, i, caught, fields, r, silent) {
+    split(key, k, SUBSEP); cfg = k[2]
+    split("srcstage srcaccess dststage dstaccess", fields, " ")
+    caught = ""; silent = ""
+    for (i = 1; i <= 4; ++i) {
+        r = mres[name SUBSEP cfg SUBSEP fields[i]]
+        if (r ~ /RAW|WAR|WAW/) caught = caught (caught == "" ? "" : ", ") fields[i]
+        else if (r == "none") silent = silent (silent == "" ? "" : ", ") fields[i]
+    }
+    if (!(key in expected)) return "**not tested**"
+    if (caught != "") return "own access: " caught (silent != "" ? "; silent: " silent : "")
+    if (expected[key] != "none") return "layout only" (silent != "" ? "; silent: " silent : "")
+    return "not visible"
+}
 EOF
 
 # --- 2. The list check: every traced barrier line is drop-tested by some entry, every entry is recorded. -----
@@ -134,9 +160,32 @@ check_list() {
         }' ncfg="$(wc -w <<<"$configs")" "${traces[@]}"
 }
 
+# One vkCmdPipelineBarrier2 per point: between two passes (or a pass and the frame's start or end) at most one
+# `batch` line; and every drop-tested barrier x field has a result in the mutation matrix.
+check_batches() {
+    local bad=0
+    for id in $configs; do
+        awk -v id="$id" '/^pass / { n = 0; next }
+            /^batch / { if (++n == 2) { printf "barrier_list: config %s: two vkCmdPipelineBarrier2 calls with no pass between them (%s); merge them into one batch\n", id, $0; bad = 1 } }
+            END { exit bad }' "$tmp/trace.$id" || bad=1
+    done
+    local mut=$root/tests/barrier_mutations.txt ci=$root/tests/barrier_mutations_ci.txt
+    awk -v mut="$mut" -v ci="$ci" '
+        BEGIN { while ((getline l < mut) > 0) if (l !~ /^#/) { split(l, f, " "); have[f[1] " " f[2]] = 1 }
+                split("srcstage srcaccess dststage dstaccess", fields, " ") }
+        FILENAME == ci && $1 !~ /^#/ && NF >= 2 { if (!(($1 " " $2) in have)) { printf "barrier_list: %s %s (tests/barrier_mutations_ci.txt) has no result in tests/barrier_mutations.txt: run tools/mutation_matrix.sh\n", $1, $2; bad = 1 } next }
+        FILENAME != ci && $1 != "config" && $1 !~ /^#/ && NF >= 3 && $4 != "untraced" {
+            for (i = 1; i <= 4; ++i) if (!(($1 ":" fields[i] " " $2) in have)) { missing++; if (missing <= 5) printf "barrier_list: %s:%s %s has no result in tests/barrier_mutations.txt: run tools/mutation_matrix.sh\n", $1, fields[i], $2; bad = 1 } }
+        END { if (missing > 5) printf "barrier_list: ... %d mutations in all without a result\n", missing; exit bad }' "$ci" "$list" || bad=1
+    [ $bad -eq 0 ] && echo "barrier_list: ok: one barrier call per point in every config; the mutation matrix covers every barrier"
+    return $bad
+}
+
 if [ "$mode" = list ]; then
-    check_list
-    exit $?
+    rc=0
+    check_list || rc=1
+    check_batches || rc=1
+    exit $rc
 fi
 
 # --- 3. The tables. ------------------------------------------------------------------------------------------
@@ -147,13 +196,14 @@ barrier_table() {   # config [skip configs] [label column: config name]
     local id=$1 skip=${2:-} label=${3:-}
     local skipfiles=()
     for s in $skip; do skipfiles+=("$tmp/trace.$s"); done
-    awk -v list="$list" -v id="$id" -v label="$label" "$AWK_LIB"'
-        BEGIN { load_list(list) }
+    awk -v list="$list" -v mutations="$root/tests/barrier_mutations.txt" -v id="$id" -v label="$label" "$AWK_LIB"'
+        BEGIN { load_list(list); load_mutations(mutations) }
         FNR == 1 { f++ }
         # First the traces to skip (f < last), then the config itself (two passes over it: passes after barriers).
         f < nfiles && /^barrier / { l = $0; sub(/ DROPPED$/, "", l); skipped[l] = 1; next }
         f < nfiles { next }
         /^pass / { pass = $2; if (pending) for (i = first_pending; i <= n; ++i) after[i] = pass; pending = 0; next }
+        /^batch / { ++calls; for (i = assigned + 1; i <= n; ++i) call[i] = calls; assigned = n; next }
         /^barrier / {
             parse($0); l = $0; sub(/ DROPPED$/, "", l)
             ++n; before[n] = pass; row_line[n] = l; name[n] = b_name; point[n] = b_point; res[n] = b_res; mips[n] = b_mips
@@ -162,15 +212,15 @@ barrier_table() {   # config [skip configs] [label column: config name]
         }
         END {
             if (n == 0) { print "*(none)*"; exit }
-            printf "| # |%s point: between passes | barrier | resource, mips | layout | src stage / access | dst stage / access | prevents | left out, validation reports |\n", label != "" ? " frame |" : ""
-            printf "|---|%s---|---|---|---|---|---|---|---|\n", label != "" ? "---|" : ""
+            printf "| # | call |%s point: between passes | barrier | resource, mips | layout | src stage / access | dst stage / access | prevents | left out, validation reports | proof (appendix B) |\n", label != "" ? " frame |" : ""
+            printf "|---|---|%s---|---|---|---|---|---|---|---|---|\n", label != "" ? "---|" : ""
             rows = 0
             for (i = 1; i <= n; ++i) {
                 if (row_line[i] in skipped) continue
                 b = before[i] == "" ? "*frame start*" : "`" before[i] "`"
                 a = (i in after) ? "`" after[i] "`" : (da[i] ~ /HOST/ ? "*host, after the fence*" : (new[i] ~ /PRESENT/ ? "*present*" : "*frame end*"))
-                lay = mips[i] == "-" ? "*buffer*" : "`" old[i] "` → `" new[i] "`"
-                rm = mips[i] == "-" ? "`" res[i] "`" : "`" res[i] "` " mips[i]
+                lay = mips[i] == "-" ? "*buffer*" : (mips[i] == "*" ? "*global*" : "`" old[i] "` → `" new[i] "`")
+                rm = mips[i] == "-" || mips[i] == "*" ? "`" res[i] "`" : "`" res[i] "` " mips[i]
                 key = name[i] SUBSEP id
                 if (!(key in expected)) {   # drop-tested in another config that records it identically
                     c = entry_configs[name[i]]; split(c, cs, " "); key = name[i] SUBSEP cs[1]
@@ -178,9 +228,10 @@ barrier_table() {   # config [skip configs] [label column: config name]
                 rep = (key in expected) ? md_hazard(expected[key]) : "**not tested**"
                 if (note[key] != "" && note[key] != "idem") rep = rep " — " note[key]
                 else if (note[key] == "idem") rep = rep " — idem"
-                printf "| %d |%s *%s*: %s → %s | `%s` | %s | %s | %s / %s | %s / %s | %s | %s |\n", ++rows,
-                       label != "" ? " " label " |" : "", point[i], b, a, name[i], rm, lay, md_mask(ss[i]), md_mask(sa[i]),
-                       md_mask(ds[i]), md_mask(da[i]), md_hazard(hz[i]), rep
+                printf "| %d | %s |%s *%s*: %s → %s | `%s` | %s | %s | %s / %s | %s / %s | %s | %s | %s |\n", ++rows,
+                       (i in call) ? call[i] : "–", label != "" ? " " label " |" : "", point[i], b, a, name[i], rm, lay,
+                       md_mask(ss[i]), md_mask(sa[i]), md_mask(ds[i]), md_mask(da[i]), md_hazard(hz[i]), rep,
+                       proof(name[i], key)
             }
             if (rows == 0) print "*(none)*"
         }' nfiles=$((${#skipfiles[@]} + 1)) "${skipfiles[@]}" "$tmp/trace.$id"
