@@ -54,7 +54,11 @@ else
     env_vars=(VKSKY_DROP_BARRIER="$([ "$NAME" = - ] || echo "$NAME")" VKSKY_WEAKEN_BARRIER=)
     mark=DROPPED
 fi
-if [ "$kind" = render ]; then
+if [ "$kind" = probe ]; then
+    # A test program in vksky's place (its path relative to vksky's directory is the first of ARGS).
+    read -r probe args <<<"$args"
+    run=("$(dirname "$VKSKY")/$probe")
+elif [ "$kind" = render ]; then
     env_vars+=(VKSKY_FRAMES=2)
 elif [ -z "${DISPLAY:-}" ]; then
     command -v xvfb-run >/dev/null || { echo "SKIP: no DISPLAY and no xvfb-run for the window"; exit 77; }

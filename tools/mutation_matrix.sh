@@ -46,6 +46,7 @@ for cfg in $(awk '{ print $2 }' "$tmp/all" | sort -u); do
     read -r kind args < <(awk -v id="$cfg" '$1 == "config" && $2 == id { $1 = $2 = ""; sub(/^ +/, ""); print; exit }' "$drops")
     args=${args//OUT/$tmp/out}
     run=("$vksky")
+    if [ "$kind" = probe ]; then read -r probe args <<<"$args"; run=("$(dirname "$vksky")/$probe"); fi
     if [ "$kind" = window ] && [ -z "${DISPLAY:-}" ]; then run=("$root/tests/xvfb_run.sh" 640x480x24 "$vksky"); fi
     # shellcheck disable=SC2086
     "${run[@]}" $args --trace-barriers 2>/dev/null | grep '^barrier ' >"$tmp/trace.$cfg" || true

@@ -41,6 +41,7 @@ for id in $configs; do
     read -r kind args < <(awk -v id="$id" '$1 == "config" && $2 == id { $1 = $2 = ""; sub(/^ +/, ""); print }' "$list")
     args=${args//OUT/$tmp/out}
     run=("$vksky")
+    if [ "$kind" = probe ]; then read -r probe args <<<"$args"; run=("$(dirname "$vksky")/$probe"); fi
     if [ "$kind" = window ] && [ -z "${DISPLAY:-}" ]; then
         if ! command -v xvfb-run >/dev/null; then
             echo "sync_doc: SKIP: no DISPLAY and no xvfb-run to trace the window frame ($id)" >&2
@@ -54,7 +55,7 @@ for id in $configs; do
         head -n 5 "$tmp/err.$id" >&2
         exit 1
     fi
-    grep -E '^(pass|barrier|batch) ' "$tmp/out.$id" >"$tmp/trace.$id" || true
+    grep -E '^(pass|barrier|batch) |^commands$' "$tmp/out.$id" >"$tmp/trace.$id" || true
     [ -s "$tmp/trace.$id" ] || { echo "sync_doc: config $id: the trace is empty" >&2; exit 1; }
 done
 
@@ -108,19 +109,21 @@ function load_mutations(file,   line, f, name, field) {
     }
     close(file)
 }
-# What the proof of one barrier is: a weakened mask reported as a hazard; only its layout (or its own transition)
-# seen; or nothing (the drop list's note says why). `key` = name SUBSEP config of its drop test.
-function proof(name, key,   k, cfg, i, caught, fields, r, silent) {
+# What the proof of one barrier is (docs §2): "own access" when weakening its source side (the stage or the access
+# of what it protects) is reported as a hazard; "layout only" when only its layout (its transition, or the layout
+# checks) shows; "not visible" when nothing does. The fields whose weakening is silent are listed: they are the
+# ones the guide justifies by argument. `key` = name SUBSEP config of its drop test.
+function proof(name, key,   k, cfg, i, fields, r, silent, own) {
+    if (!(key in expected)) return "**not tested**"
     split(key, k, SUBSEP); cfg = k[2]
     split("srcstage srcaccess dststage dstaccess", fields, " ")
-    caught = ""; silent = ""
+    silent = ""; own = 0
     for (i = 1; i <= 4; ++i) {
         r = mres[name SUBSEP cfg SUBSEP fields[i]]
-        if (r ~ /RAW|WAR|WAW/) caught = caught (caught == "" ? "" : ", ") fields[i]
-        else if (r == "none") silent = silent (silent == "" ? "" : ", ") fields[i]
+        if (r ~ /RAW|WAR|WAW/ && i <= 2) own = 1
+        if (r == "none") silent = silent (silent == "" ? "" : ", ") fields[i]
     }
-    if (!(key in expected)) return "**not tested**"
-    if (caught != "") return "own access: " caught (silent != "" ? "; silent: " silent : "")
+    if (own) return "own access" (silent != "" ? "; silent: " silent : "")
     if (expected[key] != "none") return "layout only" (silent != "" ? "; silent: " silent : "")
     return "not visible"
 }
@@ -130,7 +133,8 @@ EOF
 check_list() {
     local traces=()
     for id in $configs; do traces+=("$tmp/trace.$id"); done
-    awk -v list="$list" -v frame_c="$root/src/sky/frame.c" "$AWK_LIB"'
+    cat "$root"/src/*/*.c >"$tmp/all_src.c"
+    awk -v list="$list" -v frame_c="$tmp/all_src.c" "$AWK_LIB"'
         BEGIN { load_list(list) }
         FNR == 1 { cfg = FILENAME; sub(/.*\/trace\./, "", cfg) }
         /^barrier / { parse($0); line = $0; sub(/ DROPPED$/, "", line)
@@ -150,7 +154,7 @@ check_list() {
                 if (untraced[entry_order[e]]) {
                     # Not in any trace: the name must at least still be in the frame spine.
                     found = 0; while ((getline src < frame_c) > 0) if (index(src, "\"" k[1] "\"")) found = 1; close(frame_c)
-                    if (!found) { bad++; printf "barrier_list: %s (untraced) is not named in src/sky/frame.c\n", k[1] }
+                    if (!found) { bad++; printf "barrier_list: %s (untraced) is not named in any file of src/\n", k[1] }
                 } else if (!((k[2] SUBSEP k[1]) in named)) {
                     bad++; printf "barrier_list: %s: config %s records no barrier of that name (renamed or gone?)\n", k[1], k[2]
                 }
@@ -160,12 +164,12 @@ check_list() {
         }' ncfg="$(wc -w <<<"$configs")" "${traces[@]}"
 }
 
-# One vkCmdPipelineBarrier2 per point: between two passes (or a pass and the frame's start or end) at most one
-# `batch` line; and every drop-tested barrier x field has a result in the mutation matrix.
+# One vkCmdPipelineBarrier2 per point: between two passes (or a pass and the start or end of a command buffer,
+# "commands") at most one `batch` line; and every drop-tested barrier x field has a result in the mutation matrix.
 check_batches() {
     local bad=0
     for id in $configs; do
-        awk -v id="$id" '/^pass / { n = 0; next }
+        awk -v id="$id" '/^pass / || /^commands$/ { n = 0; next }
             /^batch / { if (++n == 2) { printf "barrier_list: config %s: two vkCmdPipelineBarrier2 calls with no pass between them (%s); merge them into one batch\n", id, $0; bad = 1 } }
             END { exit bad }' "$tmp/trace.$id" || bad=1
     done
@@ -237,7 +241,7 @@ barrier_table() {   # config [skip configs] [label column: config name]
         }' nfiles=$((${#skipfiles[@]} + 1)) "${skipfiles[@]}" "$tmp/trace.$id"
 }
 
-render_configs=$(awk '$1 == "config" && $3 == "render" && $2 != "render" { print $2 }' "$list")
+render_configs=$(awk '$1 == "config" && ($3 == "render" || $3 == "probe") && $2 != "render" { print $2 }' "$list")
 window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
 {
     echo "<!-- BEGIN GENERATED: frame table -->"
@@ -279,6 +283,28 @@ window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
     fi
     echo "<!-- END GENERATED: variant table -->"
 } >"$tmp/gen.variant"
+
+{
+    echo "<!-- BEGIN GENERATED: mutation table -->"
+    echo "<!-- tools/sync_doc.sh, from tests/barrier_mutations.txt (made by tools/mutation_matrix.sh) -->"
+    awk '
+        function cell(r) { if (r == "") return "?"; if (r == "same") return "·"; if (r == "none") return "**silent**"; gsub(/\+/, " + ", r); return r }
+        /^#/ || NF < 3 { next }
+        { name = $1; sub(/:.*/, "", name); field = $1; sub(/^[^:]*:/, "", field)
+          if (field ~ /=/) { extra[++ne] = "| `" $1 "` | " $2 " | " cell($3) " |"; next }
+          key = name " " $2; if (!(key in seen)) { seen[key] = 1; order[++n] = key }
+          res[key, field] = $3; if ($3 == "none") silent++; else if ($3 != "same") caught++ }
+        END {
+            print "| barrier | config | srcstage → NONE | srcaccess → NONE | dststage → NONE | dstaccess → NONE |"
+            print "|---|---|---|---|---|---|"
+            for (i = 1; i <= n; ++i) { split(order[i], k, " ")
+                printf "| `%s` | %s | %s | %s | %s | %s |\n", k[1], k[2], cell(res[order[i], "srcstage"]), cell(res[order[i], "srcaccess"]), cell(res[order[i], "dststage"]), cell(res[order[i], "dstaccess"]) }
+            print ""
+            printf "%d weakened fields reported, %d silent (· : the field is already NONE).\n", caught, silent
+            if (ne) { print ""; print "| mutation (explicit mask) | config | reported |"; print "|---|---|---|"; for (i = 1; i <= ne; ++i) print extra[i] }
+        }' "$root/tests/barrier_mutations.txt"
+    echo "<!-- END GENERATED: mutation table -->"
+} >"$tmp/gen.mutation"
 
 # --- 4. The diagram: passes in order, each edge labelled with the barriers recorded between two passes. -----
 # The window's semaphore stages, as window.c's submit() sets them (wait, then signal).
@@ -347,10 +373,11 @@ splice() {   # in out
         /^<!-- BEGIN GENERATED: frame table -->$/ { emit(gdir "/gen.frame"); skip = 1; next }
         /^<!-- BEGIN GENERATED: present table -->$/ { emit(gdir "/gen.present"); skip = 1; next }
         /^<!-- BEGIN GENERATED: variant table -->$/ { emit(gdir "/gen.variant"); skip = 1; next }
+        /^<!-- BEGIN GENERATED: mutation table -->$/ { emit(gdir "/gen.mutation"); skip = 1; next }
         /^<!-- GENERATED: frame_graph.png / { emit(gdir "/gen.png"); next }
         skip && /^<!-- END GENERATED: / { skip = 0; next }
         !skip { print }' "$1" >"$2"
-    for marker in "frame table" "present table" "variant table"; do
+    for marker in "frame table" "present table" "variant table" "mutation table"; do
         grep -q "^<!-- BEGIN GENERATED: $marker -->$" "$1" || { echo "sync_doc: $1 lacks <!-- BEGIN GENERATED: $marker -->" >&2; return 1; }
     done
     grep -q "^<!-- GENERATED: frame_graph.png " "$1" || { echo "sync_doc: $1 lacks the <!-- GENERATED: frame_graph.png ... --> line" >&2; return 1; }

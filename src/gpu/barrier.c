@@ -123,6 +123,10 @@ void gpu_barrier_trace_pass(const char *pass)
 {
     if (trace_out) fprintf(trace_out, "pass %s\n", pass);
 }
+void gpu_barrier_trace_commands(void)
+{
+    if (trace_out) fprintf(trace_out, "commands\n");
+}
 void gpu_barrier_set_drop(const char *name) { drop_name = (name && *name) ? name : NULL; }
 unsigned gpu_barrier_dropped_count(void) { return drop_count; }
 unsigned gpu_barrier_weakened_count(void) { return weaken_count; }

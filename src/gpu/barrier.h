@@ -78,6 +78,9 @@ void gpu_barrier_trace(FILE *out);
 /* With the trace on, a line "pass <name>" where a pass begins (called by gpu_label_begin), so the trace reads as
  * the frame: passes and the barriers between them. */
 void gpu_barrier_trace_pass(const char *pass);
+/* With the trace on, a line "commands" where a command buffer begins (called by gpu_begin_commands): barriers of
+ * two submissions can never share a call. */
+void gpu_barrier_trace_commands(void);
 /* Name of the barrier to drop (NULL: none). Returns how many barriers were dropped so far. */
 void gpu_barrier_set_drop(const char *name);
 unsigned gpu_barrier_dropped_count(void);

@@ -163,10 +163,10 @@ static void record_luts_if_dirty(sky_renderer *r, VkCommandBuffer cmd, bool forc
     }
 }
 
-void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force)
+void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next)
 {
     gpu_barrier_batch b = gpu_barrier_batch_begin("after the LUTs");
-    record_luts_if_dirty(r, cmd, force, &b);
+    record_luts_if_dirty(r, cmd, force, next ? next : &b);
     gpu_barrier_flush(cmd, &b);
 }
 
@@ -382,7 +382,9 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
         /* The sky pass wrote the HDR image; bloom downsample 0 and the tone map sample it: RAW + layout.
          * The bloom mips were sampled by the previous frame (WAR) and are rendered anew: UNDEFINED -> attachment. */
         b = gpu_barrier_batch_begin("after sky");
-        gpu_barrier_add_image(&b, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
+        /* Without bloom no pass follows before the tone map: these join its point. */
+        gpu_barrier_batch *after_sky = bloom ? &b : &before_tonemap;
+        gpu_barrier_add_image(after_sky, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
                               GPU_USAGE_FRAGMENT_SAMPLED, false);
         if (bloom)
             gpu_barrier_add_image(&b, "bloom.to_attachment", "bloom", r->bloom.mips.image,
@@ -392,9 +394,9 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
          * descriptor still names mip 0 and must find it in SHADER_READ_ONLY, though it never samples it (strength
          * 0). A never-rendered chain is UNDEFINED: a layout-only transition, contents discarded (WAR on reads). */
         else if (r->desc.bloom)
-            gpu_barrier_add_image(&b, "bloom.off_to_sample", "bloom", r->bloom.mips.image, gpu_color_range(0, 1),
+            gpu_barrier_add_image(after_sky, "bloom.off_to_sample", "bloom", r->bloom.mips.image, gpu_color_range(0, 1),
                                   BLOOM_LAST_USE, GPU_USAGE_FRAGMENT_SAMPLED, true);
-        gpu_barrier_flush(cmd, &b);
+        if (bloom) gpu_barrier_flush(cmd, &b);
 
         /* Bloom: 5 downsamples, 4 additive upsamples; the last barrier joins the tone map's point. */
         if (bloom) record_bloom(r, cmd, v, &before_tonemap);
