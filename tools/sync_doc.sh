@@ -306,6 +306,25 @@ window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
     echo "<!-- END GENERATED: mutation table -->"
 } >"$tmp/gen.mutation"
 
+# The resource graph (Mermaid, in the guide itself): an edge from the pass that wrote a resource to the pass after
+# the barrier that hands it on (every barrier whose source side writes), labelled resource and barrier.
+{
+    echo "<!-- BEGIN GENERATED: resource graph -->"
+    echo '```mermaid'
+    echo "flowchart TD"
+    awk "$AWK_LIB"'
+        /^pass / { ++np; node[np] = "p" np; printf "  p%d[\"%s\"]\n", np, $2
+                   for (i = 1; i <= npend; ++i) printf "  %s -->|\"%s\"| p%d\n", pend_from[i], pend_label[i], np
+                   npend = 0; next }
+        /^barrier / { parse($0); if (b_sa !~ /WRITE/ || np == 0) next
+                      lab = b_res (b_mips ~ /^[0-9]+$/ && b_res == "bloom" ? " mip " b_mips : "") ": " b_name
+                      if (b_da ~ /HOST/) { host = 1; printf "  p%d -->|\"%s\"| host\n", np, lab; next }
+                      pend_from[++npend] = "p" np; pend_label[npend] = lab }
+        END { if (host) print "  host([\"host, after the fence\"])" }' "$tmp/trace.render"
+    echo '```'
+    echo "<!-- END GENERATED: resource graph -->"
+} >"$tmp/gen.resource"
+
 # --- 4. The diagram: passes in order, each edge labelled with the barriers recorded between two passes. -----
 # The window's semaphore stages, as window.c's submit() sets them (wait, then signal).
 sem_wait="" sem_signal=""
@@ -374,10 +393,11 @@ splice() {   # in out
         /^<!-- BEGIN GENERATED: present table -->$/ { emit(gdir "/gen.present"); skip = 1; next }
         /^<!-- BEGIN GENERATED: variant table -->$/ { emit(gdir "/gen.variant"); skip = 1; next }
         /^<!-- BEGIN GENERATED: mutation table -->$/ { emit(gdir "/gen.mutation"); skip = 1; next }
+        /^<!-- BEGIN GENERATED: resource graph -->$/ { emit(gdir "/gen.resource"); skip = 1; next }
         /^<!-- GENERATED: frame_graph.png / { emit(gdir "/gen.png"); next }
         skip && /^<!-- END GENERATED: / { skip = 0; next }
         !skip { print }' "$1" >"$2"
-    for marker in "frame table" "present table" "variant table" "mutation table"; do
+    for marker in "frame table" "present table" "variant table" "mutation table" "resource graph"; do
         grep -q "^<!-- BEGIN GENERATED: $marker -->$" "$1" || { echo "sync_doc: $1 lacks <!-- BEGIN GENERATED: $marker -->" >&2; return 1; }
     done
     grep -q "^<!-- GENERATED: frame_graph.png " "$1" || { echo "sync_doc: $1 lacks the <!-- GENERATED: frame_graph.png ... --> line" >&2; return 1; }
