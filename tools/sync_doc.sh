@@ -181,7 +181,14 @@ check_batches() {
         FILENAME != ci && $1 != "config" && $1 !~ /^#/ && NF >= 3 && $4 != "untraced" {
             for (i = 1; i <= 4; ++i) if (!(($1 ":" fields[i] " " $2) in have)) { missing++; if (missing <= 5) printf "barrier_list: %s:%s %s has no result in tests/barrier_mutations.txt: run tools/mutation_matrix.sh\n", $1, fields[i], $2; bad = 1 } }
         END { if (missing > 5) printf "barrier_list: ... %d mutations in all without a result\n", missing; exit bad }' "$ci" "$list" || bad=1
-    [ $bad -eq 0 ] && echo "barrier_list: ok: one barrier call per point in every config; the mutation matrix covers every barrier"
+    # The lesson frame's count, as §4 of the guide states it ("**N barriers in M calls**").
+    local nb nc
+    nb=$(grep -c '^barrier ' "$tmp/trace.render") nc=$(grep -c '^batch ' "$tmp/trace.render")
+    if ! grep -q "\*\*$nb barriers in $nc calls\*\*" "$doc"; then
+        echo "barrier_list: the lesson frame records $nb barriers in $nc vkCmdPipelineBarrier2 calls; docs/synchronization.md §4 says otherwise"
+        bad=1
+    fi
+    [ $bad -eq 0 ] && echo "barrier_list: ok: one barrier call per point in every config ($nb barriers in $nc calls in the lesson frame); the mutation matrix covers every barrier"
     return $bad
 }
 
