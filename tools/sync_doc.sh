@@ -267,10 +267,11 @@ window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
 } >"$tmp/gen.present"
 {
     echo "<!-- BEGIN GENERATED: variant table -->"
-    echo "<!-- the barriers of the other headless configurations of tests/barrier_drops.txt that the frame table does not show -->"
-    seen=render
-    for id in $render_configs; do
-        flags=$(awk -v id="$id" '$1 == "config" && $2 == id { $1 = $2 = $3 = ""; sub(/^ +/, ""); sub(/^--render OUT[^ ]* /, ""); sub(/--width [0-9]+ --height [0-9]+ ?/, ""); print }' "$list")
+    echo "<!-- the barriers of the other configurations of tests/barrier_drops.txt that the frame and window tables do not show -->"
+    first_window=$(head -n 1 <<<"$window_configs")
+    seen="render $first_window"
+    for id in $render_configs $(tail -n +2 <<<"$window_configs"); do
+        flags=$(awk -v id="$id" '$1 == "config" && $2 == id { w = $3 == "window" ? "window: " : ""; $1 = $2 = $3 = ""; sub(/^ +/, ""); sub(/^--render OUT[^ ]* /, ""); sub(/--width [0-9]+ --height [0-9]+ ?/, ""); sub(/--frames 2 /, ""); print w $0 }' "$list")
         rows=$(barrier_table "$id" "$seen" "\`${flags:-default}\`" | tail -n +3)
         if [ -n "$rows" ] && [ "$rows" != "*(none)*" ]; then
             [ -s "$tmp/variant_rows" ] || barrier_table "$id" "$seen" "x" | head -n 2 >"$tmp/variant_head"
