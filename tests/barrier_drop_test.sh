@@ -4,6 +4,10 @@
 #
 #   barrier_drop_test.sh VKSKY LIST BARRIER CONFIG    drop BARRIER in the frame of CONFIG (a line of LIST)
 #   barrier_drop_test.sh VKSKY LIST - CONFIG          drop nothing: the frame must be clean
+#   barrier_drop_test.sh VKSKY LIST NAME:FIELD[=MASK] CONFIG
+#                                                     weaken one field of one barrier instead
+#                                                     (VKSKY_WEAKEN_BARRIER; LIST is then tests/barrier_mutations.txt,
+#                                                     the configs still come from barrier_drops.txt beside it)
 #
 # Headless configs record two frames into one command buffer (VKSKY_FRAMES=2): sync validation checks within a
 # command buffer, so the second frame's first use of each image meets the first frame's last use, and the
@@ -21,15 +25,18 @@ CONFIG=${4:?}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# The config line: "config ID KIND ARGS..."
-read -r kind args < <(awk -v id="$CONFIG" '$1 == "config" && $2 == id { $1 = $2 = ""; sub(/^ +/, ""); print; exit }' "$LIST")
+# The config line: "config ID KIND ARGS..." (from barrier_drops.txt beside LIST when LIST has none)
+configs=$LIST
+grep -q '^config ' "$LIST" || configs=$(dirname "$LIST")/barrier_drops.txt
+read -r kind args < <(awk -v id="$CONFIG" '$1 == "config" && $2 == id { $1 = $2 = ""; sub(/^ +/, ""); print; exit }' "$configs")
 [ -n "${kind:-}" ] || { echo "FAIL: no 'config $CONFIG' line in $LIST"; exit 1; }
 args=${args//OUT/$work/out}
 
 # The barrier line: "NAME CONFIG EXPECTED [untraced] [NOTE]"
 expected=none
 untraced=0
-if [ "$NAME" != "-" ]; then
+# BARRIER_REPORT=1 (tools/mutation_matrix.sh): print what validation reports and stop; no expectation needed.
+if [ "$NAME" != "-" ] && [ -z "${BARRIER_REPORT:-}" ]; then
     line=$(awk -v n="$NAME" -v c="$CONFIG" '$1 == n && $2 == c { print; exit }' "$LIST")
     [ -n "$line" ] || { echo "FAIL: no line '$NAME $CONFIG ...' in $LIST"; exit 1; }
     expected=$(awk '{ print $3 }' <<<"$line")
@@ -37,8 +44,21 @@ if [ "$NAME" != "-" ]; then
 fi
 
 run=("$VKSKY")
-env_vars=(VKSKY_DROP_BARRIER="$([ "$NAME" = - ] || echo "$NAME")")
-if [ "$kind" = render ]; then
+# NAME:FIELD[=MASK]: a mutation, else a drop.
+barrier=${NAME%%:*}
+if [ "$barrier" != "$NAME" ]; then
+    env_vars=(VKSKY_DROP_BARRIER= VKSKY_WEAKEN_BARRIER="$NAME")
+    field=${NAME#*:}
+    mark="WEAKENED=${field%%=*}"
+else
+    env_vars=(VKSKY_DROP_BARRIER="$([ "$NAME" = - ] || echo "$NAME")" VKSKY_WEAKEN_BARRIER=)
+    mark=DROPPED
+fi
+if [ "$kind" = probe ]; then
+    # A test program in vksky's place (its path relative to vksky's directory is the first of ARGS).
+    read -r probe args <<<"$args"
+    run=("$(dirname "$VKSKY")/$probe")
+elif [ "$kind" = render ]; then
     env_vars+=(VKSKY_FRAMES=2)
 elif [ -z "${DISPLAY:-}" ]; then
     command -v xvfb-run >/dev/null || { echo "SKIP: no DISPLAY and no xvfb-run for the window"; exit 77; }
@@ -63,14 +83,21 @@ got=$(awk '
         else print "other:" id
     }' "$work/stderr" | LC_ALL=C sort -u | paste -sd+ -)
 got=${got:-none}
+if [ -n "${BARRIER_REPORT:-}" ]; then
+    # The report is only trusted when the barrier was really changed.
+    awk -v n="$barrier" -v m="$mark" '$1 == "barrier" && $2 == n && $NF == m { found = 1 } END { exit !found }' "$work/stdout" \
+        || { echo "error:untouched"; exit 0; }
+    echo "$got"
+    exit 0
+fi
 want=$(tr '+' '\n' <<<"$expected" | LC_ALL=C sort -u | paste -sd+ -)
 
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-label=$([ "$NAME" = - ] && echo "clean frame ($CONFIG)" || echo "drop $NAME ($CONFIG)")
-# The barrier must really have been left out (else "none" would pass for a renamed barrier).
-if [ "$NAME" != - ] && [ $untraced -eq 0 ] && ! awk -v n="$NAME" '$1 == "barrier" && $2 == n && $NF == "DROPPED" { found = 1 } END { exit !found }' "$work/stdout"; then
-    fail "$label: the trace shows no dropped '$NAME': was it renamed? (tools/sync_doc.sh --check-list)"
+label=$([ "$NAME" = - ] && echo "clean frame ($CONFIG)" || echo "${mark%%=*} $NAME ($CONFIG)")
+# The barrier must really have been left out or weakened (else "none" would pass for a renamed barrier).
+if [ "$NAME" != - ] && [ $untraced -eq 0 ] && ! awk -v n="$barrier" -v m="$mark" '$1 == "barrier" && $2 == n && $NF == m { found = 1 } END { exit !found }' "$work/stdout"; then
+    fail "$label: the trace shows no $mark '$barrier': was it renamed? (tools/sync_doc.sh --check-list)"
 fi
 [ "$got" = "$want" ] || fail "$label: validation reported {$got}, expected {$want}"
 if [ "$want" = none ] && [ $rc -ne 0 ]; then fail "$label: exit status $rc, expected 0"; fi

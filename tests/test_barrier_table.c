@@ -241,11 +241,23 @@ static void check_hazard(gpu_usage from, gpu_usage to, bool discard, const char 
 
 static void test_hazard_names(void)
 {
+    char buf[40];
     /* Read after write: the source wrote, the destination reads. */
     check_hazard(GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false, "RAW+layout");
     check_hazard(GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_FRAGMENT_SAMPLED, false, "RAW+layout");
     check_hazard(GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false, "RAW+layout");
-    check_hazard(GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ, false, "RAW");   /* buffers: no layout */
+    /* Buffers and global barriers: no layout. */
+    CHECK(strcmp(gpu_hazard_name_nolayout(GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ, buf, sizeof buf), "RAW") == 0,
+          "copy -> host (buffer): %s, expected RAW", buf);
+    CHECK(strcmp(gpu_hazard_name_nolayout(GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST, buf, sizeof buf), "WAW") == 0,
+          "copy -> copy (buffer, VKSKY_FRAMES): %s, expected WAW", buf);
+    /* Read-write usages: every hazard that applies, in the order RAW, WAR, WAW (the source reads as well as
+     * writes, so a write after it is also a write-after-read). */
+    CHECK(strcmp(gpu_hazard_name_nolayout(GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, buf, sizeof buf),
+                 "RAW+WAR+WAW") == 0, "rw -> rw (global): %s, expected RAW+WAR+WAW", buf);
+    check_hazard(GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_CLEAR_DST, true, "WAR+WAW+layout");
+    check_hazard(GPU_USAGE_CLEAR_DST, GPU_USAGE_COMPUTE_STORAGE_RW, false, "RAW+WAW");
+    check_hazard(GPU_USAGE_COLOR_ATTACHMENT_BLEND, GPU_USAGE_FRAGMENT_SAMPLED, false, "RAW+layout");
     /* The presentation engine reads what the tone map wrote. */
     check_hazard(GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_PRESENT, false, "RAW+layout");
     /* Write after read: the source only read, the destination writes. */
@@ -318,6 +330,61 @@ static void test_trace_and_drop(void)
     CHECK(strcmp(s, "NONE") == 0, "empty stage string %s", s);
 }
 
+/* The mask mutation (VKSKY_WEAKEN_BARRIER) and the global barrier: what the trace shows, what the batch holds. */
+static void test_weaken_and_memory(void)
+{
+    char why[200];
+    CHECK(!gpu_barrier_set_weaken("nocolon", why, sizeof why), "a spec without ':' accepted");
+    CHECK(!gpu_barrier_set_weaken("x:srcmask", why, sizeof why), "an unknown field accepted");
+    CHECK(!gpu_barrier_set_weaken("x:dstaccess=BOGUS", why, sizeof why), "an unknown access accepted");
+    CHECK(!gpu_barrier_set_weaken("x:srcstage=SHADER_SAMPLED_READ", why, sizeof why), "an access as a stage accepted");
+    CHECK(gpu_barrier_set_weaken(NULL, why, sizeof why), "NULL refused");
+
+    FILE *f = tmpfile();
+    CHECK(f != NULL, "tmpfile");
+    if (!f) return;
+    gpu_barrier_trace(f);
+    unsigned before = gpu_barrier_weakened_count();
+    gpu_barrier_batch b = gpu_barrier_batch_begin("p");
+    /* Classic mistake 3: the blend's read left out of the destination. */
+    CHECK(gpu_barrier_set_weaken("t.blend:dstaccess=COLOR_ATTACHMENT_WRITE", why, sizeof why), "%s", why);
+    gpu_barrier_add_image(&b, "t.blend", "img", (VkImage)(uintptr_t)1, mips(2, 1), GPU_USAGE_FRAGMENT_SAMPLED,
+                          GPU_USAGE_COLOR_ATTACHMENT_BLEND, false);
+    /* A source stage weakened to NONE takes the source access with it. */
+    CHECK(gpu_barrier_set_weaken("t.mem:srcstage", why, sizeof why), "%s", why);
+    gpu_barrier_add_memory(&b, "t.mem", "chain", GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW);
+    gpu_barrier_set_weaken(NULL, why, sizeof why);
+    gpu_barrier_add_memory(&b, "t.mem2", "chain", GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_SAMPLED);
+    gpu_barrier_trace(NULL);
+    CHECK(gpu_barrier_weakened_count() == before + 2, "weakened %u, expected %u", gpu_barrier_weakened_count(),
+          before + 2);
+    CHECK(b.image_count == 1 && b.memory_count == 2, "batch holds %u images, %u memory barriers", b.image_count,
+          b.memory_count);
+    CHECK(b.images[0].dstAccessMask == VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, "weakened dst access 0x%llx",
+          (unsigned long long)b.images[0].dstAccessMask);
+    CHECK(b.memory[0].srcStageMask == 0 && b.memory[0].srcAccessMask == 0, "srcstage NONE kept an access");
+    CHECK(b.memory[1].sType == VK_STRUCTURE_TYPE_MEMORY_BARRIER_2 &&
+              b.memory[1].srcStageMask == VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT &&
+              b.memory[1].srcAccessMask == VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT &&
+              b.memory[1].dstAccessMask == VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+          "global barrier fields");
+    char text[2048] = {0};
+    rewind(f);
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = 0;
+    const char *want =
+        "barrier t.blend point=p resource=img mips=2 layout=SHADER_READ_ONLY_OPTIMAL->COLOR_ATTACHMENT_OPTIMAL "
+        "src=FRAGMENT_SHADER/NONE dst=COLOR_ATTACHMENT_OUTPUT/COLOR_ATTACHMENT_WRITE hazard=WAR+layout "
+        "WEAKENED=dstaccess\n"
+        "barrier t.mem point=p resource=chain mips=* layout=UNDEFINED->UNDEFINED src=NONE/NONE "
+        "dst=COMPUTE_SHADER/SHADER_STORAGE_READ|SHADER_STORAGE_WRITE|SHADER_SAMPLED_READ hazard=RAW+WAR+WAW "
+        "WEAKENED=srcstage\n"
+        "barrier t.mem2 point=p resource=chain mips=* layout=UNDEFINED->UNDEFINED "
+        "src=COMPUTE_SHADER/SHADER_STORAGE_WRITE dst=COMPUTE_SHADER/SHADER_SAMPLED_READ hazard=RAW\n";
+    CHECK(strcmp(text, want) == 0, "trace:\n%s\nexpected:\n%s", text, want);
+}
+
 int main(void)
 {
     test_usage_table();
@@ -325,6 +392,7 @@ int main(void)
     test_builder_invariants();
     test_hazard_names();
     test_trace_and_drop();
+    test_weaken_and_memory();
     if (failures) {
         fprintf(stderr, "test_barrier_table: %d failure(s)\n", failures);
         return 1;

@@ -41,6 +41,7 @@ for id in $configs; do
     read -r kind args < <(awk -v id="$id" '$1 == "config" && $2 == id { $1 = $2 = ""; sub(/^ +/, ""); print }' "$list")
     args=${args//OUT/$tmp/out}
     run=("$vksky")
+    if [ "$kind" = probe ]; then read -r probe args <<<"$args"; run=("$(dirname "$vksky")/$probe"); fi
     if [ "$kind" = window ] && [ -z "${DISPLAY:-}" ]; then
         if ! command -v xvfb-run >/dev/null; then
             echo "sync_doc: SKIP: no DISPLAY and no xvfb-run to trace the window frame ($id)" >&2
@@ -54,7 +55,7 @@ for id in $configs; do
         head -n 5 "$tmp/err.$id" >&2
         exit 1
     fi
-    grep -E '^(pass|barrier) ' "$tmp/out.$id" >"$tmp/trace.$id" || true
+    grep -E '^(pass|barrier|batch) |^commands$' "$tmp/out.$id" >"$tmp/trace.$id" || true
     [ -s "$tmp/trace.$id" ] || { echo "sync_doc: config $id: the trace is empty" >&2; exit 1; }
 done
 
@@ -98,13 +99,42 @@ function load_list(file,   line, f, n, i, key, rest) {
     }
     close(file)
 }
+# The mutation matrix: mres[name SUBSEP config SUBSEP field] = result (tests/barrier_mutations.txt).
+function load_mutations(file,   line, f, name, field) {
+    while ((getline line < file) > 0) {
+        if (line ~ /^#/ || line ~ /^[ \t]*$/) continue
+        split(line, f, " "); name = f[1]; sub(/:.*/, "", name); field = f[1]; sub(/^[^:]*:/, "", field)
+        if (field ~ /=/) continue
+        mres[name SUBSEP f[2] SUBSEP field] = f[3]
+    }
+    close(file)
+}
+# What the proof of one barrier is (docs §2): "own access" when weakening its source side (the stage or the access
+# of what it protects) is reported as a hazard; "layout only" when only its layout (its transition, or the layout
+# checks) shows; "not visible" when nothing does. The fields whose weakening is silent are listed: they are the
+# ones the guide justifies by argument. `key` = name SUBSEP config of its drop test.
+function proof(name, key,   k, cfg, i, fields, r, silent, own) {
+    if (!(key in expected)) return "**not tested**"
+    split(key, k, SUBSEP); cfg = k[2]
+    split("srcstage srcaccess dststage dstaccess", fields, " ")
+    silent = ""; own = 0
+    for (i = 1; i <= 4; ++i) {
+        r = mres[name SUBSEP cfg SUBSEP fields[i]]
+        if (r ~ /RAW|WAR|WAW/ && i <= 2) own = 1
+        if (r == "none") silent = silent (silent == "" ? "" : ", ") fields[i]
+    }
+    if (own) return "own access" (silent != "" ? "; silent: " silent : "")
+    if (expected[key] != "none") return "layout only" (silent != "" ? "; silent: " silent : "")
+    return "not visible"
+}
 EOF
 
 # --- 2. The list check: every traced barrier line is drop-tested by some entry, every entry is recorded. -----
 check_list() {
     local traces=()
     for id in $configs; do traces+=("$tmp/trace.$id"); done
-    awk -v list="$list" -v frame_c="$root/src/sky/frame.c" "$AWK_LIB"'
+    cat "$root"/src/*/*.c >"$tmp/all_src.c"
+    awk -v list="$list" -v frame_c="$tmp/all_src.c" "$AWK_LIB"'
         BEGIN { load_list(list) }
         FNR == 1 { cfg = FILENAME; sub(/.*\/trace\./, "", cfg) }
         /^barrier / { parse($0); line = $0; sub(/ DROPPED$/, "", line)
@@ -124,7 +154,7 @@ check_list() {
                 if (untraced[entry_order[e]]) {
                     # Not in any trace: the name must at least still be in the frame spine.
                     found = 0; while ((getline src < frame_c) > 0) if (index(src, "\"" k[1] "\"")) found = 1; close(frame_c)
-                    if (!found) { bad++; printf "barrier_list: %s (untraced) is not named in src/sky/frame.c\n", k[1] }
+                    if (!found) { bad++; printf "barrier_list: %s (untraced) is not named in any file of src/\n", k[1] }
                 } else if (!((k[2] SUBSEP k[1]) in named)) {
                     bad++; printf "barrier_list: %s: config %s records no barrier of that name (renamed or gone?)\n", k[1], k[2]
                 }
@@ -134,9 +164,39 @@ check_list() {
         }' ncfg="$(wc -w <<<"$configs")" "${traces[@]}"
 }
 
+# One vkCmdPipelineBarrier2 per point: between two passes (or a pass and the start or end of a command buffer,
+# "commands") at most one `batch` line; and every drop-tested barrier x field has a result in the mutation matrix.
+check_batches() {
+    local bad=0
+    for id in $configs; do
+        awk -v id="$id" '/^pass / || /^commands$/ { n = 0; next }
+            /^batch / { if (++n == 2) { printf "barrier_list: config %s: two vkCmdPipelineBarrier2 calls with no pass between them (%s); merge them into one batch\n", id, $0; bad = 1 } }
+            END { exit bad }' "$tmp/trace.$id" || bad=1
+    done
+    local mut=$root/tests/barrier_mutations.txt ci=$root/tests/barrier_mutations_ci.txt
+    awk -v mut="$mut" -v ci="$ci" '
+        BEGIN { while ((getline l < mut) > 0) if (l !~ /^#/) { split(l, f, " "); have[f[1] " " f[2]] = 1 }
+                split("srcstage srcaccess dststage dstaccess", fields, " ") }
+        FILENAME == ci && $1 !~ /^#/ && NF >= 2 { if (!(($1 " " $2) in have)) { printf "barrier_list: %s %s (tests/barrier_mutations_ci.txt) has no result in tests/barrier_mutations.txt: run tools/mutation_matrix.sh\n", $1, $2; bad = 1 } next }
+        FILENAME != ci && $1 != "config" && $1 !~ /^#/ && NF >= 3 && $4 != "untraced" {
+            for (i = 1; i <= 4; ++i) if (!(($1 ":" fields[i] " " $2) in have)) { missing++; if (missing <= 5) printf "barrier_list: %s:%s %s has no result in tests/barrier_mutations.txt: run tools/mutation_matrix.sh\n", $1, fields[i], $2; bad = 1 } }
+        END { if (missing > 5) printf "barrier_list: ... %d mutations in all without a result\n", missing; exit bad }' "$ci" "$list" || bad=1
+    # The lesson frame's count, as §4 of the guide states it ("**N barriers in M calls**").
+    local nb nc
+    nb=$(grep -c '^barrier ' "$tmp/trace.render") nc=$(grep -c '^batch ' "$tmp/trace.render")
+    if ! grep -q "\*\*$nb barriers in $nc calls\*\*" "$doc"; then
+        echo "barrier_list: the lesson frame records $nb barriers in $nc vkCmdPipelineBarrier2 calls; docs/synchronization.md §4 says otherwise"
+        bad=1
+    fi
+    [ $bad -eq 0 ] && echo "barrier_list: ok: one barrier call per point in every config ($nb barriers in $nc calls in the lesson frame); the mutation matrix covers every barrier"
+    return $bad
+}
+
 if [ "$mode" = list ]; then
-    check_list
-    exit $?
+    rc=0
+    check_list || rc=1
+    check_batches || rc=1
+    exit $rc
 fi
 
 # --- 3. The tables. ------------------------------------------------------------------------------------------
@@ -147,13 +207,14 @@ barrier_table() {   # config [skip configs] [label column: config name]
     local id=$1 skip=${2:-} label=${3:-}
     local skipfiles=()
     for s in $skip; do skipfiles+=("$tmp/trace.$s"); done
-    awk -v list="$list" -v id="$id" -v label="$label" "$AWK_LIB"'
-        BEGIN { load_list(list) }
+    awk -v list="$list" -v mutations="$root/tests/barrier_mutations.txt" -v id="$id" -v label="$label" "$AWK_LIB"'
+        BEGIN { load_list(list); load_mutations(mutations) }
         FNR == 1 { f++ }
         # First the traces to skip (f < last), then the config itself (two passes over it: passes after barriers).
         f < nfiles && /^barrier / { l = $0; sub(/ DROPPED$/, "", l); skipped[l] = 1; next }
         f < nfiles { next }
         /^pass / { pass = $2; if (pending) for (i = first_pending; i <= n; ++i) after[i] = pass; pending = 0; next }
+        /^batch / { ++calls; for (i = assigned + 1; i <= n; ++i) call[i] = calls; assigned = n; next }
         /^barrier / {
             parse($0); l = $0; sub(/ DROPPED$/, "", l)
             ++n; before[n] = pass; row_line[n] = l; name[n] = b_name; point[n] = b_point; res[n] = b_res; mips[n] = b_mips
@@ -162,15 +223,15 @@ barrier_table() {   # config [skip configs] [label column: config name]
         }
         END {
             if (n == 0) { print "*(none)*"; exit }
-            printf "| # |%s point: between passes | barrier | resource, mips | layout | src stage / access | dst stage / access | prevents | left out, validation reports |\n", label != "" ? " frame |" : ""
-            printf "|---|%s---|---|---|---|---|---|---|---|\n", label != "" ? "---|" : ""
+            printf "| # | call |%s point: between passes | barrier | resource, mips | layout | src stage / access | dst stage / access | prevents | left out, validation reports | proof (appendix B) |\n", label != "" ? " frame |" : ""
+            printf "|---|---|%s---|---|---|---|---|---|---|---|---|\n", label != "" ? "---|" : ""
             rows = 0
             for (i = 1; i <= n; ++i) {
                 if (row_line[i] in skipped) continue
                 b = before[i] == "" ? "*frame start*" : "`" before[i] "`"
                 a = (i in after) ? "`" after[i] "`" : (da[i] ~ /HOST/ ? "*host, after the fence*" : (new[i] ~ /PRESENT/ ? "*present*" : "*frame end*"))
-                lay = mips[i] == "-" ? "*buffer*" : "`" old[i] "` → `" new[i] "`"
-                rm = mips[i] == "-" ? "`" res[i] "`" : "`" res[i] "` " mips[i]
+                lay = mips[i] == "-" ? "*buffer*" : (mips[i] == "*" ? "*global*" : "`" old[i] "` → `" new[i] "`")
+                rm = mips[i] == "-" || mips[i] == "*" ? "`" res[i] "`" : "`" res[i] "` " mips[i]
                 key = name[i] SUBSEP id
                 if (!(key in expected)) {   # drop-tested in another config that records it identically
                     c = entry_configs[name[i]]; split(c, cs, " "); key = name[i] SUBSEP cs[1]
@@ -178,15 +239,16 @@ barrier_table() {   # config [skip configs] [label column: config name]
                 rep = (key in expected) ? md_hazard(expected[key]) : "**not tested**"
                 if (note[key] != "" && note[key] != "idem") rep = rep " — " note[key]
                 else if (note[key] == "idem") rep = rep " — idem"
-                printf "| %d |%s *%s*: %s → %s | `%s` | %s | %s | %s / %s | %s / %s | %s | %s |\n", ++rows,
-                       label != "" ? " " label " |" : "", point[i], b, a, name[i], rm, lay, md_mask(ss[i]), md_mask(sa[i]),
-                       md_mask(ds[i]), md_mask(da[i]), md_hazard(hz[i]), rep
+                printf "| %d | %s |%s *%s*: %s → %s | `%s` | %s | %s | %s / %s | %s / %s | %s | %s | %s |\n", ++rows,
+                       (i in call) ? call[i] : "–", label != "" ? " " label " |" : "", point[i], b, a, name[i], rm, lay,
+                       md_mask(ss[i]), md_mask(sa[i]), md_mask(ds[i]), md_mask(da[i]), md_hazard(hz[i]), rep,
+                       proof(name[i], key)
             }
             if (rows == 0) print "*(none)*"
         }' nfiles=$((${#skipfiles[@]} + 1)) "${skipfiles[@]}" "$tmp/trace.$id"
 }
 
-render_configs=$(awk '$1 == "config" && $3 == "render" && $2 != "render" { print $2 }' "$list")
+render_configs=$(awk '$1 == "config" && ($3 == "render" || $3 == "probe") && $2 != "render" { print $2 }' "$list")
 window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
 {
     echo "<!-- BEGIN GENERATED: frame table -->"
@@ -205,10 +267,11 @@ window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
 } >"$tmp/gen.present"
 {
     echo "<!-- BEGIN GENERATED: variant table -->"
-    echo "<!-- the barriers of the other headless configurations of tests/barrier_drops.txt that the frame table does not show -->"
-    seen=render
-    for id in $render_configs; do
-        flags=$(awk -v id="$id" '$1 == "config" && $2 == id { $1 = $2 = $3 = ""; sub(/^ +/, ""); sub(/^--render OUT[^ ]* /, ""); sub(/--width [0-9]+ --height [0-9]+ ?/, ""); print }' "$list")
+    echo "<!-- the barriers of the other configurations of tests/barrier_drops.txt that the frame and window tables do not show -->"
+    first_window=$(head -n 1 <<<"$window_configs")
+    seen="render $first_window"
+    for id in $render_configs $(tail -n +2 <<<"$window_configs"); do
+        flags=$(awk -v id="$id" '$1 == "config" && $2 == id { w = $3 == "window" ? "window: " : ""; $1 = $2 = $3 = ""; sub(/^ +/, ""); sub(/^--render OUT[^ ]* /, ""); sub(/--width [0-9]+ --height [0-9]+ ?/, ""); sub(/--frames 2 /, ""); print w $0 }' "$list")
         rows=$(barrier_table "$id" "$seen" "\`${flags:-default}\`" | tail -n +3)
         if [ -n "$rows" ] && [ "$rows" != "*(none)*" ]; then
             [ -s "$tmp/variant_rows" ] || barrier_table "$id" "$seen" "x" | head -n 2 >"$tmp/variant_head"
@@ -228,6 +291,47 @@ window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
     fi
     echo "<!-- END GENERATED: variant table -->"
 } >"$tmp/gen.variant"
+
+{
+    echo "<!-- BEGIN GENERATED: mutation table -->"
+    echo "<!-- tools/sync_doc.sh, from tests/barrier_mutations.txt (made by tools/mutation_matrix.sh) -->"
+    awk '
+        function cell(r) { if (r == "") return "?"; if (r == "same") return "·"; if (r == "none") return "**silent**"; gsub(/\+/, " + ", r); return r }
+        /^#/ || NF < 3 { next }
+        { name = $1; sub(/:.*/, "", name); field = $1; sub(/^[^:]*:/, "", field)
+          if (field ~ /=/) { extra[++ne] = "| `" $1 "` | " $2 " | " cell($3) " |"; next }
+          key = name " " $2; if (!(key in seen)) { seen[key] = 1; order[++n] = key }
+          res[key, field] = $3; if ($3 == "none") silent++; else if ($3 != "same") caught++ }
+        END {
+            print "| barrier | config | srcstage → NONE | srcaccess → NONE | dststage → NONE | dstaccess → NONE |"
+            print "|---|---|---|---|---|---|"
+            for (i = 1; i <= n; ++i) { split(order[i], k, " ")
+                printf "| `%s` | %s | %s | %s | %s | %s |\n", k[1], k[2], cell(res[order[i], "srcstage"]), cell(res[order[i], "srcaccess"]), cell(res[order[i], "dststage"]), cell(res[order[i], "dstaccess"]) }
+            print ""
+            printf "%d weakened fields reported, %d silent (· : the field is already NONE).\n", caught, silent
+            if (ne) { print ""; print "| mutation (explicit mask) | config | reported |"; print "|---|---|---|"; for (i = 1; i <= ne; ++i) print extra[i] }
+        }' "$root/tests/barrier_mutations.txt"
+    echo "<!-- END GENERATED: mutation table -->"
+} >"$tmp/gen.mutation"
+
+# The resource graph (Mermaid, in the guide itself): an edge from the pass that wrote a resource to the pass after
+# the barrier that hands it on (every barrier whose source side writes), labelled resource and barrier.
+{
+    echo "<!-- BEGIN GENERATED: resource graph -->"
+    echo '```mermaid'
+    echo "flowchart TD"
+    awk "$AWK_LIB"'
+        /^pass / { ++np; node[np] = "p" np; printf "  p%d[\"%s\"]\n", np, $2
+                   for (i = 1; i <= npend; ++i) printf "  %s -->|\"%s\"| p%d\n", pend_from[i], pend_label[i], np
+                   npend = 0; next }
+        /^barrier / { parse($0); if (b_sa !~ /WRITE/ || np == 0) next
+                      lab = b_res (b_mips ~ /^[0-9]+$/ && b_res == "bloom" ? " mip " b_mips : "") ": " b_name
+                      if (b_da ~ /HOST/) { host = 1; printf "  p%d -->|\"%s\"| host\n", np, lab; next }
+                      pend_from[++npend] = "p" np; pend_label[npend] = lab }
+        END { if (host) print "  host([\"host, after the fence\"])" }' "$tmp/trace.render"
+    echo '```'
+    echo "<!-- END GENERATED: resource graph -->"
+} >"$tmp/gen.resource"
 
 # --- 4. The diagram: passes in order, each edge labelled with the barriers recorded between two passes. -----
 # The window's semaphore stages, as window.c's submit() sets them (wait, then signal).
@@ -296,10 +400,12 @@ splice() {   # in out
         /^<!-- BEGIN GENERATED: frame table -->$/ { emit(gdir "/gen.frame"); skip = 1; next }
         /^<!-- BEGIN GENERATED: present table -->$/ { emit(gdir "/gen.present"); skip = 1; next }
         /^<!-- BEGIN GENERATED: variant table -->$/ { emit(gdir "/gen.variant"); skip = 1; next }
+        /^<!-- BEGIN GENERATED: mutation table -->$/ { emit(gdir "/gen.mutation"); skip = 1; next }
+        /^<!-- BEGIN GENERATED: resource graph -->$/ { emit(gdir "/gen.resource"); skip = 1; next }
         /^<!-- GENERATED: frame_graph.png / { emit(gdir "/gen.png"); next }
         skip && /^<!-- END GENERATED: / { skip = 0; next }
         !skip { print }' "$1" >"$2"
-    for marker in "frame table" "present table" "variant table"; do
+    for marker in "frame table" "present table" "variant table" "mutation table" "resource graph"; do
         grep -q "^<!-- BEGIN GENERATED: $marker -->$" "$1" || { echo "sync_doc: $1 lacks <!-- BEGIN GENERATED: $marker -->" >&2; return 1; }
     done
     grep -q "^<!-- GENERATED: frame_graph.png " "$1" || { echo "sync_doc: $1 lacks the <!-- GENERATED: frame_graph.png ... --> line" >&2; return 1; }

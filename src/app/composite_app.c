@@ -216,6 +216,11 @@ static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32
                      bool readback)
 {
     stop_install();   /* SIGINT/SIGTERM from here on: the output is not renamed into place; exit 130/143 */
+    char why[200];
+    if (!gpu_barrier_set_weaken(getenv("VKSKY_WEAKEN_BARRIER"), why, sizeof why)) {
+        fprintf(stderr, "vksky: VKSKY_WEAKEN_BARRIER: %s\n", why);
+        return 2;
+    }
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;

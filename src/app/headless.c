@@ -164,6 +164,11 @@ int headless_run(const options *given)
                         "an image over the band budget; render such frames one run each\n");
         return 2;
     }
+    char why[200];
+    if (!gpu_barrier_set_weaken(getenv("VKSKY_WEAKEN_BARRIER"), why, sizeof why)) {
+        fprintf(stderr, "vksky: VKSKY_WEAKEN_BARRIER: %s\n", why);
+        return 2;
+    }
     gpu_context ctx;
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(&ctx, &desc);

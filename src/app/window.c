@@ -467,6 +467,11 @@ int window_run(const options *o)
     a.test.report = (test = getenv("VKSKY_TEST_REPORT")) && strcmp(test, "1") == 0;
     stop_install();
     a.test.last_frame = -1;
+    char why[200];
+    if (!gpu_barrier_set_weaken(getenv("VKSKY_WEAKEN_BARRIER"), why, sizeof why)) {
+        fprintf(stderr, "vksky: VKSKY_WEAKEN_BARRIER: %s\n", why);
+        return 2;
+    }
     int rc = open_window(&a);
     if (rc == 0) rc = open_device(&a);
     if (rc == 0) rc = start_rendering(&a);

@@ -48,6 +48,43 @@ static const gpu_usage_info usages[GPU_USAGE_COUNT] = {
 static FILE *trace_out;
 static const char *drop_name;
 static unsigned drop_count;
+/* The mask mutation (gpu_barrier_set_weaken): which barrier, which field, the mask it gets instead. */
+enum { WEAKEN_OFF = -1, WEAKEN_SRC_STAGE, WEAKEN_SRC_ACCESS, WEAKEN_DST_STAGE, WEAKEN_DST_ACCESS, WEAKEN_FIELDS };
+static const char *const weaken_fields[WEAKEN_FIELDS] = {"srcstage", "srcaccess", "dststage", "dstaccess"};
+static char weaken_name[128];
+static int weaken_field = WEAKEN_OFF;
+static VkFlags64 weaken_mask;
+static unsigned weaken_count;
+
+/* Stage and access names as the trace prints them (and as a weakening spec names them), in printing order. */
+typedef struct flag_name {
+    VkFlags64 bit;
+    const char *name;
+} flag_name;
+static const flag_name stage_names[] = {
+    {VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, "TOP_OF_PIPE"},
+    {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, "COMPUTE_SHADER"},
+    {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, "FRAGMENT_SHADER"},
+    {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, "COLOR_ATTACHMENT_OUTPUT"},
+    {VK_PIPELINE_STAGE_2_COPY_BIT, "COPY"},
+    {VK_PIPELINE_STAGE_2_CLEAR_BIT, "CLEAR"},
+    {VK_PIPELINE_STAGE_2_HOST_BIT, "HOST"},
+    {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, "ALL_COMMANDS"},
+    {VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, "BOTTOM_OF_PIPE"},
+};
+static const flag_name access_names[] = {
+    {VK_ACCESS_2_SHADER_STORAGE_READ_BIT, "SHADER_STORAGE_READ"},
+    {VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, "SHADER_STORAGE_WRITE"},
+    {VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, "SHADER_SAMPLED_READ"},
+    {VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT, "COLOR_ATTACHMENT_READ"},
+    {VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, "COLOR_ATTACHMENT_WRITE"},
+    {VK_ACCESS_2_TRANSFER_READ_BIT, "TRANSFER_READ"},
+    {VK_ACCESS_2_TRANSFER_WRITE_BIT, "TRANSFER_WRITE"},
+    {VK_ACCESS_2_HOST_READ_BIT, "HOST_READ"},
+    {VK_ACCESS_2_MEMORY_READ_BIT, "MEMORY_READ"},
+    {VK_ACCESS_2_MEMORY_WRITE_BIT, "MEMORY_WRITE"},
+};
+#define COUNT(a) (sizeof(a) / sizeof((a)[0]))
 
 const gpu_usage_info *gpu_usage_get(gpu_usage usage) { return &usages[usage]; }
 
@@ -86,8 +123,13 @@ void gpu_barrier_trace_pass(const char *pass)
 {
     if (trace_out) fprintf(trace_out, "pass %s\n", pass);
 }
+void gpu_barrier_trace_commands(void)
+{
+    if (trace_out) fprintf(trace_out, "commands\n");
+}
 void gpu_barrier_set_drop(const char *name) { drop_name = (name && *name) ? name : NULL; }
 unsigned gpu_barrier_dropped_count(void) { return drop_count; }
+unsigned gpu_barrier_weakened_count(void) { return weaken_count; }
 
 static bool dropped(const char *name)
 {
@@ -96,21 +138,101 @@ static bool dropped(const char *name)
     return true;
 }
 
+/* "A|B|C" -> the bits, from one of the name tables; false on an unknown name. */
+static bool parse_mask(const char *text, const flag_name *names, size_t count, VkFlags64 *out)
+{
+    *out = 0;
+    if (strcmp(text, "NONE") == 0) return true;
+    while (*text) {
+        size_t len = strcspn(text, "|");
+        bool found = false;
+        for (size_t i = 0; i < count; ++i)
+            if (strlen(names[i].name) == len && strncmp(names[i].name, text, len) == 0) *out |= names[i].bit, found = true;
+        if (!found) return false;
+        text += len + (text[len] == '|');
+    }
+    return true;
+}
+
+bool gpu_barrier_set_weaken(const char *spec, char *why, size_t why_size)
+{
+    weaken_field = WEAKEN_OFF;
+    if (!spec || !*spec) return true;
+    const char *colon = strchr(spec, ':');
+    if (!colon || colon == spec || (size_t)(colon - spec) >= sizeof weaken_name) {
+        snprintf(why, why_size, "'%s' is not <barrier name>:<field>[=MASK]", spec);
+        return false;
+    }
+    const char *field = colon + 1, *eq = strchr(field, '=');
+    size_t flen = eq ? (size_t)(eq - field) : strlen(field);
+    int which = WEAKEN_OFF;
+    for (int i = 0; i < WEAKEN_FIELDS; ++i)
+        if (strlen(weaken_fields[i]) == flen && strncmp(weaken_fields[i], field, flen) == 0) which = i;
+    if (which == WEAKEN_OFF) {
+        snprintf(why, why_size, "field '%.*s' is not one of srcstage, srcaccess, dststage, dstaccess", (int)flen, field);
+        return false;
+    }
+    bool stage = which == WEAKEN_SRC_STAGE || which == WEAKEN_DST_STAGE;
+    VkFlags64 mask = 0;
+    if (eq && !parse_mask(eq + 1, stage ? stage_names : access_names, stage ? COUNT(stage_names) : COUNT(access_names),
+                          &mask)) {
+        snprintf(why, why_size, "mask '%s' is not NONE or %s names joined by '|' (as --trace-barriers prints them)",
+                 eq + 1, stage ? "stage" : "access");
+        return false;
+    }
+    memcpy(weaken_name, spec, (size_t)(colon - spec));
+    weaken_name[colon - spec] = 0;
+    weaken_field = which;
+    weaken_mask = mask;
+    return true;
+}
+
+/* Applies the mutation to one barrier's masks if it names this barrier: the field it weakened, else NULL. A stage
+ * mask with no stage that performs accesses (NONE, TOP_OF_PIPE, BOTTOM_OF_PIPE) takes that side's accesses too. */
+static const char *weaken(const char *name, VkPipelineStageFlags2 *ss, VkAccessFlags2 *sa, VkPipelineStageFlags2 *ds,
+                          VkAccessFlags2 *da)
+{
+    if (weaken_field == WEAKEN_OFF || strcmp(name, weaken_name) != 0) return NULL;
+    const VkPipelineStageFlags2 no_access = VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT | VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT;
+    ++weaken_count;
+    switch (weaken_field) {
+    case WEAKEN_SRC_STAGE: *ss = weaken_mask; if (!(*ss & ~no_access)) *sa = 0; break;
+    case WEAKEN_SRC_ACCESS: *sa = weaken_mask; break;
+    case WEAKEN_DST_STAGE: *ds = weaken_mask; if (!(*ds & ~no_access)) *da = 0; break;
+    default: *da = weaken_mask; break;
+    }
+    return weaken_fields[weaken_field];
+}
+
+/* The presentation engine reads the image before it is acquired and after it is presented. */
+static bool usage_reads(gpu_usage u)
+{
+    VkAccessFlags2 a = usages[u].access;
+    return (a & ~gpu_write_accesses(a)) != 0 || u == GPU_USAGE_PRESENT || u == GPU_USAGE_ACQUIRED;
+}
+static bool usage_writes(gpu_usage u) { return gpu_write_accesses(usages[u].access) != 0; }
+
+static const char *hazards(gpu_usage from, gpu_usage to, bool transition, char *buf, size_t size)
+{
+    bool raw = usage_writes(from) && usage_reads(to);
+    bool war = usage_reads(from) && usage_writes(to);
+    bool waw = usage_writes(from) && usage_writes(to);
+    snprintf(buf, size, "%s%s%s%s%s%s%s", raw ? "RAW" : "", raw && war ? "+" : "", war ? "WAR" : "",
+             (raw || war) && waw ? "+" : "", waw ? "WAW" : "", (raw || war || waw) && transition ? "+" : "",
+             transition ? "layout" : "");
+    if (!buf[0]) snprintf(buf, size, "none");
+    return buf;
+}
+
 const char *gpu_hazard_name(gpu_usage from, gpu_usage to, bool discard, char *buf, size_t size)
 {
-    const gpu_usage_info *f = &usages[from], *t = &usages[to];
-    bool src_writes = gpu_write_accesses(f->access) != 0;
-    bool dst_writes = gpu_write_accesses(t->access) != 0;
-    bool dst_reads = (t->access & ~gpu_write_accesses(t->access)) != 0;
-    /* From GPU_USAGE_NONE there is no earlier access at all: at most a layout transition. */
-    bool src_used = f->stage != VK_PIPELINE_STAGE_2_NONE;
-    const char *kind = src_writes ? (dst_reads || !dst_writes ? "RAW" : "WAW") : (dst_writes && src_used ? "WAR" : "none");
-    if (src_writes && dst_reads && dst_writes) kind = "RAW+WAW";
-    VkImageLayout old_layout = discard ? VK_IMAGE_LAYOUT_UNDEFINED : f->layout;
-    bool transition = old_layout != t->layout && to != GPU_USAGE_HOST_READ;
-    snprintf(buf, size, "%s%s", strcmp(kind, "none") == 0 && transition ? "layout" : kind,
-             transition && strcmp(kind, "none") != 0 ? "+layout" : "");
-    return buf;
+    VkImageLayout old_layout = discard ? VK_IMAGE_LAYOUT_UNDEFINED : usages[from].layout;
+    return hazards(from, to, old_layout != usages[to].layout, buf, size);
+}
+
+const char *gpu_hazard_name_nolayout(gpu_usage from, gpu_usage to, char *buf, size_t size)
+{
+    return hazards(from, to, false, buf, size);
 }
 
 static void append(char *buf, size_t size, const char *s)
@@ -120,31 +242,22 @@ static void append(char *buf, size_t size, const char *s)
     snprintf(buf + n, size - n, "%s", s);
 }
 
-void gpu_stage_string(VkPipelineStageFlags2 stage, char *buf, size_t size)
+static void flags_string(VkFlags64 flags, const flag_name *names, size_t count, char *buf, size_t size)
 {
     buf[0] = 0;
-    if (!stage) { snprintf(buf, size, "NONE"); return; }
-    if (stage & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT) append(buf, size, "COMPUTE_SHADER");
-    if (stage & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) append(buf, size, "FRAGMENT_SHADER");
-    if (stage & VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT) append(buf, size, "COLOR_ATTACHMENT_OUTPUT");
-    if (stage & VK_PIPELINE_STAGE_2_COPY_BIT) append(buf, size, "COPY");
-    if (stage & VK_PIPELINE_STAGE_2_CLEAR_BIT) append(buf, size, "CLEAR");
-    if (stage & VK_PIPELINE_STAGE_2_HOST_BIT) append(buf, size, "HOST");
-    if (stage & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT) append(buf, size, "ALL_COMMANDS");
+    if (!flags) { snprintf(buf, size, "NONE"); return; }
+    for (size_t i = 0; i < count; ++i)
+        if (flags & names[i].bit) append(buf, size, names[i].name);
+}
+
+void gpu_stage_string(VkPipelineStageFlags2 stage, char *buf, size_t size)
+{
+    flags_string(stage, stage_names, COUNT(stage_names), buf, size);
 }
 
 void gpu_access_string(VkAccessFlags2 access, char *buf, size_t size)
 {
-    buf[0] = 0;
-    if (!access) { snprintf(buf, size, "NONE"); return; }
-    if (access & VK_ACCESS_2_SHADER_STORAGE_READ_BIT) append(buf, size, "SHADER_STORAGE_READ");
-    if (access & VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT) append(buf, size, "SHADER_STORAGE_WRITE");
-    if (access & VK_ACCESS_2_SHADER_SAMPLED_READ_BIT) append(buf, size, "SHADER_SAMPLED_READ");
-    if (access & VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT) append(buf, size, "COLOR_ATTACHMENT_READ");
-    if (access & VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT) append(buf, size, "COLOR_ATTACHMENT_WRITE");
-    if (access & VK_ACCESS_2_TRANSFER_READ_BIT) append(buf, size, "TRANSFER_READ");
-    if (access & VK_ACCESS_2_TRANSFER_WRITE_BIT) append(buf, size, "TRANSFER_WRITE");
-    if (access & VK_ACCESS_2_HOST_READ_BIT) append(buf, size, "HOST_READ");
+    flags_string(access, access_names, COUNT(access_names), buf, size);
 }
 
 const char *gpu_layout_name(VkImageLayout layout)
@@ -161,33 +274,37 @@ const char *gpu_layout_name(VkImageLayout layout)
     }
 }
 
+/* One trace line per barrier, as it is added to its batch: what it orders, and whether the drop or the mutation
+ * switch changed it. mips "-": a buffer; "*": a global memory barrier (no resource; `resource` says what for). */
 static void trace_line(const char *name, const char *point, const char *resource, const char *mips,
                        VkImageLayout old_layout, VkImageLayout new_layout, VkPipelineStageFlags2 src_stage,
                        VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,
-                       const char *hazard, bool was_dropped)
+                       const char *hazard, bool was_dropped, const char *weakened)
 {
     if (!trace_out) return;
-    char ss[128], sa[128], ds[128], da[128];
+    char ss[160], sa[160], ds[160], da[160];
     gpu_stage_string(src_stage, ss, sizeof ss);
     gpu_access_string(src_access, sa, sizeof sa);
     gpu_stage_string(dst_stage, ds, sizeof ds);
     gpu_access_string(dst_access, da, sizeof da);
-    fprintf(trace_out, "barrier %s point=%s resource=%s mips=%s layout=%s->%s src=%s/%s dst=%s/%s hazard=%s%s\n",
+    fprintf(trace_out, "barrier %s point=%s resource=%s mips=%s layout=%s->%s src=%s/%s dst=%s/%s hazard=%s%s%s%s\n",
             name, point, resource, mips, gpu_layout_name(old_layout), gpu_layout_name(new_layout), ss, sa, ds, da,
-            hazard, was_dropped ? " DROPPED" : "");
+            hazard, was_dropped ? " DROPPED" : "", weakened ? " WEAKENED=" : "", weakened ? weakened : "");
 }
 
 void gpu_barrier_add_image(gpu_barrier_batch *b, const char *name, const char *resource, VkImage image,
                            VkImageSubresourceRange range, gpu_usage from, gpu_usage to, bool discard)
 {
     VkImageMemoryBarrier2 barrier = gpu_image_barrier(image, range, from, to, discard);
-    char hazard[32], mips[32];
+    const char *weakened = weaken(name, &barrier.srcStageMask, &barrier.srcAccessMask, &barrier.dstStageMask,
+                                  &barrier.dstAccessMask);
+    char hazard[40], mips[32];
     gpu_hazard_name(from, to, discard, hazard, sizeof hazard);
     if (range.levelCount == 1) snprintf(mips, sizeof mips, "%u", range.baseMipLevel);
     else snprintf(mips, sizeof mips, "%u-%u", range.baseMipLevel, range.baseMipLevel + range.levelCount - 1);
     bool drop = dropped(name);
     trace_line(name, b->point, resource, mips, barrier.oldLayout, barrier.newLayout, barrier.srcStageMask,
-               barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, hazard, drop);
+               barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, hazard, drop, weakened);
     if (drop) return;
     if (b->image_count == GPU_BATCH_MAX) {
         fprintf(stderr, "vksky: internal error: barrier batch '%s' is full\n", b->point);
@@ -212,26 +329,65 @@ void gpu_barrier_add_buffer(gpu_barrier_batch *b, const char *name, const char *
         .offset = 0,
         .size = VK_WHOLE_SIZE,
     };
-    char hazard[32];
-    gpu_hazard_name(from, to, false, hazard, sizeof hazard);
+    const char *weakened = weaken(name, &barrier.srcStageMask, &barrier.srcAccessMask, &barrier.dstStageMask,
+                                  &barrier.dstAccessMask);
+    char hazard[40];
+    gpu_hazard_name_nolayout(from, to, hazard, sizeof hazard);
     bool drop = dropped(name);
     trace_line(name, b->point, resource, "-", VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_UNDEFINED,
-               barrier.srcStageMask, barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, "RAW", drop);
-    (void)hazard;
+               barrier.srcStageMask, barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, hazard, drop,
+               weakened);
     if (drop) return;
+    if (b->buffer_count == COUNT(b->buffers)) {
+        fprintf(stderr, "vksky: internal error: barrier batch '%s' has too many buffers\n", b->point);
+        exit(1);
+    }
     b->buffers[b->buffer_count++] = barrier;
+}
+
+void gpu_barrier_add_memory(gpu_barrier_batch *b, const char *name, const char *resource, gpu_usage from,
+                            gpu_usage to)
+{
+    const gpu_usage_info *f = &usages[from], *t = &usages[to];
+    VkMemoryBarrier2 barrier = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+        .srcStageMask = f->stage,
+        .srcAccessMask = gpu_write_accesses(f->access),
+        .dstStageMask = t->stage,
+        .dstAccessMask = t->access,
+    };
+    const char *weakened = weaken(name, &barrier.srcStageMask, &barrier.srcAccessMask, &barrier.dstStageMask,
+                                  &barrier.dstAccessMask);
+    char hazard[40];
+    gpu_hazard_name_nolayout(from, to, hazard, sizeof hazard);
+    bool drop = dropped(name);
+    trace_line(name, b->point, resource, "*", VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_UNDEFINED,
+               barrier.srcStageMask, barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, hazard, drop,
+               weakened);
+    if (drop) return;
+    if (b->memory_count == COUNT(b->memory)) {
+        fprintf(stderr, "vksky: internal error: barrier batch '%s' has too many global barriers\n", b->point);
+        exit(1);
+    }
+    b->memory[b->memory_count++] = barrier;
 }
 
 void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b)
 {
-    if (b->image_count == 0 && b->buffer_count == 0) return;
+    if (b->image_count == 0 && b->buffer_count == 0 && b->memory_count == 0) return;
     VkDependencyInfo dep = {
         .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
-        .imageMemoryBarrierCount = b->image_count,
-        .pImageMemoryBarriers = b->images,
+        .memoryBarrierCount = b->memory_count,
+        .pMemoryBarriers = b->memory,
         .bufferMemoryBarrierCount = b->buffer_count,
         .pBufferMemoryBarriers = b->buffers,
+        .imageMemoryBarrierCount = b->image_count,
+        .pImageMemoryBarriers = b->images,
     };
+    /* One trace line per call: how many barrier calls a frame makes is read from the trace (docs, §2). */
+    if (trace_out)
+        fprintf(trace_out, "batch point=%s images=%u buffers=%u memory=%u\n", b->point, b->image_count,
+                b->buffer_count, b->memory_count);
     vkCmdPipelineBarrier2(cmd, &dep);
-    b->image_count = b->buffer_count = 0;
+    b->image_count = b->buffer_count = b->memory_count = 0;
 }

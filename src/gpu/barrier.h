@@ -7,8 +7,9 @@
  * vkCmdPipelineBarrier2.
  *
  * Every barrier has a stable name (e.g. "transmittance.write_to_sample"). `--trace-barriers` prints one line per
- * barrier as it is recorded; env VKSKY_DROP_BARRIER=<name> leaves that one barrier out, so a test can show
- * that synchronization validation reports the hazard it prevents. */
+ * barrier as it is recorded and one `batch` line per vkCmdPipelineBarrier2; env VKSKY_DROP_BARRIER=<name> leaves
+ * that one barrier out, and VKSKY_WEAKEN_BARRIER=<name>:<field>[=MASK] weakens one field of it (the masks'
+ * proof, docs/synchronization.md appendix B), so a test can show what synchronization validation reports. */
 #ifndef VKSKY_GPU_BARRIER_H
 #define VKSKY_GPU_BARRIER_H
 #include <volk.h>
@@ -54,7 +55,8 @@ typedef struct gpu_barrier_batch {
     const char *point;                  /* where in the frame, for the trace */
     VkImageMemoryBarrier2 images[GPU_BATCH_MAX];
     VkBufferMemoryBarrier2 buffers[4];
-    uint32_t image_count, buffer_count;
+    VkMemoryBarrier2 memory[4];         /* global barriers: every resource the stages touch */
+    uint32_t image_count, buffer_count, memory_count;
 } gpu_barrier_batch;
 
 gpu_barrier_batch gpu_barrier_batch_begin(const char *point);
@@ -62,7 +64,13 @@ void gpu_barrier_add_image(gpu_barrier_batch *b, const char *name, const char *r
                            VkImageSubresourceRange range, gpu_usage from, gpu_usage to, bool discard);
 void gpu_barrier_add_buffer(gpu_barrier_batch *b, const char *name, const char *resource, VkBuffer buffer,
                             gpu_usage from, gpu_usage to);
-/* Records the batch (one vkCmdPipelineBarrier2); nothing if every barrier in it was dropped. */
+/* A global memory barrier (VkMemoryBarrier2): no resource, no layout. The canonical compute -> compute pattern on
+ * images that stay in GENERAL (and on buffers): it orders every access of the source usage before every access
+ * of the destination usage, whatever the resource. `resource` only labels the trace ("what it is for"). */
+void gpu_barrier_add_memory(gpu_barrier_batch *b, const char *name, const char *resource, gpu_usage from,
+                            gpu_usage to);
+/* Records the batch (one vkCmdPipelineBarrier2, traced as one `batch` line); nothing if it is empty (every
+ * barrier in it dropped). */
 void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b);
 
 /* Trace / drop controls (process-wide; set once by the app before recording). */
@@ -70,12 +78,26 @@ void gpu_barrier_trace(FILE *out);
 /* With the trace on, a line "pass <name>" where a pass begins (called by gpu_label_begin), so the trace reads as
  * the frame: passes and the barriers between them. */
 void gpu_barrier_trace_pass(const char *pass);
+/* With the trace on, a line "commands" where a command buffer begins (called by gpu_begin_commands): barriers of
+ * two submissions can never share a call. */
+void gpu_barrier_trace_commands(void);
 /* Name of the barrier to drop (NULL: none). Returns how many barriers were dropped so far. */
 void gpu_barrier_set_drop(const char *name);
 unsigned gpu_barrier_dropped_count(void);
+/* The mask mutation: "<name>:<field>[=MASK]", field srcstage | srcaccess | dststage | dstaccess, MASK stage or
+ * access names as the trace prints them joined by '|' (default NONE). A stage weakened to NONE takes its access
+ * mask with it (an access needs a stage that performs it). NULL or "" turns it off. Returns false (and says why
+ * in `why`) for a malformed spec. */
+bool gpu_barrier_set_weaken(const char *spec, char *why, size_t why_size);
+unsigned gpu_barrier_weakened_count(void);
 
-/* The hazard a from -> to barrier prevents: "RAW", "WAR", "WAW", with "+layout" for a transition. */
+/* The hazards a from -> to barrier prevents, computed from the two usages' accesses: RAW (the source writes, the
+ * destination reads), WAR (the source reads, the destination writes), WAW (both write), joined by '+' in that
+ * order, then "+layout" for an image whose layout changes; "layout" alone or "none" when no access conflicts.
+ * The presentation engine counts as a reader (GPU_USAGE_PRESENT, GPU_USAGE_ACQUIRED). */
 const char *gpu_hazard_name(gpu_usage from, gpu_usage to, bool discard, char *buf, size_t size);
+/* The same for a buffer or a global barrier: no layout. */
+const char *gpu_hazard_name_nolayout(gpu_usage from, gpu_usage to, char *buf, size_t size);
 /* Human-readable stage and access masks (for the trace and docs). */
 void gpu_stage_string(VkPipelineStageFlags2 stage, char *buf, size_t size);
 void gpu_access_string(VkAccessFlags2 access, char *buf, size_t size);

@@ -415,6 +415,7 @@ void gpu_label_end(const gpu_context *ctx, VkCommandBuffer cmd)
 
 VkCommandBuffer gpu_begin_commands(const gpu_context *ctx)
 {
+    gpu_barrier_trace_commands();
     VkCommandBufferAllocateInfo ainfo = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
         .commandPool = ctx->command_pool,

@@ -254,17 +254,18 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     r->active_timer = &r->timer;
     gpu_timer_reset(&r->timer, cmd);
 
-    /* 1. LUTs, only when the atmosphere changed (frame.c): afterwards readable by compute shaders. */
-    frame_record_luts(r, cmd, force_luts);
+    /* 1. LUTs, only when the atmosphere changed (frame.c): afterwards readable by compute shaders. Their last
+     * barrier shares the next point's call. */
+    gpu_barrier_batch b = gpu_barrier_batch_begin(c->has_volume ? "before ap_volume" : "before composite upload");
+    frame_record_luts(r, cmd, force_luts, &b);
 
     /* 1b. --aerial-perspective volume: the froxel volume, marched once per froxel (reads the LUTs). The previous
      * frame's composite pass sampled it (WAR); every texel is rewritten: UNDEFINED -> GENERAL. */
     uint32_t t;
     if (c->has_volume) {
-        gpu_barrier_batch vb = gpu_barrier_batch_begin("before ap_volume");
-        gpu_barrier_add_image(&vb, "ap_volume.to_storage", "ap_volume", c->volume.image.image, one,
+        gpu_barrier_add_image(&b, "ap_volume.to_storage", "ap_volume", c->volume.image.image, one,
                               GPU_USAGE_COMPUTE_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
-        gpu_barrier_flush(cmd, &vb);
+        gpu_barrier_flush(cmd, &b);
         t = pass_begin(r, cmd, "ap_volume");
         ap_volume_dispatch(&c->volume, cmd, push);
         pass_end(r, cmd, t);
@@ -273,7 +274,7 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     /* 2. Upload. The previous frame's composite pass sampled the input image (WAR); it is fully rewritten:
      * UNDEFINED -> TRANSFER_DST. (The host wrote the upload buffer before the submit: the submit makes that
      * visible, no barrier.) */
-    gpu_barrier_batch b = gpu_barrier_batch_begin("before composite upload");
+    if (c->has_volume) b = gpu_barrier_batch_begin("before composite upload");
     gpu_barrier_add_image(&b, "composite_in.to_upload", "composite_in", c->input.image, one,
                           GPU_USAGE_COMPUTE_SAMPLED, GPU_USAGE_TRANSFER_DST, true);
     gpu_barrier_flush(cmd, &b);

@@ -30,10 +30,13 @@ static void timed_end(sky_renderer *r, VkCommandBuffer cmd, uint32_t slot)
     gpu_label_end(r->ctx, cmd);
 }
 
-static void record_luts(sky_renderer *r, VkCommandBuffer cmd)
+/* The LUT passes. Their last barrier (the last LUT made readable) goes into `next`, the batch of the point that
+ * follows them: back-to-back barriers share one vkCmdPipelineBarrier2 (one call per point, §2 of the guide). */
+static void record_luts(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch *next)
 {
     sky_luts *l = &r->luts;
     VkImageSubresourceRange one = gpu_color_range(0, 1);
+    bool ms = r->variant.multiscatter, ground = r->variant.ground;
 
     /* Transmittance LUT: the previous frames' sky passes sampled it (WAR); to GENERAL for imageStore. */
     gpu_barrier_batch b = gpu_barrier_batch_begin("before transmittance_lut");
@@ -45,12 +48,14 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd)
     timed_end(r, cmd, t);
 
     /* The transmittance compute shader wrote the LUT; the multiscatter compute shader (and later the sky's
-     * fragment shader) samples it: RAW + GENERAL -> SHADER_READ_ONLY. The multiscatter LUT was sampled by the
-     * previous frames (WAR) and becomes the storage target. */
-    b = gpu_barrier_batch_begin("before multiscatter_lut");
-    gpu_barrier_add_image(&b, "transmittance.write_to_sample", "transmittance_lut", l->transmittance.image, one,
+     * fragment shader) samples it: RAW + GENERAL -> SHADER_READ_ONLY. Without multi-scattering (readers bind the
+     * transmittance LUT) and a lit ground, this is the LUTs' last barrier. */
+    gpu_barrier_batch *at = next;
+    if (ms || ground) b = gpu_barrier_batch_begin(ms ? "before multiscatter_lut" : "before ground_irradiance_lut"), at = &b;
+    gpu_barrier_add_image(at, "transmittance.write_to_sample", "transmittance_lut", l->transmittance.image, one,
                           GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
-    if (r->variant.multiscatter) {
+    if (ms) {
+        /* The multiscatter LUT was sampled by the previous frames (WAR) and becomes the storage target. */
         gpu_barrier_add_image(&b, "multiscatter.to_storage", "multiscatter_lut", l->multiscatter.image, one,
                               LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
@@ -59,12 +64,12 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd)
         timed_end(r, cmd, t);
         /* The multiscatter compute shader wrote its LUT; the sky pass (and the ground-irradiance LUT) sample it:
          * RAW + layout. (The usage covers compute too, so every frame's first barrier has the same source.) */
-        b = gpu_barrier_batch_begin("after multiscatter_lut");
-        gpu_barrier_add_image(&b, "multiscatter.write_to_sample", "multiscatter_lut", l->multiscatter.image, one,
+        at = next;
+        if (ground) b = gpu_barrier_batch_begin("before ground_irradiance_lut"), at = &b;
+        gpu_barrier_add_image(at, "multiscatter.write_to_sample", "multiscatter_lut", l->multiscatter.image, one,
                               GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
     }
-    /* Without multi-scattering: no LUT, no pass (readers bind the transmittance LUT, made readable above). */
-    if (r->variant.ground) {
+    if (ground) {
         /* The sky's irradiance on the ground (a lit ground only): previous frames sampled it (WAR). */
         gpu_barrier_add_image(&b, "ground_irradiance.to_storage", "ground_irradiance_lut", l->ground_irradiance.image,
                               one, LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
@@ -73,50 +78,66 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd)
         luts_record_ground_irradiance(l, cmd);
         timed_end(r, cmd, t);
         /* It wrote the LUT; the sky pass and the sky-view LUT sample it: RAW + layout. */
-        b = gpu_barrier_batch_begin("after ground_irradiance_lut");
-        gpu_barrier_add_image(&b, "ground_irradiance.write_to_sample", "ground_irradiance_lut",
+        gpu_barrier_add_image(next, "ground_irradiance.write_to_sample", "ground_irradiance_lut",
                               l->ground_irradiance.image, one, GPU_USAGE_COMPUTE_STORAGE_WRITE,
                               GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
     }
-    gpu_barrier_flush(cmd, &b);
 }
 
 /* One barrier on one mip of the bloom chain, named after its mip (e.g. "bloom.mip2.write_to_sample"). */
-static void mip_barrier(VkCommandBuffer cmd, const bloom_chain *bl, const char *point, const char *what, int mip,
-                        gpu_usage from, gpu_usage to)
+static void mip_barrier(gpu_barrier_batch *b, const bloom_chain *bl, const char *what, int mip, gpu_usage from,
+                        gpu_usage to)
 {
     char name[64];
     snprintf(name, sizeof name, "bloom.mip%d.%s", mip, what);
-    gpu_barrier_batch b = gpu_barrier_batch_begin(point);
-    gpu_barrier_add_image(&b, name, "bloom", bl->mips.image, gpu_color_range((uint32_t)mip, 1), from, to, false);
-    gpu_barrier_flush(cmd, &b);
+    gpu_barrier_add_image(b, name, "bloom", bl->mips.image, gpu_color_range((uint32_t)mip, 1), from, to, false);
 }
 
-static void record_bloom(sky_renderer *r, VkCommandBuffer cmd, const sky_view *v)
+/* The same hand-off between two compute passes that keep the chain in GENERAL: a global memory barrier (the
+ * canonical compute -> compute pattern; no layout to change, so no image needs naming). */
+static void mip_memory_barrier(gpu_barrier_batch *b, const char *what, int mip)
+{
+    char name[64], resource[32];
+    snprintf(name, sizeof name, "bloom.mip%d.%s", mip, what);
+    snprintf(resource, sizeof resource, "bloom_mip%d", mip);
+    gpu_barrier_add_memory(b, name, resource, GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW);
+}
+
+/* The fragment bloom chain. Its last barrier (mip 0 made readable) goes into `next`, the tone map's point. */
+static void record_bloom(sky_renderer *r, VkCommandBuffer cmd, const sky_view *v, gpu_barrier_batch *next)
 {
     bloom_chain *bl = &r->bloom;
+    int n = (int)bl->mip_count;
+    gpu_barrier_batch b = {0}, *at;
     /* Downsample chain: pass i renders mip i from mip i-1 (from the HDR image for i = 0). */
-    for (uint32_t i = 0; i < bl->mip_count; ++i) {
+    for (int i = 0; i < n; ++i) {
         uint32_t t = timed_begin(r, cmd, "bloom_downsample");
-        bloom_record_downsample(bl, cmd, i, (float)v->bloom_threshold);
+        bloom_record_downsample(bl, cmd, (uint32_t)i, (float)v->bloom_threshold);
         timed_end(r, cmd, t);
         /* Downsample i wrote mip i; downsample i+1 (or upsample into mip i-1, for the last) samples it: RAW +
-         * layout. One barrier range per mip: the mip being rendered is never the one being sampled. */
-        mip_barrier(cmd, bl, "bloom downsample chain", "write_to_sample", (int)i, GPU_USAGE_COLOR_ATTACHMENT_WRITE,
-                    GPU_USAGE_FRAGMENT_SAMPLED);
+         * layout. One barrier range per mip: the mip being rendered is never the one being sampled. The last
+         * one shares its call with the first upsample's barrier. */
+        at = &b;
+        if (i + 1 < n) b = gpu_barrier_batch_begin("bloom downsample chain");
+        else if (n > 1) b = gpu_barrier_batch_begin("bloom downsample -> upsample");
+        else at = next;
+        mip_barrier(at, bl, "write_to_sample", i, GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_FRAGMENT_SAMPLED);
+        if (i + 1 < n) gpu_barrier_flush(cmd, &b);
     }
     /* Upsample chain: pass into mip i adds a tent-filtered mip i+1 onto mip i's own downsampled contents. */
-    for (int i = (int)bl->mip_count - 2; i >= 0; --i) {
+    for (int i = n - 2; i >= 0; --i) {
         /* Mip i was last sampled by downsample i+1 (WAR) and holds its downsample result, which the load op
-         * LOAD and the blend read: SHADER_READ_ONLY -> COLOR_ATTACHMENT with COLOR_ATTACHMENT_READ|WRITE. */
-        mip_barrier(cmd, bl, "bloom upsample chain", "to_blend", i, GPU_USAGE_FRAGMENT_SAMPLED,
-                    GPU_USAGE_COLOR_ATTACHMENT_BLEND);
+         * LOAD and the blend read: SHADER_READ_ONLY -> COLOR_ATTACHMENT with COLOR_ATTACHMENT_READ|WRITE. Same
+         * call as the barrier that made mip i+1 readable. */
+        mip_barrier(&b, bl, "to_blend", i, GPU_USAGE_FRAGMENT_SAMPLED, GPU_USAGE_COLOR_ATTACHMENT_BLEND);
+        gpu_barrier_flush(cmd, &b);
         uint32_t t = timed_begin(r, cmd, "bloom_upsample");
         bloom_record_upsample(bl, cmd, (uint32_t)i);
         timed_end(r, cmd, t);
         /* Upsample wrote mip i; the next upsample (or the tone map, for mip 0) samples it: RAW + layout. */
-        mip_barrier(cmd, bl, "bloom upsample chain", "blend_to_sample", i, GPU_USAGE_COLOR_ATTACHMENT_BLEND,
-                    GPU_USAGE_FRAGMENT_SAMPLED);
+        at = next;
+        if (i > 0) b = gpu_barrier_batch_begin("bloom upsample chain"), at = &b;
+        mip_barrier(at, bl, "blend_to_sample", i, GPU_USAGE_COLOR_ATTACHMENT_BLEND, GPU_USAGE_FRAGMENT_SAMPLED);
     }
 }
 
@@ -132,13 +153,21 @@ static void copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent
     vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
 }
 
-void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force)
+/* The LUTs, when dirty (or forced); their last barrier goes into `next`. */
+static void record_luts_if_dirty(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next)
 {
     if (force || sky_renderer_luts_dirty(r)) {
-        record_luts(r, cmd);
+        record_luts(r, cmd, next);
         r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
         r->luts_valid = true;
     }
+}
+
+void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next)
+{
+    gpu_barrier_batch b = gpu_barrier_batch_begin("after the LUTs");
+    record_luts_if_dirty(r, cmd, force, next ? next : &b);
+    gpu_barrier_flush(cmd, &b);
 }
 
 /* Step 5, readback: the tone map (`writer`) wrote the display and composite images; the copies read them: RAW +
@@ -167,86 +196,102 @@ static void record_readback(sky_renderer *r, VkCommandBuffer cmd, gpu_usage writ
 
 /* Steps 3-5 with the compute post chain: the bloom chain in one dispatch (plus the upsamples), the tone map as
  * a dispatch fused with the last upsample. Everything the chain touches stays in GENERAL. Returns false when
- * the target needs the fragment tone map (a swapchain image), which the caller then records. */
+ * the target needs the fragment tone map (a swapchain image), which the caller then records: its last barrier
+ * (mip 0 made readable by fragment shaders) is then in `next`, the tone map's point. */
 static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f, gpu_usage hdr_write,
-                                bool bloom)
+                                bool bloom, gpu_barrier_batch *next)
 {
     const sky_view *v = f->view;
     bloom_chain *bl = &r->bloom;
     post_compute *pc = &r->post;
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     bool compute_tonemap = pc->tonemap && !f->target;
+    bool spd = bloom && r->desc.bloom_downsample == BLOOM_DOWN_SINGLE_PASS;
     uint32_t t;
 
     /* The sky pass wrote the HDR image; the single pass (bloom level 0) and the tone map sample it, both compute
      * shaders: RAW + layout. The mips were read by the previous frame's chain and tone map (WAR) and are
-     * rewritten: UNDEFINED -> GENERAL. The tile counters were incremented by the previous frame's single pass
-     * (WAR/WAW against its atomics); the clear rewrites them: UNDEFINED -> GENERAL. */
-    gpu_barrier_batch b = gpu_barrier_batch_begin("after sky (compute post)");
-    gpu_barrier_add_image(&b, "hdr.write_to_compute_sample", "hdr", r->hdr.image, one, hdr_write,
+     * rewritten: UNDEFINED -> GENERAL. The tile counters were read and written by the previous frame's single
+     * pass's atomics (WAR, WAW); the clear rewrites them: UNDEFINED -> GENERAL. */
+    /* Without bloom no pass follows before the tone map: these barriers join the tone map's point. */
+    gpu_barrier_batch b = gpu_barrier_batch_begin(bloom ? "after sky (compute post)" : "before tonemap (compute)");
+    gpu_barrier_batch *first = bloom || compute_tonemap ? &b : next;
+    gpu_barrier_add_image(first, "hdr.write_to_compute_sample", "hdr", r->hdr.image, one, hdr_write,
                           compute_tonemap ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
     if (bloom) {
         gpu_barrier_add_image(&b, "bloom.to_storage", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
                               CHAIN_LAST_USE_COMPUTE, GPU_USAGE_COMPUTE_STORAGE_RW, true);
-        if (r->desc.bloom_downsample == BLOOM_DOWN_SINGLE_PASS)
+        if (spd)
             gpu_barrier_add_image(&b, "spd_counters.to_clear", "spd_counters", pc->counters.image, one,
                                   GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_CLEAR_DST, true);
     } else if (r->desc.bloom) {
         /* Bloom switched off at run time: the tone map's descriptors still name mips 0 and 1 in GENERAL, never
          * sampled (strength 0): a layout-only transition (WAR on the previous frame's reads). */
-        gpu_barrier_add_image(&b, "bloom.off_to_storage", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
+        gpu_barrier_add_image(first, "bloom.off_to_storage", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
                               CHAIN_LAST_USE_COMPUTE, GPU_USAGE_COMPUTE_STORAGE_RW, true);
     }
-    gpu_barrier_flush(cmd, &b);
+    if (bloom) gpu_barrier_flush(cmd, &b);
 
-    if (bloom && r->desc.bloom_downsample == BLOOM_DOWN_LEVELS) {
+    if (bloom && !spd) {
         /* One dispatch per level (the fragment chain's structure, compute shaders): level k wrote mip k; level
-         * k+1 samples it: RAW. */
+         * k+1 samples it: RAW. Every mip stays in GENERAL: a global memory barrier. */
         for (uint32_t k = 0; k < bl->mip_count; ++k) {
             t = timed_begin(r, cmd, "bloom_downsample");
             post_record_downsample_level(pc, bl, cmd, k, r->hdr.extent, (float)v->bloom_threshold);
             timed_end(r, cmd, t);
-            if (k + 1 < bl->mip_count)
-                mip_barrier(cmd, bl, "bloom downsample chain (compute)", "down_to_read", (int)k,
-                            GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW);
+            if (k + 1 < bl->mip_count) {
+                b = gpu_barrier_batch_begin("bloom downsample chain (compute)");
+                mip_memory_barrier(&b, "down_to_read", (int)k);
+                gpu_barrier_flush(cmd, &b);
+            }
         }
         /* The last level wrote its mip (RAW for the first upsample); and the upsamples rewrite mips the later
-         * levels sampled (WAR): one barrier over the chain. */
+         * levels sampled (WAR): one global barrier for the chain. */
         b = gpu_barrier_batch_begin("bloom downsample chain (compute)");
-        gpu_barrier_add_image(&b, "bloom.down_to_upsample", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
-                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, false);
+        gpu_barrier_add_memory(&b, "bloom.down_to_upsample", "bloom", GPU_USAGE_COMPUTE_STORAGE_RW,
+                               GPU_USAGE_COMPUTE_STORAGE_RW);
         gpu_barrier_flush(cmd, &b);
-    } else if (bloom) {
-        t = timed_begin(r, cmd, "bloom_spd");
+    } else if (spd) {
+        /* The clear, a transfer command, in a label of its own: it is not part of the dispatch's timing. */
+        gpu_label_begin(r->ctx, cmd, "spd_counters_clear");
         post_record_clear_counters(pc, cmd);
-        /* The clear wrote the counters; the single pass's atomics read and write them: RAW. */
-        b = gpu_barrier_batch_begin("bloom single pass");
+        gpu_label_end(r->ctx, cmd);
+        /* The clear wrote the counters; the single pass's atomics read and write them: RAW + WAW. */
+        b = gpu_barrier_batch_begin("before bloom_spd");
         gpu_barrier_add_image(&b, "spd_counters.clear_to_atomic", "spd_counters", pc->counters.image, one,
                               GPU_USAGE_CLEAR_DST, GPU_USAGE_COMPUTE_STORAGE_RW, false);
         gpu_barrier_flush(cmd, &b);
         /* One dispatch, every level: inside it workgroups hand tiles on through the counters (bloom_spd.comp;
          * docs/synchronization.md, "Inside the single-pass downsampler"), no barrier of the API's. */
+        t = timed_begin(r, cmd, "bloom_spd");
         post_record_downsample(pc, cmd, (float)v->bloom_threshold);
         timed_end(r, cmd, t);
-        /* The single pass wrote every level; the upsamples (and the tone map) read them: RAW. */
-        b = gpu_barrier_batch_begin("bloom single pass");
-        gpu_barrier_add_image(&b, "bloom.spd_to_upsample", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
-                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, false);
+        /* The single pass wrote every level; the upsamples (and the tone map) read them: a global barrier. */
+        b = gpu_barrier_batch_begin("after bloom_spd");
+        gpu_barrier_add_memory(&b, "bloom.spd_to_upsample", "bloom", GPU_USAGE_COMPUTE_STORAGE_RW,
+                               GPU_USAGE_COMPUTE_STORAGE_RW);
         gpu_barrier_flush(cmd, &b);
     }
+    /* The point before the tone map: the last upsample's barrier and the tone map's own share one call. */
+    if (bloom && compute_tonemap) b = gpu_barrier_batch_begin("before tonemap (compute)");
     if (bloom) {
         /* Upsamples down to mip 1 (mip 0's is fused into the compute tone map; a swapchain target's fragment
          * tone map needs it done: down to mip 0). */
-        uint32_t last = compute_tonemap ? 1 : 0;
-        for (int i = (int)bl->mip_count - 2; i >= (int)last; --i) {
+        int last = compute_tonemap ? 1 : 0;
+        for (int i = (int)bl->mip_count - 2; i >= last; --i) {
             t = timed_begin(r, cmd, "bloom_upsample");
             post_record_upsample(pc, bl, cmd, (uint32_t)i);
             timed_end(r, cmd, t);
-            /* Upsample wrote mip i; the next upsample (or the tone map) samples it: RAW. (Mip 0, written only for
-             * the fragment tone map: bloom.mip0.storage_to_fragment below is its barrier.) */
-            if (i > 0)
-                mip_barrier(cmd, bl, "bloom upsample chain (compute)", "up_to_read", i, GPU_USAGE_COMPUTE_STORAGE_RW,
-                            GPU_USAGE_COMPUTE_STORAGE_RW);
+            /* Upsample wrote mip i; the next upsample (or the compute tone map) reads it: RAW, a global barrier.
+             * (Mip 0, written only for the fragment tone map: bloom.mip0.storage_to_fragment is its barrier.) */
+            if (i == 0) continue;
+            if (i == last) {
+                mip_memory_barrier(&b, "up_to_read", i);
+                continue;
+            }
+            gpu_barrier_batch c = gpu_barrier_batch_begin("bloom upsample chain (compute)");
+            mip_memory_barrier(&c, "up_to_read", i);
+            gpu_barrier_flush(cmd, &c);
         }
     }
 
@@ -255,7 +300,6 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     if (compute_tonemap) {
         /* The display and composite images were read by the previous frame's readback copies (WAR); the
          * compute tone map rewrites every pixel: UNDEFINED -> GENERAL. */
-        b = gpu_barrier_batch_begin("before tonemap (compute)");
         gpu_barrier_add_image(&b, "display.to_storage", "display", r->display.image, one, GPU_USAGE_TRANSFER_SRC,
                               GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         if (r->desc.readback)
@@ -273,11 +317,9 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     }
     /* A target the compute tone map cannot write (a swapchain image): the fragment tone map follows (frame_record
      * step 4); it samples mip 0, which the compute upsample wrote: RAW + GENERAL -> SHADER_READ_ONLY. */
-    b = gpu_barrier_batch_begin("before tonemap");
     if (r->desc.bloom)
-        gpu_barrier_add_image(&b, "bloom.mip0.storage_to_fragment", "bloom", bl->mips.image, one,
+        gpu_barrier_add_image(next, "bloom.mip0.storage_to_fragment", "bloom", bl->mips.image, one,
                               GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_FRAGMENT_SAMPLED, false);
-    gpu_barrier_flush(cmd, &b);
     return false;
 }
 
@@ -290,21 +332,22 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     r->active_timer = timer;
     gpu_timer_reset(timer, cmd);
 
-    /* 1. LUTs, only when the atmosphere changed: transmittance, then multi-scattering (reads transmittance). */
-    frame_record_luts(r, cmd, f->force_luts);
-
-    /* 2. Sky. The sky pass runs as a fragment pass (HDR as colour attachment) or a compute dispatch (HDR as
-     * storage image); with the sky-view LUT it first renders that LUT for this frame's camera and sun. */
     sky_mode mode = sky_view_resolve_mode(v, r->atmosphere.radii.z);
     sky_pass_kind kind = sky_view_pass_kind(v, r->ctx->props.deviceType);
     gpu_usage sky_reads = kind == SKY_PASS_COMPUTE ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_FRAGMENT_SAMPLED;
     gpu_usage hdr_write = kind == SKY_PASS_COMPUTE ? GPU_USAGE_COMPUTE_STORAGE_WRITE : GPU_USAGE_COLOR_ATTACHMENT_WRITE;
-    gpu_barrier_batch b;
     uint32_t t;
+
+    /* 1. LUTs, only when the atmosphere changed: transmittance, then multi-scattering (reads transmittance). The
+     * barrier that makes the last LUT readable joins the next point's call (the sky-view LUT's, or the sky's). */
+    gpu_barrier_batch b = gpu_barrier_batch_begin(mode == SKY_MODE_SKYVIEW ? "before skyview_lut" : "before sky");
+    record_luts_if_dirty(r, cmd, f->force_luts, &b);
+
+    /* 2. Sky. The sky pass runs as a fragment pass (HDR as colour attachment) or a compute dispatch (HDR as
+     * storage image); with the sky-view LUT it first renders that LUT for this frame's camera and sun. */
     if (mode == SKY_MODE_SKYVIEW) {
         /* The previous frame's sky pass sampled the sky-view LUT (WAR; either stage, the pass kind may have
          * changed); this frame's values replace it: UNDEFINED -> GENERAL. */
-        b = gpu_barrier_batch_begin("before skyview_lut");
         gpu_barrier_add_image(&b, "skyview.to_storage", "skyview_lut", r->luts.skyview.image, one,
                               GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
@@ -312,12 +355,12 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
         t = timed_begin(r, cmd, "skyview_lut");
         luts_record_skyview(&r->luts, cmd, &sv);
         timed_end(r, cmd, t);
+        b = gpu_barrier_batch_begin("before sky");
     }
 
     /* The previous frame's bloom and tone map sampled the HDR image (WAR); its contents are not needed (every
      * pixel is rewritten): UNDEFINED -> COLOR_ATTACHMENT (fragment) or GENERAL (compute). With the sky-view
      * LUT: the LUT pass wrote it, the sky pass samples it (RAW + layout). */
-    b = gpu_barrier_batch_begin("before sky");
     gpu_barrier_add_image(&b, "hdr.to_sky", "hdr", r->hdr.image, one,
                           r->post_kind == POST_PASS_COMPUTE ? HDR_LAST_USE_COMPUTE : HDR_LAST_USE, hdr_write, true);
     if (mode == SKY_MODE_SKYVIEW)
@@ -332,13 +375,16 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
 
     /* 3. Post: the compute chain (bloom in one dispatch + upsamples, tone map fused with the last upsample:
      * record_post_compute, which for its own display image also does steps 4 and 5), or the fragment chain. */
+    gpu_barrier_batch before_tonemap = gpu_barrier_batch_begin("before tonemap");
     if (r->post_kind == POST_PASS_COMPUTE) {
-        if (record_post_compute(r, cmd, f, hdr_write, bloom)) return;
+        if (record_post_compute(r, cmd, f, hdr_write, bloom, &before_tonemap)) return;
     } else {
         /* The sky pass wrote the HDR image; bloom downsample 0 and the tone map sample it: RAW + layout.
          * The bloom mips were sampled by the previous frame (WAR) and are rendered anew: UNDEFINED -> attachment. */
         b = gpu_barrier_batch_begin("after sky");
-        gpu_barrier_add_image(&b, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
+        /* Without bloom no pass follows before the tone map: these join its point. */
+        gpu_barrier_batch *after_sky = bloom ? &b : &before_tonemap;
+        gpu_barrier_add_image(after_sky, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
                               GPU_USAGE_FRAGMENT_SAMPLED, false);
         if (bloom)
             gpu_barrier_add_image(&b, "bloom.to_attachment", "bloom", r->bloom.mips.image,
@@ -348,12 +394,12 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
          * descriptor still names mip 0 and must find it in SHADER_READ_ONLY, though it never samples it (strength
          * 0). A never-rendered chain is UNDEFINED: a layout-only transition, contents discarded (WAR on reads). */
         else if (r->desc.bloom)
-            gpu_barrier_add_image(&b, "bloom.off_to_sample", "bloom", r->bloom.mips.image, gpu_color_range(0, 1),
+            gpu_barrier_add_image(after_sky, "bloom.off_to_sample", "bloom", r->bloom.mips.image, gpu_color_range(0, 1),
                                   BLOOM_LAST_USE, GPU_USAGE_FRAGMENT_SAMPLED, true);
-        gpu_barrier_flush(cmd, &b);
+        if (bloom) gpu_barrier_flush(cmd, &b);
 
-        /* Bloom: 5 downsamples, 4 additive upsamples. */
-        if (bloom) record_bloom(r, cmd, v);
+        /* Bloom: 5 downsamples, 4 additive upsamples; the last barrier joins the tone map's point. */
+        if (bloom) record_bloom(r, cmd, v, &before_tonemap);
     }
 
     /* 4. Tone map into the display image (and the linear composite for EXR output). The previous frame's
@@ -363,7 +409,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                         r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE,
                         r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE, NULL};
     const frame_target *display = f->target ? f->target : &own;
-    b = gpu_barrier_batch_begin("before tonemap");
+    b = before_tonemap;
     gpu_barrier_add_image(&b, "display.to_attachment", "display", display->image, one, display->before,
                           GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
     if (r->desc.readback)
@@ -388,23 +434,23 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
      * signal at COLOR_ATTACHMENT_OUTPUT would need that stage as this barrier's destination). */
     if (f->target) {
         gpu_usage last = GPU_USAGE_COLOR_ATTACHMENT_WRITE;
+        b = gpu_barrier_batch_begin("end of frame");
         if (f->target->capture) {
-            b = gpu_barrier_batch_begin("before capture");
-            gpu_barrier_add_image(&b, "display.write_to_capture", "display", display->image, one,
+            gpu_barrier_batch c = gpu_barrier_batch_begin("before capture");
+            gpu_barrier_add_image(&c, "display.write_to_capture", "display", display->image, one,
                                   GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false);
-            gpu_barrier_flush(cmd, &b);
+            gpu_barrier_flush(cmd, &c);
+            gpu_label_begin(r->ctx, cmd, "capture");
             copy_to_buffer(cmd, display->image, display->extent, f->target->capture->buffer);
-            b = gpu_barrier_batch_begin("after capture");
+            gpu_label_end(r->ctx, cmd);
+            /* The copy wrote the buffer; the host reads it after the fence (RAW). Same call as the present's. */
             gpu_barrier_add_buffer(&b, "capture.to_host", "capture", f->target->capture->buffer,
                                    GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
-            gpu_barrier_flush(cmd, &b);
             last = GPU_USAGE_TRANSFER_SRC;
         }
-        if (f->target->after != last) {
-            b = gpu_barrier_batch_begin("end of frame");
-            gpu_barrier_add_image(&b, "display.to_present", "display", display->image, one, last,
-                                  f->target->after, false);
-            gpu_barrier_flush(cmd, &b);
-        }
+        if (f->target->after != last)
+            gpu_barrier_add_image(&b, "display.to_present", "display", display->image, one, last, f->target->after,
+                                  false);
+        gpu_barrier_flush(cmd, &b);
     }
 }

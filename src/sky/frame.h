@@ -23,6 +23,8 @@ typedef struct frame_desc {
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 /* A frame's first step alone (the composite frame's too): the LUT passes and their barriers, when the atmosphere
  * changed (or `force`); afterwards the LUTs are readable by compute and fragment shaders. */
-void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force);
+/* `next`: the batch of the point after the LUTs, which receives their last barrier (one call per point); NULL:
+ * flushed here. */
+void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next);
 
 #endif
