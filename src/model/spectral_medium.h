@@ -64,7 +64,7 @@ double spectral_law_eval(const spectral_law *l, double nm);
 
 /* The spectral medium the model's RGB medium stands for: Rayleigh the Bodhaine law scaled to the green value,
  * Mie an Angstrom law through the red and blue values scaled to the green one, ozone the cross sections scaled to
- * the green value; a species whose red and blue values do not follow that shape within 10 % (Rayleigh, ozone)
+ * the green value; a species whose red and blue values do not follow that shape within 10 % (Rayleigh; ozone 25 %)
  * keeps the RGB law, as do the extra species. Hillaire's Earth (Bruneton's coefficients, which are these laws at
  * 680/550/440 nm) maps to the physical laws. */
 void spectral_medium_from_rgb(const model_atmosphere *a, spectral_medium *out);
