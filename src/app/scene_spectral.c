@@ -105,3 +105,28 @@ int scene_spectral_parse(const scene_ctx *c, const cJSON *spectral)
     c->o->spectral_medium_set = true;
     return 0;
 }
+
+/* --dump-scene: the laws as they stand, in the forms that load back exactly (number density, per-km values). */
+bool scene_spectral_dump(cJSON *root, const options *o)
+{
+    if (!o->spectral_medium_set) return true;
+    const spectral_medium *m = &o->spectral_medium;
+    cJSON *s = cJSON_AddObjectToObject(root, "spectral"), *j;
+    bool ok = s != NULL;
+    if (ok && m->rayleigh_scattering.kind == SPECTRAL_LAW_RAYLEIGH) {
+        ok = (j = cJSON_AddObjectToObject(s, "rayleigh")) && cJSON_AddStringToObject(j, "law", "bodhaine") &&
+             cJSON_AddNumberToObject(j, "air_density", m->rayleigh_scattering.scale);
+    } else if (ok) {
+        ok = (j = cJSON_AddObjectToObject(s, "rayleigh")) && cJSON_AddStringToObject(j, "law", "rgb");
+    }
+    if (ok && m->mie_scattering.kind == SPECTRAL_LAW_ANGSTROM && m->mie_absorption.kind == SPECTRAL_LAW_ANGSTROM &&
+        m->mie_scattering.exponent == m->mie_absorption.exponent)
+        ok = (j = cJSON_AddObjectToObject(s, "mie")) && cJSON_AddStringToObject(j, "law", "angstrom") &&
+             cJSON_AddNumberToObject(j, "exponent", m->mie_scattering.exponent) &&
+             cJSON_AddNumberToObject(j, "scattering_550_per_km", m->mie_scattering.value_550) &&
+             cJSON_AddNumberToObject(j, "absorption_550_per_km", m->mie_absorption.value_550);
+    if (ok && m->ozone_absorption.kind == SPECTRAL_LAW_OZONE)
+        ok = (j = cJSON_AddObjectToObject(s, "ozone")) && cJSON_AddStringToObject(j, "law", "cross-section") &&
+             cJSON_AddNumberToObject(j, "number_density_per_m3", m->ozone_absorption.scale);
+    return ok;
+}

@@ -17,4 +17,7 @@
 
 /* 0: read onto c->o->spectral_medium (spectral_medium_set); 2: bad input (one line on stderr). */
 int scene_spectral_parse(const scene_ctx *c, const cJSON *spectral);
+/* --dump-scene: adds the "spectral" section to root when the scene gave one (true: ok, false: out of memory). A law
+ * made from RGB coefficients (spectral_medium_from_rgb) that has no scene form is left to be made again on load. */
+bool scene_spectral_dump(cJSON *root, const options *o);
 #endif
