@@ -69,7 +69,8 @@ typedef struct ref_irradiance {
 /* tilt_deg in [0, 180] from horizontal, the surface facing azimuth tilt_azimuth_deg (the convention of ref_dir:
  * 0 = +X); ground_albedo the RGB albedo; n_dirs the hemisphere quadrature's size (n_dirs x 2 n_dirs directions
  * about the sun). Measured against 64 (sun 60 and 20 deg, aerosol 0.07, tilt 37): 16 puts the diffuse horizontal
- * within 0.1 %, the diffuse tilted within 1.5 % (the tilted plane's edge cuts the grid), ~0.2 % of global tilted. 0 on success, -1 out of memory. */
+ * within 0.1 %, the diffuse tilted within 1.5 % (the tilted plane's edge cuts the grid), ~0.2 % of global tilted.
+ * 0 on success, -1 out of memory. */
 int ref_spectral_irradiance(const ref_spectral *s, double altitude, const double sun_dir[3], double tilt_deg,
                             double tilt_azimuth_deg, const double ground_albedo[3], int n_dirs, ref_irradiance *out);
 
