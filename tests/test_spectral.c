@@ -90,7 +90,7 @@ static void test_wavelength_convergence(void)
     ref_spectral_init(&s96, &a, 96);
     /* The view march coarser than converged and single scattering only (the same for both counts): what is
      * compared is the wavelength quadrature, and a Psi table per packed atmosphere would cost 2 s each (with it,
-     * measured once: +0.008 %, +0.001 %, +0.000 %, -0.018 % on these rows; docs/spectral.md). */
+     * measured once: +0.008 %, +0.000 %, +0.001 %, -0.018 % on these rows; docs/spectral.md). */
     ref_quality q = {.view_steps = 128, .sun_steps = 64, .ms_sqrt_dirs = 4, .ms_steps = 8, .ms_off = 1};
     s48.q = s96.q = q;
     static const struct { double sun_el, view_az, view_el; const char *name; } rows[] = {
