@@ -95,7 +95,8 @@ int scene_spectral_parse(const scene_ctx *c, const cJSON *spectral)
     spectral_medium_from_rgb(&c->o->atmosphere, &m);
     const cJSON *s;
     if (scene_check_fields(c, spectral, "spectral", names, COUNT(names))) return 2;
-    if (scene_get_object(c, spectral, "rayleigh", "spectral", &s) || (s && parse_rayleigh(c, s, &m.rayleigh_scattering)))
+    if (scene_get_object(c, spectral, "rayleigh", "spectral", &s) ||
+        (s && parse_rayleigh(c, s, &m.rayleigh_scattering)))
         return 2;
     if (scene_get_object(c, spectral, "mie", "spectral", &s) || (s && parse_mie(c, s, &m)))
         return 2;
