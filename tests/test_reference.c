@@ -642,7 +642,7 @@ static void test_physics(const model_atmosphere *a, ref_quality q)
     const double suns[] = {-90.0, -18.0, -6.0, -0.5, 0.0, 0.5, 10.0, 45.0, 90.0};
     int nbad = 0, ntotal = 0;
     double tq0 = wall_now();
-    ref_quality fast = {64, 32, q.ms_sqrt_dirs, q.ms_steps}; /* same Psi table; robustness, not accuracy */
+    ref_quality fast = {64, 32, q.ms_sqrt_dirs, q.ms_steps, 0}; /* same Psi table; robustness, not accuracy */
     for (unsigned ia = 0; ia < sizeof alts / sizeof alts[0]; ++ia) {
         double h = alts[ia], rr = a->bottom_radius + h;
         double rho = sqrt(h * (2.0 * a->bottom_radius + h));

@@ -30,7 +30,7 @@ static const char *const quality_flags[] = {"--quality", "--max-error", "--steps
                                             "--skyview-lut", "--skyview-steps", "--transmittance-lut",
                                             "--transmittance-steps", "--multiscatter-lut", "--multiscatter-dirs",
                                             "--multiscatter-steps", "--lut-format", "--render-scale", NULL};
-static const char *const diagnostics_flags[] = {"--reference", "--path-trace", "--samples", "--bench", "--frames",
+static const char *const diagnostics_flags[] = {"--reference", "--path-trace", "--samples", "--spectral", "--irradiance", "--tilt", "--tilt-azimuth", "--bench", "--frames",
                                                 "--screenshot", "--validate", "--trace-barriers", "--trace-passes",
                                                 "--list-devices", "--device", "--help", "--version", NULL};
 static const help_group groups[] = {

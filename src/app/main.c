@@ -33,6 +33,10 @@ int main(int argc, char **argv)
         fprintf(stderr, "vksky: --path-trace: only with --reference\n");
         return 2;
     }
+    if ((o.spectral || o.irradiance) && !o.reference) {   /* the GPU's --spectral is not there yet (issue 32) */
+        fprintf(stderr, "vksky: %s: only with --reference\n", o.spectral ? "--spectral" : "--irradiance");
+        return 2;
+    }
     if (o.reference) {
         if (o.bench_frames) {
             fprintf(stderr, "vksky: --bench: not with --reference\n");

@@ -249,6 +249,13 @@ static int apply(options *o, const flag *f, const char *value)
     else if (!strcmp(n, "--reference")) o->reference = true;
     else if (!strcmp(n, "--path-trace")) o->path_trace = true;
     else if (!strcmp(n, "--samples")) o->path_samples = (int)x;
+    else if (!strcmp(n, "--spectral")) o->spectral = (int)x;
+    else if (!strcmp(n, "--irradiance")) o->irradiance = true;
+    else if (!strcmp(n, "--tilt")) o->tilt_deg = x;
+    else if (!strcmp(n, "--tilt-azimuth")) {
+        o->tilt_azimuth_deg = x;
+        o->tilt_azimuth_set = true;
+    }
     else if (!strcmp(n, "--bench")) o->bench_frames = (int)x;
     else if (!strcmp(n, "--frames")) o->frames = (int)x;
     else if (!strcmp(n, "--screenshot")) {

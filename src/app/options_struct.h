@@ -5,6 +5,7 @@
 #define VKSKY_APP_OPTIONS_STRUCT_H
 #include "app/sun_place.h"
 #include "model/medium.h"
+#include "model/spectral_medium.h"
 #include "sky/renderer.h"
 #include <stdbool.h>
 
@@ -27,6 +28,12 @@ typedef struct options {
     bool reference;                             /* --reference: CPU ground truth instead of the GPU */
     bool path_trace;                            /* --path-trace: the Monte Carlo path tracer as the ground truth */
     int path_samples;                           /* paths per pixel / direction */
+    int spectral;                               /* --spectral N: the reference's wavelengths (0: RGB) */
+    bool spectral_medium_set;                   /* the scene's "spectral" section gave the medium per wavelength */
+    spectral_medium spectral_medium;            /* that medium (else the RGB medium's, spectral_medium_from_rgb) */
+    bool irradiance;                            /* --irradiance: irradiance at the camera (with --reference) */
+    double tilt_deg, tilt_azimuth_deg;          /* --tilt, --tilt-azimuth: the tilted surface of --irradiance */
+    bool tilt_azimuth_set;
     double scales[3];
     const char *quality;                        /* --quality preset name (NULL: none) */
     bool quality_auto;                          /* the knobs are --quality auto's choice (named or the default) */

@@ -3,6 +3,7 @@
 #include "app/scene.h"
 #include "app/quality.h"
 #include "app/scene_sun.h"
+#include "app/scene_spectral.h"
 #include "app/options_sunvis.h"
 #include "app/scene_validate.h"
 #include "app/exr_names.h"
@@ -456,7 +457,7 @@ static int syntax_error(const scene_ctx *c, const char *text, size_t len, const 
 int scene_load(const char *path, options *o)
 {
     static const char *const names[] = {"description", "planet", "species", "multiple_scattering", "sun", "camera",
-                                        "output", "quality", "sun_visibility"};
+                                        "output", "quality", "sun_visibility", "spectral"};
     scene_ctx c = {.o = o};
     scene_printable(c.file, sizeof c.file, path);
     char *text = NULL;
@@ -497,6 +498,8 @@ int scene_load(const char *path, options *o)
     const cJSON *section;
     if (scene_get_object(&c, root, "planet", "", &section) || (section && parse_planet(&c, section))) goto done;
     if (scene_get_object(&c, root, "species", "", &section) || (section && parse_species(&c, section))) goto done;
+    if (scene_get_object(&c, root, "spectral", "", &section) || (section && scene_spectral_parse(&c, section)))
+        goto done;   /* after species and planet: columns become coefficients through their profiles */
     if (scene_get_bool(&c, root, "multiple_scattering", "", &o->multiple_scattering)) goto done;
     if (scene_get_word(&c, root, "sun_visibility", "", sunvis_words, SUNVIS_WORD_COUNT, &o->atmosphere.sun_visibility))
         goto done;

@@ -1,6 +1,7 @@
 /* Scene files: --dump-scene, the effective options written back as a scene (the schema in scene.h). */
 #include "app/scene_dump.h"
 #include "app/scene_sun.h"
+#include "app/scene_spectral.h"
 #include "app/scene.h"
 #include "app/options_sunvis.h"
 #include "app/scene_validate.h"
@@ -123,6 +124,7 @@ int scene_dump(const options *o, FILE *out)
         dump_density(&b, s, &a->extra[i].density);
     }
 
+    b.ok = b.ok && scene_spectral_dump(root, o);   /* the medium per wavelength (issue 32), when given */
     boolean(&b, root, "multiple_scattering", o->multiple_scattering);
     str(&b, root, "sun_visibility", sunvis_name(a->sun_visibility));
 

@@ -261,7 +261,7 @@ void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, dou
 
 /* Lazily built tables, keyed by the atmosphere's bytes (less E and g) and the Psi counts; the oldest is replaced
  * when all slots are taken. Building is not thread-safe; looking up an existing table is. */
-#define PSI_CACHE_SLOTS 8
+#define PSI_CACHE_SLOTS 40 /* the spectral reference packs 3 wavelengths per atmosphere: 40 tables hold 120 */
 
 typedef struct psi_cache_slot {
     model_atmosphere atmo;

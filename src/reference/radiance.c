@@ -4,6 +4,7 @@
 #include "reference/ref_internal.h"
 
 #include <math.h>
+#include <stddef.h>
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Sky radiance                                                                                               */
@@ -11,7 +12,7 @@
 ref_quality ref_quality_converged(void)
 {
     /* See tests/test_reference.c for the convergence study behind these counts. */
-    ref_quality q = {512, 256, 48, 64};
+    ref_quality q = {512, 256, 48, 64, 0};
     return q;
 }
 
@@ -192,7 +193,7 @@ void ref_sky_radiance(const model_atmosphere *a, double altitude, const double v
     q = quality_at_least_1(q);
     if (!sky_start(a, altitude, view_dir, sun_dir, &h, &mu, &mus, &nu, &t_entry))
         return;
-    const psi_table *psi = psi_cache_get(a, q.ms_sqrt_dirs, q.ms_steps);
+    const psi_table *psi = q.ms_off ? NULL : psi_cache_get(a, q.ms_sqrt_dirs, q.ms_steps);
     ref_aerial seg;
     sky_march(a, h, mu, mus, nu, INFINITY, q.view_steps, q.sun_steps, psi, &seg);
     for (int c = 0; c < 3; ++c)
@@ -209,7 +210,7 @@ void ref_radiance_to_point(const model_atmosphere *a, double altitude, const dou
         return;
     if (!(distance > t_entry))
         return; /* the point lies in the empty space before the atmosphere */
-    const psi_table *psi = psi_cache_get(a, q.ms_sqrt_dirs, q.ms_steps);
+    const psi_table *psi = q.ms_off ? NULL : psi_cache_get(a, q.ms_sqrt_dirs, q.ms_steps);
     sky_march(a, h, mu, mus, nu, distance - t_entry, q.view_steps, q.sun_steps, psi, out);
 }
 

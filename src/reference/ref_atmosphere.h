@@ -71,6 +71,7 @@ typedef struct ref_quality {
     int sun_steps;    /* uniform midpoint steps of every nested sun transmittance along the view ray */
     int ms_sqrt_dirs; /* Psi table: ref_multiscatter_converged's sqrt_dirs */
     int ms_steps;     /* Psi table: ref_multiscatter_converged's steps */
+    int ms_off;       /* 1: single scattering only, no Psi table (tests of what does not depend on it; 0 default) */
 } ref_quality;
 
 /* {view 512, sun 256, ms_sqrt_dirs 48, ms_steps 64}. Doubling a count changes the radiance by (13 rays from noon
