@@ -15,11 +15,13 @@ typedef struct help_group {
 static const char *const output_flags[] = {"--render", "--width", "--height", "--exposure", "--tonemap", "--no-bloom",
                                            "--bloom-mips", "--bloom-res", "--bloom-downsample", "--scene",
                                            "--list-scenes", "--dump-scene", "--projection", "--quiet",
-                                           "--animate", "--frame-count", "--frame-range", NULL};
+                                           "--animate", "--frame-count", "--frame-range",
+                                           "--units", "--auto-exposure", "--exr-type", NULL};
 static const char *const camera_flags[] = {"--altitude", "--yaw", "--pitch", "--fov", NULL};
 static const char *const sun_flags[] = {"--sun-elevation", "--sun-azimuth", "--date", "--time", "--utc-offset",
                                         "--latitude", "--longitude", "--elevation-m", "--sun-illuminance",
-                                        "--sun-angular-radius", "--limb-darkening", "--no-sun-disc", NULL};
+                                        "--sun-angular-radius", "--limb-darkening", "--no-sun-disc",
+                                        "--sun-lux", NULL};
 static const char *const atmosphere_flags[] = {"--rayleigh-scale", "--mie-scale", "--ozone-scale", "--mie-g",
                                                "--mie-phase", "--ground-albedo", "--no-multiscatter", "--sun-visibility",
                                                NULL};

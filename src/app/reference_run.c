@@ -1,4 +1,5 @@
 #include "app/reference_run.h"
+#include "app/light.h"
 #include "app/exr_header.h"
 #include "app/stop.h"
 #include "io/atomic_file.h"
@@ -26,12 +27,14 @@ typedef struct ref_job {
 static void radiance(const options *o, const double view[3], const double sun[3], double rgb[3], double err[3])
 {
     err[0] = err[1] = err[2] = 0.0;
+    model_atmosphere a = o->atmosphere;   /* the sun in output units: cd/m2 in photometric units (app/light.h) */
+    light_sun(o, a.sun_illuminance);
     if (o->path_trace) {
         pt_settings s = {.samples = o->path_samples, .seed = 2020, .ground_albedo = o->ground_albedo[1], .threads = 1};
-        pt_radiance(&o->atmosphere, o->view.altitude_km, view, sun, &s, rgb, err);
+        pt_radiance(&a, o->view.altitude_km, view, sun, &s, rgb, err);
         return;
     }
-    ref_sky_radiance(&o->atmosphere, o->view.altitude_km, view, sun, ref_quality_converged(), rgb);
+    ref_sky_radiance(&a, o->view.altitude_km, view, sun, ref_quality_converged(), rgb);
 }
 
 static void *render_rows(void *arg)

@@ -1,6 +1,7 @@
 /* The frames of a sequence (sequence.h). */
 #include "app/sequence.h"
 #include "app/exr_header.h"
+#include "app/light.h"
 #include "app/options.h"
 #include "app/options_sequence.h"
 #include "app/quality.h"
@@ -151,7 +152,17 @@ static int write_outputs(const options *o, const sky_renderer *r, int frame, boo
                 return 1;
             }
             io_exr_layer layer = {.name = "", .rgba_half = r->readback_linear.mapped};
-            rc = io_write_exr_meta(path, o->width, o->height, &layer, 1, &h.meta, err, sizeof err);
+            if (o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT) {
+                /* Photometric or --exr-type float: output units as floats (app/light.h). */
+                bool store_float = false;
+                float *scaled = light_exr_pixels(o, r->readback_linear.mapped, (size_t)o->width * (size_t)o->height,
+                                                 &store_float);
+                rc = scaled ? io_write_exr_rgba_f32(path, o->width, o->height, scaled, store_float, &h.meta, err, sizeof err)
+                            : (snprintf(err, sizeof err, "%s: out of memory for the EXR's pixels", path), 1);
+                free(scaled);
+            } else {
+                rc = io_write_exr_meta(path, o->width, o->height, &layer, 1, &h.meta, err, sizeof err);
+            }
             exr_header_free(&h);
         } else {
             rc = io_write_png(path, o->width, o->height, r->readback_display.mapped, 1, err, sizeof err);
@@ -173,13 +184,22 @@ int sequence_render(const options *base, sky_renderer *r, sequence_render_fn ren
         options f;
         if (sequence_frame_options(base, i, &f)) return 1;   /* parsed before (sequence_check): not expected */
         /* Same values: the renderer keeps its LUTs (their hash is unchanged) and its pipelines. */
-        sky_renderer_set_atmosphere(r, &f.atmosphere, options_sun_radius_rad(&f));
+        model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+        light_render_atmosphere(&f, &lit);
+        sky_renderer_set_atmosphere(r, &lit, options_sun_radius_rad(&f));
         sky_features features = options_features(&f);
         sky_renderer_set_features(r, &features);
         bool luts = sky_renderer_luts_dirty(r);
         lut_computations += luts;
         frame_desc desc = {.view = &f.view};
         render(r, &desc);
+        if (light_auto_exposure_wanted(&f)) {
+            /* Auto exposure: the frame's log-average luminance sets the exposure of the same frame, rendered again
+             * (the LUTs are kept: only the sky pass, bloom and tone map run twice). */
+            light_expose(&f.view, light_log_average(r->readback_linear.mapped, (size_t)f.width * (size_t)f.height,
+                                                    f.view.light_scale));
+            render(r, &desc);
+        }
         const char *path = "";
         if (write_outputs(&f, r, i, sequence, &path) != 0) return 1;
         ++done;

@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/tiles.h"
+#include "app/light.h"
 #include "app/stop.h"
 #include "app/options.h"
 #include "app/options_projection.h"
@@ -11,6 +12,7 @@
 #include "io/png_stream.h"
 #include "sky/projection.h"
 #include "sky/submit.h"
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -51,24 +53,43 @@ static bool is_exr(const char *path)
     return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
 }
 
+/* Photometric (or --exr-type float): the EXR gets output units as floats (app/light.h), else the half rows as read. */
+static bool scaled_rows(const options *o)
+{
+    return o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT;
+}
+
+/* A band's EXR rows: as read back, or in output units (the HDR scale divided out) through `band_f32`. */
+static int write_exr_rows(const options *o, io_exr_stream *s, const uint16_t *half, int rows, float **band_f32,
+                          char *err, size_t err_size)
+{
+    if (!scaled_rows(o)) return io_exr_stream_rows(s, half, rows, err, err_size);
+    bool unused;
+    free(*band_f32);
+    *band_f32 = light_exr_pixels(o, half, (size_t)rows * (size_t)o->width, &unused);
+    if (!*band_f32) {
+        snprintf(err, err_size, "out of memory for an EXR band");
+        io_exr_stream_abort(s);
+        return -1;
+    }
+    return io_exr_stream_rows_f32(s, *band_f32, rows, err, err_size);
+}
+
 static int open_outputs(const options *o, output *outs)
 {
     char err[512];
-    double sun[3];
-    projection_dir_from_angles(o->view.sun_azimuth_deg, o->view.sun_elevation_deg, sun);
-    double at_camera[3];
-    options_sun_at_camera(o, at_camera);
     int p = o->view.projection;
     io_exr_sky_attrs attrs = {
         .envmap = p == SKY_PROJECTION_EQUIRECT ? IO_ENVMAP_LATLONG : p == SKY_PROJECTION_CUBEMAP ? IO_ENVMAP_CUBE : IO_ENVMAP_NONE,
-        .projection = options_projection_name(p), .has_sun = true,
-        .sun_direction = {(float)sun[0], (float)sun[1], (float)sun[2]},
-        .sun_illuminance = {(float)o->atmosphere.sun_illuminance[0], (float)o->atmosphere.sun_illuminance[1],
-                            (float)o->atmosphere.sun_illuminance[2]},
-        .sun_at_camera = {(float)at_camera[0], (float)at_camera[1], (float)at_camera[2]}};
+        .projection = options_projection_name(p)};
+    light_sky_attrs(o, &attrs);   /* the sun (direction, illuminance, at the camera) and the units */
+    bool scaled = scaled_rows(o), store_float = light_stream_float(o);
     for (int i = 0; i < o->output_count; ++i) {
         outs[i].exr = is_exr(o->outputs[i]);
-        if (outs[i].exr) outs[i].exr_stream = io_exr_stream_open(o->outputs[i], o->width, o->height, &attrs, err, sizeof err);
+        if (outs[i].exr)
+            outs[i].exr_stream = scaled ? io_exr_stream_open_f32(o->outputs[i], o->width, o->height, &attrs,
+                                                                 store_float, err, sizeof err)
+                                        : io_exr_stream_open(o->outputs[i], o->width, o->height, &attrs, err, sizeof err);
         else outs[i].png_stream = io_png_stream_open(o->outputs[i], o->width, o->height, err, sizeof err);
         if (!outs[i].exr_stream && !outs[i].png_stream) {
             fprintf(stderr, "vksky: %s\n", err);
@@ -85,6 +106,25 @@ static void abort_outputs(const options *o, output *outs)
         io_png_stream_abort(outs[i].png_stream);
         outs[i] = (output){0};
     }
+}
+
+/* Auto exposure of a banded image: the log-average over every band (a first pass that writes nothing). */
+static double tiles_auto_exposure(const options *o, sky_renderer *r, sky_view *view, int band, int height)
+{
+    double log_sum = 0.0;
+    long count = 0;
+    for (int y = 0; y < height && !stop_requested(); y += band) {
+        view->tile_x = 0, view->tile_y = y;
+        frame_desc f = {.view = view};
+        sky_renderer_render(r, &f);
+        int rows = height - y < band ? height - y : band;
+        size_t n = (size_t)rows * (size_t)o->width;
+        log_sum += log(light_log_average(r->readback_linear.mapped, n, view->light_scale)) * (double)n;
+        count += (long)n;
+    }
+    sky_view v = *view;
+    light_expose(&v, exp(log_sum / (double)(count ? count : 1)));
+    return v.exposure_ev;
 }
 
 int tiles_render(const options *o, gpu_context *ctx)
@@ -119,7 +159,9 @@ int tiles_render(const options *o, gpu_context *ctx)
                                .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB, .render_scale = 1.0,
                                .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips};
     sky_renderer_create(&r, ctx, &rdesc);
-    sky_renderer_set_atmosphere(&r, &o->atmosphere, options_sun_radius_rad(o));
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    light_render_atmosphere(o, &lit);
+    sky_renderer_set_atmosphere(&r, &lit, options_sun_radius_rad(o));
     sky_features features = options_features(o);
     sky_renderer_set_features(&r, &features);
     if (o->trace_passes) r.pass_trace = stdout;
@@ -130,13 +172,16 @@ int tiles_render(const options *o, gpu_context *ctx)
     progress_begin(&prog, stderr, o->quiet || bands < 2, what, height);
     int status = 0;
     char err[512];
+    float *band_f32 = NULL;
+    if (light_auto_exposure_wanted(o)) view.exposure_ev = tiles_auto_exposure(o, &r, &view, band, height);
     for (int y = 0; y < height && status == 0; y += band) {
         view.tile_x = 0, view.tile_y = y;
         frame_desc f = {.view = &view};
         sky_renderer_render(&r, &f);
         int rows = height - y < band ? height - y : band;
         for (int i = 0; i < o->output_count && status == 0; ++i) {
-            int rc = outs[i].exr ? io_exr_stream_rows(outs[i].exr_stream, r.readback_linear.mapped, rows, err, sizeof err)
+            int rc = outs[i].exr ? write_exr_rows(o, outs[i].exr_stream, r.readback_linear.mapped, rows, &band_f32, err,
+                                                  sizeof err)
                                  : io_png_stream_rows(outs[i].png_stream, r.readback_display.mapped, rows, err, sizeof err);
             if (rc != 0) {
                 outs[i] = (output){0};   /* the stream aborted itself */
@@ -159,6 +204,7 @@ int tiles_render(const options *o, gpu_context *ctx)
         if (rc != 0) fprintf(stderr, "vksky: %s\n", err), status = 1;
     }
     if (status == 0) progress_end(&prog);
+    free(band_f32);
     abort_outputs(o, outs);
     sky_renderer_destroy(&r);
     return status;

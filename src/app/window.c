@@ -17,6 +17,7 @@
  * The window in three files: this one (the loop, frames in flight, screenshot, title, setup), swapchain.c (the
  * swapchain's life) and window_input.c (the controls); their shared state is app/window_app.h. */
 #include "app/cpu_time.h"
+#include "app/light.h"
 #include "app/window_app.h"
 #include "app/window.h"
 #include "app/stop.h"
@@ -413,7 +414,9 @@ static int start_rendering(app *a)
                                .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample,
                                .bloom_quarter = o->bloom_quarter};
     sky_renderer_create(&a->renderer, &a->ctx, &rdesc);
-    sky_renderer_set_atmosphere(&a->renderer, &o->atmosphere, options_sun_radius_rad(o));
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    light_render_atmosphere(o, &lit);
+    sky_renderer_set_atmosphere(&a->renderer, &lit, options_sun_radius_rad(o));
     sky_features features = options_features(o);
     sky_renderer_set_features(&a->renderer, &features);
     a->view = o->view;
