@@ -300,6 +300,16 @@ vec3 sun_disc(vec3 v, vec3 s, vec3 throughput, bool hits_ground)
     return atmo.sun.rgb * 10.0 * throughput * limb * coverage * power_kept;
 }
 
+/* The power disc's share above the camera's horizon: the penumbra's visible fraction of the sun (sun_visibility.glsl).
+ * Its smooth shape reaches a few texels past the true disc, so on a small image a sun just below the horizon would
+ * otherwise light sky pixels above it through their grazing rays. 1 for the lesson's disc (its pixels' own ground
+ * test only, as before). */
+float sun_disc_visible(float h_cam, vec3 s)
+{
+    float mu_t;
+    return atmo.sun_disc.x > 0.5 ? sun_visibility(h_cam, s.y, mu_t) : 1.0;
+}
+
 /* The pixel's class, stored in the HDR image's alpha for the tone map's upsample (hdr_upsample.glsl): 0 the ray
  * hits the ground, 1 it does not. A render scale below 1 then keeps the horizon sharp: the upsample never blends
  * ground into sky. The sun's disc is sky: it is already filtered at the texel's size (sun_disc), and the bilinear
@@ -314,7 +324,8 @@ vec3 sky_radiance(float h_cam, vec3 v, vec3 s, vec4 march, float distribution)
     vec3 throughput;
     bool hits_ground;
     vec3 radiance = sky_march(h_cam, v, s, march, distribution, throughput, hits_ground);
-    return clamp(radiance + sun_disc(v, s, throughput, hits_ground), vec3(0.0), vec3(FP16_MAX));
+    return clamp(radiance + sun_disc(v, s, throughput, hits_ground) * sun_disc_visible(h_cam, s), vec3(0.0),
+                 vec3(FP16_MAX));
 }
 
 #ifdef VKSKY_SKYVIEW_LOOKUP
@@ -331,7 +342,7 @@ vec3 sky_radiance_lookup(float h_cam, vec3 v, vec3 s)
     if (HAS_SUN_DISC && small_angle(v, s) < sun_disc_extent()) {
         bool hits_ground = ray_hits_ground(h_cam, v.y);
         vec3 throughput = hits_ground ? vec3(0.0) : lookup_transmittance(h_cam, v.y);
-        radiance += sun_disc(v, s, throughput, hits_ground);
+        radiance += sun_disc(v, s, throughput, hits_ground) * sun_disc_visible(h_cam, s);
     }
     return clamp(radiance, vec3(0.0), vec3(FP16_MAX));
 }

@@ -47,10 +47,14 @@ const char *light_sun_units_text(const options *o);
  * and at the camera in output units, the units' names, whiteLuminance (photometric: 1). envmap/projection untouched. */
 void light_sky_attrs(const options *o, io_exr_sky_attrs *a);
 
-/* Auto exposure: the log-average (geometric mean) luminance of a frame's sky, cd/m2 (pixels in HDR units, scale
+/* Auto exposure: the log-average (geometric mean) luminance of a frame, cd/m2 (pixels in HDR units, light_scale
  * divided out; luminance floored at 1e-4 cd/m2 so a black pixel does not drag the mean to zero), and the EV100
- * that exposes it at the reflected-light meter's key: EV100 = log2(L_avg S / K), S = 100, K = 12.5. */
-double light_log_average(const uint16_t *rgba_half, size_t pixels, double scale);
+ * that exposes it at the reflected-light meter's key: EV100 = log2(L_avg S / K), S = 100, K = 12.5.
+ * light_log_sum adds a frame's (or a band's) pixels as a sum of logs and a count, to combine bands: rows y0 ..
+ * y0+rows-1 of a width x height image of view v. With a black ground (albedo 0, the default) only pixels whose ray
+ * misses the planet count: the void below the horizon is no part of the scene a meter would read. */
+void light_log_sum(const options *o, const sky_view *v, const uint16_t *rgba_half, int width, int height, int y0,
+                   int rows, double *log_sum, double *count);
 double light_auto_ev100(double log_average_cd_m2);
 /* Whether a headless frame is exposed automatically: --auto-exposure, or photometric units without a given exposure,
  * and a PNG among the outputs (an EXR's pixels do not depend on the exposure). */

@@ -196,8 +196,9 @@ int sequence_render(const options *base, sky_renderer *r, sequence_render_fn ren
         if (light_auto_exposure_wanted(&f)) {
             /* Auto exposure: the frame's log-average luminance sets the exposure of the same frame, rendered again
              * (the LUTs are kept: only the sky pass, bloom and tone map run twice). */
-            light_expose(&f.view, light_log_average(r->readback_linear.mapped, (size_t)f.width * (size_t)f.height,
-                                                    f.view.light_scale));
+            double log_sum = 0.0, count = 0.0;
+            light_log_sum(&f, &f.view, r->readback_linear.mapped, f.width, f.height, 0, f.height, &log_sum, &count);
+            light_expose(&f.view, count > 0.0 ? exp(log_sum / count) : 1e-4);
             render(r, &desc);
         }
         const char *path = "";

@@ -111,19 +111,16 @@ static void abort_outputs(const options *o, output *outs)
 /* Auto exposure of a banded image: the log-average over every band (a first pass that writes nothing). */
 static double tiles_auto_exposure(const options *o, sky_renderer *r, sky_view *view, int band, int height)
 {
-    double log_sum = 0.0;
-    long count = 0;
+    double log_sum = 0.0, count = 0.0;
     for (int y = 0; y < height && !stop_requested(); y += band) {
         view->tile_x = 0, view->tile_y = y;
         frame_desc f = {.view = view};
         sky_renderer_render(r, &f);
         int rows = height - y < band ? height - y : band;
-        size_t n = (size_t)rows * (size_t)o->width;
-        log_sum += log(light_log_average(r->readback_linear.mapped, n, view->light_scale)) * (double)n;
-        count += (long)n;
+        light_log_sum(o, view, r->readback_linear.mapped, o->width, height, y, rows, &log_sum, &count);
     }
     sky_view v = *view;
-    light_expose(&v, exp(log_sum / (double)(count ? count : 1)));
+    light_expose(&v, count > 0.0 ? exp(log_sum / count) : 1e-4);
     return v.exposure_ev;
 }
 
