@@ -3,7 +3,7 @@
 #include <string.h>
 
 const flag flags_table[] = {
-    {"--render", ARG_STRING, 0, 0, "FILE   write the frame: .exr (scene-linear half RGBA, ZIP; the header records the scene, camera and command line) or .png (tone-mapped 8-bit sRGB); repeatable; a %d in FILE is the frame number"},
+    {"--render", ARG_STRING, 0, 0, "FILE   write the frame: .exr (scene-linear RGBA, half or float: --exr-type; ZIP; the header records the scene, camera and command line) or .png (tone-mapped 8-bit sRGB); repeatable; a %d in FILE is the frame number"},
     {"--animate", ARG_STRING, 0, 0, "PARAM=FROM:TO  animate a numeric flag (sun-elevation, yaw, altitude, exposure, mie-g, ...) or time (local clock, decimal hours, with --date) linearly over the frames; repeatable"},
     {"--frame-count", ARG_INT, 1, 1000000, "N  frames of the sequence (default 1); with N > 1 each --render needs one %d (e.g. sky_%04d.exr), the frame number"},
     {"--frame-range", ARG_STRING, 0, 0, "A:B  render only frames A to B (inclusive, from 0) of the sequence: split it across jobs"},
