@@ -161,6 +161,38 @@ void light_log_sum(const options *o, const sky_view *v, const uint16_t *rgba_hal
         }
 }
 
+static ref_quality meter_quality(void) { return (ref_quality){64, 32, 16, 16}; }
+
+double light_meter_pixel(const options *o, const sky_view *v, int width, int height, double x, double y)
+{
+    double f[3], r[3], u[3], d[3], sun[3], rgb[3];
+    sky_view_basis(v, f, r, u);
+    double ty = tan(0.5 * v->fov_deg * 3.14159265358979323846 / 180.0), tx = ty * width / height;
+    double nx = 2.0 * x / width - 1.0, ny = 1.0 - 2.0 * y / height;
+    for (int i = 0; i < 3; ++i) d[i] = f[i] + nx * tx * r[i] + ny * ty * u[i];
+    projection_dir_from_angles(v->sun_azimuth_deg, v->sun_elevation_deg, sun);
+    model_atmosphere a = o->atmosphere;
+    light_sun(o, a.sun_illuminance);
+    ref_sky_radiance(&a, v->altitude_km, d, sun, meter_quality(), rgb);
+    return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+}
+
+double light_meter_log_average(const options *o, const sky_view *v, int width, int height)
+{
+    bool black_ground = o->ground_albedo[0] == 0.0 && o->ground_albedo[1] == 0.0 && o->ground_albedo[2] == 0.0;
+    double rb = o->atmosphere.bottom_radius, rc = rb + v->altitude_km;
+    double horizon_mu = -sqrt(fmax(0.0, 1.0 - (rb / rc) * (rb / rc)));
+    double sum = 0.0, count = 0.0;
+    for (int j = 0; j < 9; ++j)
+        for (int i = 0; i < 16; ++i) {
+            double x = (i + 0.5) * width / 16.0, y = (j + 0.5) * height / 9.0;
+            if (black_ground && pixel_hits_ground(o, v, width, height, x, y, horizon_mu)) continue;
+            sum += log(fmax(light_meter_pixel(o, v, width, height, x, y), 1e-4));
+            count += 1.0;
+        }
+    return count > 0.0 ? exp(sum / count) : 1e-4;
+}
+
 double light_auto_ev100(double log_average_cd_m2) { return log2(log_average_cd_m2 * 100.0 / 12.5); }
 
 bool light_auto_exposure_wanted(const options *o)

@@ -47,6 +47,13 @@ const char *light_sun_units_text(const options *o);
  * and at the camera in output units, the units' names, whiteLuminance (photometric: 1). envmap/projection untouched. */
 void light_sky_attrs(const options *o, io_exr_sky_attrs *a);
 
+/* A meter for the window (no pixels come back from the GPU there): the CPU reference's sky luminance (output units,
+ * cd/m2 in photometric units; the disc left out) along the view ray of continuous pixel (x, y) of a width x height
+ * view, at a quality fit for an interactive meter (~1e-3 of the converged reference, a few ms); and the log-average
+ * over a 16 x 9 grid of the view's rays (sky rays only with a black ground, as light_log_sum). */
+double light_meter_pixel(const options *o, const sky_view *v, int width, int height, double x, double y);
+double light_meter_log_average(const options *o, const sky_view *v, int width, int height);
+
 /* Auto exposure: the log-average (geometric mean) luminance of a frame, cd/m2 (pixels in HDR units, light_scale
  * divided out; luminance floored at 1e-4 cd/m2 so a black pixel does not drag the mean to zero), and the EV100
  * that exposes it at the reflected-light meter's key: EV100 = log2(L_avg S / K), S = 100, K = 12.5.
