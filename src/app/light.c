@@ -31,13 +31,24 @@ double light_scale(const options *o)
     light_sun(o, e);
     double brightest = fmax(e[0], fmax(e[1], e[2]));
     if (!(brightest > 0.0)) return 1.0;
-    /* The disc's peak radiance is E / (Omega (1 - u/3)) (limb darkening 1 - u (1 - cos) integrates to 1 - u/3 of a
-     * flat disc); keep it below half of half's largest value. Without a disc the sky is far below the sun's
-     * illuminance: the lesson's scale (the sun at 20) keeps the dark end of twilight out of half's subnormals. */
+    /* The sky is far below the sun's illuminance: the lesson's scale (the sun at 20) keeps the dark end of twilight
+     * out of half's subnormals, as precise as --units relative. */
+    double scale = exp2(floor(log2(LIGHT_RELATIVE_SUN / brightest)));
+    if (!o->sun_disc) return scale;
+    /* The disc's peak radiance is E T / (Omega (1 - u/3)) (limb darkening 1 - u (1 - cos) integrates to 1 - u/3 of
+     * a flat disc); keep it below half of half's largest value. T: the transmittance toward the sun, or toward the
+     * horizon when the sun is below it (its penumbra's rim still shows there). A low sun, dimmed by the air, leaves
+     * the lesson's scale; a high one takes it down by up to four stops (the twilight sky is then dark anyway). */
+    const model_atmosphere *a = &o->atmosphere;
+    double h = o->view.altitude_km, rc = a->bottom_radius + h;
+    double horizon = -sqrt(fmax(0.0, 1.0 - (a->bottom_radius / rc) * (a->bottom_radius / rc)));
+    double mu = fmax(sin(o->view.sun_elevation_deg * 3.14159265358979323846 / 180.0), horizon + 1e-6), t[3];
+    ref_transmittance(a, h, mu, 2000, t);
+    double peak = fmax(e[0] * t[0], fmax(e[1] * t[1], e[2] * t[2]));
     double r = o->sun_angular_radius_deg * 3.14159265358979323846 / 180.0;
     double omega = 2.0 * 3.14159265358979323846 * (1.0 - cos(r));
-    double target = o->sun_disc ? 0.5 * HALF_MAX * omega * (1.0 - o->limb_darkening / 3.0) : LIGHT_RELATIVE_SUN;
-    return exp2(floor(log2(target / brightest)));
+    double fit = 0.5 * HALF_MAX * omega * (1.0 - o->limb_darkening / 3.0);
+    return peak > 0.0 ? fmin(scale, exp2(floor(log2(fit / peak)))) : scale;
 }
 
 void light_sun_at_camera(const options *o, double out[3])
@@ -65,6 +76,7 @@ void light_finish(options *o)
 {
     bool photometric = o->units == OPTIONS_UNITS_PHOTOMETRIC;
     o->view.ev100 = photometric;
+    if (photometric && o->exposure_given) o->view.exposure_ev = o->exposure_ev100;
     o->view.light_scale = light_scale(o);
 }
 

@@ -152,7 +152,7 @@ static int apply(options *o, const flag *f, const char *value)
     else if (!strcmp(n, "--yaw")) o->view.yaw_deg = x;
     else if (!strcmp(n, "--pitch")) o->view.pitch_deg = x;
     else if (!strcmp(n, "--fov")) o->view.fov_deg = x;
-    else if (!strcmp(n, "--exposure")) o->view.exposure_ev = x, o->exposure_given = true;
+    else if (!strcmp(n, "--exposure")) o->view.exposure_ev = x, o->exposure_ev100 = x, o->exposure_given = true;
     else if (!strcmp(n, "--tonemap")) {
         if (!strcmp(value, "clamp")) o->view.tonemap = VKSKY_TONEMAP_CLAMP;
         else if (!strcmp(value, "reinhard")) o->view.tonemap = VKSKY_TONEMAP_REINHARD;
@@ -405,12 +405,12 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
     bool exposure_flag = false;   /* a scene's exposure gives way to --auto-exposure; the flag does not */
     for (int i = 1; i < argc; ++i) exposure_flag = exposure_flag || !strncmp(argv[i], "--exposure", 10);
     if (o->auto_exposure && exposure_flag) return bad("--auto-exposure", "not with --exposure; give one or the other");
-    light_finish(o);
     /* The --max-error choice, reported only now: every flag has been read and accepted. */
     if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);
     if (o->dump_scene && !o->help && !o->version) exit(scene_dump(o, stdout));   /* --dump-scene: nothing else runs */
+    light_finish(o);   /* after the dump: it writes the exposure as given */
     return 0;
 }

@@ -80,7 +80,8 @@ typedef struct options {
     /* physical light (issue 32): app/light.c */
     int units;                                  /* OPTIONS_UNITS_PHOTOMETRIC (default) or OPTIONS_UNITS_RELATIVE */
     int exr_type;                               /* OPTIONS_EXR_AUTO (default), OPTIONS_EXR_HALF, OPTIONS_EXR_FLOAT */
-    bool exposure_given;                        /* --exposure or the scene's output.exposure_ev: a fixed exposure */
+    bool exposure_given;                        /* --exposure or the scene's output.exposure_ev100: EV100 fixed */
+    double exposure_ev100;                      /* that EV100 (photometric units; app/light.c applies it) */
     bool auto_exposure;                         /* --auto-exposure (photometric PNGs and the window: the default) */
 } options;
 #endif

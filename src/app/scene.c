@@ -252,8 +252,8 @@ static int parse_sun_strength(const scene_ctx *c, const cJSON *sun)
 
 static int parse_sun(const scene_ctx *c, const cJSON *sun)
 {
-    static const char *const names[] = {"elevation_deg", "azimuth_deg", "illuminance", "lux", "spectrum_scale",
-                                        "angular_radius_deg", "limb_darkening", "disc", SCENE_SUN_PLACE_FIELDS};
+    static const char *const names[] = {"elevation_deg", "azimuth_deg", "illuminance", "angular_radius_deg",
+                                        "limb_darkening", "disc", "lux", "spectrum_scale", SCENE_SUN_PLACE_FIELDS};
     options *o = c->o;
     return scene_check_fields(c, sun, "sun", names, COUNT(names)) || scene_sun_parse(c->file, sun, o) ||
            parse_sun_strength(c, sun) ||
@@ -280,9 +280,13 @@ static int parse_camera(const scene_ctx *c, const cJSON *cam)
 
 static int parse_output(const scene_ctx *c, const cJSON *out)
 {
-    static const char *const names[] = {"width", "height", "exposure_ev", "tonemap", "bloom"};
+    static const char *const names[] = {"width", "height", "exposure_ev", "tonemap", "bloom", "exposure_ev100"};
     options *o = c->o;
-    if (cJSON_GetObjectItemCaseSensitive(out, "exposure_ev")) o->exposure_given = true;   /* no auto exposure */
+    /* exposure_ev: the lesson's stops (--units relative; old files); exposure_ev100: photometric units' EV100, which
+     * turns auto exposure off (app/light.h). */
+    double ev100 = NAN;
+    if (scene_get_number(c, out, "exposure_ev100", "output", scene_flag_range("--exposure", false), &ev100)) return 2;
+    if (!isnan(ev100)) o->exposure_ev100 = ev100, o->exposure_given = true;
     return scene_check_fields(c, out, "output", names, COUNT(names)) ||
            scene_get_int(c, out, "width", "output", scene_flag_range("--width", true), &o->width) ||
            scene_get_int(c, out, "height", "output", scene_flag_range("--height", true), &o->height) ||
