@@ -75,6 +75,7 @@ void light_render_atmosphere(const options *o, model_atmosphere *out)
 void light_finish(options *o)
 {
     bool photometric = o->units == OPTIONS_UNITS_PHOTOMETRIC;
+    o->exposure_stops = o->view.exposure_ev;
     o->view.ev100 = photometric;
     if (photometric && o->exposure_given) o->view.exposure_ev = o->exposure_ev100;
     o->view.light_scale = light_scale(o);

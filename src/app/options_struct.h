@@ -82,6 +82,8 @@ typedef struct options {
     int exr_type;                               /* OPTIONS_EXR_AUTO (default), OPTIONS_EXR_HALF, OPTIONS_EXR_FLOAT */
     bool exposure_given;                        /* --exposure or the scene's output.exposure_ev100: EV100 fixed */
     double exposure_ev100;                      /* that EV100 (photometric units; app/light.c applies it) */
+    double exposure_stops;                      /* the lesson's exposure (scene output.exposure_ev), kept for dumps
+                                                   once view.exposure_ev holds EV100 (light_finish) */
     bool auto_exposure;                         /* --auto-exposure (photometric PNGs and the window: the default) */
 } options;
 #endif
