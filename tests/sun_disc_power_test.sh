@@ -36,5 +36,22 @@ for c in "${cases[@]}"; do
   /usr/bin/python3 "$HERE/sun_disc_power.py" "$kind" "$work/on.exr" "$work/off.exr" "$fov" || {
     echo "FAIL: $kind $args: the disc's integral is more than 1 % from vksky:sunIlluminanceAtCamera"; fails=$((fails + 1)); }
 done
+# Tiny images: a texel wider than the view's distance to the sun (the disc's shape capped at 0.5 rad texels) renders
+# finite, non-negative pixels that hold the disc's light (more than the sky alone).
+for size in "1 1" "3 3" "7 3"; do
+  read -r w h <<<"$size"
+  for disc in on off; do
+    flag=""; [ $disc = off ] && flag=--no-sun-disc
+    "$VKSKY" --validate --quiet --no-bloom --width "$w" --height "$h" --exr-type float $flag --render "$work/t$disc.exr" \
+      >"$work/log" 2>&1 || { echo "FAIL: tiny render $w x $h $flag: $(cat "$work/log")"; fails=$((fails + 1)); }
+  done
+  /usr/bin/python3 - "$work/ton.exr" "$work/toff.exr" <<'PY' || { echo "FAIL: tiny $w x $h: disc pixels not finite or not brighter"; fails=$((fails + 1)); }
+import sys
+import numpy as np
+import OpenImageIO as oiio
+on, off = (np.asarray(oiio.ImageBuf(p).get_pixels(oiio.FLOAT))[..., :3] for p in sys.argv[1:3])
+sys.exit(0 if np.all(np.isfinite(on)) and np.all(on >= 0) and on.sum() > off.sum() else 1)
+PY
+done
 [ $fails -eq 0 ] && echo "sun_disc_power: every projection's disc within 1 % of the sun's illuminance at the camera"
 exit $((fails > 0))

@@ -256,14 +256,17 @@ float sun_disc_extent_lesson() { return sun_drawn_radius() + 0.5 * sky_texel_ang
  * radius, anisotropic pixels) it keeps the power within 0.3 %; resolved (texels below a tenth of the radius) it is
  * the limb-darkened disc. Its radiance is sun x T / (the shape's integral): the disc holds E T at the camera. */
 const float SUN_POWER_RADIUS = 1.5, SUN_POWER_EDGE = 3.0;   /* texels */
-float sun_power_radius() { return max(atmo.sun.w, SUN_POWER_RADIUS * sky_texel_angle); }
-float sun_power_support() { return sun_power_radius() + 0.5 * SUN_POWER_EDGE * sky_texel_angle; }
+/* A texel over 0.5 rad (an image a few pixels across) is taken as 0.5: the support stays under 1.5 rad, well inside
+ * the sphere (at such sizes no shape survives one sample per pixel; the disc stays finite and in its place). */
+float sun_power_texel() { return min(sky_texel_angle, 0.5); }
+float sun_power_radius() { return max(atmo.sun.w, SUN_POWER_RADIUS * sun_power_texel()); }
+float sun_power_support() { return sun_power_radius() + 0.5 * SUN_POWER_EDGE * sun_power_texel(); }
 float sun_disc_extent() { return atmo.sun_disc.x > 0.5 ? sun_power_support() : sun_disc_extent_lesson(); }
 
 /* The power disc's shape at angle theta from the sun's centre (1 at the centre, 0 beyond the support). */
 float sun_power_shape(float theta, float u)
 {
-    float R = sun_power_radius(), w = SUN_POWER_EDGE * sky_texel_angle, support = sun_power_support();
+    float R = sun_power_radius(), w = SUN_POWER_EDGE * sun_power_texel(), support = sun_power_support();
     float edge = w > 0.0 ? 0.5 - 0.5 * cos(3.1415927 * clamp((R - theta) / w + 0.5, 0.0, 1.0)) : (theta < R ? 1.0 : 0.0);
     float x = min(theta / support, 1.0);
     return edge * (1.0 - u * (1.0 - sqrt(max(0.0, 1.0 - x * x))));
