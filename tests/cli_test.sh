@@ -49,17 +49,27 @@ expect_bad "directory is a file" "afile" --render "$work/afile/x.png" --width 64
 rm -f "$work/afile"
 expect_bad "device out of range" "--device" "${R[@]}" --device 63
 expect_bad "flag with = and no value expected" "--no-bloom" "${R[@]}" --no-bloom=1
+expect_bad "bad --exr-type" "--exr-type" "${R[@]}" --exr-type double
+expect_bad "bad --units" "--units" "${R[@]}" --units lumens
+expect_bad "--auto-exposure with --exposure" "--auto-exposure" "${R[@]}" --auto-exposure --exposure 3
 (unset DISPLAY WAYLAND_DISPLAY; f0=$fails; expect_bad "no display" "no display available" --width 64; [ $fails -eq $f0 ]) || fails=$((fails + 1))
 
-# Good renders: EXR (half RGBA, ZIP) and PNG, with the atomic rename (no temp file left).
+# Good renders: EXR (half RGBA, ZIP) and PNG, with the atomic rename (no temp file left). The sun's disc is in view:
+# in photometric units (the default) it needs float (checked below), so half is asked for (--exr-type).
 rm -rf "$work"/*
-"$VKSKY" --render "$work/a.exr" --render "$work/a.png" --width 65 --height 37 --validate --sun-elevation=5 2>"$work/err" \
+"$VKSKY" --render "$work/a.exr" --render "$work/a.png" --width 65 --height 37 --validate --sun-elevation=5 --exr-type half 2>"$work/err" \
     || fail "good render failed: $(cat "$work/err")"
 [ -s "$work/a.exr" ] && [ -s "$work/a.png" ] || fail "good render did not write both files"
 exrheader "$work/a.exr" >"$work/hdr.txt" 2>&1 || fail "exrheader rejects the EXR"
 grep -q "zip" "$work/hdr.txt" || fail "EXR is not ZIP compressed"
 grep -q "(0 0) - (64 36)" "$work/hdr.txt" || fail "EXR has the wrong size: $(grep dataWindow "$work/hdr.txt")"
 for c in R G B A; do grep -q "^    $c, 16-bit floating-point" "$work/hdr.txt" || fail "EXR lacks half channel $c"; done
+# --exr-type auto (the default): float where a value would overflow half -- the disc in cd/m2 (issue 32); half for
+# the lesson's scale.
+"$VKSKY" --render "$work/f.exr" --width 33 --height 19 --validate --sun-elevation=5 2>"$work/err" || fail "auto EXR render failed: $(cat "$work/err")"
+exrheader "$work/f.exr" 2>&1 | grep -q "^    R, 32-bit floating-point" || fail "photometric EXR with the disc in view is not float"
+"$VKSKY" --render "$work/r.exr" --width 33 --height 19 --validate --sun-elevation=5 --units relative 2>"$work/err" || fail "relative EXR render failed: $(cat "$work/err")"
+exrheader "$work/r.exr" 2>&1 | grep -q "^    R, 16-bit floating-point" || fail "relative EXR is not half"
 file "$work/a.png" | grep -q "65 x 37, 8-bit/color RGBA" || fail "PNG is not 65x37 RGBA: $(file "$work/a.png")"
 [ "$(ls -A "$work" | grep -c tmp)" -eq 0 ] || fail "temporary files left: $(ls -A "$work")"
 [ ! -s "$work/err" ] || fail "a good render printed to stderr: $(cat "$work/err")"

@@ -36,7 +36,7 @@ render() {
     "$PROBE" "$out" "$w" 0 >/dev/null 2>"$work/probe.err" && fail "$what: pixel ($w, 0) exists"
     grep -qF "is not in the ${w}x${h} image" "$work/probe.err" || fail "$what: EXR is not ${w}x${h}: $(cat "$work/probe.err")"
     awk -v p="$last" 'BEGIN { n = split(p, c, " "); ok = n == 3;
-        for (i = 1; i <= n; ++i) if (!(c[i] + 0 > 0 && c[i] + 0 < 1e4)) ok = 0; exit !ok }' ||
+        for (i = 1; i <= n; ++i) if (!(c[i] + 0 > 0 && c[i] + 0 < 1e4 * 133177 / 20)) ok = 0; exit !ok }' ||   # cd/m2 (docs/units.md)
         fail "$what: last pixel not a finite positive radiance: '$last'"
 }
 

@@ -22,10 +22,11 @@ power() {
         "$VKSKY" --validate --no-bloom --width "$w" --height "$h" --fov $FOV --sun-elevation 30 --sun-azimuth 0 \
             "$@" $flag --render "$work/$disc.exr" >"$work/log" 2>&1 || { fail "render $w x $h $* failed: $(cat "$work/log")"; echo nan; return; }
     done
-    # pixels within 2.2 degrees of the centre (the widest drawn disc here: 0.71 x 1.2 degrees)
+    # pixels within 2.2 degrees of the centre (the widest drawn disc here: 0.71 x 1.2 degrees), or 3.6 texels: the
+    # disc that carries the sun's power (photometric units, the default; issue 32) reaches 3 texels from the sun
     local texel r
     texel=$(awk -v h="$h" -v f=$FOV 'BEGIN { d = atan2(0, -1) / 180; print 2 * sin(f / 2 * d) / cos(f / 2 * d) / h }')
-    r=$(awk -v t="$texel" 'BEGIN { d = atan2(0, -1) / 180; r = int(2.2 * d / t) + 1; print r }')
+    r=$(awk -v t="$texel" 'BEGIN { d = atan2(0, -1) / 180; a = 2.2 * d; if (3.6 * t > a) a = 3.6 * t; r = int(a / t) + 1; print r }')
     local args=() x y
     for ((y = h / 2 - r; y <= h / 2 + r; y++)); do for ((x = w / 2 - r; x <= w / 2 + r; x++)); do
         [ $x -ge 0 ] && [ $y -ge 0 ] && [ $x -lt "$w" ] && [ $y -lt "$h" ] && args+=("$x" "$y"); done; done

@@ -20,6 +20,8 @@ _vksky()
         --sky-mode) COMPREPLY=($(compgen -W "march skyview auto fill" -- "$cur")); return ;;
         --sky-pass) COMPREPLY=($(compgen -W "fragment compute auto" -- "$cur")); return ;;
         --lut-format) COMPREPLY=($(compgen -W "f16 f32" -- "$cur")); return ;;
+        --units) COMPREPLY=($(compgen -W "photometric relative" -- "$cur")); return ;;
+        --exr-type) COMPREPLY=($(compgen -W "half float auto" -- "$cur")); return ;;
         --mie-phase) COMPREPLY=($(compgen -W "hg cornette-shanks henyey-greenstein" -- "$cur")); return ;;
         --date) COMPREPLY=($(compgen -W "$(date +%F)" -- "$cur")); return ;;
         --time) COMPREPLY=($(compgen -W "$(date +%H:%M)" -- "$cur")); return ;;

@@ -34,6 +34,8 @@ VKSKY_STRUCT(AtmosphereParams) {
     vec4 sun;                  /* rgb: illuminance, w: angular radius (rad) */
     vec4 lut_steps;            /* x: transmittance steps, y: multiscatter steps, z: multiscatter sqrt(directions) */
     vec4 ground;               /* rgb: ground albedo (Lambertian), w: sun limb darkening coefficient u */
+    vec4 sun_disc;             /* x: 1 the disc carries the sun's power (its radiance integrates to sun.rgb x the
+                                  transmittance), 0 the lesson's disc (sun.rgb x 10, --units relative); yzw: unused */
 } VKSKY_END(AtmosphereParams)
 
 /* Sky pass (and sky-view LUT) push constants: the camera as altitude + directions (never an absolute

@@ -245,18 +245,72 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
  * coverage of the disc, to first order), and its radiance scaled by (true / drawn radius)^2 so that it keeps the
  * sun's power. With sky_texel_angle 0 it is the hard-edged disc of the true radius. */
 float sun_drawn_radius() { return max(atmo.sun.w, sky_texel_angle); }
-float sun_disc_extent() { return sun_drawn_radius() + 0.5 * sky_texel_angle; }   /* no coverage beyond */
+float sun_disc_extent_lesson() { return sun_drawn_radius() + 0.5 * sky_texel_angle; }   /* no coverage beyond */
+
+/* The disc that carries the sun's power (--units photometric, atmo.sun_disc.x = 1) must keep it when its pixels are
+ * summed, not only in the integral: sampled at one point per pixel, a shape a few texels wide aliases (the lesson's
+ * one-texel ramp: up to 15 % by where the disc falls on the pixel grid; with limb darkening's sharp edge, 2 %). So
+ * its shape is smooth at the texel's scale: radius R = max(true radius, 1.5 texels), a raised-cosine edge 3 texels
+ * wide centred on R, limb darkening over the whole support R + 1.5 texels (so its square-root edge falls where the
+ * edge has already gone to zero). Summed over any pixel grid (tried: every phase, sizes 0.1-8 texels per true
+ * radius, anisotropic pixels) it keeps the power within 0.3 %; resolved (texels below a tenth of the radius) it is
+ * the limb-darkened disc. Its radiance is sun x T / (the shape's integral): the disc holds E T at the camera. */
+const float SUN_POWER_RADIUS = 1.5, SUN_POWER_EDGE = 3.0;   /* texels */
+/* A texel over 0.5 rad (an image a few pixels across) is taken as 0.5: the support stays under 1.5 rad, well inside
+ * the sphere (at such sizes no shape survives one sample per pixel; the disc stays finite and in its place). */
+float sun_power_texel() { return min(sky_texel_angle, 0.5); }
+float sun_power_radius() { return max(atmo.sun.w, SUN_POWER_RADIUS * sun_power_texel()); }
+float sun_power_support() { return sun_power_radius() + 0.5 * SUN_POWER_EDGE * sun_power_texel(); }
+float sun_disc_extent() { return atmo.sun_disc.x > 0.5 ? sun_power_support() : sun_disc_extent_lesson(); }
+
+/* The power disc's shape at angle theta from the sun's centre (1 at the centre, 0 beyond the support). */
+float sun_power_shape(float theta, float u)
+{
+    float R = sun_power_radius(), w = SUN_POWER_EDGE * sun_power_texel(), support = sun_power_support();
+    float edge = w > 0.0 ? 0.5 - 0.5 * cos(3.1415927 * clamp((R - theta) / w + 0.5, 0.0, 1.0)) : (theta < R ? 1.0 : 0.0);
+    float x = min(theta / support, 1.0);
+    return edge * (1.0 - u * (1.0 - sqrt(max(0.0, 1.0 - x * x))));
+}
+
+/* Its solid-angle integral, 2 pi times the integral of shape(theta) sin(theta) d theta over the support: with
+ * theta = support sin(phi) the limb's square root is cos(phi), smooth, so a midpoint rule of 64 steps is exact to
+ * ~1e-5 (no small-angle step). Evaluated only by pixels inside the disc. */
+float sun_power_integral(float u)
+{
+    const int N = 64;
+    float support = sun_power_support(), sum = 0.0;
+    for (int i = 0; i < N; ++i) {
+        float phi = (float(i) + 0.5) * (1.5707963 / float(N));
+        float theta = support * sin(phi);
+        sum += sun_power_shape(theta, u) * sin(theta) * support * cos(phi);
+    }
+    return 6.2831853 * sum * (1.5707963 / float(N));
+}
 
 vec3 sun_disc(vec3 v, vec3 s, vec3 throughput, bool hits_ground)
 {
     float angle = small_angle(v, s);
-    float radius = sun_drawn_radius();
     if (!HAS_SUN_DISC || hits_ground || angle >= sun_disc_extent()) return vec3(0.0);
+    if (atmo.sun_disc.x > 0.5)
+        return atmo.sun.rgb * throughput * (sun_power_shape(angle, atmo.ground.w) / sun_power_integral(atmo.ground.w));
+    /* The lesson's disc (--units relative): drawn with radius max(true radius, one texel), its edge a linear ramp one
+     * texel wide, its radiance sun x 10 scaled by (true / drawn radius)^2. */
+    float radius = sun_drawn_radius();
     float coverage = sky_texel_angle > 0.0 ? clamp((radius - angle) / sky_texel_angle + 0.5, 0.0, 1.0) : 1.0;
     float x = min(angle / radius, 1.0);
     float limb = 1.0 - atmo.ground.w * (1.0 - sqrt(max(0.0, 1.0 - x * x)));
     float power_kept = (atmo.sun.w / radius) * (atmo.sun.w / radius);   /* solid angles' ratio (small angles) */
     return atmo.sun.rgb * 10.0 * throughput * limb * coverage * power_kept;
+}
+
+/* The power disc's share above the camera's horizon: the penumbra's visible fraction of the sun (sun_visibility.glsl).
+ * Its smooth shape reaches a few texels past the true disc, so on a small image a sun just below the horizon would
+ * otherwise light sky pixels above it through their grazing rays. 1 for the lesson's disc (its pixels' own ground
+ * test only, as before). */
+float sun_disc_visible(float h_cam, vec3 s)
+{
+    float mu_t;
+    return atmo.sun_disc.x > 0.5 ? sun_visibility(h_cam, s.y, mu_t) : 1.0;
 }
 
 /* The pixel's class, stored in the HDR image's alpha for the tone map's upsample (hdr_upsample.glsl): 0 the ray
@@ -273,7 +327,8 @@ vec3 sky_radiance(float h_cam, vec3 v, vec3 s, vec4 march, float distribution)
     vec3 throughput;
     bool hits_ground;
     vec3 radiance = sky_march(h_cam, v, s, march, distribution, throughput, hits_ground);
-    return clamp(radiance + sun_disc(v, s, throughput, hits_ground), vec3(0.0), vec3(FP16_MAX));
+    return clamp(radiance + sun_disc(v, s, throughput, hits_ground) * sun_disc_visible(h_cam, s), vec3(0.0),
+                 vec3(FP16_MAX));
 }
 
 #ifdef VKSKY_SKYVIEW_LOOKUP
@@ -290,7 +345,7 @@ vec3 sky_radiance_lookup(float h_cam, vec3 v, vec3 s)
     if (HAS_SUN_DISC && small_angle(v, s) < sun_disc_extent()) {
         bool hits_ground = ray_hits_ground(h_cam, v.y);
         vec3 throughput = hits_ground ? vec3(0.0) : lookup_transmittance(h_cam, v.y);
-        radiance += sun_disc(v, s, throughput, hits_ground);
+        radiance += sun_disc(v, s, throughput, hits_ground) * sun_disc_visible(h_cam, s);
     }
     return clamp(radiance, vec3(0.0), vec3(FP16_MAX));
 }

@@ -233,6 +233,7 @@ static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32
     sky_renderer_create(r, ctx, &rdesc);
     sky_renderer_set_atmosphere(r, &o->atmosphere, options_sun_radius_rad(o));
     sky_features features = options_features(o);
+    features.sun_disc_power = false;   /* the composite keeps the lesson's scale and disc (docs/units.md) */
     sky_renderer_set_features(r, &features);
     if (o->trace_passes) r->pass_trace = stdout;
     return 0;

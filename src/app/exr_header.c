@@ -1,6 +1,7 @@
 /* The EXR header of a render (exr_header.h). */
 #include "app/exr_header.h"
 #include "app/scene_dump.h"
+#include "app/light.h"
 #include "sky/view_params.h"
 #include <math.h>
 #include <stdio.h>
@@ -148,6 +149,12 @@ int exr_header_build(exr_header *h, const options *o, int frame)
     h->meta = (io_exr_meta){.chromaticities = h->chromaticities, .world_to_camera = h->world_to_camera,
                             .world_to_ndc = h->world_to_ndc, .strings = h->strings,
                             .int_name = frame >= 0 ? EXR_HEADER_FRAME : NULL, .int_value = frame};
+    /* The sun (direction, illuminance above the air and at the camera) and what the pixels' numbers mean. In relative
+     * units only the pixels' unit is named: the sun attributes are the environment maps' (io/exr_stream.c), and a
+     * relative render's header stays as it was. */
+    light_sky_attrs(o, &h->sky);
+    h->sky.has_sun = o->units == OPTIONS_UNITS_PHOTOMETRIC;
+    h->meta.sky = &h->sky;
     const sun_place *p = &o->place;
     if (sun_place_any(p)) {
         /* OpenEXR's capture attributes: capDate "YYYY:MM:DD hh:mm:ss" local, utcOffset = UTC - local in seconds,

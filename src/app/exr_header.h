@@ -11,6 +11,7 @@
 #define VKSKY_APP_EXR_HEADER_H
 #include "app/options_struct.h"
 #include "io/exr_meta.h"
+#include "io/exr_sky_attrs.h"
 
 #include "app/exr_names.h"
 
@@ -20,6 +21,7 @@ typedef struct exr_header {
     io_exr_string_attr strings[5];
     char *scene_json, *command_line;    /* malloc'd */
     char software[64], cap_date[40];
+    io_exr_sky_attrs sky;               /* the sun and the units (app/light.h) */
 } exr_header;
 
 /* The header of frame `frame` (-1: not a sequence) rendered from *o. 0 ok, 1 out of memory. exr_header_free after. */

@@ -3,7 +3,7 @@
 #include <string.h>
 
 const flag flags_table[] = {
-    {"--render", ARG_STRING, 0, 0, "FILE   write the frame: .exr (scene-linear half RGBA, ZIP; the header records the scene, camera and command line) or .png (tone-mapped 8-bit sRGB); repeatable; a %d in FILE is the frame number"},
+    {"--render", ARG_STRING, 0, 0, "FILE   write the frame: .exr (scene-linear RGBA, half or float: --exr-type; ZIP; the header records the scene, camera and command line) or .png (tone-mapped 8-bit sRGB); repeatable; a %d in FILE is the frame number"},
     {"--animate", ARG_STRING, 0, 0, "PARAM=FROM:TO  animate a numeric flag (sun-elevation, yaw, altitude, exposure, mie-g, ...) or time (local clock, decimal hours, with --date) linearly over the frames; repeatable"},
     {"--frame-count", ARG_INT, 1, 1000000, "N  frames of the sequence (default 1); with N > 1 each --render needs one %d (e.g. sky_%04d.exr), the frame number"},
     {"--frame-range", ARG_STRING, 0, 0, "A:B  render only frames A to B (inclusive, from 0) of the sequence: split it across jobs"},
@@ -24,7 +24,10 @@ const flag flags_table[] = {
     {"--yaw", ARG_DOUBLE, -360, 360, "DEG    view azimuth, same convention as --sun-azimuth (default 0)"},
     {"--pitch", ARG_DOUBLE, -90, 90, "DEG    view elevation, same convention as --sun-elevation (default 10)"},
     {"--fov", ARG_DOUBLE, 1, 170, "DEG    vertical field of view (default 75)"},
-    {"--exposure", ARG_DOUBLE, -20, 20, "EV  exposure in stops before tone mapping (default 0)"},
+    {"--exposure", ARG_DOUBLE, -20, 20, "EV  exposure: EV100 in photometric units (the camera's: scene luminance L shows as L / (1.2 2^EV)), stops before tone mapping in relative units (default: --auto-exposure in photometric units, 0 in relative)"},
+    {"--auto-exposure", ARG_NONE, 0, 0, "  exposure from the frame's log-average luminance, EV100 = log2(L_avg 100 / 12.5) (the default in photometric units without --exposure; docs/units.md)"},
+    {"--units", ARG_STRING, 0, 0, "U     photometric | relative: pixels in cd/m2 (linear Rec.709, Y = luminance) with the sun from the solar spectrum (1.33e5 lx), or the lesson's scale (the sun 20,20,20) (default photometric; docs/units.md)"},
+    {"--exr-type", ARG_STRING, 0, 0, "T  half | float | auto: EXR channel type; auto: float where a value would overflow half (the sun's disc in photometric units), else half (default auto)"},
     {"--tonemap", ARG_STRING, 0, 0, "OP   clamp | reinhard | aces (default aces)"},
     {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
     {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
@@ -58,7 +61,8 @@ const flag flags_table[] = {
     {"--dump-scene", ARG_NONE, 0, 0, "      print the effective scene (after all overrides) as scene JSON and exit"},
     {"--ground-albedo", ARG_TRIPLE, 0, 1, "R,G,B ground albedo (default 0,0,0)"},
     {"--mie-phase", ARG_STRING, 0, 0, "M    hg | cornette-shanks: the Mie phase function (default hg = Henyey-Greenstein)"},
-    {"--sun-illuminance", ARG_TRIPLE, 0, 1e6, "R,G,B sun illuminance at the top of the atmosphere (default 20,20,20)"},
+    {"--sun-illuminance", ARG_TRIPLE, 0, 1e6, "R,G,B sun illuminance at the top of the atmosphere in the lesson's scale, where 20,20,20 is the real sun (photometric units: that fraction of the solar spectrum) (default 20,20,20)"},
+    {"--sun-lux", ARG_DOUBLE, 0, 1e7, "LX   the sun's illuminance at the top of the atmosphere in lux: the solar spectrum scaled (default 133177, the spectrum's own)"},
     {"--sun-angular-radius", ARG_DOUBLE, 0.01, 10, "DEG sun disc angular radius (default 0.265)"},
     {"--limb-darkening", ARG_DOUBLE, 0, 1, "U   sun limb darkening coefficient (default 0.6)"},
     {"--no-sun-disc", ARG_NONE, 0, 0, "     leave the sun disc out"},

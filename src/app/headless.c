@@ -1,4 +1,5 @@
 #include "app/headless.h"
+#include "app/light.h"
 #include "app/cpu_time.h"
 #include "app/frame_ring.h"
 #include "app/sequence.h"
@@ -187,7 +188,9 @@ int headless_run(const options *given)
                                .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample,
                                .bloom_quarter = o->bloom_quarter};
     sky_renderer_create(&r, &ctx, &rdesc);
-    sky_renderer_set_atmosphere(&r, &o->atmosphere, options_sun_radius_rad(o));
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    light_render_atmosphere(o, &lit);
+    sky_renderer_set_atmosphere(&r, &lit, options_sun_radius_rad(o));
     sky_features features = options_features(o);
     sky_renderer_set_features(&r, &features);
     if (o->trace_passes) r.pass_trace = stdout;

@@ -16,11 +16,13 @@ static const char *const output_flags[] = {"--render", "--width", "--height", "-
                                            "--bloom-mips", "--bloom-res", "--bloom-downsample", "--scene",
                                            "--list-scenes", "--dump-scene", "--projection", "--quiet",
                                            "--animate", "--frame-count", "--frame-range",
-                                           "--skip-existing", "--threads", "--exr-compression", NULL};
+                                           "--skip-existing", "--threads", "--exr-compression", "--units",
+                                           "--auto-exposure", "--exr-type", NULL};
 static const char *const camera_flags[] = {"--altitude", "--yaw", "--pitch", "--fov", NULL};
 static const char *const sun_flags[] = {"--sun-elevation", "--sun-azimuth", "--date", "--time", "--utc-offset",
                                         "--latitude", "--longitude", "--elevation-m", "--sun-illuminance",
-                                        "--sun-angular-radius", "--limb-darkening", "--no-sun-disc", NULL};
+                                        "--sun-angular-radius", "--limb-darkening", "--no-sun-disc",
+                                        "--sun-lux", NULL};
 static const char *const atmosphere_flags[] = {"--rayleigh-scale", "--mie-scale", "--ozone-scale", "--mie-g",
                                                "--mie-phase", "--ground-albedo", "--no-multiscatter", "--sun-visibility",
                                                NULL};

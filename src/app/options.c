@@ -8,6 +8,7 @@
 #include "app/options_sequence.h"
 #include "app/options_throughput.h"
 #include "app/help.h"
+#include "app/light.h"
 #include "app/scene_dump.h"
 #include "gpu/context.h"
 #include <errno.h>
@@ -25,6 +26,7 @@ sky_features options_features(const options *o)
     f.limb_darkening = o->limb_darkening;
     f.sun_disc = o->sun_disc;
     f.multiple_scattering = o->multiple_scattering;
+    f.sun_disc_power = o->units == OPTIONS_UNITS_PHOTOMETRIC;
     return f;
 }
 
@@ -153,7 +155,7 @@ static int apply(options *o, const flag *f, const char *value)
     else if (!strcmp(n, "--yaw")) o->view.yaw_deg = x;
     else if (!strcmp(n, "--pitch")) o->view.pitch_deg = x;
     else if (!strcmp(n, "--fov")) o->view.fov_deg = x;
-    else if (!strcmp(n, "--exposure")) o->view.exposure_ev = x;
+    else if (!strcmp(n, "--exposure")) o->view.exposure_ev = x, o->exposure_ev100 = x, o->exposure_given = true;
     else if (!strcmp(n, "--tonemap")) {
         if (!strcmp(value, "clamp")) o->view.tonemap = VKSKY_TONEMAP_CLAMP;
         else if (!strcmp(value, "reinhard")) o->view.tonemap = VKSKY_TONEMAP_REINHARD;
@@ -244,6 +246,17 @@ static int apply(options *o, const flag *f, const char *value)
     } else if (!strcmp(n, "--sun-angular-radius")) o->sun_angular_radius_deg = x;
     else if (!strcmp(n, "--limb-darkening")) o->limb_darkening = x;
     else if (!strcmp(n, "--no-sun-disc")) o->sun_disc = false;
+    else if (!strcmp(n, "--units")) {   /* physical light (issue 32): app/light.c */
+        if (!strcmp(value, "photometric")) o->units = OPTIONS_UNITS_PHOTOMETRIC;
+        else if (!strcmp(value, "relative")) o->units = OPTIONS_UNITS_RELATIVE;
+        else return bad(n, "unknown units; expected photometric or relative");
+    } else if (!strcmp(n, "--exr-type")) {
+        if (!strcmp(value, "auto")) o->exr_type = OPTIONS_EXR_AUTO;
+        else if (!strcmp(value, "half")) o->exr_type = OPTIONS_EXR_HALF;
+        else if (!strcmp(value, "float")) o->exr_type = OPTIONS_EXR_FLOAT;
+        else return bad(n, "unknown type; expected half, float or auto");
+    } else if (!strcmp(n, "--auto-exposure")) o->auto_exposure = true;
+    else if (!strcmp(n, "--sun-lux")) light_set_sun_lux(o, x);
     else if (!strcmp(n, "--no-multiscatter")) o->multiple_scattering = false;
     else if (!strcmp(n, "--trace-passes")) o->trace_passes = true;
     else if (!strcmp(n, "--reference")) o->reference = true;
@@ -403,11 +416,15 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         return bad("--max-steps", msg);
     }
     if (options_projection_finish(o, argc, argv) != 0) return 2;
+    bool exposure_flag = false;   /* a scene's exposure gives way to --auto-exposure; the flag does not */
+    for (int i = 1; i < argc; ++i) exposure_flag = exposure_flag || !strncmp(argv[i], "--exposure", 10);
+    if (o->auto_exposure && exposure_flag) return bad("--auto-exposure", "not with --exposure; give one or the other");
     /* The --max-error choice, reported only now: every flag has been read and accepted. */
     if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);
     if (o->dump_scene && !o->help && !o->version) exit(scene_dump(o, stdout));   /* --dump-scene: nothing else runs */
+    light_finish(o);   /* after the dump: it writes the exposure as given */
     return 0;
 }

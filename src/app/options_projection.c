@@ -1,6 +1,6 @@
 /* --projection and --quiet (see options_projection.h). */
 #include "app/options_projection.h"
-#include "reference/ref_atmosphere.h"
+#include "app/light.h"
 #include "sky/projection.h"
 #include <math.h>
 #include <stdio.h>
@@ -28,17 +28,7 @@ int options_projection_apply(options *o, const char *flag_name, const char *valu
     return 2;
 }
 
-void options_sun_at_camera(const options *o, double out[3])
-{
-    const model_atmosphere *a = &o->atmosphere;
-    double h = o->view.altitude_km, r = a->bottom_radius + h;
-    double mu = sin(o->view.sun_elevation_deg * 3.14159265358979323846 / 180.0);
-    /* Below the camera's geometric horizon the planet is in the way. */
-    double horizon = -sqrt(fmax(0.0, 1.0 - (a->bottom_radius / r) * (a->bottom_radius / r)));
-    double t[3] = {0, 0, 0};
-    if (mu >= horizon) ref_transmittance(a, h, mu, 2000, t);
-    for (int i = 0; i < 3; ++i) out[i] = a->sun_illuminance[i] * t[i];
-}
+void options_sun_at_camera(const options *o, double out[3]) { light_sun_at_camera(o, out); }
 
 /* Whether the command line names this flag (alone or as --flag=value). */
 static bool given(int argc, char **argv, const char *flag)
@@ -58,8 +48,8 @@ int options_projection_finish(options *o, int argc, char **argv)
          * dump's stderr stays empty, as scripts and the fuzzers expect of a run that exits 0). */
         double d[3];
         projection_dir_from_angles(o->view.sun_azimuth_deg, o->view.sun_elevation_deg, d);
-        const double *e = o->atmosphere.sun_illuminance;
-        double c[3];
+        double e[3], c[3];
+        light_sun(o, e);
         options_sun_at_camera(o, c);
         fprintf(stderr, "vksky: sun direction %.6f %.6f %.6f (+Y up, OpenEXR latlong axes), illuminance %g %g %g at the "
                         "top of the atmosphere, %.6g %.6g %.6g at the camera\n", d[0], d[1], d[2], e[0], e[1], e[2],

@@ -11,6 +11,11 @@
 
 #define OPTIONS_MAX_OUTPUTS 4
 #define OPTIONS_MAX_ANIMATE 16
+#define OPTIONS_UNITS_PHOTOMETRIC 0   /* pixels in cd/m2 (Y), the sun from the solar spectrum (app/light.c) */
+#define OPTIONS_UNITS_RELATIVE 1      /* the lesson's scale: the sun 20,20,20, exposure in stops */
+#define OPTIONS_EXR_AUTO 0            /* float where a value would overflow half (the sun's disc), else half */
+#define OPTIONS_EXR_HALF 1
+#define OPTIONS_EXR_FLOAT 2
 
 /* One --animate PARAM=FROM:TO: a numeric flag (or "time": the local clock, decimal hours) going linearly from FROM at
  * the sequence's first frame to TO at its last. */
@@ -84,5 +89,13 @@ typedef struct options {
     int zip_level;                              /* --exr-compression zip:N: zlib level (0: zlib's default, 6) */
     int argc;                                   /* the command line: a frame's options re-parse it, EXRs record it */
     char **argv;
+    /* physical light (issue 32): app/light.c */
+    int units;                                  /* OPTIONS_UNITS_PHOTOMETRIC (default) or OPTIONS_UNITS_RELATIVE */
+    int exr_type;                               /* OPTIONS_EXR_AUTO (default), OPTIONS_EXR_HALF, OPTIONS_EXR_FLOAT */
+    bool exposure_given;                        /* --exposure or the scene's output.exposure_ev100: EV100 fixed */
+    double exposure_ev100;                      /* that EV100 (photometric units; app/light.c applies it) */
+    double exposure_stops;                      /* the lesson's exposure (scene output.exposure_ev), kept for dumps
+                                                   once view.exposure_ev holds EV100 (light_finish) */
+    bool auto_exposure;                         /* --auto-exposure (photometric PNGs and the window: the default) */
 } options;
 #endif

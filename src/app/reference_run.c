@@ -1,4 +1,5 @@
 #include "app/reference_run.h"
+#include "app/light.h"
 #include "app/exr_header.h"
 #include "app/stop.h"
 #include "io/atomic_file.h"
@@ -31,6 +32,8 @@ static void radiance(const ref_job *job, const double view[3], const double sun[
 {
     const options *o = job->o;
     err[0] = err[1] = err[2] = 0.0;
+    model_atmosphere a = o->atmosphere;   /* the sun in output units: cd/m2 in photometric units (app/light.h) */
+    light_sun(o, a.sun_illuminance);
     if (job->spec.wavelengths) {   /* XYZ -> linear Rec.709; the error of Y only, as the luminance's */
         double xyz[3], se[3];
         ref_spectral_radiance(&job->spec, o->view.altitude_km, view, sun, xyz, se, NULL);
@@ -40,20 +43,21 @@ static void radiance(const ref_job *job, const double view[3], const double sun[
     }
     if (o->path_trace) {
         pt_settings s = {.samples = o->path_samples, .seed = 2020, .ground_albedo = o->ground_albedo[1], .threads = 1};
-        pt_radiance(&o->atmosphere, o->view.altitude_km, view, sun, &s, rgb, err);
+        pt_radiance(&a, o->view.altitude_km, view, sun, &s, rgb, err);
         return;
     }
-    ref_sky_radiance(&o->atmosphere, o->view.altitude_km, view, sun, ref_quality_converged(), rgb);
+    ref_sky_radiance(&a, o->view.altitude_km, view, sun, ref_quality_converged(), rgb);
 }
 
 /* The spectral reference of the run: the scene's medium per wavelength or the RGB medium's; the sun the solar
- * spectrum scaled to the luminance of the configured sun (1 in photometric units, where the sun is the spectrum's
- * own colour at its own illuminance). */
+ * spectrum scaled to the luminance of the configured sun in output units (1 for the default photometric sun, the
+ * spectrum's own colour at its own illuminance). */
 static void spectral_setup(const options *o, ref_spectral *s, pt_settings *pt)
 {
     ref_spectral_init(s, &o->atmosphere, o->spectral ? o->spectral : 48);
     if (o->spectral_medium_set) s->medium = o->spectral_medium;
-    const double *e = o->atmosphere.sun_illuminance;
+    double e[3];   /* the sun in output units (app/light.h): the spectrum itself (scale 1) for the default sun */
+    light_sun(o, e);
     s->sun_scale = (0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2]) / spectrum_solar_illuminance_toa();
     if (o->path_trace) {
         *pt = (pt_settings){.samples = o->path_samples, .seed = 2020, .ground_albedo = o->ground_albedo[1],

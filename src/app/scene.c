@@ -1,6 +1,7 @@
 /* Scene files (schema and rules in scene.h): read, parsed by cJSON, walked section by section onto the options with
  * the field readers of scene_validate.c. */
 #include "app/scene.h"
+#include "app/light.h"
 #include "app/quality.h"
 #include "app/scene_sun.h"
 #include "app/scene_spectral.h"
@@ -230,12 +231,33 @@ static int parse_species(const scene_ctx *c, const cJSON *species)
     return 0;
 }
 
+/* The sun's strength (issue 32, app/light.h): "illuminance" [r, g, b] in the lesson's scale (20 = the real sun, read
+ * as that fraction of the solar spectrum in photometric units: old files keep their meaning), "lux" (the illuminance
+ * at the top of the atmosphere) or "spectrum_scale" (times the solar spectrum); at most one of them. */
+static int parse_sun_strength(const scene_ctx *c, const cJSON *sun)
+{
+    options *o = c->o;
+    int count = !!cJSON_GetObjectItemCaseSensitive(sun, "illuminance") + !!cJSON_GetObjectItemCaseSensitive(sun, "lux") +
+                !!cJSON_GetObjectItemCaseSensitive(sun, "spectrum_scale");
+    if (count > 1) return scene_fail(c, "sun", "illuminance, lux and spectrum_scale all set the sun's strength; "
+                                               "expected at most one of them");
+    double lux = -1.0, k = -1.0;
+    scene_range range = scene_flag_range("--sun-lux", false);
+    if (scene_get_number(c, sun, "lux", "sun", range, &lux) ||
+        scene_get_number(c, sun, "spectrum_scale", "sun", scene_only_range(0.0, 1e3), &k))
+        return 2;
+    if (lux >= 0.0) light_set_sun_lux(o, lux);
+    for (int i = 0; k >= 0.0 && i < 3; ++i) o->atmosphere.sun_illuminance[i] = k * LIGHT_RELATIVE_SUN;
+    return 0;
+}
+
 static int parse_sun(const scene_ctx *c, const cJSON *sun)
 {
     static const char *const names[] = {"elevation_deg", "azimuth_deg", "illuminance", "angular_radius_deg",
-                                        "limb_darkening", "disc", SCENE_SUN_PLACE_FIELDS};
+                                        "limb_darkening", "disc", "lux", "spectrum_scale", SCENE_SUN_PLACE_FIELDS};
     options *o = c->o;
     return scene_check_fields(c, sun, "sun", names, COUNT(names)) || scene_sun_parse(c->file, sun, o) ||
+           parse_sun_strength(c, sun) ||
            scene_get_number(c, sun, "elevation_deg", "sun", scene_flag_range("--sun-elevation", false), &o->view.sun_elevation_deg) ||
            scene_get_number(c, sun, "azimuth_deg", "sun", scene_flag_range("--sun-azimuth", false), &o->view.sun_azimuth_deg) ||
            scene_get_array(c, sun, "illuminance", "sun", scene_flag_range("--sun-illuminance", false), 3,
@@ -259,8 +281,13 @@ static int parse_camera(const scene_ctx *c, const cJSON *cam)
 
 static int parse_output(const scene_ctx *c, const cJSON *out)
 {
-    static const char *const names[] = {"width", "height", "exposure_ev", "tonemap", "bloom"};
+    static const char *const names[] = {"width", "height", "exposure_ev", "tonemap", "bloom", "exposure_ev100"};
     options *o = c->o;
+    /* exposure_ev: the lesson's stops (--units relative; old files); exposure_ev100: photometric units' EV100, which
+     * turns auto exposure off (app/light.h). */
+    double ev100 = NAN;
+    if (scene_get_number(c, out, "exposure_ev100", "output", scene_flag_range("--exposure", false), &ev100)) return 2;
+    if (!isnan(ev100)) o->exposure_ev100 = ev100, o->exposure_given = true;
     return scene_check_fields(c, out, "output", names, COUNT(names)) ||
            scene_get_int(c, out, "width", "output", scene_flag_range("--width", true), &o->width) ||
            scene_get_int(c, out, "height", "output", scene_flag_range("--height", true), &o->height) ||

@@ -148,7 +148,9 @@ int scene_dump(const options *o, FILE *out)
     cJSON *output = obj(&b, root, "output");
     num(&b, output, "width", o->width);
     num(&b, output, "height", o->height);
-    num(&b, output, "exposure_ev", v->exposure_ev);
+    /* Once photometric units hold EV100 (given or metered) in the view, the lesson's stops are kept apart. */
+    num(&b, output, "exposure_ev", v->ev100 ? o->exposure_stops : v->exposure_ev);
+    if (o->units == OPTIONS_UNITS_PHOTOMETRIC && o->exposure_given) num(&b, output, "exposure_ev100", o->exposure_ev100);
     str(&b, output, "tonemap", word(tonemap_words, COUNT(tonemap_words), v->tonemap));
     boolean(&b, output, "bloom", v->bloom);
 

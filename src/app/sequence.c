@@ -2,6 +2,7 @@
 #include "app/sequence.h"
 #include "app/exr_header.h"
 #include "app/frame_ring.h"
+#include "app/light.h"
 #include "app/options.h"
 #include "app/options_sequence.h"
 #include "app/quality.h"
@@ -153,7 +154,17 @@ static int write_outputs(const options *o, const frame_ring_pixels *px, int fram
                 return 1;
             }
             io_exr_layer layer = {.name = "", .rgba_half = px->linear};
-            rc = io_write_exr_meta(path, o->width, o->height, &layer, 1, &h.meta, err, sizeof err);
+            if (o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT) {
+                /* Photometric or --exr-type float: output units as floats (app/light.h). */
+                bool store_float = false;
+                float *scaled = light_exr_pixels(o, px->linear, (size_t)o->width * (size_t)o->height,
+                                                 &store_float);
+                rc = scaled ? io_write_exr_rgba_f32(path, o->width, o->height, scaled, store_float, &h.meta, err, sizeof err)
+                            : (snprintf(err, sizeof err, "%s: out of memory for the EXR's pixels", path), 1);
+                free(scaled);
+            } else {
+                rc = io_write_exr_meta(path, o->width, o->height, &layer, 1, &h.meta, err, sizeof err);
+            }
             exr_header_free(&h);
         } else {
             rc = io_write_png(path, o->width, o->height, px->display, 1, err, sizeof err);
@@ -197,13 +208,23 @@ static int sequence_render_serial(const options *base, sky_renderer *r, sequence
             continue;
         }
         /* Same values: the renderer keeps its LUTs (their hash is unchanged) and its pipelines. */
-        sky_renderer_set_atmosphere(r, &f.atmosphere, options_sun_radius_rad(&f));
+        model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+        light_render_atmosphere(&f, &lit);
+        sky_renderer_set_atmosphere(r, &lit, options_sun_radius_rad(&f));
         sky_features features = options_features(&f);
         sky_renderer_set_features(r, &features);
         bool luts = sky_renderer_luts_dirty(r);
         lut_computations += luts;
         frame_desc desc = {.view = &f.view};
         render(r, &desc);
+        if (light_auto_exposure_wanted(&f)) {
+            /* Auto exposure: the frame's log-average luminance sets the exposure of the same frame, rendered again
+             * (the LUTs are kept: only the sky pass, bloom and tone map run twice). */
+            double log_sum = 0.0, metered = 0.0;
+            light_log_sum(&f, &f.view, r->readback_linear.mapped, f.width, f.height, 0, f.height, &log_sum, &metered);
+            light_expose(&f.view, metered > 0.0 ? exp(log_sum / metered) : 1e-4);
+            render(r, &desc);
+        }
         const char *path = "";
         frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
         if (write_outputs(&f, &px, i, sequence, &path) != 0) return 1;
@@ -281,12 +302,13 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
         }
         renderer_inputs in;
         memset(&in, 0, sizeof in);   /* compared bytewise: a difference in padding alone costs a needless drain */
-        in.atmosphere = j->f.atmosphere, in.sun_radius = options_sun_radius_rad(&j->f);
+        light_render_atmosphere(&j->f, &in.atmosphere);   /* the sun in the HDR image's units (app/light.h) */
+        in.sun_radius = options_sun_radius_rad(&j->f);
         in.features = options_features(&j->f);
         if (!have_last || memcmp(&in, &last, sizeof in)) {
             /* The uniform block (and maybe pipelines, LUTs) change: no frame in flight may still read them. */
             if (have_last) frame_ring_drain(&ring);
-            sky_renderer_set_atmosphere(r, &j->f.atmosphere, in.sun_radius);
+            sky_renderer_set_atmosphere(r, &in.atmosphere, in.sun_radius);
             sky_renderer_set_features(r, &in.features);
             last = in, have_last = true;
         }
@@ -307,7 +329,9 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
 int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render, int slots, FILE *trace)
 {
     /* The ring pays off from two frames on; one frame (and the tests' VKSKY_FRAMES loop) keeps the serial path. */
-    if (slots >= 2 && sequence_active(base) && base->frame_last > base->frame_first)
+    /* Auto exposure (a photometric PNG) renders each frame twice, the second from the first's read-back pixels: that
+     * frame-to-frame dependency on the host keeps the serial loop. */
+    if (slots >= 2 && sequence_active(base) && base->frame_last > base->frame_first && !light_auto_exposure_wanted(base))
         return sequence_render_ring(base, r, slots, trace);
     return sequence_render_serial(base, r, render);
 }

@@ -4,6 +4,7 @@
 #endif
 #include "app/tiles.h"
 #include "app/frame_ring.h"
+#include "app/light.h"
 #include "app/stop.h"
 #include "app/options.h"
 #include "app/options_projection.h"
@@ -12,6 +13,7 @@
 #include "io/png_stream.h"
 #include "sky/projection.h"
 #include "sky/submit.h"
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -52,24 +54,43 @@ static bool is_exr(const char *path)
     return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
 }
 
+/* Photometric (or --exr-type float): the EXR gets output units as floats (app/light.h), else the half rows as read. */
+static bool scaled_rows(const options *o)
+{
+    return o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT;
+}
+
+/* A band's EXR rows: as read back, or in output units (the HDR scale divided out) through `band_f32`. */
+static int write_exr_rows(const options *o, io_exr_stream *s, const uint16_t *half, int rows, float **band_f32,
+                          char *err, size_t err_size)
+{
+    if (!scaled_rows(o)) return io_exr_stream_rows(s, half, rows, err, err_size);
+    bool unused;
+    free(*band_f32);
+    *band_f32 = light_exr_pixels(o, half, (size_t)rows * (size_t)o->width, &unused);
+    if (!*band_f32) {
+        snprintf(err, err_size, "out of memory for an EXR band");
+        io_exr_stream_abort(s);
+        return -1;
+    }
+    return io_exr_stream_rows_f32(s, *band_f32, rows, err, err_size);
+}
+
 static int open_outputs(const options *o, output *outs)
 {
     char err[512];
-    double sun[3];
-    projection_dir_from_angles(o->view.sun_azimuth_deg, o->view.sun_elevation_deg, sun);
-    double at_camera[3];
-    options_sun_at_camera(o, at_camera);
     int p = o->view.projection;
     io_exr_sky_attrs attrs = {
         .envmap = p == SKY_PROJECTION_EQUIRECT ? IO_ENVMAP_LATLONG : p == SKY_PROJECTION_CUBEMAP ? IO_ENVMAP_CUBE : IO_ENVMAP_NONE,
-        .projection = options_projection_name(p), .has_sun = true,
-        .sun_direction = {(float)sun[0], (float)sun[1], (float)sun[2]},
-        .sun_illuminance = {(float)o->atmosphere.sun_illuminance[0], (float)o->atmosphere.sun_illuminance[1],
-                            (float)o->atmosphere.sun_illuminance[2]},
-        .sun_at_camera = {(float)at_camera[0], (float)at_camera[1], (float)at_camera[2]}};
+        .projection = options_projection_name(p)};
+    light_sky_attrs(o, &attrs);   /* the sun (direction, illuminance, at the camera) and the units */
+    bool scaled = scaled_rows(o), store_float = light_stream_float(o);
     for (int i = 0; i < o->output_count; ++i) {
         outs[i].exr = is_exr(o->outputs[i]);
-        if (outs[i].exr) outs[i].exr_stream = io_exr_stream_open(o->outputs[i], o->width, o->height, &attrs, err, sizeof err);
+        if (outs[i].exr)
+            outs[i].exr_stream = scaled ? io_exr_stream_open_f32(o->outputs[i], o->width, o->height, &attrs,
+                                                                 store_float, err, sizeof err)
+                                        : io_exr_stream_open(o->outputs[i], o->width, o->height, &attrs, err, sizeof err);
         else outs[i].png_stream = io_png_stream_open(o->outputs[i], o->width, o->height, err, sizeof err);
         if (!outs[i].exr_stream && !outs[i].png_stream) {
             fprintf(stderr, "vksky: %s\n", err);
@@ -94,6 +115,7 @@ typedef struct bands_state {
     output *outs;
     progress *prog;
     int stopped_line;   /* a stop ended the line of a terminal's progress */
+    float *band_f32;    /* a band in output units (write_exr_rows), reused; only the writing thread touches it */
 } bands_state;
 
 /* A band's rows (y .. y + rows) into every output, in order. 0, or 1 with the message printed. */
@@ -102,7 +124,7 @@ static int write_band(bands_state *st, const frame_ring_pixels *px, int y, int r
     char err[512];
     for (int i = 0; i < st->o->output_count; ++i) {
         output *out = &st->outs[i];
-        int rc = out->exr ? io_exr_stream_rows(out->exr_stream, px->linear, rows, err, sizeof err)
+        int rc = out->exr ? write_exr_rows(st->o, out->exr_stream, px->linear, rows, &st->band_f32, err, sizeof err)
                           : io_png_stream_rows(out->png_stream, px->display, rows, err, sizeof err);
         if (rc != 0) {
             *out = (output){0};   /* the stream aborted itself */
@@ -166,6 +188,22 @@ static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band
     return status || stop_requested() ? 1 : 0;
 }
 
+/* Auto exposure of a banded image: the log-average over every band (a first pass that writes nothing). */
+static double tiles_auto_exposure(const options *o, sky_renderer *r, sky_view *view, int band, int height)
+{
+    double log_sum = 0.0, count = 0.0;
+    for (int y = 0; y < height && !stop_requested(); y += band) {
+        view->tile_x = 0, view->tile_y = y;
+        frame_desc f = {.view = view};
+        sky_renderer_render(r, &f);
+        int rows = height - y < band ? height - y : band;
+        light_log_sum(o, view, r->readback_linear.mapped, o->width, height, y, rows, &log_sum, &count);
+    }
+    sky_view v = *view;
+    light_expose(&v, count > 0.0 ? exp(log_sum / count) : 1e-4);
+    return v.exposure_ev;
+}
+
 int tiles_render(const options *o, gpu_context *ctx)
 {
     long budget = tiles_budget();
@@ -202,7 +240,9 @@ int tiles_render(const options *o, gpu_context *ctx)
                                .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB, .render_scale = 1.0,
                                .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips};
     sky_renderer_create(&r, ctx, &rdesc);
-    sky_renderer_set_atmosphere(&r, &o->atmosphere, options_sun_radius_rad(o));
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    light_render_atmosphere(o, &lit);
+    sky_renderer_set_atmosphere(&r, &lit, options_sun_radius_rad(o));
     sky_features features = options_features(o);
     sky_renderer_set_features(&r, &features);
     if (o->trace_passes) r.pass_trace = stdout;
@@ -211,7 +251,8 @@ int tiles_render(const options *o, gpu_context *ctx)
     snprintf(what, sizeof what, "rendering %s (%dx%d, %d bands)", o->output_count ? o->outputs[0] : "", width, height, bands);
     progress prog;
     progress_begin(&prog, stderr, o->quiet || bands < 2, what, height);
-    bands_state st = {o, outs, &prog, 0};
+    bands_state st = {o, outs, &prog, 0, NULL};
+    if (light_auto_exposure_wanted(o)) view.exposure_ev = tiles_auto_exposure(o, &r, &view, band, height);
     int status = slots >= 2 ? bands_ring(&st, &r, &view, band, slots) : bands_serial(&st, &r, &view, band);
     char err[512];
     for (int i = 0; i < o->output_count && status == 0; ++i) {
@@ -221,6 +262,7 @@ int tiles_render(const options *o, gpu_context *ctx)
         if (rc != 0) fprintf(stderr, "vksky: %s\n", err), status = 1;
     }
     if (status == 0) progress_end(&prog);
+    free(st.band_f32);
     abort_outputs(o, outs);
     sky_renderer_destroy(&r);
     return status;

@@ -17,6 +17,7 @@
  * The window in three files: this one (the loop, frames in flight, screenshot, title, setup), swapchain.c (the
  * swapchain's life) and window_input.c (the controls); their shared state is app/window_app.h. */
 #include "app/cpu_time.h"
+#include "app/light.h"
 #include "app/window_app.h"
 #include "app/window.h"
 #include "app/stop.h"
@@ -245,9 +246,19 @@ static void update_title(app *a, double now)
     double fps = (double)a->st.title_frames / elapsed;
     double gpu = a->st.gpu_samples ? a->st.gpu_ms_sum / (double)a->st.gpu_samples : 0.0;
     double h = a->view.altitude_km;
-    char title[160];
-    snprintf(title, sizeof title, "vksky | %.1f fps | GPU %.2f ms | sun %.1f\xc2\xb0 | altitude %.*f %s", fps, gpu,
-             a->view.sun_elevation_deg, h < 1.0 ? 1 : 3, h < 1.0 ? h * 1000.0 : h, h < 1.0 ? "m" : "km");
+    char title[240];
+    int n = snprintf(title, sizeof title, "vksky | %.1f fps | GPU %.2f ms | sun %.1f\xc2\xb0 | altitude %.*f %s", fps,
+                     gpu, a->view.sun_elevation_deg, h < 1.0 ? 1 : 3, h < 1.0 ? h * 1000.0 : h, h < 1.0 ? "m" : "km");
+    if (a->view.ev100 && n > 0 && (size_t)n < sizeof title) {
+        /* Photometric units: the exposure as EV100 (auto: metered from the CPU reference over the view) and the
+         * sky's luminance under the cursor (the view's centre while the mouse looks around). */
+        int w = (int)a->sc.extent.width, hh = (int)a->sc.extent.height;
+        if (a->auto_exposure) light_expose(&a->view, light_meter_log_average(a->o, &a->view, w, hh));
+        double cx = a->in.captured ? 0.5 * w : a->in.cursor_x, cy = a->in.captured ? 0.5 * hh : a->in.cursor_y;
+        double cd = light_meter_pixel(a->o, &a->view, w, hh, cx, cy);
+        snprintf(title + n, sizeof title - (size_t)n, " | EV100 %.1f%s | %.4g cd/m\xc2\xb2 at the cursor",
+                 a->view.exposure_ev, a->auto_exposure ? " auto" : "", cd);
+    }
     glfwSetWindowTitle(a->window, title);
     a->st.title_time = now, a->st.title_frames = 0, a->st.gpu_ms_sum = 0.0, a->st.gpu_samples = 0;
 }
@@ -413,10 +424,16 @@ static int start_rendering(app *a)
                                .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample,
                                .bloom_quarter = o->bloom_quarter};
     sky_renderer_create(&a->renderer, &a->ctx, &rdesc);
-    sky_renderer_set_atmosphere(&a->renderer, &o->atmosphere, options_sun_radius_rad(o));
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    light_render_atmosphere(o, &lit);
+    sky_renderer_set_atmosphere(&a->renderer, &lit, options_sun_radius_rad(o));
     sky_features features = options_features(o);
     sky_renderer_set_features(&a->renderer, &features);
     a->view = o->view;
+    /* Photometric units without --exposure: auto exposure, metered now so the first frame is already exposed. */
+    a->auto_exposure = o->view.ev100 && (o->auto_exposure || !o->exposure_given);
+    if (a->auto_exposure)
+        light_expose(&a->view, light_meter_log_average(o, &a->view, (int)a->sc.extent.width, (int)a->sc.extent.height));
     camera_init(&a->cam, &o->view);
     camera_to_view(&a->cam, &a->view);
     return 0;

@@ -55,5 +55,6 @@ typedef struct app {
     long presented;
     bool traced;
     int status;
+    bool auto_exposure;        /* photometric without --exposure: EV100 metered on every title update (app/light.h) */
 } app;
 #endif

@@ -1,6 +1,7 @@
 /* The window's input: the controls table, key presses (toggles, steps, F5 reload), mouse capture and look, and
  * the held keys polled once a frame into the fly camera and the sun. */
 #include "app/window_app.h"
+#include "app/light.h"
 #include <math.h>
 #include <string.h>
 
@@ -19,7 +20,7 @@ static void print_controls(void)
            "  Up / Down      sun elevation (30 deg/s, -90..90)\n"
            "  T              automatic sun rotation (azimuth, 15 deg/s) on/off\n"
            "  1 / 2 / 3      tone map: clamp / Reinhard / ACES\n"
-           "  = + / -        exposure +/- 0.5 EV\n"
+           "  = + / -        exposure +/- 0.5 EV (photometric units: EV100 -/+ 0.5, auto exposure off)\n"
            "  B              bloom on/off\n"
            "  Escape         release the mouse; again: quit\n"
            "  F5             reload the --scene file (recomputes only what changed)\n"
@@ -57,7 +58,9 @@ static void reload_scene(app *a)
     /* The atmosphere uniform buffer is shared by the frames in flight: wait for them before rewriting it. */
     vkDeviceWaitIdle(a->ctx.device);
     sky_variant before = a->renderer.variant;
-    sky_renderer_set_atmosphere(&a->renderer, &fresh.atmosphere, options_sun_radius_rad(&fresh));
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    light_render_atmosphere(&fresh, &lit);
+    sky_renderer_set_atmosphere(&a->renderer, &lit, options_sun_radius_rad(&fresh));
     sky_features features = options_features(&fresh);
     sky_renderer_set_features(&a->renderer, &features);
     printf("scene reloaded: %s (LUTs %s, pipelines %s)\n", a->o->scene_path,
@@ -81,8 +84,14 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     case GLFW_KEY_1: v->tonemap = VKSKY_TONEMAP_CLAMP; break;
     case GLFW_KEY_2: v->tonemap = VKSKY_TONEMAP_REINHARD; break;
     case GLFW_KEY_3: v->tonemap = VKSKY_TONEMAP_ACES; break;
-    case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD: v->exposure_ev = fmin(20.0, v->exposure_ev + 0.5); break;
-    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT: v->exposure_ev = fmax(-20.0, v->exposure_ev - 0.5); break;
+    /* + brightens: half a stop more exposure, which is half an EV100 less (photometric units; the keys then take
+     * over from auto exposure). */
+    case GLFW_KEY_EQUAL: case GLFW_KEY_KP_ADD:
+        v->exposure_ev = v->ev100 ? v->exposure_ev - 0.5 : fmin(20.0, v->exposure_ev + 0.5), a->auto_exposure = false;
+        break;
+    case GLFW_KEY_MINUS: case GLFW_KEY_KP_SUBTRACT:
+        v->exposure_ev = v->ev100 ? v->exposure_ev + 0.5 : fmax(-20.0, v->exposure_ev - 0.5), a->auto_exposure = false;
+        break;
     case GLFW_KEY_B: v->bloom = !v->bloom; printf("bloom %s\n", v->bloom ? "on" : "off"); break;
     case GLFW_KEY_F1: case GLFW_KEY_H: print_controls(); return;
     case GLFW_KEY_F5: reload_scene(a); return;
@@ -90,7 +99,7 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
     }
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_3) printf("tonemap %s\n", tonemap_name(v->tonemap));
     if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD || key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT)
-        printf("exposure %+.1f EV\n", v->exposure_ev);
+        printf(v->ev100 ? "exposure EV100 %.1f\n" : "exposure %+.1f EV\n", v->exposure_ev);
     fflush(stdout);
 }
 

@@ -27,6 +27,7 @@ typedef struct io_exr_write_layer {
     int channels;
     const uint16_t *half;
     const float *f32;
+    int store_float;      /* with f32: stored as FLOAT channels (else converted to HALF) */
 } io_exr_write_layer;
 
 /* Writes the layers as one scanline part of HALF channels, ZIP, atomically (atomic_file.h), with the header

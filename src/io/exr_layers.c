@@ -87,6 +87,14 @@ static void feed_channel(exr_coding_channel_info_t *ci, const io_exr_write_layer
                          int rows, uint16_t *scratch)
 {
     size_t first = (size_t)y0 * (size_t)width * (size_t)L->channels + (size_t)comp;
+    if (L->f32 && L->store_float) {
+        ci->encode_from_ptr = (const uint8_t *)(L->f32 + first);
+        ci->user_pixel_stride = L->channels * (int32_t)sizeof(float);
+        ci->user_line_stride = width * L->channels * (int32_t)sizeof(float);
+        ci->user_data_type = EXR_PIXEL_FLOAT;
+        ci->user_bytes_per_element = (int16_t)sizeof(float);
+        return;
+    }
     if (L->half) {
         ci->encode_from_ptr = (const uint8_t *)(L->half + first);
         ci->user_pixel_stride = L->channels * (int32_t)sizeof(uint16_t);
@@ -216,7 +224,9 @@ int io_exr_write_layers_half(const char *path, int width, int height, const io_e
         for (int c = 0; c < layers[l].channels; ++c) {
             char name[IO_EXR_MAX_LAYER_NAME + 8];
             io_exr_channel_name(name, sizeof name, layers[l].name, c);
-            rc = exr_add_channel(ctxt, part, name, EXR_PIXEL_HALF, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+            rc = exr_add_channel(ctxt, part, name, layers[l].f32 && layers[l].store_float ? EXR_PIXEL_FLOAT
+                                                                                          : EXR_PIXEL_HALF,
+                                 EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
             if (rc != EXR_ERR_SUCCESS) goto fail;
         }
     }
@@ -278,7 +288,7 @@ int io_write_exr_layers(const char *path, int width, int height, const io_exr_ou
         io_set_err(err, err_size, "cannot write '%s': out of memory", io_safe_path(path));
         return -1;
     }
-    for (int i = 0; i < layer_count; ++i) w[i] = (io_exr_write_layer){layers[i].name, layers[i].channels, NULL, layers[i].pixels};
+    for (int i = 0; i < layer_count; ++i) w[i] = (io_exr_write_layer){layers[i].name, layers[i].channels, NULL, layers[i].pixels, 0};
     int r = io_exr_write_layers_half(path, width, height, w, layer_count, NULL, err, err_size);
     free(w);
     return r;

@@ -2,6 +2,7 @@
 #include "io/exr_meta.h"
 
 #include "io/exr_common.h"
+#include "io/exr_envmap_attrs.h"
 #include "io/io_error.h"
 
 #include <stdint.h>
@@ -31,6 +32,7 @@ exr_result_t io_exr_set_meta(exr_context_t ctxt, int part, const io_exr_meta *m)
     for (int i = 0; i < 4 && m->float_names[i] && rc == EXR_ERR_SUCCESS; ++i)
         rc = exr_attr_set_float(ctxt, part, m->float_names[i], m->float_values[i]);
     if (m->int_name && rc == EXR_ERR_SUCCESS) rc = exr_attr_set_int(ctxt, part, m->int_name, m->int_value);
+    if (m->sky && rc == EXR_ERR_SUCCESS) rc = io_exr_add_sky_attrs(ctxt, part, m->sky);
     return rc;
 }
 

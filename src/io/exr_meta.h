@@ -25,6 +25,7 @@ typedef struct io_exr_meta {
     float float_values[4];
     const char *int_name;                 /* one int attribute (NULL: none) */
     int int_value;
+    const struct io_exr_sky_attrs *sky;   /* the sky's attributes (exr_sky_attrs.h; NULL: none) */
 } io_exr_meta;
 
 /* The string attribute `name` of the first part of the EXR at `path` into a malloc'd NUL-terminated copy (*out; free()

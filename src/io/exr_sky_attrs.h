@@ -15,5 +15,10 @@ typedef struct io_exr_sky_attrs {
     float sun_illuminance[3];         /* "vksky:sunIlluminance": RGB illuminance at the top of the atmosphere */
     float sun_at_camera[3];           /* "vksky:sunIlluminanceAtCamera": through the atmosphere to the camera (0 when
                                          the planet hides the sun): the separate sun light of a --no-sun-disc map */
+    /* Units (issue 32): "vksky:units" says what a pixel holds, "vksky:sunIlluminanceUnits" the unit of both sun
+     * attributes (NULL: left out); whiteLuminance > 0: OpenEXR's standard "whiteLuminance", the cd/m2 of RGB 1,1,1. */
+    const char *units;
+    const char *sun_units;
+    float white_luminance;
 } io_exr_sky_attrs;
 #endif

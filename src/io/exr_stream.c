@@ -10,6 +10,7 @@
 #include "io/encode_settings.h"
 #include "io/exr_envmap_attrs.h"
 #include "io/exr_parallel.h"
+#include "io/half_float.h"
 #include "io/io_error.h"
 
 #include <limits.h>
@@ -26,8 +27,14 @@ struct io_exr_stream {
     int lines_per_chunk;
     int next_row;              /* rows received so far */
     int pending;               /* rows waiting in `chunk` (fewer than one chunk) */
-    uint16_t *chunk;           /* lines_per_chunk rows */
+    unsigned char *chunk;      /* lines_per_chunk rows */
+    bool store_float;          /* FLOAT channels fed float rows (else HALF fed half rows) */
+    uint16_t *scratch;         /* float rows stored as HALF: one band converted (io_exr_stream_rows_f32) */
+    size_t scratch_rows;
 };
+
+/* Bytes per channel value of the rows the stream is fed. */
+static size_t value_size(const io_exr_stream *s) { return s->store_float ? sizeof(float) : sizeof(uint16_t); }
 
 static int fail(io_exr_stream *s, const char *stage, exr_result_t rc, char *err, size_t err_size)
 {
@@ -39,8 +46,8 @@ static int fail(io_exr_stream *s, const char *stage, exr_result_t rc, char *err,
     return -1;
 }
 
-io_exr_stream *io_exr_stream_open(const char *path, int width, int height, const io_exr_sky_attrs *attrs, char *err,
-                                  size_t err_size)
+static io_exr_stream *stream_open(const char *path, int width, int height, const io_exr_sky_attrs *attrs,
+                                  bool store_float, char *err, size_t err_size)
 {
     if (!path || !path[0] || width < 1 || height < 1 || width > IO_STREAM_MAX_DIM || height > IO_STREAM_MAX_DIM) {
         io_set_err(err, err_size, "cannot write '%s': invalid image size %dx%d (expected 1..%d on each side)",
@@ -53,7 +60,7 @@ io_exr_stream *io_exr_stream_open(const char *path, int width, int height, const
         return NULL;
     }
     snprintf(s->path, sizeof s->path, "%s", path);
-    s->width = width, s->height = height, s->fd = -1;
+    s->width = width, s->height = height, s->fd = -1, s->store_float = store_float;
     s->fd = io_atomic_open(path, s->tmp, sizeof s->tmp, err, err_size);
     if (s->fd < 0) {
         free(s);
@@ -75,21 +82,36 @@ io_exr_stream *io_exr_stream_open(const char *path, int width, int height, const
     for (int c = 0; c < 4 && rc == EXR_ERR_SUCCESS; ++c) {
         char name[8];
         io_exr_channel_name(name, sizeof name, "", c);
-        rc = exr_add_channel(s->ctxt, part, name, EXR_PIXEL_HALF, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+        rc = exr_add_channel(s->ctxt, part, name, store_float ? EXR_PIXEL_FLOAT : EXR_PIXEL_HALF,
+                             EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
     }
     if (rc == EXR_ERR_SUCCESS) rc = io_exr_apply_compression_level(s->ctxt, part);
     if (rc == EXR_ERR_SUCCESS) rc = io_exr_add_sky_attrs(s->ctxt, part, attrs);
     if (rc == EXR_ERR_SUCCESS) rc = exr_write_header(s->ctxt);
     if (rc == EXR_ERR_SUCCESS) rc = exr_get_scanlines_per_chunk(s->ctxt, part, &s->lines_per_chunk);
     if (rc != EXR_ERR_SUCCESS) return fail(s, "header", rc, err, err_size), NULL;
-    s->chunk = malloc((size_t)s->lines_per_chunk * (size_t)width * 4 * sizeof(uint16_t));
+    s->chunk = malloc((size_t)s->lines_per_chunk * (size_t)width * 4 * value_size(s));
     if (!s->chunk) return fail(s, "buffer", EXR_ERR_OUT_OF_MEMORY, err, err_size), NULL;
     return s;
 }
 
+io_exr_stream *io_exr_stream_open(const char *path, int width, int height, const io_exr_sky_attrs *attrs, char *err,
+                                  size_t err_size)
+{
+    return stream_open(path, width, height, attrs, false, err, err_size);
+}
+
+io_exr_stream *io_exr_stream_open_f32(const char *path, int width, int height, const io_exr_sky_attrs *attrs,
+                                      bool store_float, char *err, size_t err_size)
+{
+    return stream_open(path, width, height, attrs, store_float, err, err_size);
+}
+
 typedef struct rows_src {
     int width, y;               /* the row `base` holds */
-    const uint16_t *base;       /* interleaved RGBA half rows, stride width * 4 */
+    const unsigned char *base;  /* interleaved RGBA rows (half or float values), stride width * 4 values */
+    int32_t size;               /* bytes per value */
+    bool is_float;
 } rows_src;
 
 /* io_exr_feed_fn: the channels are stored sorted by name (A, B, G, R): each matched by its name. */
@@ -97,30 +119,30 @@ static exr_result_t feed_rows(void *user, exr_encode_pipeline_t *enc, int y, int
 {
     const rows_src *src = user;
     (void)rows;
-    const uint16_t *first = src->base + (size_t)(y - src->y) * (size_t)src->width * 4;
+    const unsigned char *first = src->base + (size_t)(y - src->y) * (size_t)src->width * 4 * (size_t)src->size;
     for (int ch = 0; ch < enc->channel_count; ++ch) {
         exr_coding_channel_info_t *ci = &enc->channels[ch];
         int c = ci->channel_name[0] == 'R' ? 0 : ci->channel_name[0] == 'G' ? 1 : ci->channel_name[0] == 'B' ? 2 : 3;
-        ci->user_pixel_stride = 4 * (int32_t)sizeof(uint16_t);
-        ci->user_line_stride = src->width * 4 * (int32_t)sizeof(uint16_t);
-        ci->user_data_type = EXR_PIXEL_HALF;
-        ci->user_bytes_per_element = (int16_t)sizeof(uint16_t);
-        ci->encode_from_ptr = (const uint8_t *)(first + c);
+        ci->user_pixel_stride = 4 * src->size;
+        ci->user_line_stride = src->width * 4 * src->size;
+        ci->user_data_type = src->is_float ? EXR_PIXEL_FLOAT : EXR_PIXEL_HALF;
+        ci->user_bytes_per_element = (int16_t)src->size;
+        ci->encode_from_ptr = first + (size_t)c * (size_t)src->size;
     }
     return EXR_ERR_SUCCESS;
 }
 
-/* Encodes `count` chunks, the first at row y, from rows of `rgba_half` starting at that row (on the encode threads:
- * exr_parallel.h). */
-static exr_result_t write_chunks(io_exr_stream *s, int y, int count, const uint16_t *rgba_half)
+/* Encodes `count` chunks, the first at row y, from rows of `rgba` (values of value_size) starting at that row (on
+ * the encode threads: exr_parallel.h). */
+static exr_result_t write_chunks(io_exr_stream *s, int y, int count, const unsigned char *rgba)
 {
-    rows_src src = {s->width, y, rgba_half};
+    rows_src src = {s->width, y, rgba, (int32_t)value_size(s), s->store_float};
     return io_exr_encode_chunks(s->ctxt, 0, y, count, s->lines_per_chunk, feed_rows, &src, io_encode_threads());
 }
 
-int io_exr_stream_rows(io_exr_stream *s, const uint16_t *rgba_half, int rows, char *err, size_t err_size)
+static int stream_rows(io_exr_stream *s, const unsigned char *rgba, int rows, char *err, size_t err_size)
 {
-    size_t row_values = (size_t)s->width * 4;
+    size_t row_bytes = (size_t)s->width * 4 * value_size(s);
     if (rows < 0 || rows > s->height - s->next_row) {
         io_set_err(err, err_size, "cannot write '%s': %d rows past the image's %d", s->path, rows, s->height);
         io_exr_stream_abort(s);
@@ -139,17 +161,39 @@ int io_exr_stream_rows(io_exr_stream *s, const uint16_t *rgba_half, int rows, ch
                 if (rows - taken < n) break;
                 taken += n, ++whole;
             }
-            rc = write_chunks(s, chunk_y, whole, rgba_half);
-            rgba_half += (size_t)taken * row_values, rows -= taken, s->next_row += taken;
+            rc = write_chunks(s, chunk_y, whole, rgba);
+            rgba += (size_t)taken * row_bytes, rows -= taken, s->next_row += taken;
         } else {
             int take = chunk_rows - s->pending < rows ? chunk_rows - s->pending : rows;
-            memcpy(s->chunk + (size_t)s->pending * row_values, rgba_half, (size_t)take * row_values * sizeof(uint16_t));
-            rgba_half += (size_t)take * row_values, rows -= take, s->pending += take, s->next_row += take;
+            memcpy(s->chunk + (size_t)s->pending * row_bytes, rgba, (size_t)take * row_bytes);
+            rgba += (size_t)take * row_bytes, rows -= take, s->pending += take, s->next_row += take;
             if (s->pending == chunk_rows) rc = write_chunks(s, chunk_y, 1, s->chunk), s->pending = 0;
         }
         if (rc != EXR_ERR_SUCCESS) return fail(s, "encode", rc, err, err_size);
     }
     return 0;
+}
+
+int io_exr_stream_rows(io_exr_stream *s, const uint16_t *rgba_half, int rows, char *err, size_t err_size)
+{
+    return stream_rows(s, (const unsigned char *)rgba_half, rows, err, err_size);
+}
+
+int io_exr_stream_rows_f32(io_exr_stream *s, const float *rgba, int rows, char *err, size_t err_size)
+{
+    if (s->store_float || rows <= 0) return stream_rows(s, (const unsigned char *)rgba, rows, err, err_size);
+    size_t n = (size_t)rows * (size_t)s->width * 4;
+    if ((size_t)rows > s->scratch_rows) {
+        uint16_t *grown = realloc(s->scratch, n * sizeof(uint16_t));
+        if (!grown) {
+            io_set_err(err, err_size, "cannot write '%s': out of memory", s->path);
+            io_exr_stream_abort(s);
+            return -1;
+        }
+        s->scratch = grown, s->scratch_rows = (size_t)rows;
+    }
+    for (size_t i = 0; i < n; ++i) s->scratch[i] = io_float_to_half(rgba[i]);
+    return stream_rows(s, (const unsigned char *)s->scratch, rows, err, err_size);
 }
 
 int io_exr_stream_finish(io_exr_stream *s, char *err, size_t err_size)
@@ -164,6 +208,7 @@ int io_exr_stream_finish(io_exr_stream *s, char *err, size_t err_size)
     if (rc != EXR_ERR_SUCCESS || s->out.err_no) return fail(s, "finish", rc, err, err_size);
     int result = io_atomic_commit(s->fd, s->tmp, s->path, err, err_size);
     free(s->chunk);
+    free(s->scratch);
     free(s);
     return result;
 }
@@ -174,5 +219,6 @@ void io_exr_stream_abort(io_exr_stream *s)
     if (s->ctxt) exr_finish(&s->ctxt);
     if (s->fd >= 0) io_atomic_abort(s->fd, s->tmp);
     free(s->chunk);
+    free(s->scratch);
     free(s);
 }

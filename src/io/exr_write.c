@@ -25,8 +25,15 @@ int io_write_exr_meta(const char *path, int width, int height, const io_exr_laye
         io_set_err(err, err_size, "cannot write '%s': out of memory", io_safe_path(path));
         return -1;
     }
-    for (int i = 0; i < layer_count; ++i) w[i] = (io_exr_write_layer){layers[i].name, 4, layers[i].rgba_half, NULL};
+    for (int i = 0; i < layer_count; ++i) w[i] = (io_exr_write_layer){layers[i].name, 4, layers[i].rgba_half, NULL, 0};
     int r = io_exr_write_layers_half(path, width, height, w, layer_count, meta, err, err_size);
     free(w);
     return r;
+}
+
+int io_write_exr_rgba_f32(const char *path, int width, int height, const float *rgba, int store_float,
+                          const struct io_exr_meta *meta, char *err, size_t err_size)
+{
+    io_exr_write_layer w = {"", 4, NULL, rgba, store_float};
+    return io_exr_write_layers_half(path, width, height, rgba ? &w : NULL, rgba ? 1 : 0, meta, err, err_size);
 }

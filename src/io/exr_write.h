@@ -28,6 +28,11 @@ struct io_exr_meta;
 int io_write_exr_meta(const char *path, int width, int height, const io_exr_layer *layers, int layer_count,
                       const struct io_exr_meta *meta, char *err, size_t err_size);
 
+/* One RGBA layer of floats (physical light, issue 32): stored as FLOAT channels when store_float (values beyond
+   half's 65504, such as the sun's disc in cd/m2), else converted to HALF. Otherwise as io_write_exr_meta. */
+int io_write_exr_rgba_f32(const char *path, int width, int height, const float *rgba, int store_float,
+                          const struct io_exr_meta *meta, char *err, size_t err_size);
+
 #ifdef __cplusplus
 }
 #endif

@@ -100,6 +100,7 @@ void sky_atmosphere_pack(const model_atmosphere *a, double sun_angular_radius_ra
     out->lut_steps = (vksky_vec4){(float)q.transmittance_steps, (float)q.multiscatter_steps,
                                   (float)q.multiscatter_sqrt_dirs, f->multiple_scattering ? 1.0f : 0.0f};
     out->ground = v4(f->ground_albedo, f->limb_darkening);
+    out->sun_disc = (vksky_vec4){f->sun_disc_power ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f};
 }
 
 static uint64_t fnv1a(uint64_t h, const void *data, size_t size)

@@ -29,6 +29,7 @@ typedef struct sky_features {
     double limb_darkening;        /* u of 1 - u (1 - cos); 0.6 */
     bool sun_disc;
     bool multiple_scattering;     /* false: no multi-scattering LUT pass, no Psi term */
+    bool sun_disc_power;          /* the disc integrates to the sun's illuminance (else the lesson's sun x 10) */
 } sky_features;
 sky_features sky_features_default(void);
 

@@ -88,6 +88,9 @@ sky_mode sky_view_resolve_mode(const sky_view *v, double atmosphere_top_km)
 
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader)
 {
-    return (TonemapPush){.params = {(float)exp2(v->exposure_ev), (float)v->tonemap,
+    /* Photometric: a camera's saturation-based exposure, H = L / (1.2 2^EV100) (ISO 12232, K = 12.5 and q = 0.65
+     * folded into the 1.2), on HDR values that hold L x light_scale. */
+    double multiplier = v->ev100 ? 1.0 / (v->light_scale * 1.2 * exp2(v->exposure_ev)) : exp2(v->exposure_ev);
+    return (TonemapPush){.params = {(float)multiplier, (float)v->tonemap,
                                     v->bloom ? (float)v->bloom_strength : 0.0f, encode_srgb_in_shader ? 1.0f : 0.0f}};
 }

@@ -19,7 +19,9 @@ typedef struct sky_view {
     sky_mode_choice mode;                   /* per-pixel march, sky-view LUT lookup, or auto */
     sky_pass_kind pass_kind;                /* fragment or compute sky pass */
     int skyview_steps;                      /* march steps of the sky-view LUT texels */
-    double exposure_ev;                     /* tone map exposure, in stops */
+    double exposure_ev;                     /* tone map exposure, in stops (ev100: EV100, the camera's) */
+    bool ev100;                             /* photometric: exposure_ev is EV100, the HDR holds cd/m2 x light_scale */
+    double light_scale;                     /* photometric: the HDR image's units per cd/m2 (a power of two) */
     int tonemap;                            /* VKSKY_TONEMAP_* */
     bool bloom;
     double bloom_strength, bloom_threshold;
