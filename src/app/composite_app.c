@@ -2,6 +2,7 @@
  * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
  * stderr and exit status 2, before any output file exists. */
 #include "app/composite_app.h"
+#include "app/composite_layers.h"
 #include "app/stop.h"
 #include "io/exr_layers.h"
 #include "io/exr_read.h"
@@ -19,139 +20,6 @@
 #include <strings.h>
 
 static const char *const AOV_NAMES[VKSKY_AOV_COUNT] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
-
-/* --- Finding the layers ---------------------------------------------------------------------------------- */
-
-static bool has_channel(const io_exr_info *info, const char *name)
-{
-    for (int i = 0; i < info->channel_count; ++i)
-        if (!strcmp(info->channels[i].name, name)) return true;
-    return false;
-}
-
-/* "<prefix>.<c>" for each of the channel letters in `letters` present? (prefix "" = top level: "<c>"). */
-static bool has_layer(const io_exr_info *info, const char *prefix, const char *letters)
-{
-    char name[512];
-    for (const char *c = letters; *c; ++c) {
-        snprintf(name, sizeof name, "%s%s%c", prefix, *prefix ? "." : "", *c);
-        if (!has_channel(info, name)) return false;
-    }
-    return true;
-}
-
-/* The layer of the first channel named "<anything><suffix>" (e.g. suffix ".Combined.R" -> "ViewLayer.Combined"):
- * Blender names it after the view layer, whatever that is called. */
-static bool find_layer(const io_exr_info *info, const char *suffix, char *out, size_t size)
-{
-    size_t ls = strlen(suffix);
-    for (int i = 0; i < info->channel_count; ++i) {
-        const char *n = info->channels[i].name;
-        size_t ln = strlen(n);
-        /* The layer is the name less its ".R" / ".X". */
-        if (ln > ls && !strcmp(n + ln - ls, suffix) && ln - 2 < size) {
-            snprintf(out, size, "%.*s", (int)(ln - 2), n);
-            return true;
-        }
-    }
-    return false;
-}
-
-/* The channel list for a message: "R, G, B, ViewLayer.Combined.R, ..." (the first dozen). */
-static void list_channels(const io_exr_info *info, char *out, size_t size)
-{
-    out[0] = '\0';
-    size_t used = 0;
-    for (int i = 0; i < info->channel_count && i < 12; ++i) {
-        int n = snprintf(out + used, size - used, "%s%s", i ? ", " : "", info->channels[i].name);
-        if (n < 0 || (size_t)n >= size - used) break;
-        used += (size_t)n;
-    }
-    if (info->channel_count > 12 && used + 8 < size) strcat(out, ", ...");
-    if (info->channel_count == 0) snprintf(out, size, "no channels");
-}
-
-typedef struct layer_pick {
-    char prefix[256];
-    const char *letters;      /* "RGBA", "RGB", "XYZ" */
-} layer_pick;
-
-static int pick_beauty(const io_exr_info *info, const char *path, const char *asked, layer_pick *p)
-{
-    char have[600];
-    if (asked) {
-        snprintf(p->prefix, sizeof p->prefix, "%s", asked);
-    } else if (!find_layer(info, ".Combined.R", p->prefix, sizeof p->prefix)) {
-        if (!has_layer(info, "", "RGB")) {
-            list_channels(info, have, sizeof have);
-            fprintf(stderr, "vksky: --composite: %s: no beauty layer: expected <ViewLayer>.Combined.R,G,B,A or "
-                            "R,G,B,A (or --beauty-layer NAME); the file has %s\n", path, have);
-            return 2;
-        }
-        p->prefix[0] = '\0';
-    }
-    p->letters = has_layer(info, p->prefix, "RGBA") ? "RGBA" : "RGB";
-    if (!has_layer(info, p->prefix, "RGB")) {
-        list_channels(info, have, sizeof have);
-        fprintf(stderr, "vksky: --composite: %s: no beauty layer '%s' (channels %s%sR,G,B[,A]); the file has %s\n",
-                path, p->prefix, p->prefix, *p->prefix ? "." : "", have);
-        return 2;
-    }
-    return 0;
-}
-
-static int pick_position(const io_exr_info *info, const char *path, const char *asked, bool own_file, layer_pick *p)
-{
-    char have[600];
-    if (asked) {
-        snprintf(p->prefix, sizeof p->prefix, "%s", asked);
-    } else if (!find_layer(info, ".Position.X", p->prefix, sizeof p->prefix)) {
-        p->prefix[0] = '\0';
-        if (!own_file || !(has_layer(info, "", "XYZ") || has_layer(info, "", "RGB"))) {
-            list_channels(info, have, sizeof have);
-            fprintf(stderr, "vksky: --composite: %s: no position layer: expected <ViewLayer>.Position.X,Y,Z%s (or "
-                            "--position-layer NAME, or --position FILE.exr); the file has %s\n", path,
-                    own_file ? " or X,Y,Z or R,G,B" : "", have);
-            return 2;
-        }
-    }
-    /* X, Y, Z; a position with just R, G, B (a plain image) is read as X, Y, Z. */
-    p->letters = has_layer(info, p->prefix, "XYZ") ? "XYZ" : has_layer(info, p->prefix, "RGB") ? "RGB" : NULL;
-    if (!p->letters) {
-        list_channels(info, have, sizeof have);
-        fprintf(stderr, "vksky: --composite: %s: no position layer '%s' (channels %s%sX,Y,Z or R,G,B); the file has %s\n",
-                path, p->prefix, p->prefix, *p->prefix ? "." : "", have);
-        return 2;
-    }
-    return 0;
-}
-
-/* Read a picked layer into `out` (stride 4 floats per pixel; a missing alpha reads as 1). */
-static int read_layer(const char *path, const layer_pick *p, int width, int height, float *out)
-{
-    size_t n = (size_t)width * height, count = strlen(p->letters);
-    char names_buf[4][300];
-    const char *names[4];
-    for (size_t i = 0; i < count; ++i) {
-        snprintf(names_buf[i], sizeof names_buf[i], "%s%s%c", p->prefix, *p->prefix ? "." : "", p->letters[i]);
-        names[i] = names_buf[i];
-    }
-    float *tmp = malloc(n * count * sizeof(float));
-    char err[512];
-    if (!tmp) {
-        fprintf(stderr, "vksky: --composite: %s: out of memory for %dx%d pixels\n", path, width, height);
-        return 1;
-    }
-    if (io_exr_read_channels(path, names, (int)count, tmp, err, sizeof err) != 0) {
-        fprintf(stderr, "vksky: --composite: %s\n", err);
-        free(tmp);
-        return 2;
-    }
-    for (size_t i = 0; i < n; ++i)
-        for (size_t c = 0; c < 4; ++c) out[4 * i + c] = c < count ? tmp[count * i + c] : 1.0f;
-    free(tmp);
-    return 0;
-}
 
 /* --- The camera ------------------------------------------------------------------------------------------- */
 
@@ -357,32 +225,34 @@ int composite_run(const options *o, const composite_options *co)
         fprintf(stderr, "vksky: --render: %s\n", err);
         return 2;
     }
-    /* The files and their layers. */
-    const char *beauty_path = co->input, *position_path = co->position ? co->position : co->input;
-    io_exr_info bi = {0}, pi = {0};
+    /* The files and their layers (app/composite_layers.c: one view layer for all of them). */
+    const char *beauty_path = co->input;
+    io_exr_info bi = {0}, pi = {0}, di = {0};
     if (io_exr_read_info(beauty_path, &bi, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --composite: %s\n", err);
         return 2;
     }
     int status = 0;
-    if (co->position && io_exr_read_info(position_path, &pi, err, sizeof err) != 0) {
-        fprintf(stderr, "vksky: --position: %s\n", err);
+    const char *extra_flag = co->depth ? "--depth" : "--position", *extra_path = co->depth ? co->depth : co->position;
+    io_exr_info *extra = co->depth ? &di : &pi;
+    if (extra_path && io_exr_read_info(extra_path, extra, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: %s: %s\n", extra_flag, err);
         io_exr_info_free(&bi);
         return 2;
     }
+    composite_inputs inputs;
+    if (composite_pick_inputs(co, &bi, &pi, &di, &inputs) != 0) {
+        status = 2;
+        goto done_info;
+    }
+    if (extra_path && (extra->width != bi.width || extra->height != bi.height)) {
+        fprintf(stderr, "vksky: %s: %s is %dx%d but the beauty %s is %dx%d; they must be the same size\n", extra_flag,
+                extra_path, extra->width, extra->height, beauty_path, bi.width, bi.height);
+        status = 2;
+        goto done_info;
+    }
     const io_exr_info *pinfo = co->position ? &pi : &bi;
-    layer_pick bp, pp;
-    if (pick_beauty(&bi, beauty_path, co->beauty_layer, &bp) ||
-        pick_position(pinfo, position_path, co->position_layer, co->position != NULL, &pp)) {
-        status = 2;
-        goto done_info;
-    }
-    if (pinfo->width != bi.width || pinfo->height != bi.height) {
-        fprintf(stderr, "vksky: --position: %s is %dx%d but the beauty %s is %dx%d; they must be the same size\n",
-                position_path, pinfo->width, pinfo->height, beauty_path, bi.width, bi.height);
-        status = 2;
-        goto done_info;
-    }
+    const char *position_path = inputs.has_depth ? inputs.depth_path : inputs.position_path;
     int w = bi.width, h = bi.height;
     size_t n = (size_t)w * h;
 
@@ -428,8 +298,31 @@ int composite_run(const options *o, const composite_options *co)
         status = 1;
         goto done_pixels;
     }
-    if ((status = read_layer(beauty_path, &bp, w, h, beauty)) || (status = read_layer(position_path, &pp, w, h, position)))
+    if ((status = composite_read_layer(beauty_path, &inputs.beauty, w, h, beauty))) goto done_pixels;
+    float *depth = NULL;
+    if (inputs.has_depth) {
+        if (!v.oriented) {
+            fprintf(stderr, "vksky: --composite: a depth pass needs the camera's orientation and field of view (no "
+                            "worldToCamera/worldToNDC in %s): give --yaw/--pitch/--fov\n", beauty_path);
+            status = 2;
+            goto done_pixels;
+        }
+        depth = position;   /* read in place: composite_fix_positions reads each depth before writing its pixel */
+        status = composite_read_layer(inputs.depth_path, &inputs.depth, w, h, depth);
+    } else {
+        status = composite_read_layer(inputs.position_path, &inputs.position, w, h, position);
+    }
+    if (status) goto done_pixels;
+    composite_fixups fix;
+    composite_fix_positions(beauty, position, depth, w, h, &v, inputs.position_half, &fix);
+    if (fix.opaque >= 16 && fix.opaque * 100 >= n) {
+        fprintf(stderr, "vksky: --composite: %s: the film is opaque: %zu pixels (%.0f %%) have alpha 1 and no "
+                        "position (a background, not geometry): render with a transparent film (Blender: Render "
+                        "Properties > Film > Transparent) so that the sky can go behind\n",
+                beauty_path, fix.opaque, 100.0 * (double)fix.opaque / (double)n);
+        status = 2;
         goto done_pixels;
+    }
     size_t geometry = 0, sky = 0;
     for (size_t i = 0; i < n; ++i) {
         const float *p = position + 4 * i;
@@ -438,11 +331,20 @@ int composite_run(const options *o, const composite_options *co)
         else ++sky;
     }
     if (geometry == 0) {
-        fprintf(stderr, "vksky: --composite: %s: the position pass has no finite pixel with alpha > 0: nothing to "
-                        "apply the atmosphere to (is it the world-position pass?)\n", position_path);
+        fprintf(stderr, "vksky: --composite: %s: the %s pass has no finite pixel with alpha > 0: nothing to "
+                        "apply the atmosphere to (is it the world-position pass?)\n", position_path,
+                inputs.has_depth ? "depth" : "position");
         status = 2;
         goto done_pixels;
     }
+    if (fix.overflowed)
+        fprintf(stderr, "vksky: --composite: note: %zu positions overflowed the half-float range (beyond 65504 world "
+                        "units) and have no atmosphere: write the Position pass as float (Blender: Output > Float "
+                        "(Full))\n", fix.overflowed);
+    if (fix.repaired || fix.unrepaired)
+        fprintf(stderr, "vksky: --composite: note: %zu edge pixels without a position took their nearest covered "
+                        "neighbour's%s\n", fix.repaired, fix.unrepaired ? "; some found none (composited without "
+                        "atmosphere)" : "");
     CompositePush push;
     model_atmosphere earth = o->atmosphere;
     double altitude = composite_push(&v, earth.bottom_radius, (uint32_t)w, (uint32_t)h, &push);
@@ -481,6 +383,7 @@ done_pixels:
 done_info:
     io_exr_info_free(&bi);
     io_exr_info_free(&pi);
+    io_exr_info_free(&di);
     return status;
 }
 

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# vksky --composite on a render as it comes (issue 28), seed 004's scene from tests/gen_composite_scene.c "edges":
+# anti-aliased (4x4 coverage, premultiplied), the Position and Depth from one sample per pixel ((0, 0, 0) where it
+# missed, as Cycles writes them), beside a compositor output (Composite.Combined, graded) and a second view layer.
+#  - the right layers: the view layer's Combined and Position, never Composite.*; two view layers need --view-layer;
+#  - coverage-correct edges: against the same scene composited at 4x the size without anti-aliasing, box-filtered
+#    (composite_edges_check: no edge pixel below 0.5x, the mean within 5 %), by position and by depth;
+#  - the coverage identity on every pixel, and the uncovered part equal to (1 - alpha) x a plain sky render
+#    (composite_check);
+#  - bad inputs: an opaque film, two view layers without a choice, the position from another view layer, a depth
+#    with a position: exit 2 and one line; overflowed half positions: exit 0 and one note with their count.
+#
+#   composite_edges_test.sh VKSKY GEN_COMPOSITE_SCENE COMPOSITE_CHECK COMPOSITE_EDGES_CHECK
+set -u
+VKSKY=${1:?usage: composite_edges_test.sh VKSKY GEN COMPOSITE_CHECK COMPOSITE_EDGES_CHECK}
+GEN=${2:?}
+CHECK=${3:?}
+EDGES=${4:?}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+mkdir -p "$work/s" "$work/out"
+"$GEN" "$work/s" 120 66 edges || { echo "FAIL: gen_composite_scene"; exit 1; }
+S=$work/s
+SUN=(--sun-elevation 20 --sun-azimuth -60)
+
+# The answer: the 4x render, every pixel fully covered or empty, composited (no edge handling involved).
+"$VKSKY" --composite "$S/hi.exr" --render "$work/out/hi.exr" "${SUN[@]}" --validate 2>"$work/err" ||
+    fail "4x composite: exit $? ($(cat "$work/err"))"
+[ ! -s "$work/err" ] || fail "4x composite (no edge pixels): stderr not empty: $(cat "$work/err")"
+
+# One view layer beside Composite.Combined: the view layer's, silently but for the note on repaired edges.
+"$VKSKY" --composite "$S/edges.exr" --render "$work/out/edges.exr" "${SUN[@]}" --validate 2>"$work/err" ||
+    fail "edges composite: exit $? ($(cat "$work/err"))"
+[ "$(wc -l <"$work/err")" -eq 1 ] && grep -q "edge pixels without a position took" "$work/err" ||
+    fail "edges composite: expected one note on the repaired edge pixels, got: $(cat "$work/err")"
+"$EDGES" "$work/out/edges.exr" "$work/out/hi.exr" "$S/edges.exr" ViewLayer ||
+    fail "edges composite: not coverage-correct (or the wrong layers: Composite.Combined is 2x the beauty)"
+# The sky behind the uncovered part, and the identity, against a plain sky render of the same camera.
+"$VKSKY" --render "$work/out/sky.exr" --width 120 --height 66 --altitude 0.2188 --yaw -90 --pitch -3 --fov 40 \
+    --sky-mode march --render-scale 1 --no-bloom "${SUN[@]}" --validate || fail "plain sky render: exit $?"
+"$CHECK" "$work/out/edges.exr" "$S/edges.exr" "$work/out/sky.exr" || fail "edges composite: the coverage identity"
+
+# Two view layers: --view-layer picks one (the other, Other, is another render: beauty x 0.5, 1 km higher).
+"$VKSKY" --composite "$S/edges2.exr" --view-layer ViewLayer --render "$work/out/vl.exr" "${SUN[@]}" --validate \
+    2>"$work/err" || fail "--view-layer ViewLayer: exit $? ($(cat "$work/err"))"
+"$EDGES" "$work/out/vl.exr" "$work/out/hi.exr" "$S/edges2.exr" ViewLayer || fail "--view-layer ViewLayer: wrong layers"
+# --beauty-layer implies its view layer (the position from the same one).
+"$VKSKY" --composite "$S/edges2.exr" --beauty-layer ViewLayer.Combined --render "$work/out/bl.exr" "${SUN[@]}" \
+    --validate 2>"$work/err" || fail "--beauty-layer ViewLayer.Combined: exit $? ($(cat "$work/err"))"
+"$EDGES" "$work/out/bl.exr" "$work/out/hi.exr" "$S/edges2.exr" ViewLayer || fail "--beauty-layer: wrong position layer"
+
+# Depth instead of position (ViewLayer.Depth.Z, camera-space Z; the camera from the header).
+"$VKSKY" --composite "$S/depth.exr" --render "$work/out/depth.exr" "${SUN[@]}" --validate 2>"$work/err" ||
+    fail "depth composite: exit $? ($(cat "$work/err"))"
+"$EDGES" "$work/out/depth.exr" "$work/out/hi.exr" "$S/depth.exr" ViewLayer || fail "depth composite: not coverage-correct"
+
+# Overflowed half positions: composited, one note with the count.
+"$VKSKY" --composite "$S/halfpos.exr" --render "$work/out/half.exr" "${SUN[@]}" --validate 2>"$work/err" ||
+    fail "half positions: exit $? ($(cat "$work/err"))"
+grep -Eq "note: [1-9][0-9]* positions overflowed the half-float range" "$work/err" ||
+    fail "half positions: no note with the count of overflowed positions: $(cat "$work/err")"
+
+# --- Bad inputs ----------------------------------------------------------------------------------------------
+expect_bad() {
+    local what=$1 needle=$2; shift 2
+    "$VKSKY" "$@" --validate >"$work/stdout" 2>"$work/stderr"
+    local rc=$?
+    [ $rc -eq 2 ] || fail "$what: exit status $rc, expected 2 (stderr: $(cat "$work/stderr"))"
+    [ "$(wc -l <"$work/stderr")" -eq 1 ] || fail "$what: expected exactly one line on stderr, got: $(cat "$work/stderr")"
+    grep -qF -- "$needle" "$work/stderr" || fail "$what: stderr does not mention '$needle': $(cat "$work/stderr")"
+    [ ! -e "$work/out/bad.exr" ] || fail "$what: wrote an output file"
+}
+OUT=(--render "$work/out/bad.exr")
+expect_bad "opaque film" "transparent film" --composite "$S/opaque.exr" "${OUT[@]}"
+expect_bad "two view layers, no choice" "2 view layers (Other, ViewLayer): choose one with --view-layer" \
+    --composite "$S/edges2.exr" "${OUT[@]}"
+expect_bad "position from another view layer" "must come from one view layer" --composite "$S/edges2.exr" \
+    --beauty-layer ViewLayer.Combined --position-layer Other.Position "${OUT[@]}"
+expect_bad "--view-layer against --beauty-layer" "must come from one view layer" --composite "$S/edges2.exr" \
+    --view-layer Other --beauty-layer ViewLayer.Combined "${OUT[@]}"
+expect_bad "unknown view layer" "no beauty layer 'Nope.Combined'" --composite "$S/edges2.exr" --view-layer Nope "${OUT[@]}"
+expect_bad "depth and position" "not with --position" --composite "$S/edges.exr" --depth "$S/depth.exr" \
+    --position "$S/edges.exr" "${OUT[@]}"
+
+[ $fails -eq 0 ] || { echo "composite_edges_test: $fails failure(s)"; exit 1; }
+echo "composite_edges_test: ok"
