@@ -42,6 +42,31 @@ SUN=(--sun-elevation 20 --sun-azimuth -60)
     --sky-mode march --render-scale 1 --no-bloom "${SUN[@]}" --validate || fail "plain sky render: exit $?"
 "$CHECK" "$work/out/edges.exr" "$S/edges.exr" "$work/out/sky.exr" || fail "edges composite: the coverage identity"
 
+# Self-describing (issue 28 item 4): the composite's header has the standard and vksky attributes, and
+# `--scene OUT.exr` renders the sky of its uncovered part (the same check, the sky render made from the header).
+"$VKSKY" --scene "$work/out/edges.exr" --render "$work/out/sky_scene.exr" --sky-mode march --render-scale 1 \
+    --no-bloom --validate 2>"$work/err" || fail "--scene on the composite: exit $? ($(cat "$work/err"))"
+"$CHECK" "$work/out/edges.exr" "$S/edges.exr" "$work/out/sky_scene.exr" || fail "--scene on the composite: not its sky"
+# --aovs: its header too; --scene on it with --aovs renders the same file, bit for bit.
+"$VKSKY" --render "$work/out/aovs.exr" --width 48 --height 27 --aovs --sun-elevation 7 --validate ||
+    fail "--aovs: exit $?"
+"$VKSKY" --scene "$work/out/aovs.exr" --render "$work/out/aovs2.exr" --aovs --validate 2>"$work/err" ||
+    fail "--scene on an --aovs render: exit $? ($(cat "$work/err"))"
+if command -v oiiotool >/dev/null; then   # every pixel of every layer the same (the headers differ: the command line)
+    oiiotool "$work/out/aovs.exr" "$work/out/aovs2.exr" --fail 0 --failpercent 0 --diff >"$work/diff" 2>&1 ||
+        fail "--scene on an --aovs render: other pixels: $(tail -n 3 "$work/diff")"
+fi
+if command -v oiiotool >/dev/null; then
+    for f in edges aovs; do
+        info=$(oiiotool --info -v "$work/out/$f.exr")
+        for attr in chromaticities software 'vksky:scene' 'vksky:commandLine' worldToCamera worldToNDC; do
+            grep -q "^ *$attr:" <<<"$info" || fail "$f.exr: no $attr attribute in its header"
+        done
+    done
+    grep -q 'vksky:commandLine: "vksky --composite ' <<<"$(oiiotool --info -v "$work/out/edges.exr")" ||
+        fail "the composite's vksky:commandLine lacks --composite"
+fi
+
 # Two view layers: --view-layer picks one (the other, Other, is another render: beauty x 0.5, 1 km higher).
 "$VKSKY" --composite "$S/edges2.exr" --view-layer ViewLayer --render "$work/out/vl.exr" "${SUN[@]}" --validate \
     2>"$work/err" || fail "--view-layer ViewLayer: exit $? ($(cat "$work/err"))"

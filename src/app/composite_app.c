@@ -3,6 +3,7 @@
  * stderr and exit status 2, before any output file exists. */
 #include "app/composite_app.h"
 #include "app/composite_layers.h"
+#include "app/exr_header.h"
 #include "app/stop.h"
 #include "io/exr_layers.h"
 #include "io/exr_read.h"
@@ -115,7 +116,8 @@ static int gpu_end(gpu_context *ctx, sky_renderer *r, int status)
 
 /* The composite RGBA at the top level (or `top` when given), the AOVs as RGB layers (io/exr_layers.h: half, the
  * layer.channel names). */
-static int write_layers(const char *path, const sky_composite *c, const float *top, char *err, size_t err_size)
+static int write_layers(const char *path, const sky_composite *c, const float *top, const io_exr_meta *meta, char *err,
+                        size_t err_size)
 {
     size_t n = (size_t)c->width * c->height;
     float *rgb = malloc(n * 3 * sizeof(float) * (VKSKY_AOV_COUNT - 1));
@@ -132,7 +134,8 @@ static int write_layers(const char *path, const sky_composite *c, const float *t
             for (int ch = 0; ch < 3; ++ch) dst[3 * i + ch] = src[4 * i + ch];
         layers[k] = (io_exr_out_layer){AOV_NAMES[k], 3, dst};
     }
-    int rc = io_write_exr_layers(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, err, err_size);
+    int rc = io_write_exr_layers_meta(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, meta, err,
+                                      err_size);
     free(rgb);
     return rc;
 }
@@ -144,6 +147,26 @@ static composite_view view_from_options(const options *o)
                             .steps = o->view.steps, .max_steps = o->view.max_steps,
                             .steps_ramp_km = o->view.steps_ramp_km, .sample_offset = o->view.sample_offset,
                             .step_distribution = o->view.step_distribution};
+}
+
+/* The options that describe the composite's sky as a plain render (its header's vksky:scene, so that `vksky --scene
+ * OUT.exr` renders the sky of its uncovered pixels): the camera's altitude, and its direction as yaw/pitch in vksky's
+ * local frame (a camera's roll is not a scene value: it is lost), its field of view and the image's size. */
+static options composite_scene(const options *o, const composite_options *co, const composite_view *v,
+                               double altitude_km, int width, int height)
+{
+    options s = *o;
+    if (co->argv_all) s.argc = co->argc_all, s.argv = co->argv_all;
+    s.width = width, s.height = height;
+    s.view.altitude_km = altitude_km;
+    if (v->oriented) {
+        double f[3];
+        composite_world_to_local(v->up_axis, v->forward, f);
+        s.view.pitch_deg = asin(fmax(-1.0, fmin(1.0, f[1]))) * 180.0 / 3.14159265358979323846;
+        s.view.yaw_deg = atan2(f[2], f[0]) * 180.0 / 3.14159265358979323846;
+        s.view.fov_deg = v->fov_y_deg;
+    }
+    return s;
 }
 
 static int compare_double(const void *a, const void *b)
@@ -371,10 +394,24 @@ int composite_run(const options *o, const composite_options *co)
     memcpy(in + 4 * n, position, n * 4 * sizeof(float));
     if (o->bench_frames > 0) bench(&r, &c, &push, o->bench_frames);
     sky_composite_render(&r, &c, &push, frames_from_env());
-    if (write_layers(out_path, &c, NULL, err, sizeof err) != 0) {
+    exr_header hdr;
+    options scene = composite_scene(o, co, &v, altitude, w, h);
+    if (exr_header_build(&hdr, &scene, -1) != 0) {
+        fprintf(stderr, "vksky: --composite: out of memory\n");
+        status = 1;
+    } else {
+        /* The render's own camera matrices (its world, its units: the position pass's) where it had them. */
+        if (cam_info) {
+            memcpy(hdr.world_to_camera, cam_info->world_to_camera, sizeof hdr.world_to_camera);
+            if (cam_info->has_world_to_ndc) memcpy(hdr.world_to_ndc, cam_info->world_to_ndc, sizeof hdr.world_to_ndc);
+        }
+        if (!v.oriented) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
+    }
+    if (status == 0 && write_layers(out_path, &c, NULL, &hdr.meta, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
+    exr_header_free(&hdr);
     sky_composite_destroy(&c, &r);
     status = gpu_end(&ctx, &r, status);
 done_pixels:
@@ -437,11 +474,18 @@ int composite_aovs_run(const options *o, const composite_options *co)
     }
     sky_composite_render(&r, &c, &push, frames_from_env());
     float *top = malloc(n * 4 * sizeof(float));
+    exr_header hdr;
+    options with_aovs = *o;   /* the command line with --aovs */
+    if (co->argv_all) with_aovs.argc = co->argc_all, with_aovs.argv = co->argv_all;
+    if (exr_header_build(&hdr, &with_aovs, -1) != 0) {
+        free(top);
+        top = NULL;
+    }
     const uint16_t *half = r.readback_linear.mapped;
     for (size_t i = 0; top && i < 4 * n; ++i) top[i] = io_half_to_float(half[i]);
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         int rc = !top ? -1
-                 : is_exr(o->outputs[i]) ? write_layers(o->outputs[i], &c, top, err, sizeof err)
+                 : is_exr(o->outputs[i]) ? write_layers(o->outputs[i], &c, top, &hdr.meta, err, sizeof err)
                                          : io_write_png(o->outputs[i], o->width, o->height, r.readback_display.mapped, 1,
                                                         err, sizeof err);
         if (rc != 0) {
@@ -449,6 +493,7 @@ int composite_aovs_run(const options *o, const composite_options *co)
             status = 1;
         }
     }
+    if (top) exr_header_free(&hdr);
     free(top);
     sky_composite_destroy(&c, &r);
     return gpu_end(&ctx, &r, status);

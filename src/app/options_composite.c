@@ -126,6 +126,13 @@ int composite_options_extract(composite_options *co, int *argc, char **argv)
                               .ap_range_km = 32.0, .ap_distribution = 2.0};
     const char *needs_composite = NULL;
     int out = 1;
+    /* The whole command line, before this module's flags leave argv: the composite's header names them. Static:
+     * one command line per process, still reachable at exit. */
+    static char **saved;
+    free(saved);
+    saved = malloc(((size_t)*argc + 1) * sizeof *saved);
+    if (saved) memcpy(saved, argv, ((size_t)*argc + 1) * sizeof *saved);
+    co->argc_all = saved ? *argc : 0, co->argv_all = saved;
     for (int i = 1; i < *argc; ++i) {
         const char *a = argv[i];
         const composite_flag *f = NULL;

@@ -25,6 +25,12 @@ typedef struct io_exr_out_layer {
 int io_write_exr_layers(const char *path, int width, int height, const io_exr_out_layer *layers, int layer_count,
                         char *err, size_t err_size);
 
+/* The same with the header attributes of `meta` (exr_meta.h; NULL: none): every EXR vksky writes says how it was
+   made (issue 28). */
+struct io_exr_meta;
+int io_write_exr_layers_meta(const char *path, int width, int height, const io_exr_out_layer *layers,
+                             int layer_count, const struct io_exr_meta *meta, char *err, size_t err_size);
+
 #ifdef __cplusplus
 }
 #endif
