@@ -23,7 +23,8 @@
  *     Box-filtering a composite of hi.exr 4x4 gives the coverage-correct composite of edges.exr.
  *
  * The pixel rays follow vksky's image convention (docs/model.md: yaw/pitch like the sun's azimuth/elevation, in the
- * world turned so that Z is up: (x, y_up, z) -> (x, -z, y_up)) but are computed here on their own; the files are
+ * world turned so that Z is up, north +Y and east +X: (north, up, east) -> (east, north, up)) but are computed here
+ * on their own; the files are
  * written through OpenEXRCore directly, not through vksky's writers. */
 #include <math.h>
 #include <stdbool.h>
@@ -40,12 +41,13 @@ static double PITCH = -3.0;   /* "sky": 60 (nothing but sky in view) */
 
 typedef struct sphere { double centre[3], radius, albedo[3]; } sphere;
 
-/* vksky's direction of (azimuth, elevation) in its local frame (+Y up), turned into the Z-up world. */
+/* vksky's direction of (azimuth, elevation) in its local frame (north, up, east), turned into the Z-up world
+ * (Blender's: north +Y, east +X). */
 static void world_dir(double az_deg, double el_deg, double out[3])
 {
     double az = az_deg * PI / 180.0, el = el_deg * PI / 180.0;
     double l[3] = {cos(el) * cos(az), sin(el), cos(el) * sin(az)};
-    out[0] = l[0], out[1] = -l[2], out[2] = l[1];
+    out[0] = l[2], out[1] = l[0], out[2] = l[1];
 }
 
 static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
