@@ -10,7 +10,8 @@
 layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
 layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
 layout(set = 0, binding = 5) uniform sampler2D ground_irradiance_lut;
-/* The inputs, one image of 2 bands: rows [0, H) the beauty RGBA, rows [H, 2H) the world position XYZ. */
+/* The inputs, one image of 2 bands: rows [0, H) the beauty RGBA, rows [H, 2H) the world position XYZ (H: the rows of
+ * the frame's band being composited). */
 layout(set = 0, binding = 3) uniform sampler2D composite_in;
 layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D composite_out;
 layout(push_constant) uniform Push { CompositePush push; };
@@ -76,7 +77,9 @@ void main()
     }
     if (oriented && alpha < 1.0) {
         /* The sky along this pixel's ray (the sky pass's ray matrix), the sun disc apart. */
-        vec2 ndc = vec2(2.0 * (float(p.x) + 0.5) * push.right.w - 1.0, 1.0 - 2.0 * (float(p.y) + 0.5) * push.up.w);
+        /* The image is one band of the frame: its first row is push.right.w, the frame's height 1 / push.up.w. */
+        vec2 ndc = vec2(2.0 * (float(p.x) + 0.5) / float(size.x) - 1.0,
+                        1.0 - 2.0 * (float(p.y) + push.right.w + 0.5) * push.up.w);
         vec3 v = normalize(push.forward.xyz + ndc.x * push.right.xyz + ndc.y * push.up.xyz);
         MarchSegment seg = march_segment(h, v, s, push.march, push.sun_dir.w, 3.0e38);
         if (alpha == 0.0) {   /* nothing covered: the layers are the sky's */

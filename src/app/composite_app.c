@@ -2,6 +2,7 @@
  * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
  * stderr and exit status 2, before any output file exists. */
 #include "app/composite_app.h"
+#include "app/composite_bands.h"
 #include "app/composite_layers.h"
 #include "app/exr_header.h"
 #include "app/stop.h"
@@ -312,53 +313,55 @@ int composite_run(const options *o, const composite_options *co)
         status = 2;
         goto done_info;
     }
-    gpu_context ctx;
-    sky_renderer r;
-    /* Inputs, before the GPU: a bad pixel pass fails fast. */
-    float *beauty = malloc(n * 4 * sizeof(float)), *position = malloc(n * 4 * sizeof(float));
-    if (!beauty || !position) {
-        fprintf(stderr, "vksky: --composite: out of memory for %dx%d pixels\n", w, h);
-        status = 1;
-        goto done_pixels;
+    if (inputs.has_depth && !v.oriented) {
+        fprintf(stderr, "vksky: --composite: a depth pass needs the camera's orientation and field of view (no "
+                        "worldToCamera/worldToNDC in %s): give --yaw/--pitch/--fov\n", beauty_path);
+        status = 2;
+        goto done_info;
     }
-    if ((status = composite_read_layer(beauty_path, &inputs.beauty, w, h, beauty))) goto done_pixels;
-    float *depth = NULL;
-    if (inputs.has_depth) {
-        if (!v.oriented) {
-            fprintf(stderr, "vksky: --composite: a depth pass needs the camera's orientation and field of view (no "
-                            "worldToCamera/worldToNDC in %s): give --yaw/--pitch/--fov\n", beauty_path);
-            status = 2;
-            goto done_pixels;
+    /* The inputs in bands (app/composite_bands.h), first read only to check and count them: a bad pixel pass
+     * fails before the GPU starts and before any output exists. */
+    int band_rows = composite_band_rows(w, h);
+    band_reader reader;
+    if ((status = band_reader_init(&reader, beauty_path, &inputs, &v, w, h, band_rows)) != 0) goto done_info;
+    composite_fixups fix = {0};
+    size_t geometry = 0, sky = 0;
+    for (int y0 = 0; y0 < h && status == 0; y0 += band_rows) {
+        if ((status = band_reader_read(&reader, y0, &fix)) != 0) break;
+        const composite_band *band = &reader.band;
+        size_t core = (size_t)(band->core_row - band->first_row) * w, end = core + (size_t)band->core_rows * w;
+        for (size_t i = core; i < end; ++i) {
+            const float *p = reader.position + 4 * i;
+            bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+            if (finite && reader.beauty[4 * i + 3] > 0.0f) ++geometry;
+            else ++sky;
         }
-        depth = position;   /* read in place: composite_fix_positions reads each depth before writing its pixel */
-        status = composite_read_layer(inputs.depth_path, &inputs.depth, w, h, depth);
-    } else {
-        status = composite_read_layer(inputs.position_path, &inputs.position, w, h, position);
     }
-    if (status) goto done_pixels;
-    composite_fixups fix;
-    composite_fix_positions(beauty, position, depth, w, h, &v, inputs.position_half, &fix);
+    if (status) goto done_reader;
     if (fix.opaque >= 16 && fix.opaque * 100 >= n) {
         fprintf(stderr, "vksky: --composite: %s: the film is opaque: %zu pixels (%.0f %%) have alpha 1 and no "
                         "position (a background, not geometry): render with a transparent film (Blender: Render "
                         "Properties > Film > Transparent) so that the sky can go behind\n",
                 beauty_path, fix.opaque, 100.0 * (double)fix.opaque / (double)n);
         status = 2;
-        goto done_pixels;
-    }
-    size_t geometry = 0, sky = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const float *p = position + 4 * i;
-        bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-        if (finite && beauty[4 * i + 3] > 0.0f) ++geometry;
-        else ++sky;
+        goto done_reader;
     }
     if (geometry == 0) {
         fprintf(stderr, "vksky: --composite: %s: the %s pass has no finite pixel with alpha > 0: nothing to "
                         "apply the atmosphere to (is it the world-position pass?)\n", position_path,
                 inputs.has_depth ? "depth" : "position");
         status = 2;
-        goto done_pixels;
+        goto done_reader;
+    }
+    CompositePush push;
+    model_atmosphere earth = o->atmosphere;
+    double altitude = composite_push(&v, earth.bottom_radius, (uint32_t)w, (uint32_t)h, &push);
+    if (altitude < 0.0) {
+        fprintf(stderr, "vksky: --composite: the camera (%g, %g, %g world units) is inside the planet (%.4g km below "
+                        "the ground); check --world-up, --world-unit, --ground-altitude\n",
+                v.camera[0], v.camera[1], v.camera[2], -altitude);
+        status = 2;
+        goto done_reader;
     }
     if (fix.overflowed)
         fprintf(stderr, "vksky: --composite: note: %zu positions overflowed the half-float range (beyond 65504 world "
@@ -368,55 +371,61 @@ int composite_run(const options *o, const composite_options *co)
         fprintf(stderr, "vksky: --composite: note: %zu edge pixels without a position took their nearest covered "
                         "neighbour's%s\n", fix.repaired, fix.unrepaired ? "; some found none (composited without "
                         "atmosphere)" : "");
-    CompositePush push;
-    model_atmosphere earth = o->atmosphere;
-    double altitude = composite_push(&v, earth.bottom_radius, (uint32_t)w, (uint32_t)h, &push);
-    if (altitude < 0.0) {
-        fprintf(stderr, "vksky: --composite: the camera (%g, %g, %g world units) is inside the planet (%.4g km below "
-                        "the ground); check --world-up, --world-unit, --ground-altitude\n",
-                v.camera[0], v.camera[1], v.camera[2], -altitude);
-        status = 2;
-        goto done_pixels;
-    }
     if (!v.oriented && sky > 0)
         fprintf(stderr, "vksky: --composite: the camera's orientation is unknown (no worldToCamera, no --yaw/--pitch): "
                         "%zu pixels without geometry keep the beauty\n", sky);
 
-    if ((status = gpu_begin(o, &ctx, &r, 1, 1, false)) != 0) goto done_pixels;
-    sky_composite c;
-    if (sky_composite_create(&c, &r, (uint32_t)w, (uint32_t)h, vol, err, sizeof err) != 0) {
-        fprintf(stderr, "vksky: --composite: %s\n", err);
-        status = gpu_end(&ctx, &r, 2);
-        goto done_pixels;
-    }
-    float *in = sky_composite_inputs(&c);
-    memcpy(in, beauty, n * 4 * sizeof(float));
-    memcpy(in + 4 * n, position, n * 4 * sizeof(float));
-    if (o->bench_frames > 0) bench(&r, &c, &push, o->bench_frames);
-    sky_composite_render(&r, &c, &push, frames_from_env());
+    /* The header: how it was made, and the scene of its sky (`vksky --scene OUT.exr`). */
     exr_header hdr;
     options scene = composite_scene(o, co, &v, altitude, w, h);
     if (exr_header_build(&hdr, &scene, -1) != 0) {
         fprintf(stderr, "vksky: --composite: out of memory\n");
         status = 1;
-    } else {
-        /* The render's own camera matrices (its world, its units: the position pass's) where it had them. */
-        if (cam_info) {
-            memcpy(hdr.world_to_camera, cam_info->world_to_camera, sizeof hdr.world_to_camera);
-            if (cam_info->has_world_to_ndc) memcpy(hdr.world_to_ndc, cam_info->world_to_ndc, sizeof hdr.world_to_ndc);
-        }
-        if (!v.oriented) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
+        goto done_reader;
     }
-    if (status == 0 && write_layers(out_path, &c, NULL, &hdr.meta, err, sizeof err) != 0) {
+    /* The render's own camera matrices (its world, its units: the position pass's) where it had them. */
+    if (cam_info) {
+        memcpy(hdr.world_to_camera, cam_info->world_to_camera, sizeof hdr.world_to_camera);
+        if (cam_info->has_world_to_ndc) memcpy(hdr.world_to_ndc, cam_info->world_to_ndc, sizeof hdr.world_to_ndc);
+    }
+    if (!v.oriented) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
+
+    gpu_context ctx;
+    sky_renderer r;
+    if ((status = gpu_begin(o, &ctx, &r, 1, 1, false)) != 0) goto done_header;
+    sky_composite c;
+    if (sky_composite_create(&c, &r, (uint32_t)w, (uint32_t)band_rows, vol, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --composite: %s\n", err);
+        status = gpu_end(&ctx, &r, 2);
+        goto done_header;
+    }
+    if (o->bench_frames > 0) {   /* the first band (the whole image up to 2^20 pixels) */
+        composite_fixups ignored = {0};
+        if ((status = band_reader_read(&reader, 0, &ignored)) == 0) {
+            band_reader_upload(&reader, &c);
+            bench(&r, &c, &push, o->bench_frames);
+        }
+    }
+    static const char *const names[VKSKY_AOV_COUNT] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
+    io_exr_band_layer layers[VKSKY_AOV_COUNT];
+    for (int k = 0; k < VKSKY_AOV_COUNT; ++k) layers[k] = (io_exr_band_layer){names[k], k == 0 ? 4 : 3, 4, NULL};
+    io_exr_layers_stream *out = status ? NULL : io_exr_layers_stream_open(out_path, w, h, layers, VKSKY_AOV_COUNT,
+                                                                         &hdr.meta, err, sizeof err);
+    if (!status && !out) {
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
-    exr_header_free(&hdr);
+    if (out && (status = composite_bands_render(&reader, &r, &c, push, frames_from_env(), out)) == 0 &&
+        io_exr_layers_stream_finish(out, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --render: %s\n", err);
+        status = 1;
+    }
     sky_composite_destroy(&c, &r);
     status = gpu_end(&ctx, &r, status);
-done_pixels:
-    free(beauty);
-    free(position);
+done_header:
+    exr_header_free(&hdr);
+done_reader:
+    band_reader_free(&reader);
 done_info:
     io_exr_info_free(&bi);
     io_exr_info_free(&pi);

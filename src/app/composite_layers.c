@@ -204,28 +204,54 @@ int composite_pick_inputs(const composite_options *co, const io_exr_info *bi, co
     return 0;
 }
 
-int composite_read_layer(const char *path, const layer_pick *p, int width, int height, float *out)
+/* "<prefix>.<letter>" for each letter of a pick into names[at...]. */
+static int add_names(const layer_pick *p, char (*buf)[520], const char **names, int at)
 {
-    size_t n = (size_t)width * height, count = strlen(p->letters);
-    char names_buf[4][520];
-    const char *names[4];
-    for (size_t i = 0; i < count; ++i) {
-        snprintf(names_buf[i], sizeof names_buf[i], "%s%s%c", p->prefix, *p->prefix ? "." : "", p->letters[i]);
-        names[i] = names_buf[i];
+    for (const char *c = p->letters; *c; ++c, ++at) {
+        snprintf(buf[at], sizeof buf[at], "%.510s%s%c", p->prefix, *p->prefix ? "." : "", *c);
+        names[at] = buf[at];
     }
-    float *tmp = malloc(n * count * sizeof(float));
+    return at;
+}
+
+int composite_read_band(const char *beauty_path, const composite_inputs *in, int width, int first_row, int rows,
+                        float *beauty, float *position)
+{
+    const layer_pick *second = in->has_depth ? &in->depth : &in->position;
+    const char *second_path = in->has_depth ? in->depth_path : in->position_path;
+    bool one_file = !strcmp(second_path, beauty_path);   /* one read: one pass over the file's chunks */
+    char buf[8][520];
+    const char *names[8];
+    int nb = add_names(&in->beauty, buf, names, 0), count = add_names(second, buf, names, nb);
+    size_t n = (size_t)width * rows;
+    float *tmp = malloc(n * (size_t)count * sizeof(float));
     char err[512];
     if (!tmp) {
-        fprintf(stderr, "vksky: --composite: %s: out of memory for %dx%d pixels\n", path, width, height);
+        fprintf(stderr, "vksky: --composite: out of memory for %dx%d pixels\n", width, rows);
         return 1;
     }
-    if (io_exr_read_channels(path, names, (int)count, tmp, err, sizeof err) != 0) {
+    int rc = one_file ? io_exr_read_rows(beauty_path, names, count, first_row, rows, tmp, err, sizeof err) : 0;
+    /* Two files: the beauty's values first, the second's after them (the same layout as one read). */
+    if (!one_file) {
+        rc = io_exr_read_rows(beauty_path, names, nb, first_row, rows, tmp, err, sizeof err);
+        if (rc == 0)
+            rc = io_exr_read_rows(second_path, names + nb, count - nb, first_row, rows, tmp + n * (size_t)nb, err,
+                                  sizeof err);
+    }
+    if (rc != 0) {
         fprintf(stderr, "vksky: --composite: %s\n", err);
         free(tmp);
         return 2;
     }
-    for (size_t i = 0; i < n; ++i)
-        for (size_t c = 0; c < 4; ++c) out[4 * i + c] = c < count ? tmp[count * i + c] : c == 3 ? 1.0f : 0.0f;
+    int ns = count - nb;
+    for (size_t i = 0; i < n; ++i) {
+        const float *b = one_file ? tmp + (size_t)count * i : tmp + (size_t)nb * i;
+        const float *p = one_file ? b + nb : tmp + n * (size_t)nb + (size_t)ns * i;
+        for (int c = 0; c < 4; ++c) {
+            beauty[4 * i + c] = c < nb ? b[c] : 1.0f;   /* no alpha: covered */
+            position[4 * i + c] = c < ns ? p[c] : c == 3 ? 1.0f : 0.0f;
+        }
+    }
     free(tmp);
     return 0;
 }
@@ -239,11 +265,12 @@ static bool position_missing(const float *p)
     return !(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2])) || (p[0] == 0.0f && p[1] == 0.0f && p[2] == 0.0f);
 }
 
-void composite_fix_positions(const float *beauty, float *position, const float *depth, int width, int height,
+void composite_fix_positions(const float *beauty, float *position, const float *depth, const composite_band *band,
                              const composite_view *v, bool position_half, composite_fixups *out)
 {
-    memset(out, 0, sizeof *out);
-    size_t n = (size_t)width * height;
+    int width = band->width, height = band->frame_height;
+    size_t n = (size_t)width * band->rows;
+    size_t core0 = (size_t)(band->core_row - band->first_row) * width, core1 = core0 + (size_t)band->core_rows * width;
     /* Depth (camera-space Z, Blender's and Nuke's convention: distance along the view axis, not along the ray) ->
      * the point on the pixel's ray at that depth: camera + z (forward + ndc.x tx right + ndc.y ty up). A renderer's
      * "nothing here" depth (huge: Blender writes 1e10) is no position. */
@@ -251,7 +278,7 @@ void composite_fix_positions(const float *beauty, float *position, const float *
     for (size_t i = 0; depth && i < n; ++i) {
         float z = depth[4 * i], *p = position + 4 * i;
         double nx = (2.0 * ((double)(i % (size_t)width) + 0.5) / width - 1.0) * tx;
-        double ny = (1.0 - 2.0 * ((double)(i / (size_t)width) + 0.5) / height) * ty;
+        double ny = (1.0 - 2.0 * ((double)(i / (size_t)width + (size_t)band->first_row) + 0.5) / height) * ty;
         bool ok = isfinite(z) && z > 0.0f && z < 1e9f;
         for (int k = 0; k < 3; ++k)
             p[k] = ok ? (float)(v->camera[k] + z * (v->forward[k] + nx * v->right[k] + ny * v->up[k])) : NAN;
@@ -265,6 +292,7 @@ void composite_fix_positions(const float *beauty, float *position, const float *
         const float *p = position + 4 * i;
         bool overflow = position_half && (isinf(p[0]) || isinf(p[1]) || isinf(p[2]));
         missing[i] = overflow ? 2 : position_missing(p);
+        if (i < core0 || i >= core1) continue;   /* counted in the band whose core it is */
         out->overflowed += overflow && beauty[4 * i + 3] > 0.0f;
         out->opaque += missing[i] == 1 && beauty[4 * i + 3] >= 0.999f;   /* an opaque film: hit nothing, alpha 1 */
     }
@@ -272,16 +300,16 @@ void composite_fix_positions(const float *beauty, float *position, const float *
      * near, the one whose coverage is closest to this pixel's: the pixels along one edge of one surface are
      * covered alike (a horizon row, a silhouette), the interior behind them and the other surface less so. Read
      * from the original positions only (a repaired pixel lends nothing). */
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = core0; i < core1; ++i) {
         float *p = position + 4 * i, alpha = beauty[4 * i + 3];
         if (!(alpha > 0.0f) || missing[i] != 1) continue;
         int x = (int)(i % (size_t)width), y = (int)(i / (size_t)width), best_d2 = 1 << 30;
         long best = -1;
         float best_da = 2.0f;
-        for (int dy = -3; dy <= 3; ++dy)
-            for (int dx = -3; dx <= 3; ++dx) {
+        for (int dy = -COMPOSITE_BAND_MARGIN; dy <= COMPOSITE_BAND_MARGIN; ++dy)
+            for (int dx = -COMPOSITE_BAND_MARGIN; dx <= COMPOSITE_BAND_MARGIN; ++dx) {
                 int xx = x + dx, yy = y + dy, d2 = dx * dx + dy * dy;
-                if (xx < 0 || yy < 0 || xx >= width || yy >= height || d2 > best_d2) continue;
+                if (xx < 0 || yy < 0 || xx >= width || yy >= band->rows || d2 > best_d2) continue;
                 size_t j = (size_t)yy * width + xx;
                 float a = beauty[4 * j + 3], da = fabsf(a - alpha);
                 if (missing[j] || !(a > 0.0f) || (d2 == best_d2 && da >= best_da)) continue;

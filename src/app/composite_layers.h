@@ -30,8 +30,6 @@ typedef struct composite_inputs {
 int composite_pick_inputs(const composite_options *co, const io_exr_info *bi, const io_exr_info *pi,
                           const io_exr_info *di, composite_inputs *in);
 
-/* Reads a picked layer into `out` (4 floats per pixel; missing channels: alpha 1, others 0). 0, 1 (memory) or 2. */
-int composite_read_layer(const char *path, const layer_pick *p, int width, int height, float *out);
 
 typedef struct composite_fixups {
     size_t repaired;          /* edge pixels (0 < alpha) without a position that took a neighbour's */
@@ -40,11 +38,25 @@ typedef struct composite_fixups {
     size_t opaque;            /* alpha-1 pixels at (0, 0, 0) / without a position: an opaque film's background */
 } composite_fixups;
 
-/* Makes `position` (RGBA rows, w = unused) fit to composite, in place: a depth pass (`depth`, non-NULL) becomes
- * world positions along each pixel's ray of `v` (needs v->oriented); overflowed half values are counted and
- * marked missing; a covered pixel whose position is missing, non-finite or exactly (0, 0, 0) takes the position of
- * its nearest covered neighbour with one (within 3 pixels; ties: the most covered). Missing positions end as NaN. */
-void composite_fix_positions(const float *beauty, float *position, const float *depth, int width, int height,
+/* A band of the frame held in memory: `rows` rows from `first_row`, of which rows [core_row, core_row + core_rows)
+ * are the band's own (the rest: neighbours for the edge repair, COMPOSITE_BAND_MARGIN rows each side). */
+enum { COMPOSITE_BAND_MARGIN = 3 };
+typedef struct composite_band {
+    int width, frame_height;
+    int first_row, rows, core_row, core_rows;
+} composite_band;
+
+/* Makes a band's `position` (RGBA rows) fit to composite, in place: a depth pass (`depth`, non-NULL, may be
+ * `position` itself) becomes world positions along each pixel's ray of `v` (needs v->oriented); overflowed half
+ * values are counted and left missing; a covered core pixel whose position is missing, non-finite or exactly
+ * (0, 0, 0) takes the position of its nearest covered neighbour with one (within COMPOSITE_BAND_MARGIN pixels; ties:
+ * the coverage closest to its own). Missing positions end as NaN. Counts (added to *out) cover the core rows. */
+void composite_fix_positions(const float *beauty, float *position, const float *depth, const composite_band *band,
                              const composite_view *v, bool position_half, composite_fixups *out);
+
+/* Reads rows [first_row, first_row + rows) of the picked beauty into `beauty` and of the position (or depth, into
+ * `position`'s first value per pixel) into `position`, RGBA per pixel. 0, 1 (memory) or 2 (one line on stderr). */
+int composite_read_band(const char *beauty_path, const composite_inputs *in, int width, int first_row, int rows,
+                        float *beauty, float *position);
 
 #endif

@@ -140,7 +140,7 @@ double composite_push(const composite_view *v, double bottom_radius_km, uint32_t
 #undef TO_MARCH
     int max_steps = v->max_steps > v->steps ? v->max_steps : v->steps;
     out->forward = (vksky_vec4){(float)f[0], (float)f[1], (float)f[2], (float)altitude};
-    out->right = (vksky_vec4){(float)(rt[0] * tx), (float)(rt[1] * tx), (float)(rt[2] * tx), 1.0f / (float)width};
+    out->right = (vksky_vec4){(float)(rt[0] * tx), (float)(rt[1] * tx), (float)(rt[2] * tx), 0.0f};   /* band row 0 */
     out->up = (vksky_vec4){(float)(up[0] * ty), (float)(up[1] * ty), (float)(up[2] * ty), 1.0f / (float)height};
     out->sun_dir = (vksky_vec4){(float)sun[0], (float)sun[1], (float)sun[2], (float)v->step_distribution};
     out->march = (vksky_vec4){(float)v->steps, (float)max_steps, (float)v->sample_offset, (float)v->steps_ramp_km};
