@@ -7,6 +7,8 @@
 #    (composite_edges_check: no edge pixel below 0.5x, the mean within 5 %), by position and by depth;
 #  - the coverage identity on every pixel, and the uncovered part equal to (1 - alpha) x a plain sky render
 #    (composite_check);
+#  - in bands of 16 rows: the same pixels as in one band;
+#  - the header: standard and vksky attributes; --scene on the composite renders its sky, on --aovs the same file;
 #  - bad inputs: an opaque film, two view layers without a choice, the position from another view layer, a depth
 #    with a position: exit 2 and one line; overflowed half positions: exit 0 and one note with their count.
 #
@@ -80,6 +82,14 @@ fi
 "$VKSKY" --composite "$S/depth.exr" --render "$work/out/depth.exr" "${SUN[@]}" --validate 2>"$work/err" ||
     fail "depth composite: exit $? ($(cat "$work/err"))"
 "$EDGES" "$work/out/depth.exr" "$work/out/hi.exr" "$S/depth.exr" ViewLayer || fail "depth composite: not coverage-correct"
+
+# In bands (VKSKY_COMPOSITE_BAND_ROWS=16: five bands, the edge repair across their seams): the same pixels.
+VKSKY_COMPOSITE_BAND_ROWS=16 "$VKSKY" --composite "$S/edges.exr" --render "$work/out/bands.exr" "${SUN[@]}" --validate \
+    2>"$work/err" || fail "edges composite in bands: exit $? ($(cat "$work/err"))"
+if command -v oiiotool >/dev/null; then
+    oiiotool "$work/out/edges.exr" "$work/out/bands.exr" --fail 0 --failpercent 0 --diff >"$work/diff" 2>&1 ||
+        fail "the composite in bands of 16 rows differs from one band: $(tail -n 3 "$work/diff")"
+fi
 
 # Overflowed half positions: composited, one note with the count.
 "$VKSKY" --composite "$S/halfpos.exr" --render "$work/out/half.exr" "${SUN[@]}" --validate 2>"$work/err" ||

@@ -21,6 +21,9 @@
  *     DIR/opaque.exr  an opaque film: alpha 1 everywhere, the background grey at position (0, 0, 0)
  *     DIR/halfpos.exr ViewLayer.Position stored as HALF: the ground beyond 65504 m overflows to inf
  *     Box-filtering a composite of hi.exr 4x4 gives the coverage-correct composite of edges.exr.
+ *   "flat": DIR/render.exr of up to 16384 x 16384 pixels made fast (every row the same: it compresses to nothing),
+ *     no camera attributes: the left 1/64 of the width a grey surface on the ground 1 km north of the camera
+ *     (-3.5, -8.5, 218.8), the rest background (alpha 0, position NaN); for the composite's memory bound.
  *
  * The pixel rays follow vksky's image convention (docs/model.md: yaw/pitch like the sun's azimuth/elevation, in the
  * world turned so that Z is up, north +Y and east +X: (north, up, east) -> (east, north, up)) but are computed here
@@ -77,7 +80,8 @@ static uint16_t to_half(float f)
 typedef struct channel { const char *name; int half; const float *plane; } channel;
 
 /* One scanline part: planar float channels (stored as HALF or FLOAT), optional camera attributes. */
-static int write_exr(const char *path, int w, int h, const channel *ch, int count, const float *w2c, const float *w2n)
+static int write_exr(const char *path, int w, int h, const channel *ch, int count, const float *w2c, const float *w2n,
+                     int one_row)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_context_t f = NULL;
@@ -110,7 +114,7 @@ static int write_exr(const char *path, int w, int h, const channel *ch, int coun
             bufs[k] = malloc((size_t)w * ci.height * bpe);
             for (int y = 0; y < ci.height; ++y)
                 for (int x = 0; x < w; ++x) {
-                    float v = c->plane[(size_t)(y0 + y) * w + x];
+                    float v = c->plane[one_row ? (size_t)x : (size_t)(y0 + y) * w + x];   /* one_row: every row the same */
                     size_t at = (size_t)y * w + x;
                     if (c->half) ((uint16_t *)bufs[k])[at] = to_half(v);
                     else ((float *)bufs[k])[at] = v;
@@ -136,18 +140,35 @@ static int write_exr(const char *path, int w, int h, const channel *ch, int coun
 
 int main(int argc, char **argv)
 {
-    bool edges = argc == 5 && !strcmp(argv[4], "edges");
-    if (argc != 2 && argc != 4 && !(argc == 5 && (!strcmp(argv[4], "sky") || edges))) {
-        fprintf(stderr, "usage: gen_composite_scene DIR [WIDTH HEIGHT [sky|edges]]\n");
+    bool edges = argc == 5 && !strcmp(argv[4], "edges"), flat = argc == 5 && !strcmp(argv[4], "flat");
+    if (argc != 2 && argc != 4 && !(argc == 5 && (!strcmp(argv[4], "sky") || edges || flat))) {
+        fprintf(stderr, "usage: gen_composite_scene DIR [WIDTH HEIGHT [sky|edges|flat]]\n");
         return 2;
     }
-    if (argc == 5 && !edges) PITCH = 60.0;
+    if (argc == 5 && !strcmp(argv[4], "sky")) PITCH = 60.0;
     int W = argc >= 4 ? atoi(argv[2]) : 960, H = argc >= 4 ? atoi(argv[3]) : 540;
     const int SS = 4;   /* "edges": samples per pixel side */
     if (edges) W *= SS, H *= SS;
-    if (W < 8 || H < 8 || W > 8192 || H > 8192) {
-        fprintf(stderr, "gen_composite_scene: WIDTH and HEIGHT in [8, 8192]\n");
+    int most = flat ? 16384 : 8192;
+    if (W < 8 || H < 8 || W > most || H > most) {
+        fprintf(stderr, "gen_composite_scene: WIDTH and HEIGHT in [8, %d]\n", most);
         return 2;
+    }
+    if (flat) {   /* one row of each constant plane, repeated: write_exr reads plane[y * w + x] */
+        float *row = malloc((size_t)W * 7 * sizeof(float));
+        float *px = row, value[7] = {0.2f, 0.2f, 0.2f, 1.0f, (float)CAMERA[0], (float)(CAMERA[1] + 1000.0), 0.0f};
+        for (int k = 0; k < 7; ++k)
+            for (int x = 0; x < W; ++x) px[(size_t)k * W + x] = x < W / 64 ? value[k] : k < 4 ? 0.0f : NAN;
+        const char *names[7] = {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B",
+                                "ViewLayer.Combined.A", "ViewLayer.Position.X", "ViewLayer.Position.Y",
+                                "ViewLayer.Position.Z"};
+        channel ch[7];
+        for (int k = 0; k < 7; ++k) ch[k] = (channel){names[k], k < 4, px + (size_t)k * W};
+        char path[4096];
+        snprintf(path, sizeof path, "%s/render.exr", argv[1]);
+        int rc = write_exr(path, W, H, ch, 7, NULL, NULL, 1);
+        free(row);
+        return rc ? 1 : 0;
     }
     /* The camera basis (vksky's: right = forward x up-axis, up = right x forward) in world axes. */
     double f[3], right[3], up[3], sun[3];
@@ -240,7 +261,7 @@ int main(int argc, char **argv)
                          {"ViewLayer.Combined.A", 1, A}, {"ViewLayer.Position.X", 0, X}, {"ViewLayer.Position.Y", 0, Y},
                          {"ViewLayer.Position.Z", 0, Z}};
         snprintf(path, sizeof path, "%s/hi.exr", argv[1]);
-        rc |= write_exr(path, W, H, hi, 7, w2c, w2n);
+        rc |= write_exr(path, W, H, hi, 7, w2c, w2n, 0);
         int w = W / SS, h = H / SS;
         size_t m = (size_t)w * h;
         float *lo = calloc(m * 19, sizeof(float));
@@ -276,26 +297,26 @@ int main(int argc, char **argv)
         for (int k = 0; k < 7; ++k) one[k] = all[k];
         for (int k = 0; k < 4; ++k) one[7 + k] = all[8 + k];
         snprintf(path, sizeof path, "%s/edges.exr", argv[1]);
-        rc |= write_exr(path, w, h, one, 11, w2c, w2n);
+        rc |= write_exr(path, w, h, one, 11, w2c, w2n, 0);
         channel two[18];
         for (int k = 0, j = 0; k < 19; ++k)
             if (k != 7) two[j++] = all[k];
         snprintf(path, sizeof path, "%s/edges2.exr", argv[1]);
-        rc |= write_exr(path, w, h, two, 18, w2c, w2n);
+        rc |= write_exr(path, w, h, two, 18, w2c, w2n, 0);
         channel dep[5] = {all[0], all[1], all[2], all[3], all[7]};
         snprintf(path, sizeof path, "%s/depth.exr", argv[1]);
-        rc |= write_exr(path, w, h, dep, 5, w2c, w2n);
+        rc |= write_exr(path, w, h, dep, 5, w2c, w2n, 0);
         channel half_pos[7];
         for (int k = 0; k < 7; ++k) half_pos[k] = all[k], half_pos[k].half = 1;
         snprintf(path, sizeof path, "%s/halfpos.exr", argv[1]);
-        rc |= write_exr(path, w, h, half_pos, 7, w2c, w2n);
+        rc |= write_exr(path, w, h, half_pos, 7, w2c, w2n, 0);
         for (size_t i = 0; i < m; ++i)
             if (L[3][i] < 1.0f) {   /* an opaque film: the background fills the rest; no sample hit, no position */
                 for (int c = 0; c < 3; ++c) L[c][i] += (1.0f - L[3][i]) * 0.5f;
                 L[3][i] = 1.0f;
             }
         snprintf(path, sizeof path, "%s/opaque.exr", argv[1]);
-        rc |= write_exr(path, w, h, one, 7, w2c, w2n);
+        rc |= write_exr(path, w, h, one, 7, w2c, w2n, 0);
         free(lo);
         free(pl);
         return rc ? 1 : 0;
@@ -304,13 +325,13 @@ int main(int argc, char **argv)
                         {"ViewLayer.Combined.A", 1, A}, {"ViewLayer.Position.X", 0, X}, {"ViewLayer.Position.Y", 0, Y},
                         {"ViewLayer.Position.Z", 0, Z}};
     snprintf(path, sizeof path, "%s/render.exr", argv[1]);
-    rc |= write_exr(path, W, H, multi, 7, w2c, w2n);
+    rc |= write_exr(path, W, H, multi, 7, w2c, w2n, 0);
     channel beauty[4] = {{"R", 1, R}, {"G", 1, G}, {"B", 1, B}, {"A", 1, A}};
     snprintf(path, sizeof path, "%s/beauty.exr", argv[1]);
-    rc |= write_exr(path, W, H, beauty, 4, NULL, NULL);
+    rc |= write_exr(path, W, H, beauty, 4, NULL, NULL, 0);
     channel position[3] = {{"R", 0, PX}, {"G", 0, PY}, {"B", 0, PZ}};
     snprintf(path, sizeof path, "%s/position.exr", argv[1]);
-    rc |= write_exr(path, W, H, position, 3, NULL, NULL);
+    rc |= write_exr(path, W, H, position, 3, NULL, NULL, 0);
     snprintf(path, sizeof path, "%s/camera.txt", argv[1]);
     FILE *cf = fopen(path, "w");
     if (cf) {
