@@ -91,6 +91,11 @@ if command -v oiiotool >/dev/null; then
         fail "the composite in bands of 16 rows differs from one band: $(tail -n 3 "$work/diff")"
 fi
 
+# --depth FILE: the beauty of one file, the depth of another.
+"$VKSKY" --composite "$S/edges.exr" --depth "$S/depth.exr" --render "$work/out/depth2.exr" "${SUN[@]}" --validate \
+    2>"$work/err" || fail "--depth FILE: exit $? ($(cat "$work/err"))"
+"$EDGES" "$work/out/depth2.exr" "$work/out/hi.exr" "$S/edges.exr" ViewLayer || fail "--depth FILE: not coverage-correct"
+
 # Overflowed half positions: composited, one note with the count.
 "$VKSKY" --composite "$S/halfpos.exr" --render "$work/out/half.exr" "${SUN[@]}" --validate 2>"$work/err" ||
     fail "half positions: exit $? ($(cat "$work/err"))"
@@ -116,6 +121,7 @@ expect_bad "position from another view layer" "must come from one view layer" --
 expect_bad "--view-layer against --beauty-layer" "must come from one view layer" --composite "$S/edges2.exr" \
     --view-layer Other --beauty-layer ViewLayer.Combined "${OUT[@]}"
 expect_bad "unknown view layer" "no beauty layer 'Nope.Combined'" --composite "$S/edges2.exr" --view-layer Nope "${OUT[@]}"
+expect_bad "a depth file without depth" "no depth channel" --composite "$S/edges.exr" --depth "$S/edges.exr" "${OUT[@]}"
 expect_bad "depth and position" "not with --position" --composite "$S/edges.exr" --depth "$S/depth.exr" \
     --position "$S/edges.exr" "${OUT[@]}"
 

@@ -159,7 +159,13 @@ int composite_pick_inputs(const composite_options *co, const io_exr_info *bi, co
         else if (view_layers_with(di, "Depth", 'Z', false, first, sizeof first, list, sizeof list) == 1)
             snprintf(in->depth.prefix, sizeof in->depth.prefix, "%s.Depth", first), in->depth.letters = "Z";
         else if (has_layer(di, "", "R")) in->depth.letters = "R";
-        else return no_layer(di, co->depth, "depth", "", "Z, <ViewLayer>.Depth.Z or R", "");
+        else {
+            char have[600];
+            list_channels(di, have, sizeof have);
+            fprintf(stderr, "vksky: --depth: %s: no depth channel: expected Z, one <ViewLayer>.Depth.Z or R; the file "
+                            "has %s\n", co->depth, have);
+            return 2;
+        }
         return 0;
     }
 
