@@ -8,7 +8,8 @@
 #  - the coverage identity on every pixel, and the uncovered part equal to (1 - alpha) x a plain sky render
 #    (composite_check);
 #  - in bands of 16 rows: the same pixels as in one band;
-#  - the header: standard and vksky attributes; --scene on the composite renders its sky, on --aovs the same file;
+#  - the header: standard and vksky attributes on the composite, --aovs, an equirect map and a render in bands;
+#    --scene on the composite renders its sky, on the others the same pixels;
 #  - bad inputs: an opaque film, two view layers without a choice, the position from another view layer, a depth
 #    with a position: exit 2 and one line; overflowed half positions: exit 0 and one note with their count.
 #
@@ -58,7 +59,28 @@ if command -v oiiotool >/dev/null; then   # every pixel of every layer the same 
     oiiotool "$work/out/aovs.exr" "$work/out/aovs2.exr" --fail 0 --failpercent 0 --diff >"$work/diff" 2>&1 ||
         fail "--scene on an --aovs render: other pixels: $(tail -n 3 "$work/diff")"
 fi
+# An environment map and a render in bands (the streamed writer): the same header; --scene on each renders it again.
+"$VKSKY" --render "$work/out/map.exr" --projection equirect --width 64 --height 32 --sun-elevation 9 --validate ||
+    fail "equirect map: exit $?"
+VKSKY_TILE_PIXELS=1024 "$VKSKY" --render "$work/out/band.exr" --width 48 --height 40 --validate 2>/dev/null ||
+    fail "render in bands: exit $?"
+for f in map band; do   # (the projection is a render setting, not a scene value: given again for the map)
+    extra=(); [ $f = map ] && extra=(--projection equirect)
+    VKSKY_TILE_PIXELS=1024 "$VKSKY" --scene "$work/out/$f.exr" "${extra[@]}" --render "$work/out/${f}2.exr" --validate \
+        2>"$work/err" ||
+        fail "--scene on $f.exr: exit $? ($(cat "$work/err"))"
+    if command -v oiiotool >/dev/null; then
+        oiiotool "$work/out/$f.exr" "$work/out/${f}2.exr" --fail 0 --failpercent 0 --diff >"$work/diff" 2>&1 ||
+            fail "--scene on $f.exr: other pixels: $(tail -n 3 "$work/diff")"
+    fi
+done
 if command -v oiiotool >/dev/null; then
+    for f in map band; do
+        info=$(oiiotool --info -v "$work/out/$f.exr")
+        for attr in chromaticities software 'vksky:scene' 'vksky:commandLine'; do
+            grep -q "^ *$attr:" <<<"$info" || fail "$f.exr: no $attr attribute in its header"
+        done
+    done
     for f in edges aovs; do
         info=$(oiiotool --info -v "$work/out/$f.exr")
         for attr in chromaticities software 'vksky:scene' 'vksky:commandLine' worldToCamera worldToNDC; do

@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/tiles.h"
+#include "app/exr_header.h"
 #include "app/stop.h"
 #include "app/options.h"
 #include "app/options_projection.h"
@@ -66,15 +67,22 @@ static int open_outputs(const options *o, output *outs)
         .sun_illuminance = {(float)o->atmosphere.sun_illuminance[0], (float)o->atmosphere.sun_illuminance[1],
                             (float)o->atmosphere.sun_illuminance[2]},
         .sun_at_camera = {(float)at_camera[0], (float)at_camera[1], (float)at_camera[2]}};
+    /* Issue 28: the header every EXR of vksky carries; a map's camera matrices would describe no camera. */
+    exr_header hdr;
+    bool has_hdr = exr_header_build(&hdr, o, -1) == 0;
+    if (has_hdr && p != SKY_PROJECTION_PERSPECTIVE) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
+    attrs.meta = has_hdr ? &hdr.meta : NULL;
     for (int i = 0; i < o->output_count; ++i) {
         outs[i].exr = is_exr(o->outputs[i]);
         if (outs[i].exr) outs[i].exr_stream = io_exr_stream_open(o->outputs[i], o->width, o->height, &attrs, err, sizeof err);
         else outs[i].png_stream = io_png_stream_open(o->outputs[i], o->width, o->height, err, sizeof err);
         if (!outs[i].exr_stream && !outs[i].png_stream) {
             fprintf(stderr, "vksky: %s\n", err);
+            if (has_hdr) exr_header_free(&hdr);
             return 1;
         }
     }
+    if (has_hdr) exr_header_free(&hdr);   /* written with each header at open */
     return 0;
 }
 

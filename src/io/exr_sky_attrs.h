@@ -15,5 +15,6 @@ typedef struct io_exr_sky_attrs {
     float sun_illuminance[3];         /* "vksky:sunIlluminance": RGB illuminance at the top of the atmosphere */
     float sun_at_camera[3];           /* "vksky:sunIlluminanceAtCamera": through the atmosphere to the camera (0 when
                                          the planet hides the sun): the separate sun light of a --no-sun-disc map */
+    const struct io_exr_meta *meta;   /* issue 28: the standard and vksky attributes (exr_meta.h; NULL: none) */
 } io_exr_sky_attrs;
 #endif
