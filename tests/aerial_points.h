@@ -33,7 +33,8 @@ static void run_group(test_renderer *t, const group *g, composite_view base, con
     CHECK(rc == 0, "composite create: %s", err);
     if (rc) return;
     composite_view v = base;
-    /* The camera straight above the origin; a Z-up world holds vksky's local (x, y_up, z) as (x, -z, y_up). */
+    /* The camera straight above the origin; vksky's local (north, up, east) is (y, z, x) in a Z-up world and
+     * (-z, y, x) in a Y-up one (docs/aerial_perspective.md "Conventions"). */
     double unit = 1.0 / base.km_per_unit;
     v.camera[0] = v.camera[1] = v.camera[2] = 0.0;
     v.camera[base.up_axis] = g->altitude_km * unit;
@@ -44,8 +45,8 @@ static void run_group(test_renderer *t, const group *g, composite_view base, con
         ref_dir(g->points[i].view_az * TEST_DEG, g->points[i].view_el * TEST_DEG, dir);
         float *beauty = in + 4 * i, *pos = in + 4 * (g->count + i);
         beauty[0] = BEAUTY[0], beauty[1] = BEAUTY[1], beauty[2] = BEAUTY[2], beauty[3] = 1.0f;
-        double w[3] = {dir[0], dir[1], dir[2]};
-        if (base.up_axis == 2) w[1] = -dir[2], w[2] = dir[1];
+        double w[3] = {dir[2], dir[1], -dir[0]};
+        if (base.up_axis == 2) w[0] = dir[2], w[1] = dir[0], w[2] = dir[1];
         for (int k = 0; k < 3; ++k) pos[k] = (float)(v.camera[k] + w[k] * g->points[i].d_km * unit);
         pos[3] = 1.0f;
     }

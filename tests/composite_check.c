@@ -1,9 +1,9 @@
 /* composite_check OUT.exr RENDER.exr [SKY.exr]: the layers of a `vksky --composite` output against its input (a multilayer
  * render with ViewLayer.Combined and ViewLayer.Position, as gen_composite_scene writes it), read back through the
- * EXR reader: on every geometry pixel composite = beauty * transmittance + rayleigh + mie to fp16 precision and
- * alpha = the beauty's, with 0 < T <= 1 and the sky layers 0; on every sky pixel composite = sky + sun_disk and
- * alpha 1. With SKY.exr (a plain `vksky --render` of the same camera, no bloom): on sky pixels the composite is
- * that render to fp16 (vksky's sky along each pixel's ray). A helper of tests/composite_test.sh; exit 0 ok, 1 a
+ * EXR reader: on every pixel the coverage identity composite = beauty T + alpha (rayleigh + mie) + sky + sun_disk
+ * to fp16 precision and alpha 1; 0 < T <= 1 where alpha > 0; sky and sun_disk 0 where alpha = 1. With SKY.exr (a
+ * plain `vksky --render` of the same camera, no bloom): sky + sun_disk = (1 - alpha) x that render to fp16 (vksky's
+ * sky along each pixel's ray, behind the uncovered part). A helper of tests/composite_test.sh; exit 0 ok, 1 a
  * failed check or an unreadable file. */
 #include "io/exr_read.h"
 #include <math.h>
@@ -60,38 +60,39 @@ int main(int argc, char **argv)
     double worst = 0.0;
     for (long i = 0; i < (long)w * h; ++i) {
         const float *p = o + 19 * i, *b = in + 7 * i;
-        bool geo = b[3] > 0.0f && isfinite(b[4]) && isfinite(b[5]) && isfinite(b[6]);
+        double alpha = fmin(fmax(b[3], 0.0), 1.0);
+        bool geo = alpha > 0.0;
         geometry += geo, sky += !geo;
         for (int c = 0; c < 3; ++c) {
-            double T = p[10 + c], R = p[13 + c], M = p[16 + c], expect, tol;
-            if (geo) {
-                expect = b[c] * T + R + M;
-                /* Four half roundings (composite, T, R, M), each within 2^-11 relative: 2e-3 of the terms. */
-                tol = 2e-3 * (fabs(b[c] * T) + R + M) + 1e-6;
-                if (!(T > 0.0 && T <= 1.0) || p[4 + c] != 0.0f || p[7 + c] != 0.0f) ++bad;
-            } else {
-                expect = p[4 + c] + p[7 + c];
-                tol = 2e-3 * expect + 1e-6;
-            }
+            /* The coverage identity (docs/aerial_perspective.md): on every pixel
+             * composite = beauty T + alpha (rayleigh + mie) + sky + sun_disk. */
+            double T = p[10 + c], R = p[13 + c], M = p[16 + c], S = p[4 + c], D = p[7 + c];
+            double expect = b[c] * T + alpha * (R + M) + S + D;
+            /* Six half roundings (composite, T, R, M, sky, sun), each within 2^-11 relative: 2e-3 of the terms. */
+            double tol = 2e-3 * (fabs(b[c] * T) + alpha * (R + M) + S + D) + 1e-6;
+            if (geo && !(T > 0.0 && T <= 1.0)) ++bad;
+            if (alpha == 1.0 && (S != 0.0 || D != 0.0)) ++bad;   /* nothing uncovered: no sky */
             double e = fabs(p[c] - expect);
             worst = fmax(worst, e / tol);
             if (!(e <= tol)) {
                 if (bad < 5)
-                    fprintf(stderr, "composite_check: pixel (%ld, %ld) channel %d: composite %g, layers give %g (%s)\n",
-                            i % w, i / w, c, p[c], expect, geo ? "geometry" : "sky");
+                    fprintf(stderr, "composite_check: pixel (%ld, %ld) channel %d: composite %g, layers give %g "
+                            "(alpha %g)\n", i % w, i / w, c, p[c], expect, alpha);
                 ++bad;
             }
         }
-        if (p[3] != (geo ? b[3] : 1.0f)) ++bad;
-        for (int c = 0; sky_render && !geo && c < 3; ++c) {
-            /* The same march, rounded to fp16 on both sides; float differences between the sky pass (fragment on
-             * lavapipe) and this compute pass move it by up to 2 fp16 ulps (1.1e-3): 3e-3 allows 3. */
-            double ref = sky_render[3 * i + c], tol = 3e-3 * ref + 1e-6, e = fabs(p[c] - ref);
+        if (p[3] != 1.0f) ++bad;   /* the uncovered part is filled with sky */
+        for (int c = 0; sky_render && alpha < 1.0 && c < 3; ++c) {
+            /* The uncovered part is the sky along the pixel's ray: (1 - alpha) x a plain render of it. The same
+             * march, rounded to fp16 on both sides; float differences between the sky pass (fragment on lavapipe)
+             * and this compute pass move it by up to 2 fp16 ulps (1.1e-3): 3e-3 allows 3. */
+            double ref = (1.0 - alpha) * sky_render[3 * i + c], tol = 3e-3 * ref + 1e-6;
+            double e = fabs(p[4 + c] + p[7 + c] - ref);
             worst_sky = fmax(worst_sky, e / tol);
             if (!(e <= tol)) {
                 if (bad < 5)
-                    fprintf(stderr, "composite_check: sky pixel (%ld, %ld) channel %d: composite %g, sky render %g\n",
-                            i % w, i / w, c, p[c], ref);
+                    fprintf(stderr, "composite_check: pixel (%ld, %ld) channel %d: sky + sun_disk %g, (1 - alpha) x "
+                            "the sky render %g\n", i % w, i / w, c, p[4 + c] + p[7 + c], ref);
                 ++bad;
             }
         }

@@ -12,9 +12,22 @@
  *                       sun at azimuth -70, elevation 12 degrees: composite with --sun-azimuth -70 --sun-elevation 12):
  *                       --camera-position -3.5,-8.5,218.8 --yaw -90 --pitch -3 --fov 40
  *   "sky": the camera looks 60 degrees up: no pixel has geometry (a bad input for the composite).
+ *   "edges" (issue 28): the scene rendered at 4x the size with no anti-aliasing (alpha 0 or 1) into DIR/hi.exr, and
+ *     from it, as Cycles writes it, the WIDTH x HEIGHT render with 4x4 coverage (alpha in [0, 1], premultiplied
+ *     beauty) whose Position and Depth come from one of the pixel's 16 samples ((0, 0, 0) and 1e10 where it missed):
+ *     DIR/edges.exr   ViewLayer.Combined, ViewLayer.Position, and Composite.Combined (the beauty x 2: a grade)
+ *     DIR/edges2.exr  the same and a second view layer Other (beauty x 0.5, positions 1 km higher)
+ *     DIR/depth.exr   ViewLayer.Combined and ViewLayer.Depth.Z (camera-space Z) only
+ *     DIR/opaque.exr  an opaque film: alpha 1 everywhere, the background grey at position (0, 0, 0)
+ *     DIR/halfpos.exr ViewLayer.Position stored as HALF: the ground beyond 65504 m overflows to inf
+ *     Box-filtering a composite of hi.exr 4x4 gives the coverage-correct composite of edges.exr.
+ *   "flat": DIR/render.exr of up to 16384 x 16384 pixels made fast (every row the same: it compresses to nothing),
+ *     no camera attributes: the left 1/64 of the width a grey surface on the ground 1 km north of the camera
+ *     (-3.5, -8.5, 218.8), the rest background (alpha 0, position NaN); for the composite's memory bound.
  *
  * The pixel rays follow vksky's image convention (docs/model.md: yaw/pitch like the sun's azimuth/elevation, in the
- * world turned so that Z is up: (x, y_up, z) -> (x, -z, y_up)) but are computed here on their own; the files are
+ * world turned so that Z is up, north +Y and east +X: (north, up, east) -> (east, north, up)) but are computed here
+ * on their own; the files are
  * written through OpenEXRCore directly, not through vksky's writers. */
 #include <math.h>
 #include <stdbool.h>
@@ -31,12 +44,13 @@ static double PITCH = -3.0;   /* "sky": 60 (nothing but sky in view) */
 
 typedef struct sphere { double centre[3], radius, albedo[3]; } sphere;
 
-/* vksky's direction of (azimuth, elevation) in its local frame (+Y up), turned into the Z-up world. */
+/* vksky's direction of (azimuth, elevation) in its local frame (north, up, east), turned into the Z-up world
+ * (Blender's: north +Y, east +X). */
 static void world_dir(double az_deg, double el_deg, double out[3])
 {
     double az = az_deg * PI / 180.0, el = el_deg * PI / 180.0;
     double l[3] = {cos(el) * cos(az), sin(el), cos(el) * sin(az)};
-    out[0] = l[0], out[1] = -l[2], out[2] = l[1];
+    out[0] = l[2], out[1] = l[0], out[2] = l[1];
 }
 
 static double dot(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
@@ -66,7 +80,8 @@ static uint16_t to_half(float f)
 typedef struct channel { const char *name; int half; const float *plane; } channel;
 
 /* One scanline part: planar float channels (stored as HALF or FLOAT), optional camera attributes. */
-static int write_exr(const char *path, int w, int h, const channel *ch, int count, const float *w2c, const float *w2n)
+static int write_exr(const char *path, int w, int h, const channel *ch, int count, const float *w2c, const float *w2n,
+                     int one_row)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_context_t f = NULL;
@@ -99,7 +114,7 @@ static int write_exr(const char *path, int w, int h, const channel *ch, int coun
             bufs[k] = malloc((size_t)w * ci.height * bpe);
             for (int y = 0; y < ci.height; ++y)
                 for (int x = 0; x < w; ++x) {
-                    float v = c->plane[(size_t)(y0 + y) * w + x];
+                    float v = c->plane[one_row ? (size_t)x : (size_t)(y0 + y) * w + x];   /* one_row: every row the same */
                     size_t at = (size_t)y * w + x;
                     if (c->half) ((uint16_t *)bufs[k])[at] = to_half(v);
                     else ((float *)bufs[k])[at] = v;
@@ -125,15 +140,35 @@ static int write_exr(const char *path, int w, int h, const channel *ch, int coun
 
 int main(int argc, char **argv)
 {
-    if (argc != 2 && argc != 4 && !(argc == 5 && !strcmp(argv[4], "sky"))) {
-        fprintf(stderr, "usage: gen_composite_scene DIR [WIDTH HEIGHT [sky]]\n");
+    bool edges = argc == 5 && !strcmp(argv[4], "edges"), flat = argc == 5 && !strcmp(argv[4], "flat");
+    if (argc != 2 && argc != 4 && !(argc == 5 && (!strcmp(argv[4], "sky") || edges || flat))) {
+        fprintf(stderr, "usage: gen_composite_scene DIR [WIDTH HEIGHT [sky|edges|flat]]\n");
         return 2;
     }
-    if (argc == 5) PITCH = 60.0;
+    if (argc == 5 && !strcmp(argv[4], "sky")) PITCH = 60.0;
     int W = argc >= 4 ? atoi(argv[2]) : 960, H = argc >= 4 ? atoi(argv[3]) : 540;
-    if (W < 8 || H < 8 || W > 8192 || H > 8192) {
-        fprintf(stderr, "gen_composite_scene: WIDTH and HEIGHT in [8, 8192]\n");
+    const int SS = 4;   /* "edges": samples per pixel side */
+    if (edges) W *= SS, H *= SS;
+    int most = flat ? 16384 : 8192;
+    if (W < 8 || H < 8 || W > most || H > most) {
+        fprintf(stderr, "gen_composite_scene: WIDTH and HEIGHT in [8, %d]\n", most);
         return 2;
+    }
+    if (flat) {   /* one row of each constant plane, repeated: write_exr reads plane[y * w + x] */
+        float *row = malloc((size_t)W * 7 * sizeof(float));
+        float *px = row, value[7] = {0.2f, 0.2f, 0.2f, 1.0f, (float)CAMERA[0], (float)(CAMERA[1] + 1000.0), 0.0f};
+        for (int k = 0; k < 7; ++k)
+            for (int x = 0; x < W; ++x) px[(size_t)k * W + x] = x < W / 64 ? value[k] : k < 4 ? 0.0f : NAN;
+        const char *names[7] = {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B",
+                                "ViewLayer.Combined.A", "ViewLayer.Position.X", "ViewLayer.Position.Y",
+                                "ViewLayer.Position.Z"};
+        channel ch[7];
+        for (int k = 0; k < 7; ++k) ch[k] = (channel){names[k], k < 4, px + (size_t)k * W};
+        char path[4096];
+        snprintf(path, sizeof path, "%s/render.exr", argv[1]);
+        int rc = write_exr(path, W, H, ch, 7, NULL, NULL, 1);
+        free(row);
+        return rc ? 1 : 0;
     }
     /* The camera basis (vksky's: right = forward x up-axis, up = right x forward) in world axes. */
     double f[3], right[3], up[3], sun[3];
@@ -216,17 +251,87 @@ int main(int argc, char **argv)
         }
     char path[4096];
     int rc = 0;
+    if (edges) {
+        float *depth_hi = nanpos;   /* camera-space Z of each sample (the plain file's NaN plane is not written) */
+        for (size_t i = 0; i < n; ++i) {
+            double d[3] = {X[i] - CAMERA[0], Y[i] - CAMERA[1], Z[i] - CAMERA[2]};
+            depth_hi[i] = A[i] > 0.0f ? (float)dot(d, f) : 1e10f;
+        }
+        channel hi[7] = {{"ViewLayer.Combined.R", 1, R}, {"ViewLayer.Combined.G", 1, G}, {"ViewLayer.Combined.B", 1, B},
+                         {"ViewLayer.Combined.A", 1, A}, {"ViewLayer.Position.X", 0, X}, {"ViewLayer.Position.Y", 0, Y},
+                         {"ViewLayer.Position.Z", 0, Z}};
+        snprintf(path, sizeof path, "%s/hi.exr", argv[1]);
+        rc |= write_exr(path, W, H, hi, 7, w2c, w2n, 0);
+        int w = W / SS, h = H / SS;
+        size_t m = (size_t)w * h;
+        float *lo = calloc(m * 19, sizeof(float));
+        float *L[19];
+        for (int k = 0; k < 19; ++k) L[k] = lo + (size_t)k * m;
+        /* 0-3 beauty, 4-6 position, 7 depth, 8-11 Composite, 12-15 Other beauty, 16-18 Other position */
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                size_t o = (size_t)y * w + x;
+                for (int sy = 0; sy < SS; ++sy)
+                    for (int sx = 0; sx < SS; ++sx) {
+                        size_t i = (size_t)(y * SS + sy) * W + (size_t)(x * SS + sx);
+                        L[0][o] += R[i] / (SS * SS), L[1][o] += G[i] / (SS * SS), L[2][o] += B[i] / (SS * SS);
+                        L[3][o] += A[i] / (SS * SS);
+                    }
+                /* Position and depth from one sample, as Cycles does: a fixed pseudo-random one per pixel. */
+                unsigned hash = (unsigned)(x * 73856093u) ^ (unsigned)(y * 19349663u);
+                int sx = (int)(hash % SS), sy = (int)((hash / SS) % SS);
+                size_t i = (size_t)(y * SS + sy) * W + (size_t)(x * SS + sx);
+                L[4][o] = X[i], L[5][o] = Y[i], L[6][o] = Z[i], L[7][o] = depth_hi[i];
+                for (int c = 0; c < 4; ++c) L[8 + c][o] = L[c][o] * (c < 3 ? 2.0f : 1.0f), L[12 + c][o] = L[c][o] * (c < 3 ? 0.5f : 1.0f);
+                L[16][o] = L[4][o], L[17][o] = L[5][o], L[18][o] = L[6][o] + (L[3][o] > 0.0f ? 1000.0f : 0.0f);
+            }
+        const char *names[19] = {"ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B",
+                                 "ViewLayer.Combined.A", "ViewLayer.Position.X", "ViewLayer.Position.Y",
+                                 "ViewLayer.Position.Z", "ViewLayer.Depth.Z", "Composite.Combined.R",
+                                 "Composite.Combined.G", "Composite.Combined.B", "Composite.Combined.A",
+                                 "Other.Combined.R", "Other.Combined.G", "Other.Combined.B", "Other.Combined.A",
+                                 "Other.Position.X", "Other.Position.Y", "Other.Position.Z"};
+        channel all[19];
+        for (int k = 0; k < 19; ++k) all[k] = (channel){names[k], k < 4 || (k >= 8 && k < 16), L[k]};
+        channel one[11];   /* edges.exr: beauty, position, Composite */
+        for (int k = 0; k < 7; ++k) one[k] = all[k];
+        for (int k = 0; k < 4; ++k) one[7 + k] = all[8 + k];
+        snprintf(path, sizeof path, "%s/edges.exr", argv[1]);
+        rc |= write_exr(path, w, h, one, 11, w2c, w2n, 0);
+        channel two[18];
+        for (int k = 0, j = 0; k < 19; ++k)
+            if (k != 7) two[j++] = all[k];
+        snprintf(path, sizeof path, "%s/edges2.exr", argv[1]);
+        rc |= write_exr(path, w, h, two, 18, w2c, w2n, 0);
+        channel dep[5] = {all[0], all[1], all[2], all[3], all[7]};
+        snprintf(path, sizeof path, "%s/depth.exr", argv[1]);
+        rc |= write_exr(path, w, h, dep, 5, w2c, w2n, 0);
+        channel half_pos[7];
+        for (int k = 0; k < 7; ++k) half_pos[k] = all[k], half_pos[k].half = 1;
+        snprintf(path, sizeof path, "%s/halfpos.exr", argv[1]);
+        rc |= write_exr(path, w, h, half_pos, 7, w2c, w2n, 0);
+        for (size_t i = 0; i < m; ++i)
+            if (L[3][i] < 1.0f) {   /* an opaque film: the background fills the rest; no sample hit, no position */
+                for (int c = 0; c < 3; ++c) L[c][i] += (1.0f - L[3][i]) * 0.5f;
+                L[3][i] = 1.0f;
+            }
+        snprintf(path, sizeof path, "%s/opaque.exr", argv[1]);
+        rc |= write_exr(path, w, h, one, 7, w2c, w2n, 0);
+        free(lo);
+        free(pl);
+        return rc ? 1 : 0;
+    }
     channel multi[7] = {{"ViewLayer.Combined.R", 1, R}, {"ViewLayer.Combined.G", 1, G}, {"ViewLayer.Combined.B", 1, B},
                         {"ViewLayer.Combined.A", 1, A}, {"ViewLayer.Position.X", 0, X}, {"ViewLayer.Position.Y", 0, Y},
                         {"ViewLayer.Position.Z", 0, Z}};
     snprintf(path, sizeof path, "%s/render.exr", argv[1]);
-    rc |= write_exr(path, W, H, multi, 7, w2c, w2n);
+    rc |= write_exr(path, W, H, multi, 7, w2c, w2n, 0);
     channel beauty[4] = {{"R", 1, R}, {"G", 1, G}, {"B", 1, B}, {"A", 1, A}};
     snprintf(path, sizeof path, "%s/beauty.exr", argv[1]);
-    rc |= write_exr(path, W, H, beauty, 4, NULL, NULL);
+    rc |= write_exr(path, W, H, beauty, 4, NULL, NULL, 0);
     channel position[3] = {{"R", 0, PX}, {"G", 0, PY}, {"B", 0, PZ}};
     snprintf(path, sizeof path, "%s/position.exr", argv[1]);
-    rc |= write_exr(path, W, H, position, 3, NULL, NULL);
+    rc |= write_exr(path, W, H, position, 3, NULL, NULL, 0);
     snprintf(path, sizeof path, "%s/camera.txt", argv[1]);
     FILE *cf = fopen(path, "w");
     if (cf) {

@@ -1,15 +1,17 @@
 #version 450
-/* The composite pass: the atmosphere applied to a rendered image (seed 004's workflow). Per pixel with geometry:
- * L = beauty T + S along the ray from the camera to the pixel's world position (aerial.glsl); per pixel without
- * (non-finite position or alpha 0): vksky's sky along the pixel's ray when the camera orientation is known, else
- * the beauty unchanged. Writes the composite and the AOV layers (shared.h, VKSKY_AOV_*). */
+/* The composite pass: the atmosphere applied to a rendered image (seed 004's workflow), coverage-correct (issue 28).
+ * Per pixel, the covered part (alpha, with a finite world position): beauty T + alpha S along the ray from the
+ * camera to that position (aerial.glsl); the uncovered part (1 - alpha): vksky's sky along the pixel's ray when the
+ * camera orientation is known, else nothing (the beauty's alpha kept). Writes the composite and the AOV layers
+ * (shared.h, VKSKY_AOV_*). */
 #extension GL_GOOGLE_include_directive : require
 #include "atmosphere.glsl"
 
 layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
 layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
 layout(set = 0, binding = 5) uniform sampler2D ground_irradiance_lut;
-/* The inputs, one image of 2 bands: rows [0, H) the beauty RGBA, rows [H, 2H) the world position XYZ. */
+/* The inputs, one image of 2 bands: rows [0, H) the beauty RGBA, rows [H, 2H) the world position XYZ (H: the rows of
+ * the frame's band being composited). */
 layout(set = 0, binding = 3) uniform sampler2D composite_in;
 layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D composite_out;
 layout(push_constant) uniform Push { CompositePush push; };
@@ -46,9 +48,17 @@ void main()
     vec3 position = texelFetch(composite_in, ivec2(p.x, p.y + height), 0).xyz;
     float h = push.forward.w;
     vec3 s = push.sun_dir.xyz;
-    vec4 composite = beauty;
+    /* Alpha is coverage and the beauty premultiplied (what renderers write): the covered part gets the
+     * atmosphere to its surface, beauty T + alpha S; the uncovered part (1 - alpha) the sky behind it, also in the
+     * sky and sun_disk layers, so that on every pixel
+     *     composite.rgb = beauty.rgb * transmittance + alpha (rayleigh + mie) + sky + sun_disk
+     * (docs/aerial_perspective.md "The coverage identity"). Without a known orientation there is no sky: the
+     * uncovered part stays the beauty's (alpha kept). */
+    float alpha = clamp(beauty.a, 0.0, 1.0);
+    bool oriented = dot(push.forward.xyz, push.forward.xyz) > 0.0;
     vec3 sky = vec3(0.0), sun = vec3(0.0), transmittance = vec3(1.0), rayleigh = vec3(0.0), mie = vec3(0.0);
-    if (finite3(position) && beauty.a > 0.0) {
+    bool covered = finite3(position) && alpha > 0.0;
+    if (covered) {
         /* The offset in world units (small numbers: no planet-scale subtraction), then to march-frame km. */
         vec3 dw = position - vec3(push.world_to_march[0].w, push.world_to_march[1].w, push.world_to_march[2].w);
         vec3 d = vec3(dot(push.world_to_march[0].xyz, dw), dot(push.world_to_march[1].xyz, dw),
@@ -64,19 +74,24 @@ void main()
         transmittance = a.transmittance;
         rayleigh = a.rayleigh;
         mie = a.mie;
-        composite = vec4(beauty.rgb * transmittance + rayleigh + mie, beauty.a);
-    } else if (dot(push.forward.xyz, push.forward.xyz) > 0.0) {
-        /* No geometry: the sky along this pixel's ray (the sky pass's ray matrix), the sun disc apart. */
-        vec2 ndc = vec2(2.0 * (float(p.x) + 0.5) * push.right.w - 1.0, 1.0 - 2.0 * (float(p.y) + 0.5) * push.up.w);
+    }
+    if (oriented && alpha < 1.0) {
+        /* The sky along this pixel's ray (the sky pass's ray matrix), the sun disc apart. */
+        /* The image is one band of the frame: its first row is push.right.w, the frame's height 1 / push.up.w. */
+        vec2 ndc = vec2(2.0 * (float(p.x) + 0.5) / float(size.x) - 1.0,
+                        1.0 - 2.0 * (float(p.y) + push.right.w + 0.5) * push.up.w);
         vec3 v = normalize(push.forward.xyz + ndc.x * push.right.xyz + ndc.y * push.up.xyz);
         MarchSegment seg = march_segment(h, v, s, push.march, push.sun_dir.w, 3.0e38);
-        transmittance = seg.throughput;
-        rayleigh = seg.rayleigh;
-        mie = seg.mie;
-        sky = rayleigh + mie + lit_ground(seg);
-        sun = sun_disc(v, s, seg.throughput, seg.hits_ground);
-        composite = vec4(sky + sun, 1.0);
+        if (alpha == 0.0) {   /* nothing covered: the layers are the sky's */
+            transmittance = seg.throughput;
+            rayleigh = seg.rayleigh;
+            mie = seg.mie;
+        }
+        sky = (1.0 - alpha) * (seg.rayleigh + seg.mie + lit_ground(seg));
+        sun = (1.0 - alpha) * sun_disc(v, s, seg.throughput, seg.hits_ground);
     }
+    vec3 rgb = beauty.rgb * transmittance + alpha * (rayleigh + mie) + sky + sun;
+    vec4 composite = vec4(rgb, oriented ? 1.0 : beauty.a);
     store(p, height, VKSKY_AOV_COMPOSITE, composite);
     store(p, height, VKSKY_AOV_SKY, vec4(sky, 1.0));
     store(p, height, VKSKY_AOV_SUN_DISK, vec4(sun, 1.0));

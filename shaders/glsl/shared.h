@@ -58,8 +58,9 @@ VKSKY_STRUCT(SkyPush) {
 VKSKY_STRUCT(CompositePush) {
     vec4 forward;              /* xyz: view axis in the march frame (zero: orientation unknown, sky pixels keep
                                   the beauty), w: camera altitude km (from double on the CPU) */
-    vec4 right;                /* xyz: right * tan(fov/2)*aspect, w: 1 / width */
-    vec4 up;                   /* xyz: up * tan(fov/2),           w: 1 / height */
+    vec4 right;                /* xyz: right * tan(fov/2)*aspect, w: the first row of the band composited (the
+                                  width is the band's: composite.comp reads it from its input image) */
+    vec4 up;                   /* xyz: up * tan(fov/2),           w: 1 / height (the whole frame's) */
     vec4 sun_dir;              /* xyz: toward the sun in the march frame, w: step distribution exponent */
     vec4 march;                /* as SkyPush.march: min steps, max steps, sample position, km at max steps */
     vec4 world_to_march[3];    /* rows of the 3x3 matrix from a world-unit offset to march-frame km (axis swap,

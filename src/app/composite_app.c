@@ -2,6 +2,9 @@
  * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
  * stderr and exit status 2, before any output file exists. */
 #include "app/composite_app.h"
+#include "app/composite_bands.h"
+#include "app/composite_layers.h"
+#include "app/exr_header.h"
 #include "app/stop.h"
 #include "io/exr_layers.h"
 #include "io/exr_read.h"
@@ -19,139 +22,6 @@
 #include <strings.h>
 
 static const char *const AOV_NAMES[VKSKY_AOV_COUNT] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
-
-/* --- Finding the layers ---------------------------------------------------------------------------------- */
-
-static bool has_channel(const io_exr_info *info, const char *name)
-{
-    for (int i = 0; i < info->channel_count; ++i)
-        if (!strcmp(info->channels[i].name, name)) return true;
-    return false;
-}
-
-/* "<prefix>.<c>" for each of the channel letters in `letters` present? (prefix "" = top level: "<c>"). */
-static bool has_layer(const io_exr_info *info, const char *prefix, const char *letters)
-{
-    char name[512];
-    for (const char *c = letters; *c; ++c) {
-        snprintf(name, sizeof name, "%s%s%c", prefix, *prefix ? "." : "", *c);
-        if (!has_channel(info, name)) return false;
-    }
-    return true;
-}
-
-/* The layer of the first channel named "<anything><suffix>" (e.g. suffix ".Combined.R" -> "ViewLayer.Combined"):
- * Blender names it after the view layer, whatever that is called. */
-static bool find_layer(const io_exr_info *info, const char *suffix, char *out, size_t size)
-{
-    size_t ls = strlen(suffix);
-    for (int i = 0; i < info->channel_count; ++i) {
-        const char *n = info->channels[i].name;
-        size_t ln = strlen(n);
-        /* The layer is the name less its ".R" / ".X". */
-        if (ln > ls && !strcmp(n + ln - ls, suffix) && ln - 2 < size) {
-            snprintf(out, size, "%.*s", (int)(ln - 2), n);
-            return true;
-        }
-    }
-    return false;
-}
-
-/* The channel list for a message: "R, G, B, ViewLayer.Combined.R, ..." (the first dozen). */
-static void list_channels(const io_exr_info *info, char *out, size_t size)
-{
-    out[0] = '\0';
-    size_t used = 0;
-    for (int i = 0; i < info->channel_count && i < 12; ++i) {
-        int n = snprintf(out + used, size - used, "%s%s", i ? ", " : "", info->channels[i].name);
-        if (n < 0 || (size_t)n >= size - used) break;
-        used += (size_t)n;
-    }
-    if (info->channel_count > 12 && used + 8 < size) strcat(out, ", ...");
-    if (info->channel_count == 0) snprintf(out, size, "no channels");
-}
-
-typedef struct layer_pick {
-    char prefix[256];
-    const char *letters;      /* "RGBA", "RGB", "XYZ" */
-} layer_pick;
-
-static int pick_beauty(const io_exr_info *info, const char *path, const char *asked, layer_pick *p)
-{
-    char have[600];
-    if (asked) {
-        snprintf(p->prefix, sizeof p->prefix, "%s", asked);
-    } else if (!find_layer(info, ".Combined.R", p->prefix, sizeof p->prefix)) {
-        if (!has_layer(info, "", "RGB")) {
-            list_channels(info, have, sizeof have);
-            fprintf(stderr, "vksky: --composite: %s: no beauty layer: expected <ViewLayer>.Combined.R,G,B,A or "
-                            "R,G,B,A (or --beauty-layer NAME); the file has %s\n", path, have);
-            return 2;
-        }
-        p->prefix[0] = '\0';
-    }
-    p->letters = has_layer(info, p->prefix, "RGBA") ? "RGBA" : "RGB";
-    if (!has_layer(info, p->prefix, "RGB")) {
-        list_channels(info, have, sizeof have);
-        fprintf(stderr, "vksky: --composite: %s: no beauty layer '%s' (channels %s%sR,G,B[,A]); the file has %s\n",
-                path, p->prefix, p->prefix, *p->prefix ? "." : "", have);
-        return 2;
-    }
-    return 0;
-}
-
-static int pick_position(const io_exr_info *info, const char *path, const char *asked, bool own_file, layer_pick *p)
-{
-    char have[600];
-    if (asked) {
-        snprintf(p->prefix, sizeof p->prefix, "%s", asked);
-    } else if (!find_layer(info, ".Position.X", p->prefix, sizeof p->prefix)) {
-        p->prefix[0] = '\0';
-        if (!own_file || !(has_layer(info, "", "XYZ") || has_layer(info, "", "RGB"))) {
-            list_channels(info, have, sizeof have);
-            fprintf(stderr, "vksky: --composite: %s: no position layer: expected <ViewLayer>.Position.X,Y,Z%s (or "
-                            "--position-layer NAME, or --position FILE.exr); the file has %s\n", path,
-                    own_file ? " or X,Y,Z or R,G,B" : "", have);
-            return 2;
-        }
-    }
-    /* X, Y, Z; a position with just R, G, B (a plain image) is read as X, Y, Z. */
-    p->letters = has_layer(info, p->prefix, "XYZ") ? "XYZ" : has_layer(info, p->prefix, "RGB") ? "RGB" : NULL;
-    if (!p->letters) {
-        list_channels(info, have, sizeof have);
-        fprintf(stderr, "vksky: --composite: %s: no position layer '%s' (channels %s%sX,Y,Z or R,G,B); the file has %s\n",
-                path, p->prefix, p->prefix, *p->prefix ? "." : "", have);
-        return 2;
-    }
-    return 0;
-}
-
-/* Read a picked layer into `out` (stride 4 floats per pixel; a missing alpha reads as 1). */
-static int read_layer(const char *path, const layer_pick *p, int width, int height, float *out)
-{
-    size_t n = (size_t)width * height, count = strlen(p->letters);
-    char names_buf[4][300];
-    const char *names[4];
-    for (size_t i = 0; i < count; ++i) {
-        snprintf(names_buf[i], sizeof names_buf[i], "%s%s%c", p->prefix, *p->prefix ? "." : "", p->letters[i]);
-        names[i] = names_buf[i];
-    }
-    float *tmp = malloc(n * count * sizeof(float));
-    char err[512];
-    if (!tmp) {
-        fprintf(stderr, "vksky: --composite: %s: out of memory for %dx%d pixels\n", path, width, height);
-        return 1;
-    }
-    if (io_exr_read_channels(path, names, (int)count, tmp, err, sizeof err) != 0) {
-        fprintf(stderr, "vksky: --composite: %s\n", err);
-        free(tmp);
-        return 2;
-    }
-    for (size_t i = 0; i < n; ++i)
-        for (size_t c = 0; c < 4; ++c) out[4 * i + c] = c < count ? tmp[count * i + c] : 1.0f;
-    free(tmp);
-    return 0;
-}
 
 /* --- The camera ------------------------------------------------------------------------------------------- */
 
@@ -253,7 +123,8 @@ static int gpu_end(gpu_context *ctx, sky_renderer *r, int status)
 
 /* The composite RGBA at the top level (or `top` when given), the AOVs as RGB layers (io/exr_layers.h: half, the
  * layer.channel names). */
-static int write_layers(const char *path, const sky_composite *c, const float *top, char *err, size_t err_size)
+static int write_layers(const char *path, const sky_composite *c, const float *top, const io_exr_meta *meta, char *err,
+                        size_t err_size)
 {
     size_t n = (size_t)c->width * c->height;
     float *rgb = malloc(n * 3 * sizeof(float) * (VKSKY_AOV_COUNT - 1));
@@ -270,7 +141,8 @@ static int write_layers(const char *path, const sky_composite *c, const float *t
             for (int ch = 0; ch < 3; ++ch) dst[3 * i + ch] = src[4 * i + ch];
         layers[k] = (io_exr_out_layer){AOV_NAMES[k], 3, dst};
     }
-    int rc = io_write_exr_layers(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, err, err_size);
+    int rc = io_write_exr_layers_meta(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, meta, err,
+                                      err_size);
     free(rgb);
     return rc;
 }
@@ -282,6 +154,26 @@ static composite_view view_from_options(const options *o)
                             .steps = o->view.steps, .max_steps = o->view.max_steps,
                             .steps_ramp_km = o->view.steps_ramp_km, .sample_offset = o->view.sample_offset,
                             .step_distribution = o->view.step_distribution};
+}
+
+/* The options that describe the composite's sky as a plain render (its header's vksky:scene, so that `vksky --scene
+ * OUT.exr` renders the sky of its uncovered pixels): the camera's altitude, and its direction as yaw/pitch in vksky's
+ * local frame (a camera's roll is not a scene value: it is lost), its field of view and the image's size. */
+static options composite_scene(const options *o, const composite_options *co, const composite_view *v,
+                               double altitude_km, int width, int height)
+{
+    options s = *o;
+    if (co->argv_all) s.argc = co->argc_all, s.argv = co->argv_all;
+    s.width = width, s.height = height;
+    s.view.altitude_km = altitude_km;
+    if (v->oriented) {
+        double f[3];
+        composite_world_to_local(v->up_axis, v->forward, f);
+        s.view.pitch_deg = asin(fmax(-1.0, fmin(1.0, f[1]))) * 180.0 / 3.14159265358979323846;
+        s.view.yaw_deg = atan2(f[2], f[0]) * 180.0 / 3.14159265358979323846;
+        s.view.fov_deg = v->fov_y_deg;
+    }
+    return s;
 }
 
 static int compare_double(const void *a, const void *b)
@@ -363,32 +255,34 @@ int composite_run(const options *o, const composite_options *co)
         fprintf(stderr, "vksky: --render: %s\n", err);
         return 2;
     }
-    /* The files and their layers. */
-    const char *beauty_path = co->input, *position_path = co->position ? co->position : co->input;
-    io_exr_info bi = {0}, pi = {0};
+    /* The files and their layers (app/composite_layers.c: one view layer for all of them). */
+    const char *beauty_path = co->input;
+    io_exr_info bi = {0}, pi = {0}, di = {0};
     if (io_exr_read_info(beauty_path, &bi, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --composite: %s\n", err);
         return 2;
     }
     int status = 0;
-    if (co->position && io_exr_read_info(position_path, &pi, err, sizeof err) != 0) {
-        fprintf(stderr, "vksky: --position: %s\n", err);
+    const char *extra_flag = co->depth ? "--depth" : "--position", *extra_path = co->depth ? co->depth : co->position;
+    io_exr_info *extra = co->depth ? &di : &pi;
+    if (extra_path && io_exr_read_info(extra_path, extra, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: %s: %s\n", extra_flag, err);
         io_exr_info_free(&bi);
         return 2;
     }
+    composite_inputs inputs;
+    if (composite_pick_inputs(co, &bi, &pi, &di, &inputs) != 0) {
+        status = 2;
+        goto done_info;
+    }
+    if (extra_path && (extra->width != bi.width || extra->height != bi.height)) {
+        fprintf(stderr, "vksky: %s: %s is %dx%d but the beauty %s is %dx%d; they must be the same size\n", extra_flag,
+                extra_path, extra->width, extra->height, beauty_path, bi.width, bi.height);
+        status = 2;
+        goto done_info;
+    }
     const io_exr_info *pinfo = co->position ? &pi : &bi;
-    layer_pick bp, pp;
-    if (pick_beauty(&bi, beauty_path, co->beauty_layer, &bp) ||
-        pick_position(pinfo, position_path, co->position_layer, co->position != NULL, &pp)) {
-        status = 2;
-        goto done_info;
-    }
-    if (pinfo->width != bi.width || pinfo->height != bi.height) {
-        fprintf(stderr, "vksky: --position: %s is %dx%d but the beauty %s is %dx%d; they must be the same size\n",
-                position_path, pinfo->width, pinfo->height, beauty_path, bi.width, bi.height);
-        status = 2;
-        goto done_info;
-    }
+    const char *position_path = inputs.has_depth ? inputs.depth_path : inputs.position_path;
     int w = bi.width, h = bi.height;
     size_t n = (size_t)w * h;
 
@@ -425,29 +319,45 @@ int composite_run(const options *o, const composite_options *co)
         status = 2;
         goto done_info;
     }
-    gpu_context ctx;
-    sky_renderer r;
-    /* Inputs, before the GPU: a bad pixel pass fails fast. */
-    float *beauty = malloc(n * 4 * sizeof(float)), *position = malloc(n * 4 * sizeof(float));
-    if (!beauty || !position) {
-        fprintf(stderr, "vksky: --composite: out of memory for %dx%d pixels\n", w, h);
-        status = 1;
-        goto done_pixels;
+    if (inputs.has_depth && !v.oriented) {
+        fprintf(stderr, "vksky: --composite: a depth pass needs the camera's orientation and field of view (no "
+                        "worldToCamera/worldToNDC in %s): give --yaw/--pitch/--fov\n", beauty_path);
+        status = 2;
+        goto done_info;
     }
-    if ((status = read_layer(beauty_path, &bp, w, h, beauty)) || (status = read_layer(position_path, &pp, w, h, position)))
-        goto done_pixels;
+    /* The inputs in bands (app/composite_bands.h), first read only to check and count them: a bad pixel pass
+     * fails before the GPU starts and before any output exists. */
+    int band_rows = composite_band_rows(w, h);
+    band_reader reader;
+    if ((status = band_reader_init(&reader, beauty_path, &inputs, &v, w, h, band_rows)) != 0) goto done_info;
+    composite_fixups fix = {0};
     size_t geometry = 0, sky = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const float *p = position + 4 * i;
-        bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-        if (finite && beauty[4 * i + 3] > 0.0f) ++geometry;
-        else ++sky;
+    for (int y0 = 0; y0 < h && status == 0; y0 += band_rows) {
+        if ((status = band_reader_read(&reader, y0, &fix)) != 0) break;
+        const composite_band *band = &reader.band;
+        size_t core = (size_t)(band->core_row - band->first_row) * w, end = core + (size_t)band->core_rows * w;
+        for (size_t i = core; i < end; ++i) {
+            const float *p = reader.position + 4 * i;
+            bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+            if (finite && reader.beauty[4 * i + 3] > 0.0f) ++geometry;
+            else ++sky;
+        }
+    }
+    if (status) goto done_reader;
+    if (fix.opaque >= 16 && fix.opaque * 100 >= n) {
+        fprintf(stderr, "vksky: --composite: %s: the film is opaque: %zu pixels (%.0f %%) have alpha 1 and no "
+                        "position (a background, not geometry): render with a transparent film (Blender: Render "
+                        "Properties > Film > Transparent) so that the sky can go behind\n",
+                beauty_path, fix.opaque, 100.0 * (double)fix.opaque / (double)n);
+        status = 2;
+        goto done_reader;
     }
     if (geometry == 0) {
-        fprintf(stderr, "vksky: --composite: %s: the position pass has no finite pixel with alpha > 0: nothing to "
-                        "apply the atmosphere to (is it the world-position pass?)\n", position_path);
+        fprintf(stderr, "vksky: --composite: %s: the %s pass has no finite pixel with alpha > 0: nothing to "
+                        "apply the atmosphere to (is it the world-position pass?)\n", position_path,
+                inputs.has_depth ? "depth" : "position");
         status = 2;
-        goto done_pixels;
+        goto done_reader;
     }
     CompositePush push;
     model_atmosphere earth = o->atmosphere;
@@ -457,36 +367,75 @@ int composite_run(const options *o, const composite_options *co)
                         "the ground); check --world-up, --world-unit, --ground-altitude\n",
                 v.camera[0], v.camera[1], v.camera[2], -altitude);
         status = 2;
-        goto done_pixels;
+        goto done_reader;
     }
+    if (fix.overflowed)
+        fprintf(stderr, "vksky: --composite: note: %zu positions overflowed the half-float range (beyond 65504 world "
+                        "units) and have no atmosphere: write the Position pass as float (Blender: Output > Float "
+                        "(Full))\n", fix.overflowed);
+    if (fix.repaired || fix.unrepaired)
+        fprintf(stderr, "vksky: --composite: note: %zu edge pixels without a position took their nearest covered "
+                        "neighbour's%s\n", fix.repaired, fix.unrepaired ? "; some found none (composited without "
+                        "atmosphere)" : "");
     if (!v.oriented && sky > 0)
         fprintf(stderr, "vksky: --composite: the camera's orientation is unknown (no worldToCamera, no --yaw/--pitch): "
                         "%zu pixels without geometry keep the beauty\n", sky);
 
-    if ((status = gpu_begin(o, &ctx, &r, 1, 1, false)) != 0) goto done_pixels;
+    /* The header: how it was made, and the scene of its sky (`vksky --scene OUT.exr`). */
+    exr_header hdr;
+    options scene = composite_scene(o, co, &v, altitude, w, h);
+    if (exr_header_build(&hdr, &scene, -1) != 0) {
+        fprintf(stderr, "vksky: --composite: out of memory\n");
+        status = 1;
+        goto done_reader;
+    }
+    /* The render's own camera matrices (its world, its units: the position pass's) where it had them. */
+    if (cam_info) {
+        memcpy(hdr.world_to_camera, cam_info->world_to_camera, sizeof hdr.world_to_camera);
+        if (cam_info->has_world_to_ndc) memcpy(hdr.world_to_ndc, cam_info->world_to_ndc, sizeof hdr.world_to_ndc);
+    }
+    if (!v.oriented) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
+
+    gpu_context ctx;
+    sky_renderer r;
+    if ((status = gpu_begin(o, &ctx, &r, 1, 1, false)) != 0) goto done_header;
     sky_composite c;
-    if (sky_composite_create(&c, &r, (uint32_t)w, (uint32_t)h, vol, err, sizeof err) != 0) {
+    if (sky_composite_create(&c, &r, (uint32_t)w, (uint32_t)band_rows, vol, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --composite: %s\n", err);
         status = gpu_end(&ctx, &r, 2);
-        goto done_pixels;
+        goto done_header;
     }
-    float *in = sky_composite_inputs(&c);
-    memcpy(in, beauty, n * 4 * sizeof(float));
-    memcpy(in + 4 * n, position, n * 4 * sizeof(float));
-    if (o->bench_frames > 0) bench(&r, &c, &push, o->bench_frames);
-    sky_composite_render(&r, &c, &push, frames_from_env());
-    if (write_layers(out_path, &c, NULL, err, sizeof err) != 0) {
+    if (o->bench_frames > 0) {   /* the first band (the whole image up to 2^20 pixels) */
+        composite_fixups ignored = {0};
+        if ((status = band_reader_read(&reader, 0, &ignored)) == 0) {
+            band_reader_upload(&reader, &c);
+            bench(&r, &c, &push, o->bench_frames);
+        }
+    }
+    static const char *const names[VKSKY_AOV_COUNT] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
+    io_exr_band_layer layers[VKSKY_AOV_COUNT];
+    for (int k = 0; k < VKSKY_AOV_COUNT; ++k) layers[k] = (io_exr_band_layer){names[k], k == 0 ? 4 : 3, 4, NULL};
+    io_exr_layers_stream *out = status ? NULL : io_exr_layers_stream_open(out_path, w, h, layers, VKSKY_AOV_COUNT,
+                                                                         &hdr.meta, err, sizeof err);
+    if (!status && !out) {
+        fprintf(stderr, "vksky: --render: %s\n", err);
+        status = 1;
+    }
+    if (out && (status = composite_bands_render(&reader, &r, &c, push, frames_from_env(), out)) == 0 &&
+        io_exr_layers_stream_finish(out, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
     sky_composite_destroy(&c, &r);
     status = gpu_end(&ctx, &r, status);
-done_pixels:
-    free(beauty);
-    free(position);
+done_header:
+    exr_header_free(&hdr);
+done_reader:
+    band_reader_free(&reader);
 done_info:
     io_exr_info_free(&bi);
     io_exr_info_free(&pi);
+    io_exr_info_free(&di);
     return status;
 }
 
@@ -540,11 +489,18 @@ int composite_aovs_run(const options *o, const composite_options *co)
     }
     sky_composite_render(&r, &c, &push, frames_from_env());
     float *top = malloc(n * 4 * sizeof(float));
+    exr_header hdr;
+    options with_aovs = *o;   /* the command line with --aovs */
+    if (co->argv_all) with_aovs.argc = co->argc_all, with_aovs.argv = co->argv_all;
+    if (exr_header_build(&hdr, &with_aovs, -1) != 0) {
+        free(top);
+        top = NULL;
+    }
     const uint16_t *half = r.readback_linear.mapped;
     for (size_t i = 0; top && i < 4 * n; ++i) top[i] = io_half_to_float(half[i]);
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         int rc = !top ? -1
-                 : is_exr(o->outputs[i]) ? write_layers(o->outputs[i], &c, top, err, sizeof err)
+                 : is_exr(o->outputs[i]) ? write_layers(o->outputs[i], &c, top, &hdr.meta, err, sizeof err)
                                          : io_write_png(o->outputs[i], o->width, o->height, r.readback_display.mapped, 1,
                                                         err, sizeof err);
         if (rc != 0) {
@@ -552,6 +508,7 @@ int composite_aovs_run(const options *o, const composite_options *co)
             status = 1;
         }
     }
+    if (top) exr_header_free(&hdr);
     free(top);
     sky_composite_destroy(&c, &r);
     return gpu_end(&ctx, &r, status);

@@ -14,15 +14,17 @@ typedef struct composite_flag {
 } composite_flag;
 
 static const composite_flag composite_flags[] = {
-    {"--composite", true, "FILE.exr  apply the atmosphere to a rendered image: a multilayer EXR with <ViewLayer>.Combined.RGBA and <ViewLayer>.Position.XYZ (Blender's names), or the beauty with --position; writes the composite and its AOV layers to --render FILE.exr"},
+    {"--composite", true, "FILE.exr  apply the atmosphere to a rendered image: a multilayer EXR with <ViewLayer>.Combined.RGBA and <ViewLayer>.Position.XYZ (or .Depth.Z) (Blender's names), or the beauty with --position or --depth; writes the composite and its AOV layers to --render FILE.exr (docs/aerial_perspective.md)"},
     {"--position", true, "FILE.exr   with --composite: the world-position pass as its own file (X,Y,Z, or R,G,B read as X,Y,Z)"},
+    {"--view-layer", true, "NAME     with --composite: the view layer whose Combined and Position (or Depth) passes are used; needed when the file has several (Composite, the compositor's output, only when named)"},
+    {"--depth", true, "FILE.exr      with --composite: camera-space depth (Z, <ViewLayer>.Depth.Z or R; distance along the view axis) instead of a position pass; needs the camera's orientation and fov"},
     {"--beauty-layer", true, "NAME   with --composite: the beauty's layer (channels NAME.R, .G, .B, .A)"},
     {"--position-layer", true, "NAME with --composite: the position's layer (NAME.X, .Y, .Z or NAME.R, .G, .B)"},
     {"--world-unit", true, "M        with --composite: metres per world unit (default 1)"},
     {"--world-up", true, "y|z        with --composite: the world's up axis (default z); the ground is the plane up = 0"},
     {"--ground-altitude", true, "KM with --composite: altitude of the world's ground plane (default 0)"},
     {"--camera-position", true, "X,Y,Z with --composite: camera position in world units, when the EXR has no worldToCamera; --yaw/--pitch/--fov give its orientation (sky pixels)"},
-    {"--aerial-perspective", true, "M march | volume | auto: camera->point by a march per pixel (accurate) or Hillaire's froxel volume (fast; docs/readme/apvolume.md); auto: the cheapest measured one within --max-error, else the march (default auto)"},
+    {"--aerial-perspective", true, "M march | volume | auto: camera->point by a march per pixel (accurate) or Hillaire's froxel volume (fast; docs/aerial_perspective.md); auto: the cheapest measured one within --max-error, else the march (default auto)"},
     {"--ap-volume-size", true, "WxHxD  the froxel volume's size (default 32x32x32; 1 to 512 each)"},
     {"--ap-volume-range", true, "KM   the froxel volume's depth range (default 32; farther points are marched)"},
     {"--ap-volume-slices", true, "linear|quadratic the froxel volume's slice spacing (default quadratic, Hillaire's)"},
@@ -37,7 +39,7 @@ void composite_options_print_help(FILE *out)
     for (int i = 0; i < COMPOSITE_FLAG_COUNT; ++i)
         entries[i] = (help_entry){composite_flags[i].name, composite_flags[i].takes_value, composite_flags[i].help};
     help_print_section(out, "compositing",
-                       "       vksky --composite render.exr --render out.exr [options]   (docs/readme/composite.md)\n"
+                       "       vksky --composite render.exr --render out.exr [options]   (docs/aerial_perspective.md)\n"
                        "       vksky --composite beauty.exr --position position.exr --render out.exr [options]\n",
                        entries, COMPOSITE_FLAG_COUNT);
 }
@@ -79,6 +81,8 @@ static int take(composite_options *co, const char *name, const char *value)
     else if (!strcmp(name, "--position")) co->position = value;
     else if (!strcmp(name, "--beauty-layer")) co->beauty_layer = value;
     else if (!strcmp(name, "--position-layer")) co->position_layer = value;
+    else if (!strcmp(name, "--view-layer")) co->view_layer = value;
+    else if (!strcmp(name, "--depth")) co->depth = value;
     else if (!strcmp(name, "--world-unit")) {
         if (!parse_double(value, &co->world_unit_m) || !(co->world_unit_m >= 1e-9 && co->world_unit_m <= 1e9))
             return bad(name, "' is not a length; expected metres per world unit in [1e-9, 1e9]", value);
@@ -122,6 +126,13 @@ int composite_options_extract(composite_options *co, int *argc, char **argv)
                               .ap_range_km = 32.0, .ap_distribution = 2.0};
     const char *needs_composite = NULL;
     int out = 1;
+    /* The whole command line, before this module's flags leave argv: the composite's header names them. Static:
+     * one command line per process, still reachable at exit. */
+    static char **saved;
+    free(saved);
+    saved = malloc(((size_t)*argc + 1) * sizeof *saved);
+    if (saved) memcpy(saved, argv, ((size_t)*argc + 1) * sizeof *saved);
+    co->argc_all = saved ? *argc : 0, co->argv_all = saved;
     for (int i = 1; i < *argc; ++i) {
         const char *a = argv[i];
         const composite_flag *f = NULL;
@@ -150,6 +161,8 @@ int composite_options_extract(composite_options *co, int *argc, char **argv)
     argv[out] = NULL;
     *argc = out;
     if (needs_composite && !co->input) return bad(needs_composite, "only with --composite", NULL);
+    if (co->depth && (co->position || co->position_layer))
+        return bad("--depth", "not with --position or --position-layer (one of a depth or a position pass)", NULL);
     if (co->input && co->aovs) return bad("--aovs", "not with --composite (its output always has the AOV layers)", NULL);
     if (co->input && co->has_size)
         return bad(co->has_size ? "--width/--height" : "", "not with --composite (the size is the input's)", NULL);
@@ -179,8 +192,8 @@ bool composite_auto_volume(const composite_options *co, double max_error, unsign
     }
     memcpy(size, best->size, sizeof best->size);
     *range_km = best->range_km, *distribution = best->distribution;
-    snprintf(why, why_size, "--max-error %g allows the volume %ux%ux%u %s (measured error %.2g vs the march's %.2g; "
-             "%.2f ms vs %.2f ms at 1080p on an H100)", max_error, size[0], size[1], size[2],
+    snprintf(why, why_size, "--max-error %g allows the volume %ux%ux%u %s (measured error on its worst view class "
+             "%.2g vs the march's %.2g; %.2f ms vs %.2f ms at 1080p on an H100)", max_error, size[0], size[1], size[2],
              best->distribution == 1.0 ? "linear" : "quadratic", best->err_mean, march->err_mean, best->gpu_ms,
              march->gpu_ms);
     return true;

@@ -12,6 +12,11 @@ typedef struct composite_options {
     const char *position;           /* --position FILE.exr (NULL: the position is a layer of the input) */
     const char *beauty_layer;       /* --beauty-layer NAME (NULL: <ViewLayer>.Combined, or top-level R,G,B,A) */
     const char *position_layer;     /* --position-layer NAME (NULL: <ViewLayer>.Position, or top-level X,Y,Z/R,G,B) */
+    const char *view_layer;         /* --view-layer NAME: the view layer of the beauty and the position (NULL: the
+                                       file's only one; Composite, the compositor's output, only when named) */
+    const char *depth;              /* --depth FILE.exr: camera-space depth (Z) instead of a position pass */
+    int argc_all;                   /* the whole command line, this module's flags too (for the output's header) */
+    char **argv_all;
     double world_unit_m;            /* --world-unit M: metres per world unit (default 1) */
     int up_axis;                    /* --world-up y|z: 1 or 2 (default z) */
     double ground_altitude_km;      /* --ground-altitude KM (default 0) */

@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/tiles.h"
+#include "app/exr_header.h"
 #include "app/frame_ring.h"
 #include "app/light.h"
 #include "app/stop.h"
@@ -85,6 +86,11 @@ static int open_outputs(const options *o, output *outs)
         .projection = options_projection_name(p)};
     light_sky_attrs(o, &attrs);   /* the sun (direction, illuminance, at the camera) and the units */
     bool scaled = scaled_rows(o), store_float = light_stream_float(o);
+    /* Issue 28: the header every EXR of vksky carries; a map's camera matrices would describe no camera. */
+    exr_header hdr;
+    bool has_hdr = exr_header_build(&hdr, o, -1) == 0;
+    if (has_hdr && p != SKY_PROJECTION_PERSPECTIVE) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
+    attrs.meta = has_hdr ? &hdr.meta : NULL;
     for (int i = 0; i < o->output_count; ++i) {
         outs[i].exr = is_exr(o->outputs[i]);
         if (outs[i].exr)
@@ -94,9 +100,11 @@ static int open_outputs(const options *o, output *outs)
         else outs[i].png_stream = io_png_stream_open(o->outputs[i], o->width, o->height, err, sizeof err);
         if (!outs[i].exr_stream && !outs[i].png_stream) {
             fprintf(stderr, "vksky: %s\n", err);
+            if (has_hdr) exr_header_free(&hdr);
             return 1;
         }
     }
+    if (has_hdr) exr_header_free(&hdr);   /* written with each header at open */
     return 0;
 }
 

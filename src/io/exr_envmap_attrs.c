@@ -1,5 +1,6 @@
 /* vksky image I/O: the sky's header attributes (see exr_envmap_attrs.h). */
 #include "io/exr_envmap_attrs.h"
+#include "io/exr_common.h"
 
 exr_result_t io_exr_add_sky_attrs(exr_context_t ctxt, int part, const io_exr_sky_attrs *a)
 {
@@ -23,5 +24,7 @@ exr_result_t io_exr_add_sky_attrs(exr_context_t ctxt, int part, const io_exr_sky
         if (rc == EXR_ERR_SUCCESS && a->sun_units)
             rc = exr_attr_set_string(ctxt, part, "vksky:sunIlluminanceUnits", a->sun_units);
     }
+    /* How the file was made (chromaticities, software, vksky:scene, the command line): every EXR says it. */
+    if (rc == EXR_ERR_SUCCESS && a->meta) rc = io_exr_set_meta(ctxt, part, a->meta);
     return rc;
 }

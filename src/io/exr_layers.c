@@ -281,6 +281,12 @@ fail:
 int io_write_exr_layers(const char *path, int width, int height, const io_exr_out_layer *layers, int layer_count,
                         char *err, size_t err_size)
 {
+    return io_write_exr_layers_meta(path, width, height, layers, layer_count, NULL, err, err_size);
+}
+
+int io_write_exr_layers_meta(const char *path, int width, int height, const io_exr_out_layer *layers,
+                             int layer_count, const struct io_exr_meta *meta, char *err, size_t err_size)
+{
     if (!layers || layer_count <= 0 || layer_count > 1000)
         return check_layers(path, width, height, NULL, layer_count, err, err_size);
     io_exr_write_layer *w = (io_exr_write_layer *)calloc((size_t)layer_count, sizeof *w);
@@ -289,7 +295,7 @@ int io_write_exr_layers(const char *path, int width, int height, const io_exr_ou
         return -1;
     }
     for (int i = 0; i < layer_count; ++i) w[i] = (io_exr_write_layer){layers[i].name, layers[i].channels, NULL, layers[i].pixels, 0};
-    int r = io_exr_write_layers_half(path, width, height, w, layer_count, NULL, err, err_size);
+    int r = io_exr_write_layers_half(path, width, height, w, layer_count, meta, err, err_size);
     free(w);
     return r;
 }

@@ -25,6 +25,33 @@ typedef struct io_exr_out_layer {
 int io_write_exr_layers(const char *path, int width, int height, const io_exr_out_layer *layers, int layer_count,
                         char *err, size_t err_size);
 
+/* The same with the header attributes of `meta` (exr_meta.h; NULL: none): every EXR vksky writes says how it was
+   made (issue 28). */
+struct io_exr_meta;
+int io_write_exr_layers_meta(const char *path, int width, int height, const io_exr_out_layer *layers,
+                             int layer_count, const struct io_exr_meta *meta, char *err, size_t err_size);
+
+/* The same file written in bands (issue 28: a composite of any height through a band-sized buffer). open writes the
+   header (the layers' names and channel counts; their pixels are not read) and returns NULL + err on failure, nothing
+   left behind. rows appends the next `rows` rows (`layers` as at open, in the same order, `pixels` pointing at this
+   band's first row); every call but the last must bring a multiple of rows_per_chunk rows. finish renames the file
+   into place. On any failure (-1 + err) the stream is gone: nothing at `path`, no temporary. */
+typedef struct io_exr_band_layer {
+    const char *name;     /* as io_exr_out_layer */
+    int channels;         /* 3 or 4 written */
+    int stride;           /* floats from one pixel to the next (>= channels: an RGB layer read out of RGBA rows) */
+    const float *pixels;  /* rows: the band's first row first */
+} io_exr_band_layer;
+typedef struct io_exr_layers_stream io_exr_layers_stream;
+io_exr_layers_stream *io_exr_layers_stream_open(const char *path, int width, int height,
+                                                const io_exr_band_layer *layers, int layer_count,
+                                                const struct io_exr_meta *meta, char *err, size_t err_size);
+int io_exr_layers_stream_rows_per_chunk(const io_exr_layers_stream *s);
+int io_exr_layers_stream_rows(io_exr_layers_stream *s, const io_exr_band_layer *layers, int rows, char *err,
+                              size_t err_size);
+int io_exr_layers_stream_finish(io_exr_layers_stream *s, char *err, size_t err_size);
+void io_exr_layers_stream_abort(io_exr_layers_stream *s);   /* NULL accepted */
+
 #ifdef __cplusplus
 }
 #endif

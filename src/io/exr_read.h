@@ -49,6 +49,11 @@ void io_exr_info_free(io_exr_info *info); /* frees the channel list and zeroes *
 int io_exr_read_channels(const char *path, const char *const *names, int count, float *out, char *err,
                          size_t err_size);
 
+/* io_exr_read_channels for rows [row0, row0 + rows) of the data window only (a band of a large image: only the chunks
+   that hold them are decoded); `out` holds width*rows*count floats, its row 0 = row row0. */
+int io_exr_read_rows(const char *path, const char *const *names, int count, int row0, int rows, float *out, char *err,
+                     size_t err_size);
+
 /* Readers for tests/tools: read layer `layer_name` ("" = default R,G,B,A; a missing A reads as 1) from an EXR (any
    compression OpenEXRCore supports, HALF or FLOAT channels, scanline or tiled (level 0) parts, first part that has
    the layer) into a malloc'd float RGBA array (interleaved, row-major, top row of the data window first; free() it).

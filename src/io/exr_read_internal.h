@@ -45,6 +45,9 @@ void io_exr_read_err(char *err, size_t err_size, const io_exr_src *src, const ch
 
 /* The public functions over any source. */
 int io_exr_read_info_src(const io_exr_src *src, io_exr_info *info, char *err, size_t err_size);
+/* io_exr_read_rows on a source (rows < 0: every row, as io_exr_read_channels_src). */
+int io_exr_read_rows_src(const io_exr_src *src, const char *const *names, int count, int row0, int rows, float *out,
+                         char *err, size_t err_size);
 int io_exr_read_channels_src(const io_exr_src *src, const char *const *names, int count, float *out, char *err,
                              size_t err_size);
 

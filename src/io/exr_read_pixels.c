@@ -15,6 +15,7 @@ typedef struct unpack_target {
     float *out;
     int width, count;   /* output row length in pixels, values per pixel */
     int x0, y0;         /* chunk origin in the data window */
+    int row0, rows;     /* the rows of the data window `out` holds (out's row 0 is row0) */
     const int *slot_of; /* [count]: the decoder channel feeding output slot k */
 } unpack_target;
 
@@ -51,6 +52,7 @@ static exr_result_t unpack_to_float(exr_decode_pipeline_t *dec)
     uint64_t avail = dec->chunk.unpacked_size, pos = 0;
     if (!t || !src) return EXR_ERR_CORRUPT_CHUNK;
     for (int ly = 0; ly < dec->chunk.height; ++ly) {
+        int row = t->y0 + ly - t->row0;   /* a row outside the band is decoded (it is in the chunk), not stored */
         for (int c = 0; c < dec->channel_count; ++c) {
             const exr_coding_channel_info_t *ci = &dec->channels[c];
             /* A subsampled channel (never one we read: refused up front) has ci->width values on every
@@ -61,11 +63,11 @@ static exr_result_t unpack_to_float(exr_decode_pipeline_t *dec)
             if (bpe != (ci->data_type == EXR_PIXEL_HALF ? 2 : 4)) return EXR_ERR_CORRUPT_CHUNK;
             uint64_t nbytes = (uint64_t)ci->width * (uint64_t)bpe;
             if (pos + nbytes > avail) return EXR_ERR_CORRUPT_CHUNK;
-            for (int k = 0; k < t->count; ++k) {
+            for (int k = 0; k < t->count && row >= 0 && row < t->rows; ++k) {
                 if (t->slot_of[k] != c) continue;
                 if (ci->width != dec->chunk.width || ci->height != dec->chunk.height) return EXR_ERR_CORRUPT_CHUNK;
                 const uint8_t *s = src + pos;
-                float *dst = t->out + ((size_t)(t->y0 + ly) * (size_t)t->width + (size_t)t->x0) * (size_t)t->count +
+                float *dst = t->out + ((size_t)row * (size_t)t->width + (size_t)t->x0) * (size_t)t->count +
                              (size_t)k;
                 for (int x = 0; x < ci->width; ++x, s += bpe) dst[(size_t)x * (size_t)t->count] = load_value(s, ci->data_type);
             }
@@ -83,7 +85,8 @@ static const char *compression_name(exr_compression_t c)
 
 /* Decodes one chunk into `out` (slot_of[k] = channel index in the part, or -1). */
 static int read_chunk(exr_context_t ctxt, const io_exr_src *src, int part, const exr_chunk_info_t *cinfo, int x0,
-                      int y0, float *out, int width, int count, const int *want, char *err, size_t err_size)
+                      int y0, float *out, int width, int row0, int rows, int count, const int *want, char *err,
+                      size_t err_size)
 {
     if (cinfo->data_offset > src->size || cinfo->packed_size > src->size - cinfo->data_offset) {
         io_exr_read_err(err, err_size, src,
@@ -122,7 +125,7 @@ static int read_chunk(exr_context_t ctxt, const io_exr_src *src, int part, const
                 ci->user_bytes_per_element = (int16_t)sizeof(float);
             }
         }
-        unpack_target target = {out, width, count, x0, y0, slots};
+        unpack_target target = {out, width, count, x0, y0, row0, rows, slots};
         rc = exr_decoding_choose_default_routines(ctxt, part, &dec);
         if (rc == EXR_ERR_SUCCESS) {
             dec.decoding_user_data = &target;
@@ -147,9 +150,10 @@ static int read_chunk(exr_context_t ctxt, const io_exr_src *src, int part, const
     return -1;
 }
 
-/* Reads every wanted channel of `part` (want[k] = its index in the part's channel list, or -1). */
-static int read_part(exr_context_t ctxt, const io_exr_src *src, int part, int width, int height, float *out,
-                     int count, const int *want, char *err, size_t err_size)
+/* Reads every wanted channel of `part` (want[k] = its index in the part's channel list, or -1), rows [row0, row0 +
+   rows) of it: only the chunks that hold them. */
+static int read_part(exr_context_t ctxt, const io_exr_src *src, int part, int width, int height, int row0, int rows,
+                     float *out, int count, const int *want, char *err, size_t err_size)
 {
     exr_storage_t storage;
     exr_attr_box2i_t dw;
@@ -189,6 +193,8 @@ static int read_part(exr_context_t ctxt, const io_exr_src *src, int part, int wi
     }
     int nx = (width + step_x - 1) / step_x, ny = (height + step_y - 1) / step_y;
     for (int cy = 0; cy < ny; ++cy) {
+        /* Chunk row cy holds rows [cy step_y, (cy + 1) step_y) (scanline chunks say so again below). */
+        if ((int64_t)(cy + 1) * step_y <= row0 || (int64_t)cy * step_y >= (int64_t)row0 + rows) continue;
         for (int cx = 0; cx < nx; ++cx) {
             exr_chunk_info_t cinfo;
             memset(&cinfo, 0, sizeof cinfo);
@@ -221,7 +227,8 @@ static int read_part(exr_context_t ctxt, const io_exr_src *src, int part, int wi
                                 "data window", part, cinfo.width, cinfo.height, x0, y0, width, height);
                 return -1;
             }
-            if (read_chunk(ctxt, src, part, &cinfo, x0, y0, out, width, count, want, err, err_size) != 0) return -1;
+            if (read_chunk(ctxt, src, part, &cinfo, x0, y0, out, width, row0, rows, count, want, err, err_size) != 0)
+                return -1;
         }
     }
     return 0;
@@ -250,6 +257,12 @@ static void list_channels(exr_context_t ctxt, int nparts, char *buf, size_t size
 int io_exr_read_channels_src(const io_exr_src *src, const char *const *names, int count, float *out, char *err,
                              size_t err_size)
 {
+    return io_exr_read_rows_src(src, names, count, 0, -1, out, err, err_size);
+}
+
+int io_exr_read_rows_src(const io_exr_src *src, const char *const *names, int count, int row0, int rows, float *out,
+                         char *err, size_t err_size)
+{
     if (!names || count <= 0 || count > 4096 || !out) {
         io_exr_read_err(err, err_size, src, "nothing to read (need 1 to 4096 channel names and an output buffer)");
         return -1;
@@ -267,6 +280,12 @@ int io_exr_read_channels_src(const io_exr_src *src, const char *const *names, in
         goto done;
     }
     if (io_exr_part_size(ctxt, src, 0, &width, &height, err, err_size) != 0) goto done;
+    if (rows < 0) row0 = 0, rows = height;   /* the whole data window */
+    if (row0 < 0 || rows <= 0 || row0 > height - rows) {
+        io_exr_read_err(err, err_size, src, "rows %d to %d are outside the %d rows of the image", row0,
+                        row0 + rows - 1, height);
+        goto done;
+    }
     for (int k = 0; k < count; ++k) {
         part_of[k] = -1;
         for (int p = 0; p < nparts && part_of[k] < 0; ++p) {
@@ -312,7 +331,7 @@ int io_exr_read_channels_src(const io_exr_src *src, const char *const *names, in
         }
         int wantp[4096];
         for (int k = 0; k < count; ++k) wantp[k] = part_of[k] == p ? want[k] : -1;
-        if (read_part(ctxt, src, p, width, height, out, count, wantp, err, err_size) != 0) goto done;
+        if (read_part(ctxt, src, p, width, height, row0, rows, out, count, wantp, err, err_size) != 0) goto done;
     }
     r = 0;
 done:
@@ -327,6 +346,16 @@ int io_exr_read_channels(const char *path, const char *const *names, int count, 
     io_exr_src src;
     if (io_exr_src_open_file(&src, path, err, err_size) != 0) return -1;
     int r = io_exr_read_channels_src(&src, names, count, out, err, err_size);
+    io_exr_src_close(&src);
+    return r;
+}
+
+int io_exr_read_rows(const char *path, const char *const *names, int count, int row0, int rows, float *out, char *err,
+                     size_t err_size)
+{
+    io_exr_src src;
+    if (io_exr_src_open_file(&src, path, err, err_size) != 0) return -1;
+    int r = io_exr_read_rows_src(&src, names, count, row0, rows, out, err, err_size);
     io_exr_src_close(&src);
     return r;
 }

@@ -20,5 +20,6 @@ typedef struct io_exr_sky_attrs {
     const char *units;
     const char *sun_units;
     float white_luminance;
+    const struct io_exr_meta *meta;   /* issue 28: the standard and vksky attributes (exr_meta.h; NULL: none) */
 } io_exr_sky_attrs;
 #endif

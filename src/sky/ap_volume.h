@@ -2,7 +2,7 @@
  * volume of transmittance and in-scattering, built once per frame by a compute pass (ap_volume.comp, the march of
  * aerial.glsl once per froxel) and sampled by the composite pass per pixel instead of a march per pixel.
  *
- * Layout (docs/readme/apvolume.md): one RGBA16F 3D image of width x height x 3 depth texels, three bands of
+ * Layout (docs/aerial_perspective.md): one RGBA16F 3D image of width x height x 3 depth texels, three bands of
  * `depth` slices: per-channel transmittance, the Rayleigh layer, the Mie layer (the composite's AOVs need all
  * nine numbers; one image: one barrier per hazard). Columns cover the composite's frustum (the camera's ray
  * matrix); slice k holds camera -> ap distance range ((k + 1) / depth)^distribution km along its column's ray.

@@ -17,23 +17,29 @@ static const double DEG = 3.14159265358979323846 / 180.0;
 
 /* --- The world's conventions -> push constants ---------------------------------------------------------- */
 
+/* One azimuth convention for every mode (docs/aerial_perspective.md "Conventions"): vksky's local frame is
+ * (north, up, east), azimuth 0 north and 90 east. A Z-up world (Blender's) has north +Y and east +X, as Blender's
+ * equirect lookup puts an environment map's azimuth 0 on +Y: (x, y, z) -> (y, z, x). A Y-up world (the same scene
+ * turned by (x, y, z) -> (x, z, -y), as Z-up to Y-up exporters do) has north -Z and east +X: (x, y, z) -> (-z, y, x).
+ * Both are rotations (det +1): handedness kept. */
 void composite_world_to_local(int up_axis, const double w[3], double out[3])
 {
     double x = w[0], y = w[1], z = w[2];
-    if (up_axis == 2) {   /* a rotation (det +1) taking +Z to +Y: handedness kept */
-        out[0] = x, out[1] = z, out[2] = -y;
+    if (up_axis == 2) {
+        out[0] = y, out[1] = z, out[2] = x;
     } else {
-        out[0] = x, out[1] = y, out[2] = z;
+        out[0] = -z, out[1] = y, out[2] = x;
     }
 }
 
 /* The inverse rotation: vksky local -> world. */
 static void local_to_world(int up_axis, const double l[3], double out[3])
 {
+    double n = l[0], u = l[1], e = l[2];
     if (up_axis == 2) {
-        out[0] = l[0], out[1] = -l[2], out[2] = l[1];
+        out[0] = e, out[1] = n, out[2] = u;
     } else {
-        out[0] = l[0], out[1] = l[1], out[2] = l[2];
+        out[0] = e, out[1] = u, out[2] = -n;
     }
 }
 
@@ -134,7 +140,7 @@ double composite_push(const composite_view *v, double bottom_radius_km, uint32_t
 #undef TO_MARCH
     int max_steps = v->max_steps > v->steps ? v->max_steps : v->steps;
     out->forward = (vksky_vec4){(float)f[0], (float)f[1], (float)f[2], (float)altitude};
-    out->right = (vksky_vec4){(float)(rt[0] * tx), (float)(rt[1] * tx), (float)(rt[2] * tx), 1.0f / (float)width};
+    out->right = (vksky_vec4){(float)(rt[0] * tx), (float)(rt[1] * tx), (float)(rt[2] * tx), 0.0f};   /* band row 0 */
     out->up = (vksky_vec4){(float)(up[0] * ty), (float)(up[1] * ty), (float)(up[2] * ty), 1.0f / (float)height};
     out->sun_dir = (vksky_vec4){(float)sun[0], (float)sun[1], (float)sun[2], (float)v->step_distribution};
     out->march = (vksky_vec4){(float)v->steps, (float)max_steps, (float)v->sample_offset, (float)v->steps_ramp_km};

@@ -19,7 +19,8 @@ typedef struct composite_view {
     bool oriented;                  /* the camera's axes are known (else sky pixels keep the beauty) */
     double forward[3], right[3], up[3];   /* camera axes in world coordinates (unit, right-handed: up on screen) */
     double fov_y_deg;               /* vertical field of view */
-    double sun_azimuth_deg, sun_elevation_deg;   /* world frame (docs/readme/composite.md: azimuth 0 = world +X) */
+    double sun_azimuth_deg, sun_elevation_deg;   /* azimuth 0 north: world +Y (Z up) or -Z (Y up), 90 east: +X
+                                                    (docs/aerial_perspective.md "Conventions") */
     int steps, max_steps;           /* march steps (Hillaire's growing count when max_steps > steps) */
     double steps_ramp_km, sample_offset, step_distribution;
 } composite_view;
@@ -28,7 +29,8 @@ typedef struct composite_view {
  * world's axes. */
 void composite_view_orient_yaw_pitch(composite_view *v, double yaw_deg, double pitch_deg);
 
-/* World coordinates -> vksky's local frame (+Y up, same handedness): for Z up (x, y, z) -> (x, z, -y). */
+/* World coordinates -> vksky's local frame (north, up, east; same handedness): Z up (x, y, z) -> (y, z, x), Y up
+ * (x, y, z) -> (-z, y, x). */
 void composite_world_to_local(int up_axis, const double w[3], double out[3]);
 
 /* The push constants of a width x height composite. Returns the camera's altitude in km (negative: the camera
