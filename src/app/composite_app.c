@@ -2,6 +2,7 @@
  * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
  * stderr and exit status 2, before any output file exists. */
 #include "app/composite_app.h"
+#include "app/startup.h"
 #include "app/stop.h"
 #include "io/exr_layers.h"
 #include "io/exr_read.h"
@@ -219,16 +220,16 @@ static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
+    startup_open_cache(ctx, o);
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
+    sky_features features = options_features(o);
     sky_renderer_desc rdesc = {.width = width, .height = height, .bloom = readback && o->view.bloom,
                                .readback = readback, .display_format = VK_FORMAT_R8G8B8A8_SRGB,
                                .render_scale = readback ? o->render_scale : 1.0, .lut = o->lut,
-                               .bloom_mips = (uint32_t)o->bloom_mips};
+                               .bloom_mips = (uint32_t)o->bloom_mips, .atmosphere = &o->atmosphere,
+                               .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
     sky_renderer_create(r, ctx, &rdesc);
-    sky_renderer_set_atmosphere(r, &o->atmosphere, options_sun_radius_rad(o));
-    sky_features features = options_features(o);
-    sky_renderer_set_features(r, &features);
     if (o->trace_passes) r->pass_trace = stdout;
     return 0;
 }
@@ -236,6 +237,7 @@ static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32
 static int gpu_end(gpu_context *ctx, sky_renderer *r, int status)
 {
     sky_renderer_destroy(r);
+    startup_close_cache(ctx);
     gpu_context_destroy(ctx);
     unsigned messages = gpu_validation_message_count();
     if (messages) {

@@ -72,5 +72,8 @@ typedef struct options {
     bool frame_range_set;
     int argc;                                   /* the command line: a frame's options re-parse it, EXRs record it */
     char **argv;
+    /* start-up (issue 27): app/startup.c */
+    bool no_cache;                              /* --no-cache: no pipeline cache on disk (read or written) */
+    bool timings;                               /* --timings: where the first image's time went, on stderr */
 } options;
 #endif
