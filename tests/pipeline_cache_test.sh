@@ -85,7 +85,8 @@ same nocache || fail "--no-cache's image differs from the cached run's"
 bad_case() {   # NAME EXPECTED-WORDS (in the note)
     render "$1" || fail "$1: the render failed: $(cat "$1.err")"
     [ "$(notes "$1.err")" -eq 1 ] || fail "$1: expected one note, got: $(cat "$1.err")"
-    grep -q "pipeline cache .*: .*$2.*; ignored" "$1.err" || fail "$1: the note does not say '$2 ... ignored': $(cat "$1.err")"
+    grep -q "pipeline cache .*: .*$2.*; ignored" "$1.err" ||
+        fail "$1: the note does not say '$2 ... ignored': $(cat "$1.err")"
     same "$1" || fail "$1: the image differs"
     [ "$(check "$cache")" = ok ] || fail "$1: the file was not replaced by a good one ($(check "$cache"))"
 }
@@ -110,7 +111,8 @@ cmp -s "$cache" good.bin || fail "another build's file was not replaced by this 
 touch notadir
 XDG_CACHE_HOME="$work/notadir" render ro || fail "unwritable cache dir: the render failed: $(cat ro.err)"
 same ro || fail "unwritable cache dir: the image differs"
-[ "$(notes ro.err)" -eq 1 ] && grep -q 'not saved' ro.err || fail "unwritable cache dir: expected one 'not saved' note: $(cat ro.err)"
+[ "$(notes ro.err)" -eq 1 ] && grep -q 'not saved' ro.err ||
+    fail "unwritable cache dir: expected one 'not saved' note: $(cat ro.err)"
 XDG_CACHE_HOME="$work/fresh" render fresh --no-cache || fail "--no-cache failed"
 [ ! -e "$work/fresh/vksky" ] || fail "--no-cache wrote into the cache directory"
 XDG_CACHE_HOME=relative/dir render rel || fail "relative XDG_CACHE_HOME: failed"
@@ -129,10 +131,12 @@ together=("$work"/together/vksky/*)
 for stage in instance device pipelines LUTs frame readback encode write total; do
     grep -q "^  $stage " mars.err || [ "$stage" = readback ] || fail "--timings has no '$stage' line: $(cat mars.err)"
 done
-grep -q 'variant built 1 time)' mars.err || fail "Mars built its pipeline variant more than once: $(grep variant mars.err)"
+grep -q 'variant built 1 time)' mars.err ||
+    fail "Mars built its pipeline variant more than once: $(grep variant mars.err)"
 total=$(awk '$1 == "total" {print $2}' mars.err)
 awk -v t="$total" '$1 ~ /^(instance|device|cache|pipelines|frame|encode|write|other)$/ && $2 != "-" {s += $2}
-    END {exit !(s <= t + 1 && s >= 0.5 * t)}' mars.err || fail "--timings' stages do not add up to its total: $(cat mars.err)"
+    END {exit !(s <= t + 1 && s >= 0.5 * t)}' mars.err ||
+    fail "--timings' stages do not add up to its total: $(cat mars.err)"
 
 [ "$fails" -eq 0 ] && echo "pipeline cache: all checks passed"
 exit $((fails > 0))

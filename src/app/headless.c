@@ -159,9 +159,11 @@ int headless_run(const options *given)
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
     /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/tiles.c). */
-    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o)) return finish(&ctx, tiles_render(o, &ctx), o->timings);
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
+        return finish(&ctx, tiles_render(o, &ctx), o->timings);
     /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/tiles.c). */
-    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o)) return finish(&ctx, tiles_render(o, &ctx), o->timings);
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
+        return finish(&ctx, tiles_render(o, &ctx), o->timings);
 
     sky_renderer r;
     sky_features features = options_features(o);

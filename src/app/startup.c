@@ -88,7 +88,11 @@ void startup_outputs_done(void)
 
 void startup_report(FILE *out)
 {
-    if (!t.frame_done) return;
+    if (!t.frame_done) {
+        fprintf(out, "vksky: timings (wall ms): instance %.1f, device %.1f; no first image broken down (banded renders "
+                     "and --bench are not)\n", t.instance, t.device);
+        return;
+    }
     startup_outputs_done();
     double total = now_ms() - t.process_start;
     double before = t.frame_begin - t.process_start - t.instance - t.device - t.cache_open - t.pipelines;

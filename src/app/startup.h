@@ -20,6 +20,7 @@ void startup_frame_end(sky_renderer *r);
 void startup_outputs_done(void);
 
 /* --timings: the breakdown on `out` (instance, device, pipelines, LUTs, frame, readback, encode, write), if a
- * first image was rendered; after startup_close_cache (the cache's save is part of the run's cost). */
+ * first image was rendered (else the context's two figures); after startup_close_cache (the cache's save is part
+ * of the run's cost). */
 void startup_report(FILE *out);
 #endif
