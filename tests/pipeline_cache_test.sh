@@ -7,7 +7,8 @@
 #     the same image, and the file replaced by a good one. A file from another build: replaced without a note.
 #  3. An unwritable cache directory: the render succeeds (one note); --no-cache writes nothing; a relative
 #     XDG_CACHE_HOME is ignored (~/.cache); runs started together leave one good file and no temporary files.
-#  4. --timings names every stage; Mars builds its pipeline variant once (the renderer used to build it three times).
+#  4. --timings names every stage; Mars builds its pipeline variant once (the renderer used to build it three times)
+#     and computes each of its LUTs once.
 set -u
 VKSKY=${1:?usage: pipeline_cache_test.sh VKSKY}
 export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
@@ -127,7 +128,11 @@ together=("$work"/together/vksky/*)
 [ ${#together[@]} -eq 1 ] && [ "$(check "${together[0]}")" = ok ] || fail "three runs together left: ${together[*]}"
 
 # 4. --timings, and the variant built once.
-"$VKSKY" "${ARGS[@]}" --scene mars --render mars.exr --timings 2>mars.err || fail "--timings failed: $(cat mars.err)"
+"$VKSKY" "${ARGS[@]}" --scene mars --render mars.exr --timings --trace-passes >mars.out 2>mars.err ||
+    fail "--timings failed: $(cat mars.err)"
+for lut in transmittance_lut multiscatter_lut ground_irradiance_lut; do
+    [ "$(grep -c "^pass $lut\$" mars.out)" -eq 1 ] || fail "Mars: $lut computed $(grep -c "^pass $lut\$" mars.out) times"
+done
 for stage in instance device pipelines LUTs frame readback encode write total; do
     grep -q "^  $stage " mars.err || [ "$stage" = readback ] || fail "--timings has no '$stage' line: $(cat mars.err)"
 done
