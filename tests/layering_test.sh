@@ -40,8 +40,8 @@ while read -r f inc; do
   case $inc in
     */*) target=${inc%%/*} ;;
     # Unqualified names: the C/GLSL shared layout (shaders/glsl/shared.h) and the SPIR-V headers generated at
-    # build time (build/shaders/*_{comp,frag,vert}.h), both for the renderer only.
-    shared.h|*_comp.h|*_frag.h|*_vert.h) target=shaders ;;
+    # build time (build/shaders/*_{comp,frag,vert}.h and shader_key.h, their hash), both for the renderer only.
+    shared.h|shader_key.h|*_comp.h|*_frag.h|*_vert.h) target=shaders ;;
     *) target=UNQUALIFIED ;;
   esac
   if [ "$target" = shaders ]; then

@@ -5,6 +5,7 @@
 #include "app/composite_bands.h"
 #include "app/composite_layers.h"
 #include "app/exr_header.h"
+#include "app/startup.h"
 #include "app/stop.h"
 #include "io/exr_layers.h"
 #include "io/exr_read.h"
@@ -94,17 +95,17 @@ static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
+    startup_open_cache(ctx, o);
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
+    sky_features features = options_features(o);
+    features.sun_disc_power = false;   /* the composite keeps the lesson's scale and disc (docs/units.md) */
     sky_renderer_desc rdesc = {.width = width, .height = height, .bloom = readback && o->view.bloom,
                                .readback = readback, .display_format = VK_FORMAT_R8G8B8A8_SRGB,
                                .render_scale = readback ? o->render_scale : 1.0, .lut = o->lut,
-                               .bloom_mips = (uint32_t)o->bloom_mips};
+                               .bloom_mips = (uint32_t)o->bloom_mips, .atmosphere = &o->atmosphere,
+                               .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
     sky_renderer_create(r, ctx, &rdesc);
-    sky_renderer_set_atmosphere(r, &o->atmosphere, options_sun_radius_rad(o));
-    sky_features features = options_features(o);
-    features.sun_disc_power = false;   /* the composite keeps the lesson's scale and disc (docs/units.md) */
-    sky_renderer_set_features(r, &features);
     if (o->trace_passes) r->pass_trace = stdout;
     return 0;
 }
@@ -112,6 +113,7 @@ static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32
 static int gpu_end(gpu_context *ctx, sky_renderer *r, int status)
 {
     sky_renderer_destroy(r);
+    startup_close_cache(ctx);
     gpu_context_destroy(ctx);
     unsigned messages = gpu_validation_message_count();
     if (messages) {

@@ -3,6 +3,7 @@
 #include "app/cpu_time.h"
 #include "app/frame_ring.h"
 #include "app/sequence.h"
+#include "app/startup.h"
 #include "app/stop.h"
 #include "app/tiles.h"
 #include "io/encode_settings.h"
@@ -93,10 +94,14 @@ static void bench(const options *o, sky_renderer *r)
  * frame's last (the write-after-read barriers that only matter from the second frame on). */
 static void render_frames(sky_renderer *r, const frame_desc *f)
 {
+    /* --timings: the first frame's files are done when the second frame begins (or the run ends). */
+    startup_outputs_done();
+    startup_frame_begin();
     const char *env = getenv("VKSKY_FRAMES");
     int n = env ? atoi(env) : 1;
     if (n <= 1) {
         sky_renderer_render(r, f);
+        startup_frame_end(r);
         return;
     }
     VkCommandBuffer cmd = gpu_begin_commands(r->ctx);
@@ -118,6 +123,7 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
     gpu_submit_and_wait(r->ctx, cmd);
     gpu_buffer_invalidate(r->ctx, &r->readback_linear);
     gpu_buffer_invalidate(r->ctx, &r->readback_display);
+    startup_frame_end(r);
 }
 
 /* --bench with --render and a sequence (issue 27): the frames to disk, timed from the first frame's submit to the
@@ -141,9 +147,12 @@ static int bench_sequence(const options *o, sky_renderer *r, int slots)
 
 /* The end of every run: the context goes, any validation message fails the run, and a stop asked for by a signal
  * gives its exit status (stop.h). */
-static int finish(gpu_context *ctx, int status)
+static int finish(gpu_context *ctx, int status, bool timings)
 {
+    startup_outputs_done();
+    startup_close_cache(ctx);
     gpu_context_destroy(ctx);
+    if (timings) startup_report(stderr);
     unsigned messages = gpu_validation_message_count();
     if (messages) {
         fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
@@ -174,25 +183,27 @@ int headless_run(const options *given)
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(&ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
+    startup_open_cache(&ctx, o);
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
     /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/tiles.c). */
-    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o)) return finish(&ctx, tiles_render(o, &ctx));
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
+        return finish(&ctx, tiles_render(o, &ctx), o->timings);
     /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/tiles.c). */
-    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o)) return finish(&ctx, tiles_render(o, &ctx));
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
+        return finish(&ctx, tiles_render(o, &ctx), o->timings);
 
     sky_renderer r;
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    light_render_atmosphere(o, &lit);
+    sky_features features = options_features(o);
     sky_renderer_desc rdesc = {.width = (uint32_t)o->width, .height = (uint32_t)o->height, .bloom = o->view.bloom,
                                .readback = o->output_count > 0, .display_format = VK_FORMAT_R8G8B8A8_SRGB,
                                .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
                                .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample,
-                               .bloom_quarter = o->bloom_quarter};
+                               .bloom_quarter = o->bloom_quarter, .atmosphere = &lit,
+                               .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
     sky_renderer_create(&r, &ctx, &rdesc);
-    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
-    light_render_atmosphere(o, &lit);
-    sky_renderer_set_atmosphere(&r, &lit, options_sun_radius_rad(o));
-    sky_features features = options_features(o);
-    sky_renderer_set_features(&r, &features);
     if (o->trace_passes) r.pass_trace = stdout;
 
     int status = 0;
@@ -210,5 +221,5 @@ int headless_run(const options *given)
         status = sequence_render(o, &r, render_frames, slots, o->trace_barriers ? stdout : NULL);
     }
     sky_renderer_destroy(&r);
-    return finish(&ctx, status);
+    return finish(&ctx, status, o->timings);
 }

@@ -34,6 +34,7 @@ static const char *const quality_flags[] = {"--quality", "--max-error", "--steps
                                             "--multiscatter-steps", "--lut-format", "--render-scale", NULL};
 static const char *const diagnostics_flags[] = {"--reference", "--path-trace", "--samples", "--spectral", "--irradiance", "--tilt", "--tilt-azimuth", "--bench", "--frames",
                                                 "--screenshot", "--validate", "--trace-barriers", "--trace-passes",
+                                                "--timings", "--no-cache",
                                                 "--list-devices", "--device", "--help", "--version", NULL};
 static const help_group groups[] = {
     {"output", output_flags},       {"camera", camera_flags},   {"sun", sun_flags},

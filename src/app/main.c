@@ -8,10 +8,12 @@
 #include "app/reference_run.h"
 #include "app/scene_find.h"
 #include "app/sequence.h"
+#include "app/startup.h"
 #include <stdlib.h>
 
 int main(int argc, char **argv)
 {
+    startup_begin();
     options o;
     composite_options co;   /* its flags leave argv here; the shared table never sees them */
     if (composite_options_extract(&co, &argc, argv) != 0) return 2;

@@ -259,6 +259,8 @@ static int apply(options *o, const flag *f, const char *value)
     else if (!strcmp(n, "--sun-lux")) light_set_sun_lux(o, x);
     else if (!strcmp(n, "--no-multiscatter")) o->multiple_scattering = false;
     else if (!strcmp(n, "--trace-passes")) o->trace_passes = true;
+    else if (!strcmp(n, "--no-cache")) o->no_cache = true;
+    else if (!strcmp(n, "--timings")) o->timings = true;
     else if (!strcmp(n, "--reference")) o->reference = true;
     else if (!strcmp(n, "--path-trace")) o->path_trace = true;
     else if (!strcmp(n, "--samples")) o->path_samples = (int)x;

@@ -97,5 +97,8 @@ typedef struct options {
     double exposure_stops;                      /* the lesson's exposure (scene output.exposure_ev), kept for dumps
                                                    once view.exposure_ev holds EV100 (light_finish) */
     bool auto_exposure;                         /* --auto-exposure (photometric PNGs and the window: the default) */
+    /* start-up (issue 27): app/startup.c */
+    bool no_cache;                              /* --no-cache: no pipeline cache on disk (read or written) */
+    bool timings;                               /* --timings: where the first image's time went, on stderr */
 } options;
 #endif

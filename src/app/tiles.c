@@ -244,15 +244,14 @@ int tiles_render(const options *o, gpu_context *ctx)
         return 1;
     }
     sky_renderer r;
-    sky_renderer_desc rdesc = {.width = (uint32_t)width, .height = (uint32_t)band, .bloom = view.bloom,
-                               .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB, .render_scale = 1.0,
-                               .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips};
-    sky_renderer_create(&r, ctx, &rdesc);
     model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
     light_render_atmosphere(o, &lit);
-    sky_renderer_set_atmosphere(&r, &lit, options_sun_radius_rad(o));
     sky_features features = options_features(o);
-    sky_renderer_set_features(&r, &features);
+    sky_renderer_desc rdesc = {.width = (uint32_t)width, .height = (uint32_t)band, .bloom = view.bloom,
+                               .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB, .render_scale = 1.0,
+                               .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips, .atmosphere = &lit,
+                               .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
+    sky_renderer_create(&r, ctx, &rdesc);
     if (o->trace_passes) r.pass_trace = stdout;
 
     char what[300];

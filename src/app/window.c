@@ -16,6 +16,7 @@
  *
  * The window in three files: this one (the loop, frames in flight, screenshot, title, setup), swapchain.c (the
  * swapchain's life) and window_input.c (the controls); their shared state is app/window_app.h. */
+#include "app/startup.h"
 #include "app/cpu_time.h"
 #include "app/light.h"
 #include "app/window_app.h"
@@ -392,6 +393,7 @@ static int open_device(app *a)
                              .want_swapchain = true};
     int rc = gpu_context_create(&a->ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
+    startup_open_cache(&a->ctx, a->o);
     VK_CHECK(glfwCreateWindowSurface(a->ctx.instance, a->window, NULL, &a->surface));
     VkBool32 supported = VK_FALSE;
     VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(a->ctx.physical, a->ctx.queue_family, a->surface, &supported));
@@ -418,17 +420,16 @@ static int start_rendering(app *a)
     }
     frames_create(a);
     /* The bloom chain is always allocated so B can toggle it; --no-bloom only starts with it off. */
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    light_render_atmosphere(o, &lit);
+    sky_features features = options_features(o);
     sky_renderer_desc rdesc = {.width = a->sc.extent.width, .height = a->sc.extent.height, .bloom = true,
                                .readback = false, .external_display = true, .display_format = a->sc.format.format,
                                .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
                                .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample,
-                               .bloom_quarter = o->bloom_quarter};
+                               .bloom_quarter = o->bloom_quarter, .atmosphere = &lit,
+                               .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
     sky_renderer_create(&a->renderer, &a->ctx, &rdesc);
-    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
-    light_render_atmosphere(o, &lit);
-    sky_renderer_set_atmosphere(&a->renderer, &lit, options_sun_radius_rad(o));
-    sky_features features = options_features(o);
-    sky_renderer_set_features(&a->renderer, &features);
     a->view = o->view;
     /* Photometric units without --exposure: auto exposure, metered now so the first frame is already exposed. */
     a->auto_exposure = o->view.ev100 && (o->auto_exposure || !o->exposure_given);
@@ -448,6 +449,7 @@ static void shut_down(app *a)
         swapchain_destroy(&a->sc, &a->ctx);
     }
     if (a->surface) vkDestroySurfaceKHR(a->ctx.instance, a->surface, NULL);
+    if (a->ctx.device) startup_close_cache(&a->ctx);
     if (a->ctx.instance) gpu_context_destroy(&a->ctx);
     if (a->window) glfwDestroyWindow(a->window);
     glfwTerminate();

@@ -6,6 +6,7 @@
 #endif
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 static atomic_uint validation_messages;
 
@@ -268,6 +269,27 @@ static int pick_device(gpu_context *ctx, int index, bool quiet)
     return 0;
 }
 
+/* The probe's instance, kept for the context that usually follows (the device probed once, issue 27): a plain
+ * instance (no validation, no window extensions) is adopted by gpu_context_create; any other context destroys it
+ * first, and exit does if none came. */
+static VkInstance parked;
+static bool parked_debug_utils;
+
+static void release_parked(void)
+{
+    if (parked) vkDestroyInstance(parked, NULL);
+    parked = VK_NULL_HANDLE;
+}
+
+static void park(const gpu_context *probe)
+{
+    static bool registered;
+    release_parked();
+    parked = probe->instance, parked_debug_utils = probe->debug_utils;
+    if (!registered) registered = atexit(release_parked) == 0;
+    if (!registered) release_parked();
+}
+
 int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
 {
     /* With a context alive (the window re-reading its scene file), name its device: a second instance would
@@ -294,15 +316,30 @@ int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
         vkGetPhysicalDeviceProperties(ctx.physical, &p);
         *type = p.deviceType;
     }
-    vkDestroyInstance(ctx.instance, NULL);
+    park(&ctx);
     probed = true, probed_index = device_index, probed_result = picked == 0 ? 0 : -1, probed_type = *type;
     return probed_result;
+}
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
 }
 
 int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
 {
     *ctx = (gpu_context){0};
-    if (create_instance(ctx, desc, false) != 0) return -1;
+    double start = now_ms();
+    if (parked && !desc->validation && desc->instance_extension_count == 0) {
+        ctx->instance = parked, ctx->debug_utils = parked_debug_utils, ctx->instance_reused = true;
+        parked = VK_NULL_HANDLE;
+    } else {
+        release_parked();
+        if (create_instance(ctx, desc, false) != 0) return -1;
+    }
+    double instance_done = now_ms();
     int picked = pick_device(ctx, desc->device_index, false);
     if (picked != 0) {
         gpu_context_destroy(ctx);
@@ -371,6 +408,8 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
     gpu_set_name(ctx, VK_OBJECT_TYPE_COMMAND_POOL, (uint64_t)ctx->command_pool, "main command pool");
     live_contexts++;
     live_device_type = ctx->props.deviceType;
+    ctx->instance_ms = instance_done - start;
+    ctx->device_ms = now_ms() - instance_done;
     return 0;
 }
 

@@ -36,6 +36,10 @@ typedef struct gpu_context {
     bool debug_utils;             /* names and labels available */
     bool timestamps;              /* queue supports timestamps */
     double timestamp_period_ns;
+    VkPipelineCache pipeline_cache;          /* VK_NULL_HANDLE unless gpu_pipeline_cache_open made one */
+    struct gpu_cache_file *cache_file;       /* where it is saved (gpu/pipeline_cache.c) */
+    double instance_ms, device_ms;           /* wall time of gpu_context_create's two halves (--timings) */
+    bool instance_reused;                    /* the device probe's instance (gpu_device_type), not a new one */
 } gpu_context;
 
 /* Returns 0 on success; -1 with a message on stderr (no device, validation layer missing, ...). */

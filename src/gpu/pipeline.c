@@ -58,7 +58,7 @@ VkPipeline gpu_compute_pipeline_spec(const gpu_context *ctx, VkPipelineLayout la
         .layout = layout,
     };
     VkPipeline p;
-    VK_CHECK(vkCreateComputePipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, &p));
+    VK_CHECK(vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, NULL, &p));
     gpu_set_name(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)p, name);
     return p;
 }
@@ -120,7 +120,7 @@ VkPipeline gpu_fullscreen_pipeline_spec(const gpu_context *ctx, VkPipelineLayout
         .pRasterizationState = &raster, .pMultisampleState = &multisample, .pColorBlendState = &blend_state,
         .pDynamicState = &dynamic, .layout = layout};
     VkPipeline p;
-    VK_CHECK(vkCreateGraphicsPipelines(ctx->device, VK_NULL_HANDLE, 1, &info, NULL, &p));
+    VK_CHECK(vkCreateGraphicsPipelines(ctx->device, ctx->pipeline_cache, 1, &info, NULL, &p));
     gpu_set_name(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)p, name);
     return p;
 }

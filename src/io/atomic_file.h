@@ -23,6 +23,9 @@ int io_atomic_open(const char *path, char *tmp, size_t tmp_size, char *err, size
    closed. */
 int io_atomic_commit(int fd, const char *tmp, const char *path, char *err, size_t err_size);
 
+/* Milliseconds (wall) this process spent in io_atomic_commit so far: the fsync, close and rename of its files. */
+double io_atomic_commit_ms(void);
+
 /* Gives up: closes `fd` (if >= 0) and removes the temp file. */
 void io_atomic_abort(int fd, const char *tmp);
 

@@ -4,6 +4,14 @@
 #include "sky/shaders.h"
 #include <stddef.h>
 #include <string.h>
+#include <time.h>
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
 
 /* Everything whose size follows the output: HDR target, display/composite images, readback buffers, the bloom
  * chain and the tone map's descriptors. Their descriptor sets come from their own pool, reset on resize. */
@@ -75,9 +83,12 @@ void sky_renderer_resize(sky_renderer *r, uint32_t width, uint32_t height)
     create_sized(r);
 }
 
+static void upload_atmosphere(sky_renderer *r);
+
 /* The pipelines that carry the scene's variant (specialization constants): LUT passes and sky pass. */
 static void build_variant(sky_renderer *r)
 {
+    r->variant_builds++;
     pass_shared *s = &r->shared;
     r->variant = sky_variant_of(&r->medium, &r->features);
     const sky_variant *v = &r->variant;
@@ -109,17 +120,20 @@ static void rebuild_variant_if_changed(sky_renderer *r)
 {
     sky_variant want = sky_variant_of(&r->medium, &r->features);
     if (!memcmp(&want, &r->variant, sizeof want)) return;
+    double start = now_ms();
     vkDeviceWaitIdle(r->ctx->device);
     sky_pass_destroy(&r->sky, &r->shared);
     luts_destroy(&r->luts, &r->shared);
     VK_CHECK(vkResetDescriptorPool(r->ctx->device, r->shared.pool, 0));
     build_variant(r);
     sky_pass_set_target(&r->sky, &r->shared, &r->hdr);
+    r->pipelines_ms += now_ms() - start;
 }
 
 void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_desc *desc)
 {
     memset(r, 0, sizeof *r);
+    double start = now_ms();
     r->ctx = ctx;
     r->desc = *desc;
     if (r->desc.lut.transmittance_width == 0) r->desc.lut = sky_lut_quality_default();
@@ -142,9 +156,14 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
     model_atmosphere_earth(&r->medium);
     r->features = sky_features_default();
     r->sun_angular_radius = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
+    if (desc->atmosphere) r->medium = *desc->atmosphere, r->sun_angular_radius = desc->sun_angular_radius_rad;
+    if (desc->features) r->features = *desc->features;
+    r->desc.atmosphere = NULL, r->desc.features = NULL;   /* the caller's, valid only during this call */
     build_variant(r);
     create_sized(r);
     gpu_timer_create(ctx, &r->timer);
+    if (desc->atmosphere || desc->features) upload_atmosphere(r);
+    r->pipelines_ms = now_ms() - start;
 }
 
 void sky_renderer_destroy(sky_renderer *r)

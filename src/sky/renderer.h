@@ -22,6 +22,11 @@ typedef struct sky_renderer_desc {
     post_pass_kind post_pass;    /* bloom + tone map as fragment passes or compute dispatches (auto: by device) */
     bloom_downsample_kind bloom_downsample;  /* compute chain: the downsample in one dispatch, or one per level */
     bool bloom_quarter;          /* the bloom chain starts at a quarter of the HDR size (default: half) */
+    /* The first atmosphere and features (NULL: Earth's, the defaults). The pipelines carry the scene's variant:
+     * given here they are built once, for it; set after creation, they would be built for Earth first. */
+    const model_atmosphere *atmosphere;
+    double sun_angular_radius_rad;     /* with atmosphere */
+    const sky_features *features;
 } sky_renderer_desc;
 
 typedef struct sky_renderer {
@@ -51,6 +56,8 @@ typedef struct sky_renderer {
     FILE *pass_trace;            /* non-NULL: print "pass <name>" for every pass a frame records */
     uint64_t lut_hash;           /* of the atmosphere the LUTs hold; 0: never computed */
     bool luts_valid;
+    int variant_builds;          /* times the variant's pipelines were built (--timings) */
+    double pipelines_ms;         /* wall time spent making pipelines and the renderer's resources (--timings) */
 } sky_renderer;
 
 void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_desc *desc);

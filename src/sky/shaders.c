@@ -1,4 +1,5 @@
 #include "sky/shaders.h"
+#include "shader_key.h"
 #include "transmittance_lut_comp.h"
 #include "multiscatter_lut_comp.h"
 #include "transmittance_lut_f32_comp.h"
@@ -35,3 +36,5 @@ const sky_spirv spirv_bloom_downsample = SPIRV(spv_bloom_downsample_frag);
 const sky_spirv spirv_bloom_upsample = SPIRV(spv_bloom_upsample_frag);
 const sky_spirv spirv_tonemap = SPIRV(spv_tonemap_frag);
 const sky_spirv spirv_tonemap_composite = SPIRV(spv_tonemap_composite_frag);
+
+const char *sky_shaders_key(void) { return VKSKY_SHADER_KEY; }

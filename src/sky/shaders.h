@@ -9,4 +9,6 @@ extern const sky_spirv spirv_transmittance_lut, spirv_transmittance_lut_f32, spi
     spirv_multiscatter_lut_f32, spirv_skyview_lut, spirv_ground_irradiance_lut, spirv_fullscreen_vert, spirv_sky_march_frag, spirv_sky_lookup_frag,
     spirv_sky_march_comp, spirv_sky_lookup_comp, spirv_sky_fill_frag, spirv_sky_fill_comp,
     spirv_bloom_downsample, spirv_bloom_upsample, spirv_tonemap, spirv_tonemap_composite;
+/* A hash of all the embedded SPIR-V (generated at build time): the pipeline cache's build key. */
+const char *sky_shaders_key(void);
 #endif

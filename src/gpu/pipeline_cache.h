@@ -1,0 +1,25 @@
+/* A Vulkan pipeline cache kept on disk between runs, one file per device and driver (issue 27).
+ *
+ * The file is <dir>/pipelines-<device UUID>-<driver version>.bin: a small header of ours (magic, the build's shader
+ * key, the data's size and checksum) and then the driver's cache data as vkGetPipelineCacheData returned it. Before
+ * the driver sees a byte of it, the file must be whole (size and checksum), from this build (the key: otherwise it
+ * is replaced quietly) and for this device: the data's VkPipelineCacheHeaderVersionOne must name the device's
+ * vendor, device and pipelineCacheUUID. A file that fails is ignored with one note on stderr and replaced when the
+ * run ends. Saving writes a temporary file beside the target and renames it over (readers never see half a file);
+ * a directory that cannot be made or written costs one note and nothing else. Knows nothing of skies. */
+#ifndef VKSKY_GPU_PIPELINE_CACHE_H
+#define VKSKY_GPU_PIPELINE_CACHE_H
+#include "gpu/context.h"
+
+/* Creates ctx->pipeline_cache, seeded from dir's file when that file passes the checks. dir NULL: no file (the
+ * cache still serves the pipelines of this run). build_key: a short text that changes whenever the shaders do. */
+void gpu_pipeline_cache_open(gpu_context *ctx, const char *dir, const char *build_key);
+/* Writes the cache back if it holds more than was read, then destroys it. Called by gpu_context_destroy. */
+void gpu_pipeline_cache_close(gpu_context *ctx);
+
+/* The checks on a file's bytes, for tests: NULL if `file` may seed the cache of the device `props`, else why not
+ * ("truncated", "corrupt (checksum)", "not a vksky pipeline cache", "from another build", "made for another device
+ * or driver", ...). */
+const char *gpu_pipeline_cache_check(const unsigned char *file, size_t size, const char *build_key,
+                                     const VkPhysicalDeviceProperties *props);
+#endif
