@@ -36,6 +36,8 @@ typedef struct gpu_context {
     bool debug_utils;             /* names and labels available */
     bool timestamps;              /* queue supports timestamps */
     double timestamp_period_ns;
+    bool surface_maintenance1;    /* instance: VK_EXT_surface_maintenance1 (+ get_surface_capabilities2) enabled */
+    bool present_fences;          /* device: VK_EXT_swapchain_maintenance1 enabled (present fences, docs §6) */
 } gpu_context;
 
 /* Returns 0 on success; -1 with a message on stderr (no device, validation layer missing, ...). */
