@@ -13,16 +13,17 @@
  * No workgroup ever waits for another (Vulkan promises no forward progress between workgroups, so a spin-wait
  * could hang): work only moves on to whoever arrives last.
  *
- * In-dispatch synchronization (docs/synchronization.md, "Inside the single-pass downsampler"):
- *  - release: every thread's imageStore of the tile, then memoryBarrierImage() (this invocation's image writes
- *    are ordered before its later memory operations, as seen by other invocations), then barrier() (all 256
- *    threads have done so) before any thread touches the counters;
- *  - the counters are image atomics on a coherent R32UI image: one total order per counter, so exactly one
- *    workgroup sees the value count - 1;
- *  - acquire: the mips are declared coherent (their loads bypass incoherent per-unit caches and see what other
- *    workgroups made available), and the reads of a tile happen only after the atomic that proved its inputs
- *    complete, separated from it by memoryBarrierImage() and barrier().
- * Synchronization validation checks barriers between commands; it cannot see any of this (it treats a dispatch
+ * In-dispatch synchronization, in the Vulkan memory model (docs/synchronization.md, "Inside the single-pass
+ * downsampler"): message passing between workgroups through the counters.
+ *  - release: every thread's imageStore of the tile, then a control barrier at workgroup execution scope and
+ *    device memory scope with MakeAvailable on image (and shared) storage: all 256 threads' stores happen-before
+ *    what any of them does next, and are made available to other workgroups;
+ *  - the counters: imageAtomicAdd with acquire-release semantics at device scope: one total order per counter,
+ *    so exactly one workgroup sees the value count - 1, and its increment synchronizes with every earlier one;
+ *  - acquire: a control barrier with MakeVisible hands that to all threads before they imageLoad the inputs.
+ *  The images are nonprivate (they take part in availability and visibility operations); no access is
+ *  coherent: the barriers' semantics do what `coherent` + memoryBarrierImage() did in the legacy idiom.
+  * Synchronization validation checks barriers between commands; it cannot see any of this (it treats a dispatch
  * as one access). The tests (post_compare) compare the result with the fragment chain's instead. */
 #extension GL_GOOGLE_include_directive : require
 #include "shared.h"

@@ -12,7 +12,9 @@
  * writes, the optional screenshot copy and that layout transition all happen before presentation.
  *
  * Swapchain life: recreated (with oldSwapchain) when the framebuffer size changes, or acquire/present say
- * OUT_OF_DATE or SUBOPTIMAL; no frame is drawn while the window is minimised (we sleep in glfwWaitEvents).
+ * OUT_OF_DATE or SUBOPTIMAL; no frame is drawn while the window is minimised (we sleep in glfwWaitEvents). The
+ * old images' semaphores outlive their presents through VK_EXT_swapchain_maintenance1's present fences where the
+ * device has them, else through vkDeviceWaitIdle() (swapchain.c; docs/synchronization.md §6).
  *
  * The window in three files: this one (the loop, frames in flight, screenshot, title, setup), swapchain.c (the
  * swapchain's life) and window_input.c (the controls); their shared state is app/window_app.h. */
