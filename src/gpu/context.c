@@ -361,13 +361,14 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
     VkPhysicalDeviceSwapchainMaintenance1FeaturesEXT enable_sm1 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SWAPCHAIN_MAINTENANCE_1_FEATURES_EXT,
         .swapchainMaintenance1 = VK_TRUE};
-    /* The Vulkan memory model where the device has it (every 1.3 device does; bloom_spd.comp, §7 of the guide). */
+    /* The Vulkan memory model and its device scope where the device has them (bloom_spd.comp; §7 of the guide). */
     VkPhysicalDeviceVulkan12Features enable12 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
         .pNext = ctx->present_fences ? &enable_sm1 : NULL,
         .vulkanMemoryModel = f12.vulkanMemoryModel,
         .vulkanMemoryModelDeviceScope = f12.vulkanMemoryModelDeviceScope,
     };
+    ctx->memory_model_device_scope = f12.vulkanMemoryModel && f12.vulkanMemoryModelDeviceScope;
     /* maintenance4: glslang 12 emits LocalSizeId for vulkan1.3 targets. */
     VkPhysicalDeviceVulkan13Features enable13 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,

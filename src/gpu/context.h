@@ -38,6 +38,7 @@ typedef struct gpu_context {
     double timestamp_period_ns;
     bool surface_maintenance1;    /* instance: VK_EXT_surface_maintenance1 (+ get_surface_capabilities2) enabled */
     bool present_fences;          /* device: VK_EXT_swapchain_maintenance1 enabled (present fences, docs §6) */
+    bool memory_model_device_scope;   /* vulkanMemoryModel + ...DeviceScope enabled (bloom_spd.comp needs both) */
 } gpu_context;
 
 /* Returns 0 on success; -1 with a message on stderr (no device, validation layer missing, ...). */
