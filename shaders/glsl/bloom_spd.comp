@@ -1,4 +1,6 @@
 #version 450
+#pragma use_vulkan_memory_model
+#extension GL_KHR_memory_scope_semantics : require
 /* Bloom downsample, compute chain: every level of the mip chain in ONE dispatch, in the style of AMD FidelityFX
  * SPD (single-pass downsampler): workgroup shared memory, and a global atomic counter per tile so that the
  * workgroup that finishes the last input of a tile goes on to compute it ("the last one continues").
@@ -11,16 +13,17 @@
  * No workgroup ever waits for another (Vulkan promises no forward progress between workgroups, so a spin-wait
  * could hang): work only moves on to whoever arrives last.
  *
- * In-dispatch synchronization (docs/synchronization.md, "Inside the single-pass downsampler"):
- *  - release: every thread's imageStore of the tile, then memoryBarrierImage() (this invocation's image writes
- *    are ordered before its later memory operations, as seen by other invocations), then barrier() (all 256
- *    threads have done so) before any thread touches the counters;
- *  - the counters are image atomics on a coherent R32UI image: one total order per counter, so exactly one
- *    workgroup sees the value count - 1;
- *  - acquire: the mips are declared coherent (their loads bypass incoherent per-unit caches and see what other
- *    workgroups made available), and the reads of a tile happen only after the atomic that proved its inputs
- *    complete, separated from it by memoryBarrierImage() and barrier().
- * Synchronization validation checks barriers between commands; it cannot see any of this (it treats a dispatch
+ * In-dispatch synchronization, in the Vulkan memory model (docs/synchronization.md, "Inside the single-pass
+ * downsampler"): message passing between workgroups through the counters.
+ *  - release: every thread's imageStore of the tile, then a control barrier at workgroup execution scope and
+ *    device memory scope with MakeAvailable on image (and shared) storage: all 256 threads' stores happen-before
+ *    what any of them does next, and are made available to other workgroups;
+ *  - the counters: imageAtomicAdd with acquire-release semantics at device scope: one total order per counter,
+ *    so exactly one workgroup sees the value count - 1, and its increment synchronizes with every earlier one;
+ *  - acquire: a control barrier with MakeVisible hands that to all threads before they imageLoad the inputs.
+ *  The images are nonprivate (they take part in availability and visibility operations); no access is
+ *  coherent: the barriers' semantics do what `coherent` + memoryBarrierImage() did in the legacy idiom.
+  * Synchronization validation checks barriers between commands; it cannot see any of this (it treats a dispatch
  * as one access). The tests (post_compare) compare the result with the fragment chain's instead. */
 #extension GL_GOOGLE_include_directive : require
 #include "shared.h"
@@ -32,20 +35,39 @@
 
 layout(local_size_x = TILE, local_size_y = TILE) in;
 layout(set = 0, binding = 0) uniform sampler2D hdr;
-layout(set = 0, binding = 1, rgba16f) uniform coherent image2D mip0;
-layout(set = 0, binding = 2, rgba16f) uniform coherent image2D mip1;
-layout(set = 0, binding = 3, rgba16f) uniform coherent image2D mip2;
-layout(set = 0, binding = 4, rgba16f) uniform coherent image2D mip3;
-layout(set = 0, binding = 5, rgba16f) uniform coherent image2D mip4;
-layout(set = 0, binding = 6, rgba16f) uniform coherent image2D mip5;
-layout(set = 0, binding = 7, rgba16f) uniform coherent image2D mip6;
-layout(set = 0, binding = 8, rgba16f) uniform coherent image2D mip7;
-layout(set = 0, binding = 9, r32ui) uniform coherent uimage2D counters;
+layout(set = 0, binding = 1, rgba16f) uniform nonprivate image2D mip0;
+layout(set = 0, binding = 2, rgba16f) uniform nonprivate image2D mip1;
+layout(set = 0, binding = 3, rgba16f) uniform nonprivate image2D mip2;
+layout(set = 0, binding = 4, rgba16f) uniform nonprivate image2D mip3;
+layout(set = 0, binding = 5, rgba16f) uniform nonprivate image2D mip4;
+layout(set = 0, binding = 6, rgba16f) uniform nonprivate image2D mip5;
+layout(set = 0, binding = 7, rgba16f) uniform nonprivate image2D mip6;
+layout(set = 0, binding = 8, rgba16f) uniform nonprivate image2D mip7;
+layout(set = 0, binding = 9, r32ui) uniform nonprivate uimage2D counters;
 layout(push_constant) uniform Push { PostPush push; };   /* params: x mip count, y threshold */
 
-shared vec3 region[REGION * REGION];
+/* Workgroup shared memory, touched only through relaxed atomics at workgroup scope (ordered by the control
+ * barriers below). A plain access would do under the memory model too, but glslang 12 makes every plain shared
+ * access workgroup-coherent, with a make-visible/available operation at workgroup scope on each one, which Mesa
+ * 22.3's lavapipe turns into a workgroup execution barrier: inside divergent control flow that breaks the
+ * workgroup (docs/synchronization.md §7, "Status"). */
+shared uint region[REGION * REGION * 3];
 shared uint stack[STACK];
-shared int stack_size;
+shared uint stack_size;
+
+/* Shared-memory ordering between this workgroup's threads: every thread's accesses before, everyone's after. */
+#define WORKGROUP_BARRIER() controlBarrier(gl_ScopeWorkgroup, gl_ScopeWorkgroup, gl_StorageSemanticsShared, \
+                                           gl_SemanticsAcquireRelease)
+uint shared_get(uint i) { return atomicLoad(region[i], gl_ScopeWorkgroup, 0, gl_SemanticsRelaxed); }
+void region_put(int i, vec3 c)
+{
+    for (int j = 0; j < 3; ++j)
+        atomicStore(region[3 * i + j], floatBitsToUint(c[j]), gl_ScopeWorkgroup, 0, gl_SemanticsRelaxed);
+}
+vec3 region_get(int i)
+{
+    return uintBitsToFloat(uvec3(shared_get(3 * i), shared_get(3 * i + 1), shared_get(3 * i + 2)));
+}
 
 /* Constant indices only: no descriptor-array dynamic indexing feature needed. */
 ivec2 mip_size(int k)
@@ -118,8 +140,8 @@ vec3 region_bilinear(vec2 pos, ivec2 lo, ivec2 hi, ivec2 rsize)
     vec2 q = pos - 0.5, f = q - floor(q);
     ivec2 i0 = ivec2(floor(q));
     ivec2 a = clamp(i0, lo, hi) - lo, b = clamp(i0 + 1, lo, hi) - lo;
-    vec3 c00 = region[a.y * rsize.x + a.x], c10 = region[a.y * rsize.x + b.x];
-    vec3 c01 = region[b.y * rsize.x + a.x], c11 = region[b.y * rsize.x + b.x];
+    vec3 c00 = region_get(a.y * rsize.x + a.x), c10 = region_get(a.y * rsize.x + b.x);
+    vec3 c01 = region_get(b.y * rsize.x + a.x), c11 = region_get(b.y * rsize.x + b.x);
     return mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
 }
 
@@ -130,8 +152,8 @@ void level_k(int k, ivec2 t)
     ivec2 rsize = hi - lo + 1;
     uint lid = gl_LocalInvocationIndex;
     for (int i = int(lid); i < rsize.x * rsize.y; i += TILE * TILE)
-        region[i] = mip_load(k - 1, lo + ivec2(i % rsize.x, i / rsize.x));
-    barrier();   /* shared memory: the region is complete */
+        region_put(i, mip_load(k - 1, lo + ivec2(i % rsize.x, i / rsize.x)));
+    WORKGROUP_BARRIER();   /* shared memory: the region is complete */
     ivec2 p = t * TILE + ivec2(gl_LocalInvocationID.xy);
     ivec2 wd = mip_size(k), ws = mip_size(k - 1);
     if (all(lessThan(p, wd))) {
@@ -140,7 +162,7 @@ void level_k(int k, ivec2 t)
         for (int i = 0; i < 13; ++i) s[i] = region_bilinear(centre + BLOOM_TAPS[i], lo, hi, rsize);
         mip_store(k, p, bloom_filter13(s, false, 0.0));
     }
-    barrier();   /* shared memory: everyone is done reading the region before the next task overwrites it */
+    WORKGROUP_BARRIER();   /* shared memory: everyone is done reading the region before the next task overwrites it */
 }
 
 /* Tile t of level k is written: count it in every level k+1 tile that reads it; push those it completes. */
@@ -148,8 +170,10 @@ void finish(int k, ivec2 t)
 {
     int levels = int(push.params.x);
     if (k + 1 >= levels) return;
-    memoryBarrierImage();   /* release: this thread's stores before the counter increments below */
-    barrier();              /* ... and every thread's */
+    /* Release: all 256 threads' image stores of the tile happen-before what any of them does next, made
+     * available at device scope (other workgroups may run on other units with their own caches). */
+    controlBarrier(gl_ScopeWorkgroup, gl_ScopeDevice, gl_StorageSemanticsImage | gl_StorageSemanticsShared,
+                   gl_SemanticsAcquireRelease | gl_SemanticsMakeAvailable);
     /* Candidates: a level k+1 tile reads level k tiles [2s - 2, 2s + 2] at most; 7 x 7 around t / 2 is ample. */
     uint lid = gl_LocalInvocationIndex;
     if (lid < 49) {
@@ -161,32 +185,38 @@ void finish(int k, ivec2 t)
             ivec2 tlo = lo / TILE, thi = hi / TILE;
             if (all(greaterThanEqual(t, tlo)) && all(lessThanEqual(t, thi))) {
                 uint inputs = uint((thi.x - tlo.x + 1) * (thi.y - tlo.y + 1));
-                uint before = imageAtomicAdd(counters, counter_coord(k + 1, s), 1u);
+                /* The hand-off: release publishes this tile; the increment that completes the counter
+                 * acquires every earlier one (read-modify-writes continue a release sequence). */
+                uint before = imageAtomicAdd(counters, counter_coord(k + 1, s), 1u, gl_ScopeDevice,
+                                             gl_StorageSemanticsImage, gl_SemanticsAcquireRelease |
+                                             gl_SemanticsMakeAvailable | gl_SemanticsMakeVisible);
                 if (before == inputs - 1u) {
-                    int slot = atomicAdd(stack_size, 1);
-                    stack[slot] = pack_task(k + 1, s);
+                    uint slot = atomicAdd(stack_size, 1u, gl_ScopeWorkgroup, 0, gl_SemanticsRelaxed);
+                    atomicStore(stack[slot], pack_task(k + 1, s), gl_ScopeWorkgroup, 0, gl_SemanticsRelaxed);
                 }
             }
         }
     }
-    memoryBarrierImage();   /* acquire: the completed tiles' inputs are read only after the counters said so */
-    barrier();
+    /* Acquire: hand the completed tiles to all threads, their inputs made visible to the imageLoads that follow. */
+    controlBarrier(gl_ScopeWorkgroup, gl_ScopeDevice, gl_StorageSemanticsImage | gl_StorageSemanticsShared,
+                   gl_SemanticsAcquireRelease | gl_SemanticsMakeVisible);
 }
 
 void main()
 {
-    if (gl_LocalInvocationIndex == 0) stack_size = 0;
-    barrier();
+    if (gl_LocalInvocationIndex == 0) atomicStore(stack_size, 0u, gl_ScopeWorkgroup, 0, gl_SemanticsRelaxed);
+    WORKGROUP_BARRIER();
     ivec2 t = ivec2(gl_WorkGroupID.xy);
     level0(t);
     finish(0, t);
     while (true) {
-        int n = stack_size;   /* uniform: read after a barrier, written only between barriers */
-        if (n == 0) break;
-        uint task = stack[n - 1];
-        barrier();
-        if (gl_LocalInvocationIndex == 0) stack_size = n - 1;
-        barrier();
+        /* uniform: read after a barrier, written only between barriers */
+        uint n = atomicLoad(stack_size, gl_ScopeWorkgroup, 0, gl_SemanticsRelaxed);
+        if (n == 0u) break;
+        uint task = atomicLoad(stack[n - 1u], gl_ScopeWorkgroup, 0, gl_SemanticsRelaxed);
+        WORKGROUP_BARRIER();
+        if (gl_LocalInvocationIndex == 0) atomicStore(stack_size, n - 1u, gl_ScopeWorkgroup, 0, gl_SemanticsRelaxed);
+        WORKGROUP_BARRIER();
         int k = int(task >> 20);
         ivec2 tile = ivec2(int(task & 1023u), int((task >> 10) & 1023u));
         level_k(k, tile);

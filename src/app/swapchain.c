@@ -24,11 +24,38 @@ VkSurfaceFormatKHR swapchain_choose_format(const gpu_context *ctx, VkSurfaceKHR 
     return formats[0];
 }
 
+/* The semaphores' lifetime (docs/synchronization.md §6): a render-finished semaphore may be destroyed only once
+ * the presentation engine's wait on it is over. With VK_EXT_swapchain_maintenance1 each present's fence says so;
+ * without it nothing in core Vulkan does for a retired swapchain, and the caller's vkDeviceWaitIdle() is the
+ * fallback that implementations honour in practice. */
+static void swapchain_wait_presents(swapchain *sc, const gpu_context *ctx)
+{
+    for (uint32_t i = 0; i < sc->count; ++i)
+        if (sc->present_pending[i]) {
+            VK_CHECK(vkWaitForFences(ctx->device, 1, &sc->present_done[i], VK_TRUE, UINT64_MAX));
+            sc->present_pending[i] = false;
+        }
+}
+
+VkFence swapchain_present_fence(swapchain *sc, const gpu_context *ctx, uint32_t image)
+{
+    if (!ctx->present_fences) return VK_NULL_HANDLE;
+    if (sc->present_pending[image]) {   /* the image's previous present: its fence must be unsignalled to reuse */
+        VK_CHECK(vkWaitForFences(ctx->device, 1, &sc->present_done[image], VK_TRUE, UINT64_MAX));
+        VK_CHECK(vkResetFences(ctx->device, 1, &sc->present_done[image]));
+    }
+    sc->present_pending[image] = true;
+    return sc->present_done[image];
+}
+
 static void swapchain_destroy_views(swapchain *sc, const gpu_context *ctx)
 {
+    swapchain_wait_presents(sc, ctx);
     for (uint32_t i = 0; i < sc->count; ++i) {
         vkDestroyImageView(ctx->device, sc->views[i], NULL);
         vkDestroySemaphore(ctx->device, sc->render_finished[i], NULL);
+        if (sc->present_done[i]) vkDestroyFence(ctx->device, sc->present_done[i], NULL);
+        sc->present_done[i] = VK_NULL_HANDLE;
     }
     sc->count = 0;
 }
@@ -57,6 +84,11 @@ static void swapchain_create_views(swapchain *sc, const gpu_context *ctx)
                                        .subresourceRange = gpu_color_range(0, 1)};
         VK_CHECK(vkCreateImageView(ctx->device, &vinfo, NULL, &sc->views[i]));
         VK_CHECK(vkCreateSemaphore(ctx->device, &sinfo, NULL, &sc->render_finished[i]));
+        if (ctx->present_fences) {
+            VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+            VK_CHECK(vkCreateFence(ctx->device, &finfo, NULL, &sc->present_done[i]));
+        }
+        sc->present_pending[i] = false;
         char name[48];
         snprintf(name, sizeof name, "swapchain image %u", i);
         gpu_set_name(ctx, VK_OBJECT_TYPE_IMAGE, (uint64_t)sc->images[i], name);
@@ -67,8 +99,10 @@ static void swapchain_create_views(swapchain *sc, const gpu_context *ctx)
 }
 
 /* (Re)create the swapchain at the surface's current size. Returns false while the surface has no area
- * (minimised). The caller has waited for the device to go idle: nothing still uses the old images, their
- * views or semaphores (a present's semaphore wait is a queue operation, finished once the queue is idle). */
+ * (minimised). The caller has waited for the device to go idle: no command buffer still uses the old images or
+ * views. The old images' semaphores are destroyed after their present fences where the device has them; without,
+ * the idle device is the fallback (a present's semaphore wait belongs to the presentation engine, which core
+ * Vulkan does not promise is over when the queue is idle: docs/synchronization.md §6). */
 bool swapchain_create(swapchain *sc, const gpu_context *ctx, VkSurfaceKHR surface, GLFWwindow *window, bool report)
 {
     VkSurfaceCapabilitiesKHR caps;

@@ -12,7 +12,9 @@
  * writes, the optional screenshot copy and that layout transition all happen before presentation.
  *
  * Swapchain life: recreated (with oldSwapchain) when the framebuffer size changes, or acquire/present say
- * OUT_OF_DATE or SUBOPTIMAL; no frame is drawn while the window is minimised (we sleep in glfwWaitEvents).
+ * OUT_OF_DATE or SUBOPTIMAL; no frame is drawn while the window is minimised (we sleep in glfwWaitEvents). The
+ * old images' semaphores outlive their presents through VK_EXT_swapchain_maintenance1's present fences where the
+ * device has them, else through vkDeviceWaitIdle() (swapchain.c; docs/synchronization.md §6).
  *
  * The window in three files: this one (the loop, frames in flight, screenshot, title, setup), swapchain.c (the
  * swapchain's life) and window_input.c (the controls); their shared state is app/window_app.h. */
@@ -161,7 +163,13 @@ static void submit(app *a, frame_slot *f, uint32_t image)
 
 static void present(app *a, uint32_t image)
 {
-    VkPresentInfoKHR info = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR, .waitSemaphoreCount = 1,
+    /* With VK_EXT_swapchain_maintenance1, a fence that signals once the presentation engine no longer waits
+     * on the semaphore: what swapchain.c waits for before destroying it (docs/synchronization.md §6). */
+    VkFence fence = swapchain_present_fence(&a->sc, &a->ctx, image);
+    VkSwapchainPresentFenceInfoEXT fence_info = {.sType = VK_STRUCTURE_TYPE_SWAPCHAIN_PRESENT_FENCE_INFO_EXT,
+                                                 .swapchainCount = 1, .pFences = &fence};
+    VkPresentInfoKHR info = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR, .pNext = fence ? &fence_info : NULL,
+                             .waitSemaphoreCount = 1,
                              .pWaitSemaphores = &a->sc.render_finished[image], .swapchainCount = 1,
                              .pSwapchains = &a->sc.handle, .pImageIndices = &image};
     VkResult r = vkQueuePresentKHR(a->ctx.queue, &info);

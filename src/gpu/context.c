@@ -61,6 +61,18 @@ static bool has_layer(const char *name)
     return found;
 }
 
+static bool has_device_extension(VkPhysicalDevice physical, const char *name)
+{
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(physical, NULL, &n, NULL);
+    VkExtensionProperties *ext = calloc(n ? n : 1, sizeof *ext);
+    vkEnumerateDeviceExtensionProperties(physical, NULL, &n, ext);
+    bool found = false;
+    for (uint32_t i = 0; ext && i < n; ++i) found |= strcmp(ext[i].extensionName, name) == 0;
+    free(ext);
+    return found;
+}
+
 static bool has_instance_extension(const char *name)
 {
     uint32_t n = 0;
@@ -148,6 +160,14 @@ static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool 
         extensions[ext_count++] = desc->instance_extensions[i];
     ctx->debug_utils = has_instance_extension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     if (ctx->debug_utils) extensions[ext_count++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    /* VK_EXT_swapchain_maintenance1's present fences need these on the instance (docs/synchronization.md §6). */
+    ctx->surface_maintenance1 = desc->want_swapchain && ext_count <= 14 &&
+                                has_instance_extension(VK_EXT_SURFACE_MAINTENANCE_1_EXTENSION_NAME) &&
+                                has_instance_extension(VK_KHR_GET_SURFACE_CAPABILITIES_2_EXTENSION_NAME);
+    if (ctx->surface_maintenance1) {
+        extensions[ext_count++] = VK_KHR_GET_SURFACE_CAPABILITIES_2_EXTENSION_NAME;
+        extensions[ext_count++] = VK_EXT_SURFACE_MAINTENANCE_1_EXTENSION_NAME;
+    }
 
     const char *layers[1] = {"VK_LAYER_KHRONOS_validation"};
     if (desc->validation && !has_layer(layers[0])) {
@@ -357,8 +377,15 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
     ctx->timestamps = qprops[ctx->queue_family].timestampValidBits > 0 && ctx->props.limits.timestampPeriod > 0;
     ctx->timestamp_period_ns = ctx->props.limits.timestampPeriod;
 
+    VkPhysicalDeviceSwapchainMaintenance1FeaturesEXT fsm1 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SWAPCHAIN_MAINTENANCE_1_FEATURES_EXT};
+    bool want_sm1 = ctx->surface_maintenance1 &&
+                    has_device_extension(ctx->physical, VK_EXT_SWAPCHAIN_MAINTENANCE_1_EXTENSION_NAME);
+    VkPhysicalDeviceVulkan12Features f12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                            .pNext = want_sm1 ? &fsm1 : NULL};
     VkPhysicalDeviceVulkan13Features f13 = {0};
     f13.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES;
+    f13.pNext = &f12;
     VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f13};
     vkGetPhysicalDeviceFeatures2(ctx->physical, &f2);
     if (!f13.synchronization2 || !f13.dynamicRendering || !f13.maintenance4) {
@@ -366,9 +393,23 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
         gpu_context_destroy(ctx);
         return -1;
     }
+    /* Present fences where the device has them (the window's semaphore lifetime, docs/synchronization.md §6). */
+    ctx->present_fences = want_sm1 && fsm1.swapchainMaintenance1;
+    VkPhysicalDeviceSwapchainMaintenance1FeaturesEXT enable_sm1 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SWAPCHAIN_MAINTENANCE_1_FEATURES_EXT,
+        .swapchainMaintenance1 = VK_TRUE};
+    /* The Vulkan memory model and its device scope where the device has them (bloom_spd.comp; §7 of the guide). */
+    VkPhysicalDeviceVulkan12Features enable12 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+        .pNext = ctx->present_fences ? &enable_sm1 : NULL,
+        .vulkanMemoryModel = f12.vulkanMemoryModel,
+        .vulkanMemoryModelDeviceScope = f12.vulkanMemoryModelDeviceScope,
+    };
+    ctx->memory_model_device_scope = f12.vulkanMemoryModel && f12.vulkanMemoryModelDeviceScope;
     /* maintenance4: glslang 12 emits LocalSizeId for vulkan1.3 targets. */
     VkPhysicalDeviceVulkan13Features enable13 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+        .pNext = &enable12,
         .synchronization2 = VK_TRUE,
         .dynamicRendering = VK_TRUE,
         .maintenance4 = VK_TRUE,
@@ -380,13 +421,13 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
         .queueCount = 1,
         .pQueuePriorities = &priority,
     };
-    const char *dev_ext[1] = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+    const char *dev_ext[2] = {VK_KHR_SWAPCHAIN_EXTENSION_NAME, VK_EXT_SWAPCHAIN_MAINTENANCE_1_EXTENSION_NAME};
     VkDeviceCreateInfo dinfo = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &enable13,
         .queueCreateInfoCount = 1,
         .pQueueCreateInfos = &qinfo,
-        .enabledExtensionCount = desc->want_swapchain ? 1 : 0,
+        .enabledExtensionCount = desc->want_swapchain ? (ctx->present_fences ? 2 : 1) : 0,
         .ppEnabledExtensionNames = dev_ext,
     };
     VkResult r = vkCreateDevice(ctx->physical, &dinfo, NULL, &ctx->device);

@@ -40,6 +40,9 @@ typedef struct gpu_context {
     struct gpu_cache_file *cache_file;       /* where it is saved (gpu/pipeline_cache.c) */
     double instance_ms, device_ms;           /* wall time of gpu_context_create's two halves (--timings) */
     bool instance_reused;                    /* the device probe's instance (gpu_device_type), not a new one */
+    bool surface_maintenance1;    /* instance: VK_EXT_surface_maintenance1 (+ get_surface_capabilities2) enabled */
+    bool present_fences;          /* device: VK_EXT_swapchain_maintenance1 enabled (present fences, docs §6) */
+    bool memory_model_device_scope;   /* vulkanMemoryModel + ...DeviceScope enabled (bloom_spd.comp needs both) */
 } gpu_context;
 
 /* Returns 0 on success; -1 with a message on stderr (no device, validation layer missing, ...). */

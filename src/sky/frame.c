@@ -206,7 +206,7 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     post_compute *pc = &r->post;
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     bool compute_tonemap = pc->tonemap && !f->target;
-    bool spd = bloom && r->desc.bloom_downsample == BLOOM_DOWN_SINGLE_PASS;
+    bool spd = bloom && r->desc.bloom_downsample == BLOOM_DOWN_SINGLE_PASS && pc->spd_pipeline;   /* post.c */
     uint32_t t;
 
     /* The sky pass wrote the HDR image; the single pass (bloom level 0) and the tone map sample it, both compute

@@ -50,7 +50,10 @@ static void create_bloom(post_compute *p, const pass_shared *s, const gpu_image 
     VkDescriptorType spd_types[10] = {SAMPLED, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE};
     p->spd_set_layout = gpu_set_layout(ctx, spd_types, 10, VK_SHADER_STAGE_COMPUTE_BIT, "bloom spd set layout");
     p->spd_layout = gpu_pipeline_layout(ctx, p->spd_set_layout, sizeof(PostPush), VK_SHADER_STAGE_COMPUTE_BIT, "bloom spd layout");
-    p->spd_pipeline = compute_pipeline(ctx, p->spd_layout, &spirv_bloom_spd, "bloom spd");
+    /* Written in the Vulkan memory model at device scope: without vulkanMemoryModelDeviceScope (optional even in
+     * Vulkan 1.3) there is no single pass, and frame.c records the per-level downsample instead. */
+    if (ctx->memory_model_device_scope)
+        p->spd_pipeline = compute_pipeline(ctx, p->spd_layout, &spirv_bloom_spd, "bloom spd");
     p->spd_set = gpu_alloc_set(ctx, p->pool, p->spd_set_layout, "bloom spd set");
     write_image(ctx, p->spd_set, 0, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     for (uint32_t k = 0; k < BLOOM_MAX_MIPS; ++k) {

@@ -57,6 +57,10 @@ static void create_sized(sky_renderer *r)
         post_compute_create(&r->post, &r->shared, &r->hdr, desc->bloom ? &r->bloom : NULL,
                             compute_tonemap ? r->display.view : VK_NULL_HANDLE,
                             compute_tonemap && desc->readback ? r->composite.view : VK_NULL_HANDLE);
+    if (r->post_kind == POST_PASS_COMPUTE && desc->bloom && desc->bloom_downsample == BLOOM_DOWN_SINGLE_PASS &&
+        !r->post.spd_pipeline)
+        fprintf(stderr, "vksky: --bloom-downsample single-pass needs the device feature vulkanMemoryModelDeviceScope, "
+                        "which this device lacks: the per-level downsample runs instead\n");
 }
 
 static void destroy_sized(sky_renderer *r)
