@@ -66,7 +66,7 @@ const flag flags_table[] = {
     {"--reference", ARG_NONE, 0, 0, "       CPU reference (double precision, no LUTs): print R G B along the view axis, or with --render write a reference image"},
     {"--path-trace", ARG_NONE, 0, 0, "      with --reference: Monte Carlo path tracer of the same medium, all scattering orders"},
     {"--samples", ARG_INT, 1, 100000000, "N        with --path-trace: paths per estimate (default 4096)"},
-    {"--spectral", ARG_INT, 3, 120, "N       with --reference: spectral, N wavelengths over 360-830 nm (>= 40 recommended; radiance -> CIE XYZ -> linear Rec.709)"},
+    {"--spectral", ARG_INT, 0, 120, "N       colour from N wavelengths over 360-830 nm (radiance -> CIE XYZ -> linear Rec.709; 0: RGB, the default); with --reference 3-120 (>= 40 recommended), on the GPU a multiple of 4 up to 48, .exr outputs only"},
     {"--irradiance", ARG_NONE, 0, 0, "    with --reference: print the direct normal, diffuse and global irradiance (W/m^2, 360-830 nm) and illuminance (lx) at the camera, spectral (default 48 wavelengths)"},
     {"--tilt", ARG_DOUBLE, 0, 180, "DEG       with --irradiance: the tilted surface's tilt from horizontal (default 0)"},
     {"--tilt-azimuth", ARG_DOUBLE, -360, 360, "DEG with --irradiance: the azimuth the tilted surface faces, as --sun-azimuth (default: the sun's)"},

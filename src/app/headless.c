@@ -1,6 +1,7 @@
 #include "app/headless.h"
 #include "app/cpu_time.h"
 #include "app/sequence.h"
+#include "app/spectral_render.h"
 #include "app/stop.h"
 #include "app/tiles.h"
 #include "sky/submit.h"
@@ -172,7 +173,9 @@ int headless_run(const options *given)
         gpu_barrier_trace(NULL);
         bench(o, &r);
     } else {
-        status = sequence_render(o, &r, render_frames);   /* one frame, or the frames of a sequence */
+        /* one frame, or the frames of a sequence; --spectral: each frame once per wavelength group, combined */
+        if (o->spectral) spectral_render_begin(o, render_frames);
+        status = sequence_render(o, &r, o->spectral ? spectral_render_frame : render_frames);
     }
     sky_renderer_destroy(&r);
     return finish(&ctx, status);

@@ -7,6 +7,7 @@
 #include "app/reference_run.h"
 #include "app/scene_find.h"
 #include "app/sequence.h"
+#include "app/spectral_render.h"
 #include <stdlib.h>
 
 int main(int argc, char **argv)
@@ -31,8 +32,12 @@ int main(int argc, char **argv)
         fprintf(stderr, "vksky: --path-trace: only with --reference\n");
         return 2;
     }
-    if ((o.spectral || o.irradiance) && !o.reference) {   /* the GPU's --spectral is not there yet (issue 32) */
-        fprintf(stderr, "vksky: %s: only with --reference\n", o.spectral ? "--spectral" : "--irradiance");
+    if (o.irradiance && !o.reference) {
+        fprintf(stderr, "vksky: --irradiance: only with --reference\n");
+        return 2;
+    }
+    if (o.reference && o.spectral > 0 && o.spectral < 3) {
+        fprintf(stderr, "vksky: --spectral: %d wavelengths with --reference; expected 0 (RGB) or 3 to 120\n", o.spectral);
         return 2;
     }
     if (o.reference) {
@@ -48,6 +53,12 @@ int main(int argc, char **argv)
                 co.input ? "--composite" : "--aovs");
         return 2;
     }
+    if (o.spectral && (co.input || co.aovs)) {
+        fprintf(stderr, "vksky: --spectral: not with %s (the GPU's spectral path renders plain sky images)\n",
+                co.input ? "--composite" : "--aovs");
+        return 2;
+    }
+    if (spectral_render_check(&o)) return 2;   /* the GPU's --spectral: EXR renders only */
     if (co.input) return composite_run(&o, &co);
     if (co.aovs) return composite_aovs_run(&o, &co);
     if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);
