@@ -126,9 +126,10 @@ int main(int argc, char **argv)
 
     row rows[MAX_ROWS];
     int n = build_rows(rows);
-    printf("| # | altitude | sun | view | L spectral (cd/m²) | L RGB | L error | x, y spectral | x, y RGB | ΔE2000 |\n");
-    printf("|---|---|---|---|---|---|---|---|---|---|\n");
-    double sum_de = 0.0, max_de = 0.0, sum_le = 0.0, max_le = 0.0;
+    printf("| # | altitude | sun | view | L spectral (cd/m²) | L RGB | L error | x, y spectral | x, y RGB | ΔE2000 | "
+           "ΔE2000 at equal L |\n");
+    printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+    double sum_de = 0.0, max_de = 0.0, sum_le = 0.0, max_le = 0.0, sum_dc = 0.0, max_dc = 0.0;
     int counted = 0;
     for (int i = 0; i < n; ++i) {
         const row *w = &rows[i];
@@ -145,18 +146,26 @@ int main(int argc, char **argv)
         xyz_to_lab(xyz_s, Ls, lab_s);
         xyz_to_lab(xyz_r, Ls, lab_r);
         double de = Ls > 0.0 ? metrics_ciede2000(lab_s, lab_r) : 0.0, xs, ys, xr, yr;
+        /* the colour alone: the RGB result scaled to the reference's luminance */
+        double xyz_c[3], lab_c[3], k = Lr > 0.0 ? Ls / Lr : 0.0;
+        for (int c = 0; c < 3; ++c)
+            xyz_c[c] = k * xyz_r[c];
+        xyz_to_lab(xyz_c, Ls, lab_c);
+        double dc = Ls > 0.0 ? metrics_ciede2000(lab_s, lab_c) : 0.0;
         chroma(xyz_s, &xs, &ys);
         chroma(xyz_r, &xr, &yr);
-        printf("| %d | %g km | %+g | %s | %.4g | %.4g | %+.2f %% | %.4f, %.4f | %.4f, %.4f | %.2f |\n", i + 1,
-               w->altitude < 0.01 ? 0.0 : w->altitude, w->sun_el, w->name, Ls, Lr, 100 * le, xs, ys, xr, yr, de);
+        printf("| %d | %g km | %+g | %s | %.4g | %.4g | %+.2f %% | %.4f, %.4f | %.4f, %.4f | %.2f | %.2f |\n", i + 1,
+               w->altitude < 0.01 ? 0.0 : w->altitude, w->sun_el, w->name, Ls, Lr, 100 * le, xs, ys, xr, yr, de, dc);
         fflush(stdout);
         if (Ls > 0.0) {
             sum_de += de, sum_le += fabs(le), ++counted;
             max_de = fmax(max_de, de), max_le = fmax(max_le, fabs(le));
+            sum_dc += dc, max_dc = fmax(max_dc, dc);
         }
     }
-    printf("\n%d rows: mean |L error| %.2f %%, worst %.2f %%; mean ΔE2000 %.2f, worst %.2f (%d wavelengths, %s)\n",
-           counted, 100 * sum_le / counted, 100 * max_le, sum_de / counted, max_de, wavelengths,
+    printf("\n%d rows: mean |L error| %.2f %%, worst %.2f %%; mean ΔE2000 %.2f, worst %.2f; at equal luminance mean "
+           "%.2f, worst %.2f (%d wavelengths, %s)\n", counted, 100 * sum_le / counted, 100 * max_le, sum_de / counted,
+           max_de, sum_dc / counted, max_dc, wavelengths,
            samples ? "path tracers" : "the converged model");
     return 0;
 }

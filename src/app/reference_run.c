@@ -84,6 +84,11 @@ static int irradiance_run(const options *o, ref_job *job)
            "%.2f deg from its normal); %d wavelengths, %s\n", o->view.altitude_km, o->view.sun_elevation_deg,
            o->tilt_deg, az, acos(fmax(-1.0, fmin(1.0, r->cos_incidence_tilted))) / DEG, r->count,
            o->path_trace ? "path tracer" : "model");
+    double up[3] = {0.0, 1.0, 0.0}, xyz[3], sum;
+    ref_spectral_radiance(&job->spec, o->view.altitude_km, up, job->sun, xyz, NULL, NULL);
+    sum = xyz[0] + xyz[1] + xyz[2];
+    printf("zenith luminance %.6g cd/m^2, chromaticity x %.4f y %.4f\n", xyz[1], sum > 0 ? xyz[0] / sum : 0.0,
+           sum > 0 ? xyz[1] / sum : 0.0);
     const ref_irradiance_band *b[2] = {&r->watts, &r->lux};
     static const char *const unit[2] = {"W/m^2 (360-830 nm)", "lx"};
     for (int i = 0; i < 2; ++i)
