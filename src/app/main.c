@@ -3,6 +3,7 @@
 #include "app/headless.h"
 #include "app/stop.h"
 #include "app/options.h"
+#include "app/quality.h"
 #include "app/window.h"
 #include "app/reference_run.h"
 #include "app/scene_find.h"
@@ -57,6 +58,27 @@ int main(int argc, char **argv)
         fprintf(stderr, "vksky: --spectral: not with %s (the GPU's spectral path renders plain sky images)\n",
                 co.input ? "--composite" : "--aovs");
         return 2;
+    }
+    if (o.max_color_error > 0.0) {   /* the colour axis of the trade: the fewest wavelengths that keep the promise */
+        if (o.spectral || o.reference) {
+            fprintf(stderr, "vksky: --max-color-error: not with %s; give one or the other\n",
+                    o.reference ? "--reference" : "--spectral");
+            return 2;
+        }
+        unsigned classes = o.quality_classes ? o.quality_classes
+                                             : quality_class_bit(o.view.altitude_km, o.view.sun_elevation_deg);
+        char names[96];
+        double measured;
+        int n = spectral_pick(o.max_color_error, classes, &measured);
+        quality_class_names(classes, names, sizeof names);
+        if (n < 0) {
+            fprintf(stderr, "vksky: --max-color-error: no measured colour setting reaches CIEDE2000 %g on a %s scene "
+                            "(the best: %.2f); try a larger budget\n", o.max_color_error, names, measured);
+            return 2;
+        }
+        o.spectral = n;
+        printf("vksky: --max-color-error %g: picked --spectral %d (measured worst CIEDE2000 %.2f on the '%s' scene)\n",
+               o.max_color_error, n, measured, names);
     }
     if (spectral_render_check(&o)) return 2;   /* the GPU's --spectral: EXR renders only */
     if (co.input) return composite_run(&o, &co);

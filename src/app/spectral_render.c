@@ -1,10 +1,12 @@
 /* --spectral N on the GPU (spectral_render.h). */
 #include "app/spectral_render.h"
+#include "app/quality.h"
 #include "app/stop.h"
 #include "app/tiles.h"
 #include "io/half_float.h"
 #include "model/spectrum.h"
 #include "reference/spectral.h"
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -123,4 +125,38 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
     free(xyz);
     sky_renderer_set_features(r, &base_features);
     sky_renderer_set_atmosphere(r, &base, sun_radius);
+}
+
+/* The worst CIEDE2000 per scene class (quality_scenes' order: noon, afternoon, sunset, twilight, 10 km, 400 km, sun 0,
+ * twilight -2) of each colour setting against the spectral reference at 48 wavelengths, both the converged model
+ * (tools/color_error [--test-wavelengths N] on the 57 rows of docs/model_error.md, the rows binned by
+ * quality_scene_class; docs/spectral.md "The colour axis"). The wavelength count's colour error alone: the GPU's
+ * numerics at a preset add their own (CIEDE2000 p95 0.4 at --quality high on the sunset, docs/spectral.md). */
+#define UNMEASURED INFINITY
+#define COLOR_TABLE_RGB UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED
+#define COLOR_TABLE_4 5.36, 5.80, 9.20, 24.20, 19.22, 21.49, 13.93, 16.65
+#define COLOR_TABLE_8 UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED
+#define COLOR_TABLE_16 UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED, UNMEASURED
+static const struct { int wavelengths; double worst_de[QUALITY_SCENE_COUNT]; } color_table[] = {
+    {0, {COLOR_TABLE_RGB}},
+    {4, {COLOR_TABLE_4}},
+    {8, {COLOR_TABLE_8}},
+    {16, {COLOR_TABLE_16}},
+};
+
+int spectral_pick(double max_de, unsigned classes, double *measured)
+{
+    double best = INFINITY;
+    for (size_t k = 0; k < sizeof color_table / sizeof *color_table; ++k) {
+        double worst = 0.0;
+        for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
+            if (classes & (1u << c) && color_table[k].worst_de[c] > worst) worst = color_table[k].worst_de[c];
+        if (worst <= max_de) {
+            *measured = worst;
+            return color_table[k].wavelengths;
+        }
+        if (worst < best) best = worst;
+    }
+    *measured = best;
+    return -1;
 }
