@@ -39,6 +39,15 @@ rgb=(--width 16 --height 9 --sun-elevation 5 --validate)
 grep -q "max 0.000 %;.*max 0.000 (" "$work/same" || fail "--spectral 0 changed the EXR's pixels: $(cat "$work/same")"
 cmp -s "$work/rgb.png" "$work/rgb0.png" || fail "--spectral 0 changed the PNG"
 
+# --max-color-error: a pick whose measured worst CIEDE2000 keeps the promise, rendered validation-clean.
+"$VKSKY" --width 8 --height 8 --sun-elevation 60 --max-color-error 1 --validate --render "$work/pick.exr" \
+    >"$work/pick" 2>"$work/err" || fail "--max-color-error 1 at noon: exit $? ($(cat "$work/err"))"
+picked=$(sed -n 's/.*picked --spectral \([0-9]*\) (measured worst CIEDE2000 \([0-9.]*\) .*/\1 \2/p' "$work/pick")
+read -r pick_n pick_de <<<"$picked"
+[ -n "$pick_n" ] && [ "$pick_n" -gt 0 ] && awk "BEGIN { exit !($pick_de <= 1) }" ||
+    fail "--max-color-error 1 at noon: picked '$picked' ($(cat "$work/pick"))"
+[ -s "$work/pick.exr" ] || fail "--max-color-error 1 at noon: no EXR"
+
 # expect_bad "what" "expected text in stderr" args...
 mkdir "$work/bad"
 expect_bad() {
@@ -59,6 +68,11 @@ expect_bad "PNG beside an EXR" ".exr" "${B[@]}" --spectral 8 --render "$work/bad
 expect_bad "the window" "--render FILE.exr" --spectral 8
 expect_bad "--bench" "--bench" "${B[@]}" --spectral 8 --bench 3
 expect_bad "environment map" "--projection" --width 16 --validate --spectral 8 --projection equirect --render "$work/bad/a.exr"
+expect_bad "colour promise out of reach" "--max-color-error" "${B[@]}" --sun-elevation -4 --max-color-error 0.05 \
+    --render "$work/bad/a.exr"
+expect_bad "colour pick with a PNG" ".exr" "${B[@]}" --sun-elevation 60 --max-color-error 1 --render "$work/bad/a.png"
+expect_bad "colour promise and --spectral" "--max-color-error" "${B[@]}" --spectral 8 --max-color-error 1 \
+    --render "$work/bad/a.exr"
 expect_bad "reference, 2 wavelengths" "3 to 120" --reference --spectral 2 --width 4 --height 4
 [ $fails -eq 0 ] && echo "spectral_gpu: all checks passed"
 exit $((fails > 0))

@@ -77,10 +77,13 @@ int main(int argc, char **argv)
             return 2;
         }
         o.spectral = n;
+        char flag[80];
+        snprintf(flag, sizeof flag, "--max-color-error %g (picked --spectral %d)", o.max_color_error, n);
+        if (spectral_render_check(&o, flag)) return 2;
         printf("vksky: --max-color-error %g: picked --spectral %d (measured worst CIEDE2000 %.2f on the '%s' scene)\n",
                o.max_color_error, n, measured, names);
     }
-    if (spectral_render_check(&o)) return 2;   /* the GPU's --spectral: EXR renders only */
+    if (spectral_render_check(&o, "--spectral")) return 2;   /* the GPU's --spectral: EXR renders only */
     if (co.input) return composite_run(&o, &co);
     if (co.aovs) return composite_aovs_run(&o, &co);
     if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);

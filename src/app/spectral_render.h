@@ -9,9 +9,9 @@
 
 #define SPECTRAL_GPU_MAX 48   /* 16 groups: the largest count the GPU path accepts */
 
-/* Bad combinations of --spectral with the GPU's outputs (PNG, the window, environment maps and bands, the composite):
- * one line on stderr and 2; else 0. Call before any GPU work. */
-int spectral_render_check(const options *o);
+/* Bad combinations of --spectral with the GPU's outputs (PNG, the window, environment maps and bands): one line on
+ * stderr naming `flag` (the flag that asked for the wavelengths) and 2; else 0. Call before any GPU work. */
+int spectral_render_check(const options *o, const char *flag);
 
 /* Arm the frame function for o's wavelengths and medium; inner renders (and reads back) one frame. */
 void spectral_render_begin(const options *o, sequence_render_fn inner);
