@@ -30,6 +30,6 @@ for v in "${views[@]}"; do
         # "luminance error mean A % p95 B % max C %; CIEDE2000 mean D p95 E max F (...)"
         set -- $line
         label=$([ "$n" = 0 ] && echo "RGB" || echo "--spectral $n")
-        echo "| $name | $label | $4 % / $7 % | ${13} / ${15} / ${17} |"
+        echo "| $name | $label | $4 % / $7 % | ${14} / ${16} / ${18} |"
     done
 done
