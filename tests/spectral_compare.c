@@ -42,7 +42,8 @@ int main(int argc, char **argv)
     int w, h, rw, rh;
     float *t = NULL, *r = NULL;
     char err[512];
-    if (io_read_exr(argv[1], "", &w, &h, &t, err, sizeof err) || io_read_exr(argv[2], "", &rw, &rh, &r, err, sizeof err)) {
+    if (io_read_exr(argv[1], "", &w, &h, &t, err, sizeof err) ||
+        io_read_exr(argv[2], "", &rw, &rh, &r, err, sizeof err)) {
         fprintf(stderr, "spectral_compare: %s\n", err);
         return 2;
     }

@@ -67,7 +67,8 @@ expect_bad "PNG" ".exr" "${B[@]}" --spectral 8 --render "$work/bad/a.png"
 expect_bad "PNG beside an EXR" ".exr" "${B[@]}" --spectral 8 --render "$work/bad/a.exr" --render "$work/bad/a.png"
 expect_bad "the window" "--render FILE.exr" --spectral 8
 expect_bad "--bench" "--bench" "${B[@]}" --spectral 8 --bench 3
-expect_bad "environment map" "--projection" --width 16 --validate --spectral 8 --projection equirect --render "$work/bad/a.exr"
+expect_bad "environment map" "--projection" --width 16 --validate --spectral 8 --projection equirect \
+    --render "$work/bad/a.exr"
 expect_bad "colour promise out of reach" "--max-color-error" "${B[@]}" --sun-elevation -4 --max-color-error 0.05 \
     --render "$work/bad/a.exr"
 expect_bad "colour pick with a PNG" ".exr" "${B[@]}" --sun-elevation 60 --max-color-error 1 --render "$work/bad/a.png"

@@ -110,7 +110,8 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--test-wavelengths") && i + 1 < argc)
             test_wavelengths = atoi(argv[++i]);   /* the GPU's --spectral N: the tested side at N wavelengths */
         else {
-            fprintf(stderr, "usage: color_error [--wavelengths N (%d-%d)] [--test-wavelengths M] [--path-trace SAMPLES] "
+            fprintf(stderr, "usage: color_error [--wavelengths N (%d-%d)] [--test-wavelengths M] "
+                            "[--path-trace SAMPLES] "
                             "[--threads T]\n",
                     REF_SPECTRAL_MIN, REF_SPECTRAL_MAX);
             return 2;

@@ -38,7 +38,8 @@ int main(int argc, char **argv)
         return 2;
     }
     if (o.reference && o.spectral > 0 && o.spectral < 3) {
-        fprintf(stderr, "vksky: --spectral: %d wavelengths with --reference; expected 0 (RGB) or 3 to 120\n", o.spectral);
+        fprintf(stderr, "vksky: --spectral: %d wavelengths with --reference; expected 0 (RGB) or 3 to 120\n",
+                o.spectral);
         return 2;
     }
     if (o.reference) {

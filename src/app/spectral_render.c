@@ -107,7 +107,8 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
         sky_renderer_set_features(r, &feat);
         job.inner(r, f);
         for (size_t i = 0; i < pixels; ++i) {
-            float v[3] = {io_half_to_float(px[4 * i]), io_half_to_float(px[4 * i + 1]), io_half_to_float(px[4 * i + 2])};
+            const uint16_t *p = px + 4 * i;
+            float v[3] = {io_half_to_float(p[0]), io_half_to_float(p[1]), io_half_to_float(p[2])};
             for (int k = 0; k < 3; ++k)
                 xyz[3 * i + k] += (float)(m[0][k] * v[0] + m[1][k] * v[1] + m[2][k] * v[2]);
         }
