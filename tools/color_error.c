@@ -10,7 +10,10 @@
  * between them in CIELAB with the D65 white scaled to the reference's luminance (so the reference is L* = 100 and
  * a luminance error shows as a lightness difference too). metrics_ciede2000 is tested against Sharma et al. 2005.
  *
- *   color_error [--wavelengths N] [--path-trace SAMPLES] [--threads T]
+ *   color_error [--wavelengths N] [--test-wavelengths M] [--path-trace SAMPLES] [--threads T]
+ *
+ * --test-wavelengths M: the tested side is the same spectral integrator at M wavelengths instead of the RGB model
+ * (the "L RGB" columns then hold it): the colour error of the GPU's --spectral M apart from the GPU's numerics.
  *
  * --path-trace: the reference is the spectral path tracer (all orders, no horizon fade) and the RGB side the RGB
  * path tracer, same samples: the colour error of three wavelengths in the physics itself, free of the model's
@@ -95,7 +98,7 @@ static void chroma(const double xyz[3], double *x, double *y)
 
 int main(int argc, char **argv)
 {
-    int wavelengths = 48, threads = 2;
+    int wavelengths = 48, threads = 2, test_wavelengths = 0;
     long long samples = 0;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--wavelengths") && i + 1 < argc)
@@ -104,13 +107,18 @@ int main(int argc, char **argv)
             samples = atoll(argv[++i]);
         else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
             threads = atoi(argv[++i]);
+        else if (!strcmp(argv[i], "--test-wavelengths") && i + 1 < argc)
+            test_wavelengths = atoi(argv[++i]);   /* the GPU's --spectral N: the tested side at N wavelengths */
         else {
-            fprintf(stderr, "usage: color_error [--wavelengths N (%d-%d)] [--path-trace SAMPLES] [--threads T]\n",
+            fprintf(stderr, "usage: color_error [--wavelengths N (%d-%d)] [--test-wavelengths M] "
+                            "[--path-trace SAMPLES] "
+                            "[--threads T]\n",
                     REF_SPECTRAL_MIN, REF_SPECTRAL_MAX);
             return 2;
         }
     }
-    if (wavelengths < REF_SPECTRAL_MIN || wavelengths > REF_SPECTRAL_MAX || samples < 0 || threads < 1) {
+    if (wavelengths < REF_SPECTRAL_MIN || wavelengths > REF_SPECTRAL_MAX || samples < 0 || threads < 1 ||
+        (test_wavelengths && (test_wavelengths < REF_SPECTRAL_MIN || test_wavelengths > REF_SPECTRAL_MAX))) {
         fprintf(stderr, "color_error: --wavelengths in %d..%d, --path-trace >= 1, --threads >= 1\n", REF_SPECTRAL_MIN,
                 REF_SPECTRAL_MAX);
         return 2;
@@ -123,6 +131,11 @@ int main(int argc, char **argv)
     pt_settings pt = {.samples = samples, .seed = 32, .threads = threads};
     if (samples)
         s.pt = &pt;
+    /* --test-wavelengths N: the tested side is the same integrator at N wavelengths (what --spectral N computes),
+     * not the RGB model. */
+    ref_spectral t;
+    ref_spectral_init(&t, &rgb_atmo, test_wavelengths);
+    t.pt = s.pt;
 
     row rows[MAX_ROWS];
     int n = build_rows(rows);
@@ -137,11 +150,14 @@ int main(int argc, char **argv)
         ref_dir(0.0, w->sun_el * DEG, sun);
         ref_dir(w->az * DEG, w->el * DEG, v);
         ref_spectral_radiance(&s, w->altitude, v, sun, xyz_s, se, NULL);
-        if (samples)
+        if (test_wavelengths)
+            ref_spectral_radiance(&t, w->altitude, v, sun, xyz_r, rgb_se, NULL);
+        else if (samples)
             pt_radiance(&rgb_atmo, w->altitude, v, sun, &pt, rgb, rgb_se);
         else
             ref_sky_radiance(&rgb_atmo, w->altitude, v, sun, ref_quality_converged(), rgb);
-        rec709_to_xyz(rgb, xyz_r);
+        if (!test_wavelengths)
+            rec709_to_xyz(rgb, xyz_r);
         double Ls = xyz_s[1], Lr = xyz_r[1], le = Ls > 0.0 ? Lr / Ls - 1.0 : 0.0, lab_s[3], lab_r[3];
         xyz_to_lab(xyz_s, Ls, lab_s);
         xyz_to_lab(xyz_r, Ls, lab_r);
@@ -167,5 +183,8 @@ int main(int argc, char **argv)
            "%.2f, worst %.2f (%d wavelengths, %s)\n", counted, 100 * sum_le / counted, 100 * max_le, sum_de / counted,
            max_de, sum_dc / counted, max_dc, wavelengths,
            samples ? "path tracers" : "the converged model");
+    if (test_wavelengths)
+        printf("tested side: the spectral integrator at %d wavelengths (--spectral %d), not the RGB model\n",
+               test_wavelengths, test_wavelengths);
     return 0;
 }

@@ -4,6 +4,7 @@
 #include "app/frame_ring.h"
 #include "app/sequence.h"
 #include "app/startup.h"
+#include "app/spectral_render.h"
 #include "app/stop.h"
 #include "app/tiles.h"
 #include "io/encode_settings.h"
@@ -216,9 +217,12 @@ int headless_run(const options *given)
             status = bench_sequence(o, &r, getenv("VKSKY_FRAMES") ? 0 : frame_ring_slots_wanted());
     } else {
         /* One frame, or the frames of a sequence: pipelined through the readback ring (app/frame_ring.h) unless
-         * the tests' VKSKY_FRAMES loop records frames its own way. */
-        int slots = getenv("VKSKY_FRAMES") ? 0 : frame_ring_slots_wanted();
-        status = sequence_render(o, &r, render_frames, slots, o->trace_barriers ? stdout : NULL);
+         * the tests' VKSKY_FRAMES loop records frames its own way; --spectral: each frame once per wavelength
+         * group, combined on the host before it is written (the serial loop). */
+        int slots = getenv("VKSKY_FRAMES") || o->spectral ? 0 : frame_ring_slots_wanted();
+        if (o->spectral) spectral_render_begin(o, render_frames);
+        status = sequence_render(o, &r, o->spectral ? spectral_render_frame : render_frames, slots,
+                                 o->trace_barriers ? stdout : NULL);
     }
     sky_renderer_destroy(&r);
     return finish(&ctx, status, o->timings);

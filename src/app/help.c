@@ -26,7 +26,8 @@ static const char *const sun_flags[] = {"--sun-elevation", "--sun-azimuth", "--d
 static const char *const atmosphere_flags[] = {"--rayleigh-scale", "--mie-scale", "--ozone-scale", "--mie-g",
                                                "--mie-phase", "--ground-albedo", "--no-multiscatter", "--sun-visibility",
                                                NULL};
-static const char *const quality_flags[] = {"--quality", "--max-error", "--steps", "--max-steps", "--steps-ramp",
+static const char *const quality_flags[] = {"--quality", "--max-error", "--max-color-error",
+                                            "--steps", "--max-steps", "--steps-ramp",
                                             "--sample-offset", "--step-distribution", "--sky-mode", "--sky-pass",
                                             "--post-pass",
                                             "--skyview-lut", "--skyview-steps", "--transmittance-lut",

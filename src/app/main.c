@@ -4,11 +4,13 @@
 #include "app/headless.h"
 #include "app/stop.h"
 #include "app/options.h"
+#include "app/quality.h"
 #include "app/window.h"
 #include "app/reference_run.h"
 #include "app/scene_find.h"
 #include "app/sequence.h"
 #include "app/startup.h"
+#include "app/spectral_render.h"
 #include <stdlib.h>
 
 int main(int argc, char **argv)
@@ -35,8 +37,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "vksky: --path-trace: only with --reference\n");
         return 2;
     }
-    if ((o.spectral || o.irradiance) && !o.reference) {   /* the GPU's --spectral is not there yet (issue 32) */
-        fprintf(stderr, "vksky: %s: only with --reference\n", o.spectral ? "--spectral" : "--irradiance");
+    if (o.irradiance && !o.reference) {
+        fprintf(stderr, "vksky: --irradiance: only with --reference\n");
+        return 2;
+    }
+    if (o.reference && o.spectral > 0 && o.spectral < 3) {
+        fprintf(stderr, "vksky: --spectral: %d wavelengths with --reference; expected 0 (RGB) or 3 to 120\n",
+                o.spectral);
         return 2;
     }
     if (o.reference) {
@@ -52,6 +59,36 @@ int main(int argc, char **argv)
                 co.input ? "--composite" : "--aovs");
         return 2;
     }
+    if (o.spectral && (co.input || co.aovs)) {
+        fprintf(stderr, "vksky: --spectral: not with %s (the GPU's spectral path renders plain sky images)\n",
+                co.input ? "--composite" : "--aovs");
+        return 2;
+    }
+    if (o.max_color_error > 0.0) {   /* the colour axis of the trade: the fewest wavelengths that keep the promise */
+        if (o.spectral || o.reference) {
+            fprintf(stderr, "vksky: --max-color-error: not with %s; give one or the other\n",
+                    o.reference ? "--reference" : "--spectral");
+            return 2;
+        }
+        unsigned classes = o.quality_classes ? o.quality_classes
+                                             : quality_class_bit(o.view.altitude_km, o.view.sun_elevation_deg);
+        char names[96];
+        double measured;
+        int n = spectral_pick(o.max_color_error, classes, &measured);
+        quality_class_names(classes, names, sizeof names);
+        if (n < 0) {
+            fprintf(stderr, "vksky: --max-color-error: no measured colour setting reaches CIEDE2000 %g on a %s scene "
+                            "(the best: %.2f); try a larger budget\n", o.max_color_error, names, measured);
+            return 2;
+        }
+        o.spectral = n;
+        char flag[80];
+        snprintf(flag, sizeof flag, "--max-color-error %g (picked --spectral %d)", o.max_color_error, n);
+        if (spectral_render_check(&o, flag)) return 2;
+        printf("vksky: --max-color-error %g: picked --spectral %d (measured worst CIEDE2000 %.2f on the '%s' scene)\n",
+               o.max_color_error, n, measured, names);
+    }
+    if (spectral_render_check(&o, "--spectral")) return 2;   /* the GPU's --spectral: EXR renders only */
     if (co.input) return composite_run(&o, &co);
     if (co.aovs) return composite_aovs_run(&o, &co);
     if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);

@@ -188,6 +188,7 @@ static int apply(options *o, const flag *f, const char *value)
         if (k < 0) return 2;
         o->post_pass = (post_pass_kind)k;
     } else if (!strcmp(n, "--max-error")) o->max_error = x;
+    else if (!strcmp(n, "--max-color-error")) o->max_color_error = x;
     else if (!strcmp(n, "--max-steps")) o->view.max_steps = (int)x;
     else if (!strcmp(n, "--steps-ramp")) o->view.steps_ramp_km = x;
     else if (!strcmp(n, "--sample-offset")) o->view.sample_offset = x;

@@ -36,6 +36,7 @@ typedef struct options {
     int spectral;                               /* --spectral N: the reference's wavelengths (0: RGB) */
     bool spectral_medium_set;                   /* the scene's "spectral" section gave the medium per wavelength */
     spectral_medium spectral_medium;            /* that medium (else the RGB medium's, spectral_medium_from_rgb) */
+    double max_color_error;                     /* --max-color-error DE (0: off): picks --spectral (issue 32) */
     bool irradiance;                            /* --irradiance: irradiance at the camera (with --reference) */
     double tilt_deg, tilt_azimuth_deg;          /* --tilt, --tilt-azimuth: the tilted surface of --irradiance */
     bool tilt_azimuth_set;

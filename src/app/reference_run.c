@@ -46,7 +46,9 @@ static void radiance(const ref_job *job, const double view[3], const double sun[
         pt_radiance(&a, o->view.altitude_km, view, sun, &s, rgb, err);
         return;
     }
-    ref_sky_radiance(&a, o->view.altitude_km, view, sun, ref_quality_converged(), rgb);
+    ref_quality q = ref_quality_converged();
+    q.ms_off = !o->multiple_scattering;   /* --no-multiscatter: single scattering, as the GPU's (no Psi term) */
+    ref_sky_radiance(&a, o->view.altitude_km, view, sun, q, rgb);
 }
 
 /* The spectral reference of the run: the scene's medium per wavelength or the RGB medium's; the sun the solar
@@ -56,6 +58,7 @@ static void spectral_setup(const options *o, ref_spectral *s, pt_settings *pt)
 {
     ref_spectral_init(s, &o->atmosphere, o->spectral ? o->spectral : 48);
     if (o->spectral_medium_set) s->medium = o->spectral_medium;
+    s->q.ms_off = !o->multiple_scattering;   /* --no-multiscatter: single scattering, as the GPU's (no Psi term) */
     double e[3];   /* the sun in output units (app/light.h): the spectrum itself (scale 1) for the default sun */
     light_sun(o, e);
     s->sun_scale = (0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2]) / spectrum_solar_illuminance_toa();

@@ -1,0 +1,87 @@
+/* spectral_compare TEST.exr REF.exr [MAX_LUM_P95 MAX_DE_P95]: the colour axis of an image against a reference
+ * (issue 32): the relative luminance error (metrics_relative_luminance, its default floor) and CIEDE2000 per pixel in
+ * CIELAB with the D65 white at the reference pixel's own luminance (the reference is L* = 100, so a luminance error
+ * shows as lightness too; tools/color_error's convention), over pixels at least 1e-4 of the reference's brightest.
+ * Prints one line; with limits, exits 1 when the 95th percentile of either is over its limit. */
+#include "io/exr_read.h"
+#include "reference/metrics.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static void rec709_to_xyz(const float *c, double o[3])
+{
+    o[0] = 0.4124 * c[0] + 0.3576 * c[1] + 0.1805 * c[2];
+    o[1] = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    o[2] = 0.0193 * c[0] + 0.1192 * c[1] + 0.9505 * c[2];
+}
+
+static double lab_f(double t) { return t > 216.0 / 24389.0 ? cbrt(t) : (24389.0 / 27.0 * t + 16.0) / 116.0; }
+
+static void xyz_to_lab(const double xyz[3], double yn, double lab[3])
+{
+    double fx = lab_f(xyz[0] / (0.95047 * yn)), fy = lab_f(xyz[1] / yn), fz = lab_f(xyz[2] / (1.08883 * yn));
+    lab[0] = 116.0 * fy - 16.0;
+    lab[1] = 500.0 * (fx - fy);
+    lab[2] = 200.0 * (fy - fz);
+}
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 3 && argc != 5) {
+        fprintf(stderr, "usage: spectral_compare TEST.exr REF.exr [MAX_LUM_P95 MAX_DE_P95]\n");
+        return 2;
+    }
+    int w, h, rw, rh;
+    float *t = NULL, *r = NULL;
+    char err[512];
+    if (io_read_exr(argv[1], "", &w, &h, &t, err, sizeof err) ||
+        io_read_exr(argv[2], "", &rw, &rh, &r, err, sizeof err)) {
+        fprintf(stderr, "spectral_compare: %s\n", err);
+        return 2;
+    }
+    if (w != rw || h != rh) {
+        fprintf(stderr, "spectral_compare: sizes differ (%dx%d, %dx%d)\n", w, h, rw, rh);
+        return 2;
+    }
+    metrics_luminance lum = metrics_relative_luminance(t, r, NULL, w, h, 0.0);
+    size_t n = (size_t)w * h, count = 0;
+    double ymax = 0.0, sum = 0.0, *de = malloc(n * sizeof *de);
+    for (size_t i = 0; i < n; ++i) {
+        double x[3];
+        rec709_to_xyz(r + 4 * i, x);
+        ymax = fmax(ymax, x[1]);
+    }
+    for (size_t i = 0; i < n; ++i) {
+        double xr[3], xt[3], lr[3], lt[3];
+        rec709_to_xyz(r + 4 * i, xr);
+        rec709_to_xyz(t + 4 * i, xt);
+        if (!(xr[1] > 1e-4 * ymax)) continue;
+        xyz_to_lab(xr, xr[1], lr);
+        xyz_to_lab(xt, xr[1], lt);
+        double d = metrics_ciede2000(lr, lt);
+        de[count++] = isfinite(d) ? d : INFINITY;
+        sum += de[count - 1];
+    }
+    qsort(de, count, sizeof *de, cmp);
+    double de_p95 = count ? de[(size_t)ceil(0.95 * count) - 1] : 0.0, de_max = count ? de[count - 1] : 0.0;
+    printf("luminance error mean %.3f %% p95 %.3f %% max %.3f %%; CIEDE2000 mean %.3f p95 %.3f max %.3f (%zu pixels)\n",
+           100 * lum.mean, 100 * lum.p95, 100 * lum.max, count ? sum / count : 0.0, de_p95, de_max, count);
+    int status = 0;
+    if (argc == 5) {
+        double max_lum = atof(argv[3]), max_de = atof(argv[4]);
+        if (!(lum.p95 <= max_lum)) printf("FAIL: luminance error p95 %.4f over %.4f\n", lum.p95, max_lum), status = 1;
+        if (!(de_p95 <= max_de)) printf("FAIL: CIEDE2000 p95 %.3f over %.3f\n", de_p95, max_de), status = 1;
+    }
+    free(de);
+    free(t);
+    free(r);
+    return status;
+}
