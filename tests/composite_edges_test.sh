@@ -42,13 +42,16 @@ SUN=(--sun-elevation 20 --sun-azimuth -60)
     fail "edges composite: not coverage-correct (or the wrong layers: Composite.Combined is 2x the beauty)"
 # The sky behind the uncovered part, and the identity, against a plain sky render of the same camera.
 "$VKSKY" --render "$work/out/sky.exr" --width 120 --height 66 --altitude 0.2188 --yaw -90 --pitch -3 --fov 40 \
-    --sky-mode march --render-scale 1 --no-bloom "${SUN[@]}" --validate || fail "plain sky render: exit $?"
+    --sky-mode march --render-scale 1 --no-bloom --units relative "${SUN[@]}" --validate ||
+    fail "plain sky render: exit $?"
 "$CHECK" "$work/out/edges.exr" "$S/edges.exr" "$work/out/sky.exr" || fail "edges composite: the coverage identity"
 
 # Self-describing (issue 28 item 4): the composite's header has the standard and vksky attributes, and
 # `--scene OUT.exr` renders the sky of its uncovered part (the same check, the sky render made from the header).
+# (The composite is in the lesson's units, as its vksky:units says; a scene read back renders in the default units
+# unless told: docs/units.md.)
 "$VKSKY" --scene "$work/out/edges.exr" --render "$work/out/sky_scene.exr" --sky-mode march --render-scale 1 \
-    --no-bloom --validate 2>"$work/err" || fail "--scene on the composite: exit $? ($(cat "$work/err"))"
+    --no-bloom --units relative --validate 2>"$work/err" || fail "--scene on the composite: exit $? ($(cat "$work/err"))"
 "$CHECK" "$work/out/edges.exr" "$S/edges.exr" "$work/out/sky_scene.exr" || fail "--scene on the composite: not its sky"
 # --aovs: its header too; --scene on it with --aovs renders the same file, bit for bit.
 "$VKSKY" --render "$work/out/aovs.exr" --width 48 --height 27 --aovs --sun-elevation 7 --validate ||

@@ -34,7 +34,7 @@ read -r -a CAMERA <"$S/camera.txt"
 # the same method (the composite marches every pixel; a plain render's default, --quality auto, may pick the
 # sky-view LUT instead, which interpolates, and on a CPU device a half-size sky: --render-scale 1).
 "$VKSKY" --render "$work/out/sky.exr" --width 240 --height 135 --altitude 0.2188 --yaw -90 --pitch -3 --fov 40 \
-    --sky-mode march --render-scale 1 --no-bloom "${SUN[@]}" --validate || fail "plain sky render: exit $?"
+    --sky-mode march --render-scale 1 --no-bloom --units relative "${SUN[@]}" --validate || fail "plain sky render: exit $?"
 "$CHECK" "$work/out/two.exr" "$S/render.exr" "$work/out/sky.exr" || fail "two-file composite: layers or sky pixels"
 # Hillaire's froxel volume (--aerial-perspective volume; its accuracy: ctest ap_volume): exit 0, silent, the
 # layers add up and the sky pixels are the same sky; auto takes it when --max-error allows its measured error.

@@ -89,6 +89,9 @@ int main(int argc, char **argv)
                o.max_color_error, n, measured, names);
     }
     if (spectral_render_check(&o, "--spectral")) return 2;   /* the GPU's --spectral: EXR renders only */
+    /* The composite keeps the lesson's scale (docs/units.md: the layers add up with the render's own units): its
+     * header says so (vksky:units). */
+    if (co.input || co.aovs) o.units = OPTIONS_UNITS_RELATIVE;
     if (co.input) return composite_run(&o, &co);
     if (co.aovs) return composite_aovs_run(&o, &co);
     if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);

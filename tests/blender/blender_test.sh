@@ -67,14 +67,15 @@ if command -v oiiotool >/dev/null; then
         fail "--view-layer ViewLayer did not use that view layer's passes: $(tail -n 3 "$work/diff")"
 fi
 
-# Coverage-correct edges and the identity, against a plain sky render of the exported scene.
+# Coverage-correct edges and the identity, against a plain sky render of the exported scene (in the composite's units,
+# the lesson's: docs/units.md).
 "$VKSKY" --scene "$B/scene.json" --render "$work/out/sky.exr" --sky-mode march --render-scale 1 --no-bloom \
-    --validate || fail "sky render of the exported scene: exit $?"
+    --units relative --validate || fail "sky render of the exported scene: exit $?"
 "$BCHECK" edges "$work/out/c.exr" "$B/render.exr" ViewLayer "$work/out/sky.exr" || fail "edges not coverage-correct"
 # composite_check reads ViewLayer.* of the input: Blender's names.
 "$CHECK" "$work/out/c.exr" "$B/render.exr" "$work/out/sky.exr" || fail "the coverage identity, or the sky behind"
 "$VKSKY" --scene "$work/out/c.exr" --render "$work/out/sky2.exr" --sky-mode march --render-scale 1 --no-bloom \
-    --validate 2>"$work/err" || fail "--scene on the composite: exit $? ($(cat "$work/err"))"
+    --units relative --validate 2>"$work/err" || fail "--scene on the composite: exit $? ($(cat "$work/err"))"
 "$CHECK" "$work/out/c.exr" "$B/render.exr" "$work/out/sky2.exr" || fail "--scene on the composite: not its sky"
 
 # The add-on's import of a vksky map made from the exported scene.
