@@ -1,15 +1,67 @@
 /* The tone map's read of the sky (HDR) image at an output pixel, shared by the fragment and compute tone maps.
- * At render scale 1 the output pixel is a texel centre and this is that texel. Below 1 it is a bilinear upsample
- * that does not blend across a class boundary (the sky pass's alpha: 0 ground, 1 sky): where the four taps are not
- * all of one class, the output pixel takes its nearest texel, so the horizon stays sharp (moved at most half a sky
- * texel) instead of blending ground into the sky. The bilinear sample's own alpha decides, with no extra fetch:
- * with classes 0 and 1 and positive weights it is within 1e-3 of 0 or 1 only where the taps agree. One fetch, not a weighted four: lavapipe runs a branch's body whenever any pixel
- * of its 8-wide group takes it, so each extra fetch costs every pixel (measured at 1280x720: nearest +4.6 ms of
- * CPU a frame, the class-weighted four +13 ms); within one texel a class varies little. */
-vec3 hdr_upsample(sampler2D hdr, vec2 uv)
+ * At render scale 1 the sky pass has already resolved each pixel's coverage of sky and ground (horizon.glsl): the
+ * output pixel is that texel. Below 1 each texel holds its centre's class only (sky or ground, never a blend) and,
+ * in alpha, the signed distance from its centre to the horizon in texels (positive: sky). The distance is smooth,
+ * so its bilinear sample is the output pixel's own distance: away from the horizon (more than two texels, beyond
+ * every tap) the output pixel is the plain bilinear sample, one fetch. Near it the output pixel takes its analytic
+ * coverage of the sky (the box coverage of horizon.glsl, in output pixels) and mixes a sky value, interpolated from
+ * the sky taps alone, with a ground value from the ground taps alone: the horizon sits where the geometry puts it,
+ * per output pixel, and no ground is blended into the sky nor sky into the ground. Only pixels near the horizon pay
+ * for the taps (lavapipe runs a branch's body for a whole 8-wide group: a few groups per column). */
+#include "horizon.glsl"
+
+/* One side's value near (pos, texel coordinates): the bilinear weights of the taps of that side (sign of their
+ * distance) renormalised. A position none of whose taps is of that side steps one texel along the side's normal;
+ * within a texel or two of the horizon the next row of taps is (the horizon is all but straight over a few texels). */
+vec3 hdr_side_value(sampler2D hdr, vec2 pos, vec2 toward, float side)
 {
-    vec4 bilinear = textureLod(hdr, uv, 0.0);
-    if (abs(bilinear.a - round(bilinear.a)) < 1e-3) return bilinear.rgb;
     ivec2 size = textureSize(hdr, 0);
-    return texelFetch(hdr, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0).rgb;
+    vec3 last = vec3(0.0);
+    for (int step = 0; step < 3; ++step) {
+        vec2 t = pos + float(step) * toward - 0.5;
+        ivec2 i0 = ivec2(floor(t));
+        vec2 f = t - vec2(i0);
+        vec3 sum = vec3(0.0);
+        float weight = 0.0, nearest_d = 3.0e38;
+        for (int k = 0; k < 4; ++k) {
+            ivec2 o = ivec2(k & 1, k >> 1);
+            vec4 tap = texelFetch(hdr, clamp(i0 + o, ivec2(0), size - 1), 0);
+            float w = max((o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y), 1e-4);
+            if (tap.a * side >= 0.0) {
+                sum += w * tap.rgb;
+                weight += w;
+            }
+            if (abs(tap.a) < nearest_d) nearest_d = abs(tap.a), last = tap.rgb;
+        }
+        if (weight > 0.0) return sum / weight;
+    }
+    return last;   /* not reached for a straight horizon; the tap nearest the horizon */
+}
+
+vec3 hdr_upsample(sampler2D hdr, vec2 uv, ivec2 out_size)
+{
+    ivec2 size = textureSize(hdr, 0);
+    if (size == out_size) return texelFetch(hdr, ivec2(uv * vec2(size)), 0).rgb;
+    vec4 bilinear = textureLod(hdr, uv, 0.0);
+    if (abs(bilinear.a) > 2.0) return bilinear.rgb;
+    /* The distance's gradient per output pixel from the four taps' distances (texels), its unit normal, and the
+     * output pixel's distance in output pixels. */
+    vec2 pos = uv * vec2(size), t = pos - 0.5;
+    ivec2 i0 = ivec2(floor(t));
+    float d00 = texelFetch(hdr, clamp(i0, ivec2(0), size - 1), 0).a;
+    float d10 = texelFetch(hdr, clamp(i0 + ivec2(1, 0), ivec2(0), size - 1), 0).a;
+    float d01 = texelFetch(hdr, clamp(i0 + ivec2(0, 1), ivec2(0), size - 1), 0).a;
+    float d11 = texelFetch(hdr, clamp(i0 + ivec2(1, 1), ivec2(0), size - 1), 0).a;
+    vec2 per_texel = vec2(0.5 * (d10 - d00 + d11 - d01), 0.5 * (d01 - d00 + d11 - d10));
+    vec2 texels_per_pixel = vec2(size) / vec2(out_size);
+    vec2 g = per_texel * texels_per_pixel;   /* change of the distance (texels) per output pixel */
+    float len = length(g);
+    /* A clamped tap (the image's edge) can leave no gradient: the pixel takes its own side. */
+    if (len < 1e-6) return hdr_side_value(hdr, pos, vec2(0.0), bilinear.a >= 0.0 ? 1.0 : -1.0);
+    vec2 n = g / len;
+    float coverage = horizon_box_coverage(bilinear.a / len, n);
+    vec2 toward_sky = n * texels_per_pixel / max(texels_per_pixel.x, texels_per_pixel.y);   /* about one texel */
+    vec3 sky = coverage > 0.0 ? hdr_side_value(hdr, pos, toward_sky, 1.0) : vec3(0.0);
+    vec3 ground = coverage < 1.0 ? hdr_side_value(hdr, pos, -toward_sky, -1.0) : vec3(0.0);
+    return mix(ground, sky, coverage);
 }

@@ -48,6 +48,11 @@ VKSKY_STRUCT(SkyPush) {
                                   (0.5 midpoint, 0.3 Hillaire), w: km of path at which the count reaches max */
     vec4 projection;           /* x: VKSKY_PROJECTION_*, yz: this tile's pixel offset in the whole image (right.w
                                   and up.w are 1 / the whole image's size), w: unused (shaders/glsl/projection.glsl) */
+    vec4 horizon;              /* the planet's edge (shaders/glsl/horizon.glsl): x: sine of the horizon's elevation
+                                  from the camera, -sqrt(h (2R + h)) / (R + h), computed in double on the CPU; y: 1 =
+                                  this pass resolves each pixel's coverage of sky and ground (the image is the output),
+                                  0 = each texel holds its centre's class only (a render scale below 1: the tone map's
+                                  upsample resolves coverage per output pixel); zw: unused */
 } VKSKY_END(SkyPush)
 
 /* Composite pass push constants (composite.comp): aerial perspective from the camera to each pixel's point, and
@@ -89,6 +94,9 @@ VKSKY_STRUCT(BloomPush) {
 VKSKY_STRUCT(TonemapPush) {
     vec4 params;               /* x: exposure (linear multiplier), y: operator (0 clamp, 1 Reinhard, 2 ACES),
                                   z: bloom strength (0 = no bloom), w: 1 = encode sRGB in the shader */
+    vec4 dither;               /* x: 1 = triangular dither of the 8-bit output (shaders/glsl/dither.glsl), 0 = off;
+                                  yz: the frame's pixel offset in the whole image (a tile's), so the noise is seeded
+                                  by the whole image's pixel; w: unused */
 } VKSKY_END(TonemapPush)
 
 /* Compute post chain push constants (bloom_spd.comp, bloom_up.comp, tonemap.comp). */
@@ -96,6 +104,7 @@ VKSKY_STRUCT(PostPush) {
     vec4 params;               /* spd: x mip count, y threshold; up: xy 1/size of the smaller (source) mip */
     vec4 tonemap;              /* tonemap.comp: TonemapPush's params (exposure, operator, bloom strength, sRGB) */
     vec4 bloom;                /* tonemap.comp: xy 1/size of bloom mip 1, z 1 = add its tent (the fused last upsample) */
+    vec4 dither;               /* tonemap.comp: TonemapPush's dither */
 } VKSKY_END(PostPush)
 
 /* Specialization constants: what a scene needs, compiled in; what it does not, compiled out (one pipeline

@@ -101,6 +101,15 @@ float texel_angle(SkyPush p)
     return 2.0 * max(length(p.right.xyz) * p.right.w, length(p.up.xyz) * p.up.w);
 }
 
+/* The ray's class decided once per pixel from the host's horizon (horizon.glsl): -1 none (each ray asks the sphere,
+ * as the LUT passes and the composite do), 0 the ray ends on the ground, 1 it does not. One decision for the whole
+ * pixel, so float rounding in the sphere test at a grazing ray can never put a sky sample on the ground. */
+int sky_forced_class = -1;
+bool ray_class_ground(float h, float mu)
+{
+    return sky_forced_class >= 0 ? sky_forced_class == 0 : ray_hits_ground(h, mu);
+}
+
 /* Angle between two unit vectors, accurate for tiny angles (acos of a dot near 1 is not). */
 float small_angle(vec3 a, vec3 b) { return 2.0 * asin(clamp(0.5 * length(a - b), 0.0, 1.0)); }
 
@@ -160,7 +169,7 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     seg.t_max = 0.0;
     if (!enters) return seg;
 
-    seg.hits_ground = ray_hits_ground(h, mu);
+    seg.hits_ground = ray_class_ground(h, mu);
     float t_max = seg.hits_ground ? distance_to_ground(h, mu) : distance_to_top(h, mu);
     seg.t_max = t_max;
     float t_stop = clamp(t_end - t_entry, 0.0, t_max);
@@ -259,15 +268,6 @@ vec3 sun_disc(vec3 v, vec3 s, vec3 throughput, bool hits_ground)
     return atmo.sun.rgb * 10.0 * throughput * limb * coverage * power_kept;
 }
 
-/* The pixel's class, stored in the HDR image's alpha for the tone map's upsample (hdr_upsample.glsl): 0 the ray
- * hits the ground, 1 it does not. A render scale below 1 then keeps the horizon sharp: the upsample never blends
- * ground into sky. The sun's disc is sky: it is already filtered at the texel's size (sun_disc), and the bilinear
- * upsample keeps its power where a nearest-texel rule at its edge would not (measured: -25 % at half size). */
-float sky_class(float h_cam, vec3 v, vec3 s)
-{
-    return ray_hits_ground(h_cam, v.y) ? 0.0 : 1.0;
-}
-
 vec3 sky_radiance(float h_cam, vec3 v, vec3 s, vec4 march, float distribution)
 {
     vec3 throughput;
@@ -284,11 +284,19 @@ vec3 sky_radiance_lookup(float h_cam, vec3 v, vec3 s)
     vec2 hv = v.xz, hs = s.xz;
     float lv = length(hv), ls = length(hs);
     float cos_azimuth = (lv > 1e-6 && ls > 1e-6) ? dot(hv, hs) / (lv * ls) : 1.0;
-    vec2 uv = skyview_uv(h_cam, v.y, cos_azimuth, vec2(textureSize(skyview_lut, 0)));
+    ivec2 size = textureSize(skyview_lut, 0);
+    vec2 uv = skyview_uv(h_cam, v.y, cos_azimuth, vec2(size));
+    /* The horizon lies between two rows of the LUT (skyview_uv puts it at v = 0.5): a bilinear tap across it would
+     * blend ground into sky. A ray of a known class reads only its own half: sky rays no lower than the last sky
+     * row's centre, ground rays no higher than the first ground row's (1/N^2 of the horizon's zenith angle away). */
+    if (sky_forced_class >= 0) {
+        float sky_last = (float(size.y / 2) - 0.5) / float(size.y), ground_first = (float((size.y + 1) / 2) + 0.5) / float(size.y);
+        uv.y = sky_forced_class == 1 ? min(uv.y, sky_last) : max(uv.y, ground_first);
+    }
     vec3 radiance = texture(skyview_lut, uv).rgb;
     /* Only pixels inside the sun's disc pay for its transmittance lookup. */
     if (HAS_SUN_DISC && small_angle(v, s) < sun_disc_extent()) {
-        bool hits_ground = ray_hits_ground(h_cam, v.y);
+        bool hits_ground = ray_class_ground(h_cam, v.y);
         vec3 throughput = hits_ground ? vec3(0.0) : lookup_transmittance(h_cam, v.y);
         radiance += sun_disc(v, s, throughput, hits_ground);
     }

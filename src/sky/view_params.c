@@ -86,8 +86,21 @@ sky_mode sky_view_resolve_mode(const sky_view *v, double atmosphere_top_km)
     return inside ? SKY_MODE_SKYVIEW : SKY_MODE_MARCH;
 }
 
+double sky_view_horizon_sine(double altitude_km, double ground_radius_km)
+{
+    double h = altitude_km > 0.0 ? altitude_km : 0.0, r = ground_radius_km + h;
+    return -sqrt(h * (2.0 * ground_radius_km + h)) / r;
+}
+
+void sky_view_set_horizon(SkyPush *push, const sky_view *v, double ground_radius_km, bool resolve)
+{
+    push->horizon = (vksky_vec4){(float)sky_view_horizon_sine(v->altitude_km, ground_radius_km), resolve ? 1.0f : 0.0f,
+                                 0.0f, 0.0f};
+}
+
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader)
 {
     return (TonemapPush){.params = {(float)exp2(v->exposure_ev), (float)v->tonemap,
-                                    v->bloom ? (float)v->bloom_strength : 0.0f, encode_srgb_in_shader ? 1.0f : 0.0f}};
+                                    v->bloom ? (float)v->bloom_strength : 0.0f, encode_srgb_in_shader ? 1.0f : 0.0f},
+                         .dither = {v->no_dither ? 0.0f : 1.0f, (float)v->tile_x, (float)v->tile_y, 0.0f}};
 }

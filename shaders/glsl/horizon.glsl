@@ -1,0 +1,76 @@
+/* The planet's edge per pixel (issue 26), shared by the sky passes (fragment and compute; march, sky-view lookup)
+ * and, for the box coverage, the tone map's upsample (hdr_upsample.glsl).
+ * The horizon's elevation comes from the CPU in double (SkyPush.horizon.x: its sine, -sqrt(h (2R + h)) / (R + h)),
+ * so no pixel decides sky or ground by a float sphere test at a grazing ray. A pixel's footprint is a unit box; the
+ * horizon crosses it as a line (its curvature over one pixel is far below a pixel); the sky's share of the box is
+ * the area on the line's upper side, in closed form. */
+#ifndef VKSKY_HORIZON_GLSL
+#define VKSKY_HORIZON_GLSL
+
+/* The area of the unit box on the positive side of a line at signed distance d (pixels) from its centre with unit
+ * normal n: linear while the line crosses two opposite sides, quadratic where it cuts a corner. */
+float horizon_box_coverage(float d, vec2 n)
+{
+    float a = max(abs(n.x), abs(n.y)), b = min(abs(n.x), abs(n.y));   /* a >= 1/sqrt(2) */
+    float half_extent = 0.5 * (a + b), s = abs(d), inside;
+    if (s >= half_extent) inside = 1.0;
+    else if (s <= 0.5 * (a - b)) inside = 0.5 + s / a;
+    else inside = 1.0 - (half_extent - s) * (half_extent - s) / (2.0 * a * b);
+    return d >= 0.0 ? inside : 1.0 - inside;
+}
+
+/* Half the box's extent along n (the distance from its centre to its farthest corner along the normal). */
+float horizon_half_extent(vec2 n) { return 0.5 * (abs(n.x) + abs(n.y)); }
+
+#ifdef VKSKY_PROJECTION_GLSL
+/* Signed distance (this image's pixels, positive = sky) from a pixel centre to the horizon, and the unit normal
+ * (in pixels, toward the sky). The elevation's sine v.y - sin(horizon) is the level function; its gradient comes
+ * from central differences a quarter pixel apart (inside one cube face; the projection is smooth there). */
+float horizon_distance(vec2 centre, SkyPush p, out vec2 n)
+{
+    bool inside;
+    float sin_h = p.horizon.x;
+    float f = pixel_view_dir(centre, p, inside).y - sin_h;
+    const float e = 0.25;
+    float gx = pixel_view_dir(centre + vec2(e, 0.0), p, inside).y - pixel_view_dir(centre - vec2(e, 0.0), p, inside).y;
+    float gy = pixel_view_dir(centre + vec2(0.0, e), p, inside).y - pixel_view_dir(centre - vec2(0.0, e), p, inside).y;
+    vec2 g = vec2(gx, gy) / (2.0 * e);
+    float len = length(g);
+    n = len > 0.0 ? g / len : vec2(0.0, -1.0);
+    /* Where the elevation does not change across the pixel (the fisheye's zenith, a cube face's centre looking
+     * straight down) the pixel is wholly on its centre's side. */
+    return len > 1e-12 ? clamp(f / len, -1.0e4, 1.0e4) : (f >= 0.0 ? 1.0e4 : -1.0e4);
+}
+
+/* The sky pass's pixel: radiance and, in alpha, the signed distance to the horizon (pixels of this image) that the
+ * tone map's upsample reads. A pixel wholly on one side is one evaluation of its class. A pixel the horizon crosses,
+ * when this pass is the output (horizon.y = 1), is sky and ground each evaluated at the centroid of its own part of
+ * the box and mixed by their areas: anti-aliased, and never a blend of the two inside one evaluation. For an upsample
+ * (horizon.y = 0) every texel holds its centre's class only, and the tone map resolves coverage per output pixel. */
+vec4 sky_pixel(vec2 centre, SkyPush p)
+{
+    bool inside;
+    vec3 v = pixel_view_dir(centre, p, inside);
+    if (!inside) return vec4(0.0, 0.0, 0.0, 1.0e4);
+    sky_texel_angle = texel_angle(p);
+    vec2 n;
+    float d = horizon_distance(centre, p, n);
+    float half_extent = horizon_half_extent(n);
+    bool resolve = p.horizon.y > 0.5;
+    if (!resolve || abs(d) >= half_extent) {
+        sky_forced_class = d >= 0.0 ? 1 : 0;
+        return vec4(SKY_RADIANCE(p.forward.w, v, p.sun_dir.xyz, p.march), d);
+    }
+    /* Each part's centroid along the normal (1-D), kept a hundredth of a pixel off the line. */
+    float sky_at = max(0.5 * (max(0.0, d - half_extent) + d + half_extent), 0.01);
+    float ground_at = min(0.5 * (d - half_extent + min(0.0, d + half_extent)), -0.01);
+    float coverage = horizon_box_coverage(d, n);
+    sky_forced_class = 1;
+    vec3 sky = SKY_RADIANCE(p.forward.w, pixel_view_dir(centre + n * (sky_at - d), p, inside), p.sun_dir.xyz, p.march);
+    sky_forced_class = 0;
+    vec3 ground = SKY_RADIANCE(p.forward.w, pixel_view_dir(centre + n * (ground_at - d), p, inside), p.sun_dir.xyz,
+                               p.march);
+    return vec4(mix(ground, sky, coverage), d);
+}
+#endif
+#endif
