@@ -15,7 +15,8 @@ typedef struct help_group {
 static const char *const output_flags[] = {"--render", "--width", "--height", "--exposure", "--tonemap", "--no-bloom",
                                            "--bloom-mips", "--bloom-res", "--bloom-downsample", "--scene",
                                            "--list-scenes", "--dump-scene", "--projection", "--quiet",
-                                           "--animate", "--frame-count", "--frame-range", NULL};
+                                           "--animate", "--frame-count", "--frame-range",
+                                           "--no-dither", NULL};
 static const char *const camera_flags[] = {"--altitude", "--yaw", "--pitch", "--fov", NULL};
 static const char *const sun_flags[] = {"--sun-elevation", "--sun-azimuth", "--date", "--time", "--utc-offset",
                                         "--latitude", "--longitude", "--elevation-m", "--sun-illuminance",
