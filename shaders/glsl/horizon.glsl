@@ -22,6 +22,11 @@ float horizon_box_coverage(float d, vec2 n)
 /* Half the box's extent along n (the distance from its centre to its farthest corner along the normal). */
 float horizon_half_extent(vec2 n) { return 0.5 * (abs(n.x) + abs(n.y)); }
 
+/* The sky-view LUT's rows near the horizon are dense (Hillaire's quadratic latitude mapping, the horizon between two
+ * rows), yet the sky changes fastest there, and most where the camera is high: its pixels within this many pixels of
+ * the horizon march their own ray instead of reading the LUT (a band of about 2 x this many rows a column). */
+#define VKSKY_HORIZON_DIRECT_PX 2.0
+
 #ifdef VKSKY_PROJECTION_GLSL
 /* Signed distance (this image's pixels, positive = sky) from a pixel centre to the horizon, and the unit normal
  * (in pixels, toward the sky). The elevation's sine v.y - sin(horizon) is the level function; its gradient comes
@@ -42,6 +47,21 @@ float horizon_distance(vec2 centre, SkyPush p, out vec2 n)
     return len > 1e-12 ? clamp(f / len, -1.0e4, 1.0e4) : (f >= 0.0 ? 1.0e4 : -1.0e4);
 }
 
+/* One ray's radiance: the variant's (SKY_RADIANCE: march, lookup or fill) or, where `direct`, the ray's own march
+ * (the lookup variant's horizon band). */
+vec3 sky_eval(vec3 v, SkyPush p, bool direct)
+{
+#ifdef SKY_RADIANCE_DIRECT
+    /* horizon.z: the march's weight in the upper half of the atmosphere (sky_view_set_horizon), 1 in the band. */
+    float march_weight = direct ? 1.0 : p.horizon.z;
+    vec3 marched = march_weight > 0.0 ? SKY_RADIANCE_DIRECT(p.forward.w, v, p.sun_dir.xyz, p.march) : vec3(0.0);
+    if (march_weight >= 1.0) return marched;
+    return mix(SKY_RADIANCE(p.forward.w, v, p.sun_dir.xyz, p.march), marched, march_weight);
+#else
+    return SKY_RADIANCE(p.forward.w, v, p.sun_dir.xyz, p.march);
+#endif
+}
+
 /* The sky pass's pixel: radiance and, in alpha, the signed distance to the horizon (pixels of this image) that the
  * tone map's upsample reads. A pixel wholly on one side is one evaluation of its class. A pixel the horizon crosses,
  * when this pass is the output (horizon.y = 1), is sky and ground each evaluated at the centroid of its own part of
@@ -56,20 +76,19 @@ vec4 sky_pixel(vec2 centre, SkyPush p)
     vec2 n;
     float d = horizon_distance(centre, p, n);
     float half_extent = horizon_half_extent(n);
-    bool resolve = p.horizon.y > 0.5;
-    if (!resolve || abs(d) >= half_extent) {
+    bool direct = abs(d) < VKSKY_HORIZON_DIRECT_PX;
+    if (p.horizon.y < 0.5 || abs(d) >= half_extent) {
         sky_forced_class = d >= 0.0 ? 1 : 0;
-        return vec4(SKY_RADIANCE(p.forward.w, v, p.sun_dir.xyz, p.march), d);
+        return vec4(sky_eval(v, p, direct), d);
     }
     /* Each part's centroid along the normal (1-D), kept a hundredth of a pixel off the line. */
     float sky_at = max(0.5 * (max(0.0, d - half_extent) + d + half_extent), 0.01);
     float ground_at = min(0.5 * (d - half_extent + min(0.0, d + half_extent)), -0.01);
     float coverage = horizon_box_coverage(d, n);
     sky_forced_class = 1;
-    vec3 sky = SKY_RADIANCE(p.forward.w, pixel_view_dir(centre + n * (sky_at - d), p, inside), p.sun_dir.xyz, p.march);
+    vec3 sky = sky_eval(pixel_view_dir(centre + n * (sky_at - d), p, inside), p, direct);
     sky_forced_class = 0;
-    vec3 ground = SKY_RADIANCE(p.forward.w, pixel_view_dir(centre + n * (ground_at - d), p, inside), p.sun_dir.xyz,
-                               p.march);
+    vec3 ground = sky_eval(pixel_view_dir(centre + n * (ground_at - d), p, inside), p, direct);
     return vec4(mix(ground, sky, coverage), d);
 }
 #endif

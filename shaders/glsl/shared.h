@@ -52,7 +52,10 @@ VKSKY_STRUCT(SkyPush) {
                                   from the camera, -sqrt(h (2R + h)) / (R + h), computed in double on the CPU; y: 1 =
                                   this pass resolves each pixel's coverage of sky and ground (the image is the output),
                                   0 = each texel holds its centre's class only (a render scale below 1: the tone map's
-                                  upsample resolves coverage per output pixel); zw: unused */
+                                  upsample resolves coverage per output pixel); z: the sky-view lookup's blend toward
+                                  the march, 0 up to half the atmosphere's height, rising linearly to 1 at its top
+                                  (where --sky-mode auto hands over to the march: no pop on the way to space);
+                                  w: unused */
 } VKSKY_END(SkyPush)
 
 /* Composite pass push constants (composite.comp): aerial perspective from the camera to each pixel's point, and

@@ -161,7 +161,9 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     seg.throughput = vec3(1.0);
     seg.hits_ground = false;
     seg.nu = nu;
-    bool from_space = h > top_altitude();
+    /* Uniform steps from space, the given distribution near the ground, and a smooth hand-over between them
+     * over the upper half of the atmosphere (see below). */
+    float toward_uniform = smoothstep(0.5 * top_altitude(), top_altitude(), h);
     float t_entry;
     bool enters = enter_atmosphere(h, mu, mu_s, nu, t_entry);
     seg.r = ground_radius() + h;
@@ -181,8 +183,11 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     PhaseLegendre mie_k = mie_legendre(atmo.mie_absorption.w);
     /* Step boundaries at t_stop (i/N)^p: p = 1 uniform, p = 2 Hillaire's quadratic spacing, which puts short
      * steps near the camera where an upward or horizontal ray meets the dense, thin Mie layer. A ray that
-     * enters from space starts in the thinnest air, so it keeps uniform steps. */
-    float p = from_space ? 1.0 : distribution;
+     * enters from space starts in the thinnest air, so it keeps uniform steps. In between, the exponent moves
+     * smoothly from p to 1 over the upper half of the atmosphere (no Mie layer near the camera there), so that the
+     * march (and the sky-view LUT built by it) changes continuously as a camera climbs out through the top: an
+     * exponent that jumps at the top is a 1 % pop in the mean (issue 26). */
+    float p = mix(distribution, 1.0, toward_uniform);
     float t_prev = 0.0;
     for (float i = 0.0; i < steps; i += 1.0) {
         float u = (i + 1.0) / steps;
