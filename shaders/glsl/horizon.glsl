@@ -52,7 +52,8 @@ float horizon_distance(vec2 centre, SkyPush p, out vec2 n)
 vec3 sky_eval(vec3 v, SkyPush p, bool direct)
 {
 #ifdef SKY_RADIANCE_DIRECT
-    /* horizon.z: the march's weight in the upper half of the atmosphere (sky_view_set_horizon), 1 in the band. */
+    /* horizon.z: the march's weight from a quarter of the atmosphere's height up (sky_view_march_blend), 1 in the
+     * band. */
     float march_weight = direct ? 1.0 : p.horizon.z;
     vec3 marched = march_weight > 0.0 ? SKY_RADIANCE_DIRECT(p.forward.w, v, p.sun_dir.xyz, p.march) : vec3(0.0);
     if (march_weight >= 1.0) return marched;

@@ -53,7 +53,7 @@ VKSKY_STRUCT(SkyPush) {
                                   this pass resolves each pixel's coverage of sky and ground (the image is the output),
                                   0 = each texel holds its centre's class only (a render scale below 1: the tone map's
                                   upsample resolves coverage per output pixel); z: the sky-view lookup's blend toward
-                                  the march, 0 up to half the atmosphere's height, rising linearly to 1 at its top
+                                  the march, 0 up to a quarter of the atmosphere's height, linearly to 1 at its top
                                   (where --sky-mode auto hands over to the march: no pop on the way to space);
                                   w: unused */
 } VKSKY_END(SkyPush)

@@ -94,7 +94,7 @@ double sky_view_horizon_sine(double altitude_km, double ground_radius_km)
 
 double sky_view_march_blend(double altitude_km, double atmosphere_top_km)
 {
-    double x = (altitude_km - 0.5 * atmosphere_top_km) / (0.5 * atmosphere_top_km);
+    double x = (altitude_km - 0.25 * atmosphere_top_km) / (0.75 * atmosphere_top_km);
     return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x;
 }
 

@@ -51,7 +51,7 @@ double sky_view_horizon_sine(double altitude_km, double ground_radius_km);
  * output's own pixels (render scale 1) and resolves their coverage of sky and ground itself. */
 void sky_view_set_horizon(SkyPush *push, const sky_view *v, double ground_radius_km, double atmosphere_top_km,
                           bool resolve);
-/* The sky-view lookup's weight of the per-pixel march at this altitude: 0 below half the atmosphere's height, 1 at
+/* The sky-view lookup's weight of the per-pixel march at this altitude: 0 below a quarter of the atmosphere's height, 1 at
  * its top, linear between (the lookup and the march meet where --sky-mode auto switches). */
 double sky_view_march_blend(double altitude_km, double atmosphere_top_km);
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader);
