@@ -11,11 +11,11 @@
  * 2. Leak: Earth, black ground, sunset, a camera 1 m up (the ground's own in-scattering is a few thousandths of the
  *    sky): no pixel of the rows wholly below the horizon within 2 px of it above 5 % of the sky pixel above the
  *    horizon in its column, at scales 0.25 and 0.5 (the upsample) and 1, march and LUT.
- * 3. The way to space: an altitude sweep 0 -> 1000 km, --sky-mode auto against the march: the change of 95 % of the
- *    pixels from one frame to the next exceeds the march's own change by no more than 1 % of the pixel (the LUT
- *    blends into the march from a quarter of the atmosphere's height to its top, and the march's step exponent
- *    moves to uniform over its upper half); the
- *    worst pixel is printed (the limb's glow: see test_sweep).
+ * 3. The way to space: an altitude sweep 0 -> 1000 km (5 km a frame), --sky-mode auto against the march: no pixel's
+ *    change from one frame to the next exceeds the march's own change by more than 1 % of the pixel (floored at
+ *    0.1 % of the frame's brightest: space is black). The lookup variant marches its rays below 3 degrees of
+ *    elevation and blends into the march from a quarter of the atmosphere's height to its top; the march's step
+ *    exponent moves to uniform over the upper half (horizon.glsl, sky_common.glsl).
  * 4. Dither: a twilight gradient in 8 bits against the exact tone map of the frame's own linear pixels: the region's
  *    mean within 0.1 LSB, every pixel within 1 LSB of the undithered one, fewer than 60 % of horizontal neighbours
  *    identical, two renders byte-identical. */
@@ -193,7 +193,7 @@ static void test_sweep(gpu_context *ctx)
     float *frames[2][2];
     for (int i = 0; i < 4; ++i) frames[i / 2][i % 2] = malloc(sizeof(float) * n);
     const int count = 201;   /* 5 km a frame: the blend moves 10 % a frame */
-    double worst = 0.0, worst_h = 0.0, worst_p95 = 0.0, worst_p95_h = 0.0;
+    double worst = 0.0, worst_h = 0.0, worst_p99 = 0.0;
     float *excess = malloc(sizeof(float) * n);
     for (int k = 0; k < count; ++k) {
         double h = 1000.0 * k / (count - 1);
@@ -216,18 +216,13 @@ static void test_sweep(gpu_context *ctx)
             if (excess[i] > worst) worst = excess[i], worst_h = h;
         }
         qsort(excess, n, sizeof *excess, cmp_float);
-        double p95 = excess[(size_t)(0.95 * (double)(n - 1))];
-        if (p95 > worst_p95) worst_p95 = p95, worst_p95_h = h;
+        worst_p99 = fmax(worst_p99, excess[(size_t)(0.99 * (double)(n - 1))]);
     }
-    /* The bound holds for 95 % of the pixels of every frame pair (the issue asks for all: partial). The rest: the
-     * glow just above the horizon band from 25 to 100 km, where the sky-view LUT's rows are coarse for an
-     * exponential that falls by e every half degree, and the blend into the march passes that error on over 75 km
-     * (measured: 99th percentile 2.1 %, the worst pixel 3.3 %). */
-    CHECK(worst_p95 <= 0.01, "auto's frame-to-frame change exceeds the march's by %.2f %% of the pixel (95th percentile) "
-          "at %g km", 100 * worst_p95, worst_p95_h);
-    printf("sweep: %d frames 0 -> 1000 km; auto's change exceeds the march's by %.3f %% of the pixel at the 95th "
-           "percentile (at %g km; bound 1 %%), %.2f %% at the worst pixel (at %g km)\n", count, 100.0 * worst_p95,
-           worst_p95_h, 100.0 * worst, worst_h);
+    CHECK(worst <= 0.01, "auto's frame-to-frame change exceeds the march's by %.2f %% of the pixel at %g km",
+          100 * worst, worst_h);
+    printf("sweep: %d frames 0 -> 1000 km; auto's change exceeds the march's by at most %.3f %% of the pixel (at %g "
+           "km; bound 1 %%; 99th percentile of a frame pair at most %.3f %%)\n", count, 100.0 * worst, worst_h,
+           100.0 * worst_p99);
     free(excess);
     for (int i = 0; i < 4; ++i) free(frames[i / 2][i % 2]);
     sky_renderer_destroy(&r);

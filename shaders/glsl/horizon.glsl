@@ -26,6 +26,8 @@ float horizon_half_extent(vec2 n) { return 0.5 * (abs(n.x) + abs(n.y)); }
  * rows), yet the sky changes fastest there, and most where the camera is high: its pixels within this many pixels of
  * the horizon march their own ray instead of reading the LUT (a band of about 2 x this many rows a column). */
 #define VKSKY_HORIZON_DIRECT_PX 2.0
+/* ... and its sky rays below this elevation's sine (3 degrees; see sky_pixel). */
+#define VKSKY_HORIZON_DIRECT_SIN 0.0523
 
 #ifdef VKSKY_PROJECTION_GLSL
 /* Signed distance (this image's pixels, positive = sky) from a pixel centre to the horizon, and the unit normal
@@ -77,7 +79,13 @@ vec4 sky_pixel(vec2 centre, SkyPush p)
     vec2 n;
     float d = horizon_distance(centre, p, n);
     float half_extent = horizon_half_extent(n);
-    bool direct = abs(d) < VKSKY_HORIZON_DIRECT_PX;
+    /* The lookup variant marches the band at the horizon, and every sky ray below 3 degrees of elevation (from the
+     * ground a 3-degree strip; from 10 km 6 degrees, from 100 km 13: the horizon sinks). Those rays graze the
+     * limb's glow or skim the thin air near the horizontal, where the sky changes by tens of per cent a degree from
+     * high up, faster than the LUT's rows (about a degree apart there) can follow; and their edge, a fixed
+     * elevation, does not move with the camera's altitude, so no pixel switches from the LUT to the march as the
+     * camera climbs (no pop on the way to space). */
+    bool direct = abs(d) < VKSKY_HORIZON_DIRECT_PX || (d > 0.0 && v.y < VKSKY_HORIZON_DIRECT_SIN);
     if (p.horizon.y < 0.5 || abs(d) >= half_extent) {
         sky_forced_class = d >= 0.0 ? 1 : 0;
         return vec4(sky_eval(v, p, direct), d);
