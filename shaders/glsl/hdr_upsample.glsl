@@ -1,13 +1,12 @@
 /* The tone map's read of the sky (HDR) image at an output pixel, shared by the fragment and compute tone maps.
- * At render scale 1 the sky pass has already resolved each pixel's coverage of sky and ground (horizon.glsl): the
- * output pixel is that texel. Below 1 each texel holds its centre's class only (sky or ground, never a blend) and,
- * in alpha, the signed distance from its centre to the horizon in texels (positive: sky). The distance is smooth,
- * so its bilinear sample is the output pixel's own distance: away from the horizon (more than two texels, beyond
- * every tap) the output pixel is the plain bilinear sample, one fetch. Near it the output pixel takes its analytic
- * coverage of the sky (the box coverage of horizon.glsl, in output pixels) and mixes a sky value, interpolated from
- * the sky taps alone, with a ground value from the ground taps alone: the horizon sits where the geometry puts it,
- * per output pixel, and no ground is blended into the sky nor sky into the ground. Only pixels near the horizon pay
- * for the taps (lavapipe runs a branch's body for a whole 8-wide group: a few groups per column). */
+ * Each sky texel holds its centre's class only (sky or ground, never a blend: horizon.glsl) and, in alpha, the signed
+ * distance from its centre to the horizon in texels (positive: sky). The distance is smooth, so its bilinear sample
+ * is the output pixel's own distance: away from the horizon (more than two texels, beyond every tap) the output
+ * pixel is the plain bilinear sample, one fetch (at render scale 1, the texel itself). Near it the output pixel takes
+ * its analytic coverage of the sky (the box coverage of horizon.glsl, in output pixels) and mixes a sky value,
+ * interpolated from the sky taps alone, with a ground value from the ground taps alone: the horizon sits where the
+ * geometry puts it, per output pixel and anti-aliased, at every render scale, and no ground is blended into the sky
+ * nor sky into the ground. Only pixels near the horizon pay for the taps. */
 #include "horizon.glsl"
 
 /* One side's taps around pos (texel coordinates): the bilinear weights of the taps of that side (sign of their
@@ -50,7 +49,6 @@ vec3 hdr_side_value(sampler2D hdr, vec2 pos, vec2 toward, float side, float targ
 vec3 hdr_upsample(sampler2D hdr, vec2 uv, ivec2 out_size)
 {
     ivec2 size = textureSize(hdr, 0);
-    if (size == out_size) return texelFetch(hdr, ivec2(uv * vec2(size)), 0).rgb;
     vec4 bilinear = textureLod(hdr, uv, 0.0);
     if (abs(bilinear.a) > 2.0) return bilinear.rgb;
     /* The distance's gradient per output pixel from the four taps' distances (texels), its unit normal, and the

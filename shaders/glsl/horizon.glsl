@@ -1,5 +1,5 @@
 /* The planet's edge per pixel (issue 26), shared by the sky passes (fragment and compute; march, sky-view lookup)
- * and, for the box coverage, the tone map's upsample (hdr_upsample.glsl).
+ * and, for the box coverage, the tone map's read of the sky (hdr_upsample.glsl), which resolves it per output pixel.
  * The horizon's elevation comes from the CPU in double (SkyPush.horizon.x: its sine, -sqrt(h (2R + h)) / (R + h)),
  * so no pixel decides sky or ground by a float sphere test at a grazing ray. A pixel's footprint is a unit box; the
  * horizon crosses it as a line (its curvature over one pixel is far below a pixel); the sky's share of the box is
@@ -23,8 +23,9 @@ float horizon_box_coverage(float d, vec2 n)
 float horizon_half_extent(vec2 n) { return 0.5 * (abs(n.x) + abs(n.y)); }
 
 /* The sky-view LUT's rows near the horizon are dense (Hillaire's quadratic latitude mapping, the horizon between two
- * rows), yet the sky changes fastest there, and most where the camera is high: its pixels within this many pixels of
- * the horizon march their own ray instead of reading the LUT (a band of about 2 x this many rows a column). */
+ * rows), yet the sky changes fastest there, and most where the camera is high: from a quarter of the atmosphere's
+ * height up (the blend variant), its pixels within this many pixels of the horizon march their own ray instead of
+ * reading the LUT (a band of about 2 x this many rows a column). */
 #define VKSKY_HORIZON_DIRECT_PX 2.0
 /* ... and its sky rays below this elevation's sine (3 degrees; see sky_pixel). */
 #define VKSKY_HORIZON_DIRECT_SIN 0.0523
@@ -49,27 +50,28 @@ float horizon_distance(vec2 centre, SkyPush p, out vec2 n)
     return len > 1e-12 ? clamp(f / len, -1.0e4, 1.0e4) : (f >= 0.0 ? 1.0e4 : -1.0e4);
 }
 
-/* One ray's radiance: the variant's (SKY_RADIANCE: march, lookup or fill) or, where `direct`, the ray's own march
- * (the lookup variant's horizon band). */
+/* One ray's radiance: the variant's (SKY_RADIANCE: march, lookup or fill) or, in the blend variant, a blend of the
+ * lookup and the ray's own march (the march alone where `direct`). */
 vec3 sky_eval(vec3 v, SkyPush p, bool direct)
 {
 #ifdef SKY_RADIANCE_DIRECT
-    /* horizon.z: the march's weight from a quarter of the atmosphere's height up (sky_view_march_blend), 1 in the
-     * band. */
-    float march_weight = direct ? 1.0 : p.horizon.z;
-    vec3 marched = march_weight > 0.0 ? SKY_RADIANCE_DIRECT(p.forward.w, v, p.sun_dir.xyz, p.march) : vec3(0.0);
-    if (march_weight >= 1.0) return marched;
-    return mix(SKY_RADIANCE(p.forward.w, v, p.sun_dir.xyz, p.march), marched, march_weight);
+    /* horizon.z: the march's weight from a quarter of the atmosphere's height up (sky_view_march_blend); four times
+     * faster (full from 44 km on Earth) for the rays near the horizon, where the LUT is furthest off up there. */
+    float march_weight = direct ? min(1.0, 4.0 * p.horizon.z) : p.horizon.z;
+    vec3 c = vec3(0.0);
+    if (march_weight < 1.0) c += (1.0 - march_weight) * SKY_RADIANCE(p.forward.w, v, p.sun_dir.xyz, p.march);
+    if (march_weight > 0.0) c += march_weight * SKY_RADIANCE_DIRECT(p.forward.w, v, p.sun_dir.xyz, p.march);
+    return c;
 #else
     return SKY_RADIANCE(p.forward.w, v, p.sun_dir.xyz, p.march);
 #endif
 }
 
-/* The sky pass's pixel: radiance and, in alpha, the signed distance to the horizon (pixels of this image) that the
- * tone map's upsample reads. A pixel wholly on one side is one evaluation of its class. A pixel the horizon crosses,
- * when this pass is the output (horizon.y = 1), is sky and ground each evaluated at the centroid of its own part of
- * the box and mixed by their areas: anti-aliased, and never a blend of the two inside one evaluation. For an upsample
- * (horizon.y = 0) every texel holds its centre's class only, and the tone map resolves coverage per output pixel. */
+/* The sky pass's pixel: its class's radiance (sky or ground, never a blend of the two) and, in alpha, the signed
+ * distance from its centre to the horizon (pixels of this image). The tone map (hdr_upsample.glsl) resolves each
+ * output pixel's coverage of sky and ground from that distance, at every render scale: one evaluation a pixel here,
+ * straight-line code (lavapipe runs a branch's body under a lane mask even where no lane takes it: a second
+ * evaluation for the pixels the horizon crosses cost every pixel of the lookup variant, measured 4-5x its sky pass). */
 vec4 sky_pixel(vec2 centre, SkyPush p)
 {
     bool inside;
@@ -78,27 +80,14 @@ vec4 sky_pixel(vec2 centre, SkyPush p)
     sky_texel_angle = texel_angle(p);
     vec2 n;
     float d = horizon_distance(centre, p, n);
-    float half_extent = horizon_half_extent(n);
-    /* The lookup variant marches the band at the horizon, and every sky ray below 3 degrees of elevation (from the
-     * ground a 3-degree strip; from 10 km 6 degrees, from 100 km 13: the horizon sinks). Those rays graze the
-     * limb's glow or skim the thin air near the horizontal, where the sky changes by tens of per cent a degree from
-     * high up, faster than the LUT's rows (about a degree apart there) can follow; and their edge, a fixed
-     * elevation, does not move with the camera's altitude, so no pixel switches from the LUT to the march as the
-     * camera climbs (no pop on the way to space). */
+    /* The blend variant marches the band at the horizon, and every sky ray below 3 degrees of elevation (from 25 km
+     * 8 degrees, from 100 km 13: the horizon sinks). Those rays graze the limb's glow or skim the thin air near the
+     * horizontal, where the sky changes by tens of per cent a degree from high up, faster than the LUT's rows
+     * (about a degree apart there) can follow; and their edge, a fixed elevation, does not move with the camera's
+     * altitude, so no pixel switches from the LUT to the march as the camera climbs (no pop on the way to space). */
     bool direct = abs(d) < VKSKY_HORIZON_DIRECT_PX || (d > 0.0 && v.y < VKSKY_HORIZON_DIRECT_SIN);
-    if (p.horizon.y < 0.5 || abs(d) >= half_extent) {
-        sky_forced_class = d >= 0.0 ? 1 : 0;
-        return vec4(sky_eval(v, p, direct), d);
-    }
-    /* Each part's centroid along the normal (1-D), kept a hundredth of a pixel off the line. */
-    float sky_at = max(0.5 * (max(0.0, d - half_extent) + d + half_extent), 0.01);
-    float ground_at = min(0.5 * (d - half_extent + min(0.0, d + half_extent)), -0.01);
-    float coverage = horizon_box_coverage(d, n);
-    sky_forced_class = 1;
-    vec3 sky = sky_eval(pixel_view_dir(centre + n * (sky_at - d), p, inside), p, direct);
-    sky_forced_class = 0;
-    vec3 ground = sky_eval(pixel_view_dir(centre + n * (ground_at - d), p, inside), p, direct);
-    return vec4(mix(ground, sky, coverage), d);
+    sky_forced_class = d >= 0.0 ? 1 : 0;
+    return vec4(sky_eval(v, p, direct), d);
 }
 #endif
 #endif

@@ -50,12 +50,11 @@ VKSKY_STRUCT(SkyPush) {
                                   and up.w are 1 / the whole image's size), w: unused (shaders/glsl/projection.glsl) */
     vec4 horizon;              /* the planet's edge (shaders/glsl/horizon.glsl): x: sine of the horizon's elevation
                                   from the camera, -sqrt(h (2R + h)) / (R + h), computed in double on the CPU; y: 1 =
-                                  this pass resolves each pixel's coverage of sky and ground (the image is the output),
-                                  0 = each texel holds its centre's class only (a render scale below 1: the tone map's
-                                  upsample resolves coverage per output pixel); z: the sky-view lookup's blend toward
-                                  the march, 0 up to a quarter of the atmosphere's height, linearly to 1 at its top
-                                  (where --sky-mode auto hands over to the march: no pop on the way to space);
-                                  w: unused */
+                                  the sky image is the output's size (informative: the tone map resolves coverage
+                                  at every scale, hdr_upsample.glsl); z: the sky-view lookup's blend toward the
+                                  march (the blend variant), 0 up to a quarter of the atmosphere's height,
+                                  linearly to 1 at its top (where --sky-mode auto hands over to the march: no pop on
+                                  the way to space); w: unused */
 } VKSKY_END(SkyPush)
 
 /* Composite pass push constants (composite.comp): aerial perspective from the camera to each pixel's point, and

@@ -12,8 +12,10 @@ layout(set = 0, binding = 5) uniform sampler2D ground_irradiance_lut;
 layout(set = 0, binding = 3) uniform sampler2D skyview_lut;
 #define VKSKY_SKYVIEW_LOOKUP 1
 #define SKY_RADIANCE(h, v, s, march) sky_radiance_lookup(h, v, s)
-/* Pixels within VKSKY_HORIZON_DIRECT_PX of the horizon march their own ray (horizon.glsl). */
+#ifdef SKY_BLEND
+/* High in the atmosphere the lookup blends into each pixel's own march (horizon.glsl: sky_eval). */
 #define SKY_RADIANCE_DIRECT(h, v, s, march) sky_radiance(h, v, s, march, push.sun_dir.w)
+#endif
 #else
 #define SKY_RADIANCE(h, v, s, march) sky_radiance(h, v, s, march, push.sun_dir.w)
 #endif

@@ -58,7 +58,7 @@ typedef enum sky_pass_kind { SKY_PASS_FRAGMENT = 0, SKY_PASS_COMPUTE = 1, SKY_PA
 typedef struct sky_pass {
     VkDescriptorSetLayout set_layouts[2];        /* [kind] */
     VkPipelineLayout layouts[2];                 /* [kind] */
-    VkPipeline pipelines[2][3];                  /* [kind][mode] */
+    VkPipeline pipelines[2][4];                  /* [kind][mode], mode 3: the lookup blending into the march */
     VkDescriptorSet sets[2];                     /* [kind]; the compute set also holds the HDR storage image */
 } sky_pass;
 void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts);

@@ -1,12 +1,16 @@
 #include "sky/passes.h"
 #include "sky/shaders.h"
 
-/* One pipeline per (kind, mode), each from its own SPIR-V variant: no per-pixel branch on the mode. */
+/* One pipeline per (kind, mode), each from its own SPIR-V variant: no per-pixel branch on the mode. Mode 3 is the
+ * sky-view lookup high in the atmosphere, blending into the march on the way to space and marching the rays near
+ * the horizon (shaders/glsl/horizon.glsl): its own variant, because on lavapipe a march merely present in the
+ * lookup shader costs every pixel (measured: 8x the lookup's sky pass with no pixel marching). */
+#define SKY_MODE_BLEND 3
 static const sky_spirv *variant(int kind, int mode)
 {
-    static const sky_spirv *const table[2][3] = {
-        {&spirv_sky_march_frag, &spirv_sky_lookup_frag, &spirv_sky_fill_frag},
-        {&spirv_sky_march_comp, &spirv_sky_lookup_comp, &spirv_sky_fill_comp}};
+    static const sky_spirv *const table[2][4] = {
+        {&spirv_sky_march_frag, &spirv_sky_lookup_frag, &spirv_sky_fill_frag, &spirv_sky_blend_frag},
+        {&spirv_sky_march_comp, &spirv_sky_lookup_comp, &spirv_sky_fill_comp, &spirv_sky_blend_comp}};
     return table[kind][mode];
 }
 
@@ -28,10 +32,10 @@ void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
         gpu_write_sampled(ctx, p->sets[kind], 2, luts->multiscatter_view, s->linear_clamp);
         gpu_write_sampled(ctx, p->sets[kind], 3, luts->skyview.view, s->linear_clamp);
         gpu_write_sampled(ctx, p->sets[kind], 5, luts->ground_irradiance_view, s->linear_clamp);
-        for (int mode = 0; mode < 3; ++mode) {
-            static const char *const names_km[2][3] = {
-                {"sky march (fragment)", "sky lookup (fragment)", "sky fill (fragment)"},
-                {"sky march (compute)", "sky lookup (compute)", "sky fill (compute)"}};
+        for (int mode = 0; mode < 4; ++mode) {
+            static const char *const names_km[2][4] = {
+                {"sky march (fragment)", "sky lookup (fragment)", "sky fill (fragment)", "sky blend (fragment)"},
+                {"sky march (compute)", "sky lookup (compute)", "sky fill (compute)", "sky blend (compute)"}};
             const char *name = names_km[kind][mode];
             const sky_spirv *spv = variant(kind, mode);
             VkShaderModule m = gpu_shader_module(ctx, spv->code, spv->size, name);
@@ -54,7 +58,7 @@ void sky_pass_destroy(sky_pass *p, const pass_shared *s)
 {
     VkDevice d = s->ctx->device;
     for (int kind = 0; kind < 2; ++kind) {
-        for (int mode = 0; mode < 3; ++mode) vkDestroyPipeline(d, p->pipelines[kind][mode], NULL);
+        for (int mode = 0; mode < 4; ++mode) vkDestroyPipeline(d, p->pipelines[kind][mode], NULL);
         vkDestroyPipelineLayout(d, p->layouts[kind], NULL);
         vkDestroyDescriptorSetLayout(d, p->set_layouts[kind], NULL);
     }
@@ -71,7 +75,9 @@ void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind,
         gpu_attachment target = {hdr->view, VK_ATTACHMENT_LOAD_OP_DONT_CARE};
         gpu_begin_rendering(cmd, hdr->extent, &target, 1);
     }
-    vkCmdBindPipeline(cmd, bind, p->pipelines[kind][mode]);
+    /* The lookup above a quarter of the atmosphere's height (horizon.z > 0: the march's weight) is the blend. */
+    int variant_mode = mode == SKY_MODE_SKYVIEW && push->horizon.z > 0.0f ? SKY_MODE_BLEND : (int)mode;
+    vkCmdBindPipeline(cmd, bind, p->pipelines[kind][variant_mode]);
     vkCmdBindDescriptorSets(cmd, bind, p->layouts[kind], 0, 1, &p->sets[kind], 0, NULL);
     vkCmdPushConstants(cmd, p->layouts[kind], stage, 0, sizeof *push, push);
     if (kind == SKY_PASS_FRAGMENT) {
