@@ -13,9 +13,9 @@
  *    horizon in its column, at scales 0.25 and 0.5 (the upsample) and 1, march and LUT.
  * 3. The way to space: an altitude sweep 0 -> 1000 km (5 km a frame), --sky-mode auto against the march: no pixel's
  *    change from one frame to the next exceeds the march's own change by more than 1 % of the pixel (floored at
- *    0.1 % of the frame's brightest: space is black). The lookup variant marches its rays below 3 degrees of
- *    elevation and blends into the march from a quarter of the atmosphere's height to its top; the march's step
- *    exponent moves to uniform over the upper half (horizon.glsl, sky_common.glsl).
+ *    0.1 % of the frame's brightest: space is black). The lookup blends into the march from a quarter of the
+ *    atmosphere's height to its top (its rays below 3 degrees of elevation from a tenth to three tenths); the
+ *    march's step exponent moves to uniform over the upper half (horizon.glsl, sky_common.glsl).
  * 4. Dither: a twilight gradient in 8 bits against the exact tone map of the frame's own linear pixels: the region's
  *    mean within 0.1 LSB, every pixel within 1 LSB of the undithered one, fewer than 60 % of horizontal neighbours
  *    identical, two renders byte-identical. */

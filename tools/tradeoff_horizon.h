@@ -1,6 +1,6 @@
 /* The horizon-band error of tools/tradeoff (issue 26): a configuration's frame against the per-pixel march (the
  * ultra preset: 128 steps, render scale 1) of the same view, over the pixels within 2 pixels of the analytic
- * horizon (its elevation -atan(sqrt(h (2R + h)) / R), in double), the sun's disc left out. The mean error of the
+ * horizon (its elevation -atan(sqrt(h (2R + h)) / R), in double), the sun's disc and 3 px around it left out. The mean error of the
  * whole frame cannot see a few wrong rows; this can. Header-only, included by tools/tradeoff.c. */
 #ifndef VKSKY_TOOLS_TRADEOFF_HORIZON_H
 #define VKSKY_TOOLS_TRADEOFF_HORIZON_H
@@ -41,7 +41,7 @@ static float *horizon_frame(gpu_context *ctx, const quality_config *q, const qua
 }
 
 /* Relative luminance error of `lum` against the march `ref` over the horizon band: the pixels whose centre's
- * elevation is within 2 of the column's pixel heights of the horizon, not within 4 sun radii of the sun. Floored at
+ * elevation is within 2 of the column's pixel heights of the horizon, not within 4 sun radii + 3 px of the sun. Floored at
  * 0.1 % of the band's brightest reference pixel (the black of space above the limb). */
 static horizon_error horizon_band_error(const float *lum, const float *ref, const quality_scene *s, int w, int h,
                                         const model_atmosphere *a, double sun_radius)
@@ -58,7 +58,8 @@ static horizon_error horizon_band_error(const float *lum, const float *ref, cons
             ref_pixel_dir(x, y, w, h, s->yaw_deg * deg, s->pitch_deg * deg, s->fov_deg * deg, d0);
             ref_pixel_dir(x, y + 1, w, h, s->yaw_deg * deg, s->pitch_deg * deg, s->fov_deg * deg, d1);
             double el = asin(d0[1]), step = fabs(asin(d1[1]) - el);
-            bool near_sun = d0[0] * sun[0] + d0[1] * sun[1] + d0[2] * sun[2] > cos(4.0 * sun_radius);
+            /* The sun's disc and its aureole's first pixels (the sun's error, not the horizon's). */
+            bool near_sun = d0[0] * sun[0] + d0[1] * sun[1] + d0[2] * sun[2] > cos(4.0 * sun_radius + 3.0 * step);
             if (fabs(el - e_h) < 2.0 * step && !near_sun) {
                 band[(size_t)y * w + x] = 1;
                 peak = fmax(peak, ref[(size_t)y * w + x]);

@@ -23,7 +23,7 @@ float horizon_box_coverage(float d, vec2 n)
 float horizon_half_extent(vec2 n) { return 0.5 * (abs(n.x) + abs(n.y)); }
 
 /* The sky-view LUT's rows near the horizon are dense (Hillaire's quadratic latitude mapping, the horizon between two
- * rows), yet the sky changes fastest there, and most where the camera is high: from a quarter of the atmosphere's
+ * rows), yet the sky changes fastest there, and most where the camera is high: from a tenth of the atmosphere's
  * height up (the blend variant), its pixels within this many pixels of the horizon march their own ray instead of
  * reading the LUT (a band of about 2 x this many rows a column). */
 #define VKSKY_HORIZON_DIRECT_PX 2.0
@@ -55,9 +55,9 @@ float horizon_distance(vec2 centre, SkyPush p, out vec2 n)
 vec3 sky_eval(vec3 v, SkyPush p, bool direct)
 {
 #ifdef SKY_RADIANCE_DIRECT
-    /* horizon.z: the march's weight from a quarter of the atmosphere's height up (sky_view_march_blend); four times
-     * faster (full from 44 km on Earth) for the rays near the horizon, where the LUT is furthest off up there. */
-    float march_weight = direct ? min(1.0, 4.0 * p.horizon.z) : p.horizon.z;
+    /* horizon.z: the march's weight from a quarter of the atmosphere's height up; horizon.w: the weight of the rays
+     * near the horizon, from a tenth of it to three tenths (sky_view_march_blend). */
+    float march_weight = direct ? p.horizon.w : p.horizon.z;
     vec3 c = vec3(0.0);
     if (march_weight < 1.0) c += (1.0 - march_weight) * SKY_RADIANCE(p.forward.w, v, p.sun_dir.xyz, p.march);
     if (march_weight > 0.0) c += march_weight * SKY_RADIANCE_DIRECT(p.forward.w, v, p.sun_dir.xyz, p.march);
@@ -80,8 +80,8 @@ vec4 sky_pixel(vec2 centre, SkyPush p)
     sky_texel_angle = texel_angle(p);
     vec2 n;
     float d = horizon_distance(centre, p, n);
-    /* The blend variant marches the band at the horizon, and every sky ray below 3 degrees of elevation (from 25 km
-     * 8 degrees, from 100 km 13: the horizon sinks). Those rays graze the limb's glow or skim the thin air near the
+    /* The blend variant (from 10 km up) marches the band at the horizon, and every sky ray below 3 degrees of
+     * elevation (from 10 km 6 degrees of sky, from 100 km 13: the horizon sinks). Those rays graze the limb's glow or skim the thin air near the
      * horizontal, where the sky changes by tens of per cent a degree from high up, faster than the LUT's rows
      * (about a degree apart there) can follow; and their edge, a fixed elevation, does not move with the camera's
      * altitude, so no pixel switches from the LUT to the march as the camera climbs (no pop on the way to space). */

@@ -54,7 +54,8 @@ VKSKY_STRUCT(SkyPush) {
                                   at every scale, hdr_upsample.glsl); z: the sky-view lookup's blend toward the
                                   march (the blend variant), 0 up to a quarter of the atmosphere's height,
                                   linearly to 1 at its top (where --sky-mode auto hands over to the march: no pop on
-                                  the way to space); w: unused */
+                                  the way to space); w: the same for the rays near the horizon and below 3 degrees,
+                                  0 up to a tenth of the atmosphere's height, 1 from three tenths */
 } VKSKY_END(SkyPush)
 
 /* Composite pass push constants (composite.comp): aerial perspective from the camera to each pixel's point, and

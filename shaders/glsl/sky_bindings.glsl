@@ -5,6 +5,9 @@
 layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
 layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
 layout(set = 0, binding = 5) uniform sampler2D ground_irradiance_lut;
+#ifdef SKY_BLEND
+#define SKY_LOOKUP 1   /* the blend variant is the lookup's, with the march beside it (below) */
+#endif
 #if defined(SKY_FILL)
 /* The bandwidth floor for benchmarks: a constant written to every pixel. */
 #define SKY_RADIANCE(h, v, s, march) vec3(0.25, 0.5, 1.0)

@@ -2,8 +2,8 @@
 #include "sky/shaders.h"
 
 /* One pipeline per (kind, mode), each from its own SPIR-V variant: no per-pixel branch on the mode. Mode 3 is the
- * sky-view lookup high in the atmosphere, blending into the march on the way to space and marching the rays near
- * the horizon (shaders/glsl/horizon.glsl): its own variant, because on lavapipe a march merely present in the
+ * sky-view lookup from 10 km up, blending into the march on the way to space and marching the rays near the
+ * horizon (shaders/glsl/horizon.glsl): its own variant, because on lavapipe a march merely present in the
  * lookup shader costs every pixel (measured: 8x the lookup's sky pass with no pixel marching). */
 #define SKY_MODE_BLEND 3
 static const sky_spirv *variant(int kind, int mode)
@@ -75,8 +75,9 @@ void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind,
         gpu_attachment target = {hdr->view, VK_ATTACHMENT_LOAD_OP_DONT_CARE};
         gpu_begin_rendering(cmd, hdr->extent, &target, 1);
     }
-    /* The lookup above a quarter of the atmosphere's height (horizon.z > 0: the march's weight) is the blend. */
-    int variant_mode = mode == SKY_MODE_SKYVIEW && push->horizon.z > 0.0f ? SKY_MODE_BLEND : (int)mode;
+    /* The lookup above a tenth of the atmosphere's height (horizon.w > 0: the march's weight near the horizon) is
+     * the blend. */
+    int variant_mode = mode == SKY_MODE_SKYVIEW && push->horizon.w > 0.0f ? SKY_MODE_BLEND : (int)mode;
     vkCmdBindPipeline(cmd, bind, p->pipelines[kind][variant_mode]);
     vkCmdBindDescriptorSets(cmd, bind, p->layouts[kind], 0, 1, &p->sets[kind], 0, NULL);
     vkCmdPushConstants(cmd, p->layouts[kind], stage, 0, sizeof *push, push);

@@ -98,11 +98,18 @@ double sky_view_march_blend(double altitude_km, double atmosphere_top_km)
     return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x;
 }
 
+double sky_view_horizon_march_blend(double altitude_km, double atmosphere_top_km)
+{
+    double x = (altitude_km - 0.1 * atmosphere_top_km) / (0.2 * atmosphere_top_km);
+    return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x;
+}
+
 void sky_view_set_horizon(SkyPush *push, const sky_view *v, double ground_radius_km, double atmosphere_top_km,
                           bool resolve)
 {
     push->horizon = (vksky_vec4){(float)sky_view_horizon_sine(v->altitude_km, ground_radius_km), resolve ? 1.0f : 0.0f,
-                                 (float)sky_view_march_blend(v->altitude_km, atmosphere_top_km), 0.0f};
+                                 (float)sky_view_march_blend(v->altitude_km, atmosphere_top_km),
+                                 (float)sky_view_horizon_march_blend(v->altitude_km, atmosphere_top_km)};
 }
 
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader)

@@ -54,5 +54,8 @@ void sky_view_set_horizon(SkyPush *push, const sky_view *v, double ground_radius
 /* The sky-view lookup's weight of the per-pixel march at this altitude: 0 below a quarter of the atmosphere's height, 1 at
  * its top, linear between (the lookup and the march meet where --sky-mode auto switches). */
 double sky_view_march_blend(double altitude_km, double atmosphere_top_km);
+/* The same for the rays near the horizon and below 3 degrees of elevation (shaders/glsl/horizon.glsl), where the LUT
+ * is furthest off high up: 0 below a tenth of the atmosphere's height, 1 from three tenths (10 and 30 km on Earth). */
+double sky_view_horizon_march_blend(double altitude_km, double atmosphere_top_km);
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader);
 #endif
