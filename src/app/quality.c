@@ -165,13 +165,17 @@ int quality_scene_class(double altitude_km, double sun_elevation_deg)
 #include "app/quality_horizon_table.h"
 
 /* The horizon-band error (max over the pixels within 2 px of the horizon against the per-pixel march) of a
- * configuration on class c; 0 where the table has no row for it (tools/tradeoff --emit-horizon-table). */
+ * configuration on class c (tools/tradeoff --emit-horizon-table). A class the table does not cover: 0 (no check); a
+ * configuration the table lacks on a class it covers: infinite (not known to be within any bound, so refused). */
 static double horizon_max(const char *config, int c)
 {
-    for (int i = 0; i < quality_horizon_table_count; ++i)
-        if (quality_horizon_table[i].scene == c && !strcmp(quality_horizon_table[i].config, config))
-            return quality_horizon_table[i].max;
-    return 0.0;
+    bool covered = false;
+    for (int i = 0; i < quality_horizon_table_count; ++i) {
+        if (quality_horizon_table[i].scene != c) continue;
+        covered = true;
+        if (!strcmp(quality_horizon_table[i].config, config)) return quality_horizon_table[i].max;
+    }
+    return covered ? INFINITY : 0.0;
 }
 
 /* The configuration a table row names (the sweep's, or a preset measured under its own name). */
