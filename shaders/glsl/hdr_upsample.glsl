@@ -54,6 +54,10 @@ vec3 hdr_upsample(sampler2D hdr, vec2 uv, ivec2 out_size)
     vec2 n = g / len;
     float d = bilinear.a / len, half_extent = horizon_half_extent(n);
     float coverage = horizon_box_coverage(d, n);
+    /* At render scale 1 a pixel the horizon does not cross is its own texel, whatever its neighbours (a banded
+     * render's taps clamp at the band's edge). */
+    bool whole = coverage <= 0.0 || coverage >= 1.0;
+    if (size == out_size && whole) return bilinear.rgb;
     /* Each part's centroid along the normal (output pixels, as a box's), in texels of distance. */
     float sky_at = max(0.5 * (max(0.0, d - half_extent) + d + half_extent), 0.0) * len;
     float ground_at = min(0.5 * (d - half_extent + min(0.0, d + half_extent)), 0.0) * len;
