@@ -11,17 +11,24 @@
  *     upsample act on its own pixel spacing, at the reference cost of the small grid.
  *   - --cost cpu: the table's cost is the process's CPU ms per whole frame (bloom and tone map included) instead
  *     of the sky's GPU ms: on a CPU device (lavapipe) the frame's work whatever else the machine runs.
+ *   - horizon: the error over the pixels within 2 px of the analytic horizon against the per-pixel march (ultra)
+ *     of the same view at --horizon-size (default 480x270): max and mean (tools/tradeoff_horizon.h; issue 26).
+ *     --emit-horizon-table FILE measures only that, for every configuration and scene, and writes the table
+ *     --max-error also checks (src/app/quality_horizon_table.h): a configuration whose horizon error on a class
+ *     exceeds the bound is refused there.
  * Writes a CSV (plot it with tools/plot_tradeoff.sh) and optionally the C table that --max-error chooses from.
  *
  *   tradeoff [--size WxH] [--error-size WxH] [--error-render WxH] [--frames N] [--csv FILE]
  *            [--emit-table FILE] [--cost gpu|cpu] [--configs a,b,...] [--scenes noon,...]
- *            [--device N] [--sun-visibility penumbra|lesson-fade]
+ *            [--device N] [--sun-visibility penumbra|lesson-fade] [--horizon-size WxH]
+ *            [--emit-horizon-table FILE]
  */
 #include "app/cpu_time.h"
 #include "app/quality.h"
 #include "io/half_float.h"
 #include "reference/metrics.h"
 #include "sky/submit.h"
+#include "tradeoff_horizon.h"
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -37,6 +44,7 @@ typedef struct row {
     double sky_ms, frame_ms, wall_ms, cpu_ms;
     metrics_luminance err;
     double de2000;
+    horizon_error horizon;
 } row;
 
 static int cmp_double(const void *a, const void *b)
@@ -219,10 +227,45 @@ static bool wanted(const char *list, const char *name)
     return false;
 }
 
+/* --emit-horizon-table: the horizon-band error of every configuration on every scene, nothing else. */
+static int emit_horizon_table(gpu_context *ctx, const char *path, const char *configs, const char *scenes, int w, int h,
+                              const model_atmosphere *a)
+{
+    FILE *t = fopen(path, "w");
+    if (!t) { fprintf(stderr, "tradeoff: cannot write %s\n", path); return 1; }
+    fprintf(t, "/* Measured by tools/tradeoff --emit-horizon-table on %s: the relative luminance error over the pixels\n"
+               " * within 2 px of the analytic horizon of a %dx%d frame against the per-pixel march (ultra) of the same\n"
+               " * view, max and mean (tools/tradeoff_horizon.h). --max-error refuses a configuration whose max on a\n"
+               " * class exceeds the bound. Regenerate: tradeoff --emit-horizon-table FILE. */\n",
+            ctx->props.deviceName, w, h);
+    fprintf(t, "typedef struct quality_horizon { const char *config; int scene; double max, mean; } quality_horizon;\n"
+               "static const quality_horizon quality_horizon_table[] = {\n");
+    for (int s = 0; s < QUALITY_SCENE_COUNT; ++s) {
+        if (!wanted(scenes, quality_scenes[s].name)) continue;
+        float *ref = horizon_frame(ctx, &quality_presets[3], &quality_scenes[s], w, h, a, SUN_RADIUS);
+        for (int c = 0; c < 4 + quality_sweep_count; ++c) {
+            const quality_config *q = c < 4 ? &quality_presets[c] : &quality_sweep[c - 4];
+            if (!wanted(configs, q->name) || q->mode == SKY_CHOICE_FILL) continue;
+            float *lum = horizon_frame(ctx, q, &quality_scenes[s], w, h, a, SUN_RADIUS);
+            horizon_error e = horizon_band_error(lum, ref, &quality_scenes[s], w, h, a, SUN_RADIUS);
+            free(lum);
+            fprintf(t, "    {\"%s\", %d, %.5f, %.5f},\n", q->name, s, e.max, e.mean);
+            fprintf(stderr, "%-36s %-13s horizon max %7.3f%% mean %7.3f%%\n", q->name, quality_scenes[s].name,
+                    100 * e.max, 100 * e.mean);
+        }
+        free(ref);
+    }
+    fprintf(t, "};\nstatic const int quality_horizon_table_count =\n"
+               "    (int)(sizeof quality_horizon_table / sizeof quality_horizon_table[0]);\n");
+    fclose(t);
+    gpu_context_destroy(ctx);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    int tw = 1920, th = 1080, ew = 96, eh = 54, rw = 0, rh = 0, frames = 30, device = -1;
-    const char *csv = "tradeoff.csv", *table = NULL, *configs = NULL, *scenes = NULL;
+    int tw = 1920, th = 1080, ew = 96, eh = 54, rw = 0, rh = 0, frames = 30, device = -1, hw = 480, hh = 270;
+    const char *csv = "tradeoff.csv", *table = NULL, *configs = NULL, *scenes = NULL, *horizon_table = NULL;
     bool cost_cpu = false, lesson = false;
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -237,6 +280,8 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--configs")) configs = v, ++i;
         else if (!strcmp(a, "--scenes")) scenes = v, ++i;
         else if (!strcmp(a, "--device")) device = atoi(v), ++i;
+        else if (!strcmp(a, "--horizon-size") && !parse_size(v, &hw, &hh)) ++i;
+        else if (!strcmp(a, "--emit-horizon-table")) horizon_table = v, ++i;
         else if (!strcmp(a, "--sun-visibility") && (!strcmp(v, "penumbra") || !strcmp(v, "lesson-fade")))
             lesson = !strcmp(v, "lesson-fade"), ++i;
         else { fprintf(stderr, "tradeoff: bad argument %s %s\n", a, v); return 2; }
@@ -253,6 +298,7 @@ int main(int argc, char **argv)
     model_atmosphere_earth(&a);
     if (lesson) a.sun_visibility = MODEL_SUN_VISIBILITY_LESSON_FADE;
     int nconf = 4 + quality_sweep_count;
+    if (horizon_table) return emit_horizon_table(&ctx, horizon_table, configs, scenes, hw, hh, &a);
     row *rows = calloc((size_t)nconf * QUALITY_SCENE_COUNT, sizeof *rows);
     int count = 0;
     float *refs[QUALITY_SCENE_COUNT];
@@ -266,7 +312,9 @@ int main(int argc, char **argv)
     }
     FILE *out = fopen(csv, "w");
     if (!out) { fprintf(stderr, "tradeoff: cannot write %s\n", csv); return 1; }
-    fprintf(out, "device,config,scene,width,height,sky_gpu_ms,frame_gpu_ms,wall_ms,err_mean,err_p95,err_max,ciede2000,cpu_ms\n");
+    fprintf(out, "device,config,scene,width,height,sky_gpu_ms,frame_gpu_ms,wall_ms,err_mean,err_p95,err_max,ciede2000,cpu_ms,"
+                 "horizon_max,horizon_mean\n");
+    float *horizon_refs[QUALITY_SCENE_COUNT] = {0};
     for (int c = 0; c < nconf; ++c) {
         const quality_config *q = c < 4 ? &quality_presets[c] : &quality_sweep[c - 4];
         if (!wanted(configs, q->name)) continue;
@@ -279,9 +327,17 @@ int main(int argc, char **argv)
             /* The fill floor has no accuracy to speak of. */
             if (q->mode == SKY_CHOICE_FILL) r->err.mean = r->err.p95 = r->err.max = r->de2000 = NAN;
             else measure_error(&ctx, q, &quality_scenes[s], &grid, &a, refs[s], masks[s], r);
-            fprintf(out, "\"%s\",%s,%s,%d,%d,%.4f,%.4f,%.4f,%.5f,%.5f,%.5f,%.4f,%.4f\n", ctx.props.deviceName, q->name,
-                    quality_scenes[s].name, tw, th, r->sky_ms, r->frame_ms, r->wall_ms, r->err.mean, r->err.p95,
-                    r->err.max, r->de2000, r->cpu_ms);
+            r->horizon.max = r->horizon.mean = NAN;
+            if (q->mode != SKY_CHOICE_FILL) {
+                if (!horizon_refs[s])
+                    horizon_refs[s] = horizon_frame(&ctx, &quality_presets[3], &quality_scenes[s], hw, hh, &a, SUN_RADIUS);
+                float *lum = horizon_frame(&ctx, q, &quality_scenes[s], hw, hh, &a, SUN_RADIUS);
+                r->horizon = horizon_band_error(lum, horizon_refs[s], &quality_scenes[s], hw, hh, &a, SUN_RADIUS);
+                free(lum);
+            }
+            fprintf(out, "\"%s\",%s,%s,%d,%d,%.4f,%.4f,%.4f,%.5f,%.5f,%.5f,%.4f,%.4f,%.5f,%.5f\n", ctx.props.deviceName,
+                    q->name, quality_scenes[s].name, tw, th, r->sky_ms, r->frame_ms, r->wall_ms, r->err.mean, r->err.p95,
+                    r->err.max, r->de2000, r->cpu_ms, r->horizon.max, r->horizon.mean);
             fflush(out);
             fprintf(stderr, "%-20s %-13s sky %8.3f ms frame %8.3f ms wall %8.2f ms cpu %8.2f ms | err mean %6.2f%% p95 %6.2f%% max %6.2f%% dE00 %.2f\n",
                     q->name, quality_scenes[s].name, r->sky_ms, r->frame_ms, r->wall_ms, r->cpu_ms, 100 * r->err.mean,

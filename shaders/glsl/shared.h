@@ -50,6 +50,14 @@ VKSKY_STRUCT(SkyPush) {
                                   (0.5 midpoint, 0.3 Hillaire), w: km of path at which the count reaches max */
     vec4 projection;           /* x: VKSKY_PROJECTION_*, yz: this tile's pixel offset in the whole image (right.w
                                   and up.w are 1 / the whole image's size), w: unused (shaders/glsl/projection.glsl) */
+    vec4 horizon;              /* the planet's edge (shaders/glsl/horizon.glsl): x: sine of the horizon's elevation
+                                  from the camera, -sqrt(h (2R + h)) / (R + h), computed in double on the CPU; y: 1 =
+                                  the sky image is the output's size (informative: the tone map resolves coverage
+                                  at every scale, hdr_upsample.glsl); z: the sky-view lookup's blend toward the
+                                  march (the blend variant), 0 up to a quarter of the atmosphere's height,
+                                  linearly to 1 at its top (where --sky-mode auto hands over to the march: no pop on
+                                  the way to space); w: the same for the rays near the horizon and below 3 degrees,
+                                  0 up to a tenth of the atmosphere's height, 1 from three tenths */
 } VKSKY_END(SkyPush)
 
 /* Composite pass push constants (composite.comp): aerial perspective from the camera to each pixel's point, and
@@ -92,6 +100,10 @@ VKSKY_STRUCT(BloomPush) {
 VKSKY_STRUCT(TonemapPush) {
     vec4 params;               /* x: exposure (linear multiplier), y: operator (0 clamp, 1 Reinhard, 2 ACES),
                                   z: bloom strength (0 = no bloom), w: 1 = encode sRGB in the shader */
+    vec4 dither;               /* x: 1 = triangular dither of the 8-bit output (shaders/glsl/dither.glsl), 0 = off;
+                                  yz: the frame's pixel offset in the whole image (a tile's), so the noise is seeded
+                                  by the whole image's pixel; w: a tiled render's whole height in pixels (0: the
+                                  frame is the whole image), where the upsample's taps stop (hdr_upsample.glsl) */
 } VKSKY_END(TonemapPush)
 
 /* Compute post chain push constants (bloom_spd.comp, bloom_up.comp, tonemap.comp). */
@@ -99,6 +111,7 @@ VKSKY_STRUCT(PostPush) {
     vec4 params;               /* spd: x mip count, y threshold; up: xy 1/size of the smaller (source) mip */
     vec4 tonemap;              /* tonemap.comp: TonemapPush's params (exposure, operator, bloom strength, sRGB) */
     vec4 bloom;                /* tonemap.comp: xy 1/size of bloom mip 1, z 1 = add its tent (the fused last upsample) */
+    vec4 dither;               /* tonemap.comp: TonemapPush's dither */
 } VKSKY_END(PostPush)
 
 /* Specialization constants: what a scene needs, compiled in; what it does not, compiled out (one pipeline

@@ -6,6 +6,7 @@
 #include "sky_bindings.glsl"
 #include "sky_common.glsl"
 #include "projection.glsl"
+#include "horizon.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D hdr_out;
@@ -14,9 +15,5 @@ void main()
 {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(p, imageSize(hdr_out)))) return;
-    bool inside;
-    vec3 v = pixel_view_dir(vec2(p) + 0.5, push, inside);
-    sky_texel_angle = texel_angle(push);
-    vec3 c = inside ? SKY_RADIANCE(push.forward.w, v, push.sun_dir.xyz, push.march) : vec3(0.0);
-    imageStore(hdr_out, p, vec4(c, inside ? SKY_CLASS(push.forward.w, v, push.sun_dir.xyz) : 1.0));   /* alpha: the class */
+    imageStore(hdr_out, p, sky_pixel(vec2(p) + 0.5, push));   /* alpha: the signed distance to the horizon */
 }

@@ -5,18 +5,21 @@
 layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
 layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
 layout(set = 0, binding = 5) uniform sampler2D ground_irradiance_lut;
+#ifdef SKY_BLEND
+#define SKY_LOOKUP 1   /* the blend variant is the lookup's, with the march beside it (below) */
+#endif
 #if defined(SKY_FILL)
 /* The bandwidth floor for benchmarks: a constant written to every pixel. */
 #define SKY_RADIANCE(h, v, s, march) vec3(0.25, 0.5, 1.0)
-#define SKY_CLASS(h, v, s) 1.0
 #elif defined(SKY_LOOKUP)
 layout(set = 0, binding = 3) uniform sampler2D skyview_lut;
 #define VKSKY_SKYVIEW_LOOKUP 1
 #define SKY_RADIANCE(h, v, s, march) sky_radiance_lookup(h, v, s)
+#ifdef SKY_BLEND
+/* High in the atmosphere the lookup blends into each pixel's own march (horizon.glsl: sky_eval). */
+#define SKY_RADIANCE_DIRECT(h, v, s, march) sky_radiance(h, v, s, march, push.sun_dir.w)
+#endif
 #else
 #define SKY_RADIANCE(h, v, s, march) sky_radiance(h, v, s, march, push.sun_dir.w)
-#endif
-#ifndef SKY_CLASS
-#define SKY_CLASS(h, v, s) sky_class(h, v, s)
 #endif
 layout(push_constant) uniform Push { SkyPush push; };

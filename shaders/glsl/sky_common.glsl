@@ -101,6 +101,15 @@ float texel_angle(SkyPush p)
     return 2.0 * max(length(p.right.xyz) * p.right.w, length(p.up.xyz) * p.up.w);
 }
 
+/* The ray's class decided once per pixel from the host's horizon (horizon.glsl): -1 none (each ray asks the sphere,
+ * as the LUT passes and the composite do), 0 the ray ends on the ground, 1 it does not. One decision for the whole
+ * pixel, so float rounding in the sphere test at a grazing ray can never put a sky sample on the ground. */
+int sky_forced_class = -1;
+bool ray_class_ground(float h, float mu)
+{
+    return sky_forced_class >= 0 ? sky_forced_class == 0 : ray_hits_ground(h, mu);
+}
+
 /* Angle between two unit vectors, accurate for tiny angles (acos of a dot near 1 is not). */
 float small_angle(vec3 a, vec3 b) { return 2.0 * asin(clamp(0.5 * length(a - b), 0.0, 1.0)); }
 
@@ -152,7 +161,9 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     seg.throughput = vec3(1.0);
     seg.hits_ground = false;
     seg.nu = nu;
-    bool from_space = h > top_altitude();
+    /* Uniform steps from space, the given distribution near the ground, and a smooth hand-over between them
+     * over the upper half of the atmosphere (see below). */
+    float toward_uniform = smoothstep(0.5 * top_altitude(), top_altitude(), h);
     float t_entry;
     bool enters = enter_atmosphere(h, mu, mu_s, nu, t_entry);
     seg.r = ground_radius() + h;
@@ -160,7 +171,7 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     seg.t_max = 0.0;
     if (!enters) return seg;
 
-    seg.hits_ground = ray_hits_ground(h, mu);
+    seg.hits_ground = ray_class_ground(h, mu);
     float t_max = seg.hits_ground ? distance_to_ground(h, mu) : distance_to_top(h, mu);
     seg.t_max = t_max;
     float t_stop = clamp(t_end - t_entry, 0.0, t_max);
@@ -172,8 +183,11 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     PhaseLegendre mie_k = mie_legendre(atmo.mie_absorption.w);
     /* Step boundaries at t_stop (i/N)^p: p = 1 uniform, p = 2 Hillaire's quadratic spacing, which puts short
      * steps near the camera where an upward or horizontal ray meets the dense, thin Mie layer. A ray that
-     * enters from space starts in the thinnest air, so it keeps uniform steps. */
-    float p = from_space ? 1.0 : distribution;
+     * enters from space starts in the thinnest air, so it keeps uniform steps. In between, the exponent moves
+     * smoothly from p to 1 over the upper half of the atmosphere (no Mie layer near the camera there), so that the
+     * march (and the sky-view LUT built by it) changes continuously as a camera climbs out through the top: an
+     * exponent that jumps at the top is a 1 % pop in the mean (issue 26). */
+    float p = mix(distribution, 1.0, toward_uniform);
     float t_prev = 0.0;
     for (float i = 0.0; i < steps; i += 1.0) {
         float u = (i + 1.0) / steps;
@@ -313,15 +327,6 @@ float sun_disc_visible(float h_cam, vec3 s)
     return atmo.sun_disc.x > 0.5 ? sun_visibility(h_cam, s.y, mu_t) : 1.0;
 }
 
-/* The pixel's class, stored in the HDR image's alpha for the tone map's upsample (hdr_upsample.glsl): 0 the ray
- * hits the ground, 1 it does not. A render scale below 1 then keeps the horizon sharp: the upsample never blends
- * ground into sky. The sun's disc is sky: it is already filtered at the texel's size (sun_disc), and the bilinear
- * upsample keeps its power where a nearest-texel rule at its edge would not (measured: -25 % at half size). */
-float sky_class(float h_cam, vec3 v, vec3 s)
-{
-    return ray_hits_ground(h_cam, v.y) ? 0.0 : 1.0;
-}
-
 vec3 sky_radiance(float h_cam, vec3 v, vec3 s, vec4 march, float distribution)
 {
     vec3 throughput;
@@ -339,11 +344,19 @@ vec3 sky_radiance_lookup(float h_cam, vec3 v, vec3 s)
     vec2 hv = v.xz, hs = s.xz;
     float lv = length(hv), ls = length(hs);
     float cos_azimuth = (lv > 1e-6 && ls > 1e-6) ? dot(hv, hs) / (lv * ls) : 1.0;
-    vec2 uv = skyview_uv(h_cam, v.y, cos_azimuth, vec2(textureSize(skyview_lut, 0)));
+    ivec2 size = textureSize(skyview_lut, 0);
+    vec2 uv = skyview_uv(h_cam, v.y, cos_azimuth, vec2(size));
+    /* The horizon lies between two rows of the LUT (skyview_uv puts it at v = 0.5): a bilinear tap across it would
+     * blend ground into sky. A ray of a known class reads only its own half: sky rays no lower than the last sky
+     * row's centre, ground rays no higher than the first ground row's (1/N^2 of the horizon's zenith angle away). */
+    if (sky_forced_class >= 0) {
+        float sky_last = (float(size.y / 2) - 0.5) / float(size.y), ground_first = (float((size.y + 1) / 2) + 0.5) / float(size.y);
+        uv.y = sky_forced_class == 1 ? min(uv.y, sky_last) : max(uv.y, ground_first);
+    }
     vec3 radiance = texture(skyview_lut, uv).rgb;
     /* Only pixels inside the sun's disc pay for its transmittance lookup. */
     if (HAS_SUN_DISC && small_angle(v, s) < sun_disc_extent()) {
-        bool hits_ground = ray_hits_ground(h_cam, v.y);
+        bool hits_ground = ray_class_ground(h_cam, v.y);
         vec3 throughput = hits_ground ? vec3(0.0) : lookup_transmittance(h_cam, v.y);
         radiance += sun_disc(v, s, throughput, hits_ground) * sun_disc_visible(h_cam, s);
     }

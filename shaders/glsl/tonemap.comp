@@ -9,6 +9,7 @@
 #include "bloom_filter.glsl"
 #include "tonemap_ops.glsl"
 #include "hdr_upsample.glsl"
+#include "dither.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform sampler2D hdr;
@@ -26,7 +27,7 @@ void main()
     ivec2 size = imageSize(display);
     if (any(greaterThanEqual(p, size))) return;
     vec2 uv = (vec2(p) + 0.5) / vec2(size);
-    vec3 color = hdr_upsample(hdr, uv);
+    vec3 color = hdr_upsample(hdr, uv, size, hdr_rows(textureSize(hdr, 0), push.dither));
     float strength = push.tonemap.z;
     if (strength > 0.0) {
         vec3 b = textureLod(bloom0, uv, 0.0).rgb;
@@ -37,5 +38,6 @@ void main()
 #ifdef VKSKY_COMPOSITE
     imageStore(composite, p, vec4(color, 1.0));
 #endif
-    imageStore(display, p, vec4(tonemap_apply(color, push.tonemap), 1.0));
+    vec3 mapped = tonemap_apply(color, push.tonemap);
+    imageStore(display, p, vec4(dither_display(mapped, p, push.dither, push.tonemap.w > 0.5), 1.0));
 }

@@ -3,6 +3,7 @@
 #include "shared.h"
 #include "tonemap_ops.glsl"
 #include "hdr_upsample.glsl"
+#include "dither.glsl"
 
 layout(set = 0, binding = 0) uniform sampler2D hdr;
 layout(set = 0, binding = 1) uniform sampler2D bloom;
@@ -15,11 +16,14 @@ layout(location = 1) out vec4 out_linear;
 
 void main()
 {
-    vec3 color = hdr_upsample(hdr, in_uv);
+    /* The output's size from the pixel centre and its uv (the full-screen triangle's uv is (x + 0.5) / width). */
+    ivec2 out_size = ivec2(round(gl_FragCoord.xy / in_uv));
+    vec3 color = hdr_upsample(hdr, in_uv, out_size, hdr_rows(textureSize(hdr, 0), push.dither));
     if (push.params.z > 0.0) color += push.params.z * texture(bloom, in_uv).rgb;
     color = min(color, vec3(65504.0));
 #ifdef VKSKY_COMPOSITE
     out_linear = vec4(color, 1.0);
 #endif
-    out_display = vec4(tonemap_apply(color, push.params), 1.0);
+    vec3 mapped = tonemap_apply(color, push.params);
+    out_display = vec4(dither_display(mapped, ivec2(gl_FragCoord.xy), push.dither, push.params.w > 0.5), 1.0);
 }

@@ -30,6 +30,7 @@ const flag flags_table[] = {
     {"--exr-type", ARG_STRING, 0, 0, "T  half | float | auto: EXR channel type; auto: float where a value would overflow half (the sun's disc in photometric units), else half (default auto)"},
     {"--tonemap", ARG_STRING, 0, 0, "OP   clamp | reinhard | aces (default aces)"},
     {"--no-bloom", ARG_NONE, 0, 0, "      leave bloom out (no bloom passes, no mip chain)"},
+    {"--no-dither", ARG_NONE, 0, 0, "     8-bit output (PNG, the window) without its triangular dither of +-1 LSB"},
     {"--steps", ARG_INT, 1, 4096, "N      view march steps per pixel (default 32)"},
     {"--quality", ARG_STRING, 0, 0, "P   low | medium | high | ultra | lesson | cpu | auto: a preset of the knobs below (later flags override it); auto (the default of --render/--bench): the measured front's point for the scene kind and device kind (a sequence's: the GPU table's, on any device); lesson: the 32-step march of the guide; cpu: a 96x54 sky-view LUT at half size, quarter-size bloom (lavapipe 1280x720: < 1 % daytime error, 35 ms of CPU a frame)"},
     {"--bloom-res", ARG_STRING, 0, 0, "R    half | quarter: the bloom chain's first mip at half or a quarter of the sky's size (default: the preset's, half except for --quality cpu; quarter: a quarter of the bloom's cost, for CPU devices)"},

@@ -17,7 +17,8 @@ static const char *const output_flags[] = {"--render", "--width", "--height", "-
                                            "--list-scenes", "--dump-scene", "--projection", "--quiet",
                                            "--animate", "--frame-count", "--frame-range",
                                            "--skip-existing", "--threads", "--exr-compression", "--units",
-                                           "--auto-exposure", "--exr-type", NULL};
+                                           "--auto-exposure", "--exr-type", "--no-dither",
+                                           NULL};
 static const char *const camera_flags[] = {"--altitude", "--yaw", "--pitch", "--fov", NULL};
 static const char *const sun_flags[] = {"--sun-elevation", "--sun-azimuth", "--date", "--time", "--utc-offset",
                                         "--latitude", "--longitude", "--elevation-m", "--sun-illuminance",

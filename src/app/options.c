@@ -166,6 +166,7 @@ static int apply(options *o, const flag *f, const char *value)
             return bad(n, msg);
         }
     } else if (!strcmp(n, "--no-bloom")) o->view.bloom = false;
+    else if (!strcmp(n, "--no-dither")) o->view.no_dither = true;
     else if (!strcmp(n, "--steps")) o->view.steps = (int)x;
     else if (!strcmp(n, "--quality")) {
         static const char *const w[] = {"low", "medium", "high", "ultra", "lesson", "cpu", "auto"};

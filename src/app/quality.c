@@ -162,6 +162,21 @@ int quality_scene_class(double altitude_km, double sun_elevation_deg)
 
 #include "app/quality_table.h"
 #include "app/quality_table_cpu.h"
+#include "app/quality_horizon_table.h"
+
+/* The horizon-band error (max over the pixels within 2 px of the horizon against the per-pixel march) of a
+ * configuration on class c (tools/tradeoff --emit-horizon-table). A class the table does not cover: 0 (no check); a
+ * configuration the table lacks on a class it covers: infinite (not known to be within any bound, so refused). */
+static double horizon_max(const char *config, int c)
+{
+    bool covered = false;
+    for (int i = 0; i < quality_horizon_table_count; ++i) {
+        if (quality_horizon_table[i].scene != c) continue;
+        covered = true;
+        if (!strcmp(quality_horizon_table[i].config, config)) return quality_horizon_table[i].max;
+    }
+    return covered ? INFINITY : 0.0;
+}
 
 /* The configuration a table row names (the sweep's, or a preset measured under its own name). */
 static const quality_config *config_named(const char *name)
@@ -186,7 +201,7 @@ static int measured_class(const quality_measurement *table, int count, int c)
  * (a bitmask of quality_scenes indices). Its cost on a set is its dearest class: a sequence that passes from noon
  * to twilight keeps one configuration, the one that serves its hardest frame. *measured: its largest error. */
 static const quality_config *pick_from(const quality_measurement *table, int count, const double *budget,
-                                       unsigned classes, double *measured)
+                                       unsigned classes, double *measured, bool horizon)
 {
     unsigned rows = 0;   /* the classes of the table's rows that stand for the set */
     for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
@@ -207,6 +222,8 @@ static const quality_config *pick_from(const quality_measurement *table, int cou
             for (int j = 0; j < count; ++j)
                 if (table[j].scene == c && !strcmp(table[j].config, table[i].config)) row = &table[j];
             serves_all = row && row->err_mean <= budget[c];
+            /* --max-error: the rows at the horizon too (issue 26), which a whole frame's mean cannot see. */
+            if (serves_all && horizon) serves_all = horizon_max(table[i].config, c) <= budget[c];
             if (serves_all) ms = fmax(ms, row->gpu_ms), err = fmax(err, row->err_mean);
         }
         const quality_config *q = config_named(table[i].config);
@@ -229,7 +246,7 @@ const quality_config *quality_pick(double max_error, unsigned classes, double *m
 {
     double budget[QUALITY_SCENE_COUNT];
     for (int c = 0; c < QUALITY_SCENE_COUNT; ++c) budget[c] = max_error;
-    return pick_from(quality_table, quality_table_count, budget, classes, measured);
+    return pick_from(quality_table, quality_table_count, budget, classes, measured, true);
 }
 
 const quality_config *quality_auto(unsigned classes, bool cpu_device, double *measured)
@@ -243,5 +260,5 @@ const quality_config *quality_auto(unsigned classes, bool cpu_device, double *me
             if (table[i].scene == c && table[i].err_mean < best) best = table[i].err_mean;
         budget[c] = fmax(QUALITY_AUTO_FLOOR, QUALITY_AUTO_SLACK * best);
     }
-    return pick_from(table, count, budget, classes, measured);
+    return pick_from(table, count, budget, classes, measured, false);
 }

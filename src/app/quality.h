@@ -62,8 +62,9 @@ static inline unsigned quality_class_bit(double altitude_km, double sun_elevatio
 void quality_class_names(unsigned classes, char *out, size_t size);
 
 /* --max-error: the cheapest configuration whose measured mean relative luminance error is <= max_error on every
- * class of the set (its cost: its dearest class); NULL if none is (the caller says so). *measured gets its
- * largest error. */
+ * class of the set (its cost: its dearest class), and whose horizon-band error (the max over the pixels within 2 px
+ * of the horizon against the per-pixel march, quality_horizon_table.h) is <= max_error as well (on a class that table
+ * covers, a configuration it lacks is refused); NULL if none is (the caller says so). *measured gets its largest (mean) error. */
 const quality_config *quality_pick(double max_error, unsigned classes, double *measured);
 
 /* --quality auto (the default of a headless render): a point on the measured front, the cheapest measured

@@ -124,12 +124,25 @@ typedef struct bands_state {
     progress *prog;
     int stopped_line;   /* a stop ended the line of a terminal's progress */
     float *band_f32;    /* a band in output units (write_exr_rows), reused; only the writing thread touches it */
+    int pad;            /* rows rendered above (and below) each band: the tone map's horizon taps (band_pad) */
 } bands_state;
 
+/* A banded render draws each band with one more row above and below it (the image's own edges excepted: the tone
+ * map clamps its taps there, view.whole_height), so the tone map's horizon coverage (hdr_upsample.glsl), which
+ * reads a pixel's neighbours, sees the same neighbours as in one whole image: no seam at a band's edge. The band's
+ * own rows start `pad` rows into what was read back. */
+static frame_ring_pixels band_rows(const bands_state *st, const frame_ring_pixels *px)
+{
+    size_t skip = (size_t)st->pad * (size_t)st->o->width * 4;
+    return (frame_ring_pixels){px->linear + skip, px->display + skip};
+}
+
 /* A band's rows (y .. y + rows) into every output, in order. 0, or 1 with the message printed. */
-static int write_band(bands_state *st, const frame_ring_pixels *px, int y, int rows)
+static int write_band(bands_state *st, const frame_ring_pixels *rendered, int y, int rows)
 {
     char err[512];
+    frame_ring_pixels own = band_rows(st, rendered);
+    const frame_ring_pixels *px = &own;
     for (int i = 0; i < st->o->output_count; ++i) {
         output *out = &st->outs[i];
         int rc = out->exr ? write_exr_rows(st->o, out->exr_stream, px->linear, rows, &st->band_f32, err, sizeof err)
@@ -154,7 +167,7 @@ static int bands_serial(bands_state *st, sky_renderer *r, sky_view *view, int ba
 {
     int height = st->o->height, status = 0;
     for (int y = 0; y < height && status == 0; y += band) {
-        view->tile_x = 0, view->tile_y = y;
+        view->tile_x = 0, view->tile_y = y - st->pad;
         frame_desc f = {.view = view};
         sky_renderer_render(r, &f);
         frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
@@ -187,7 +200,7 @@ static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band
         }
         *j = (band_job){y, height - y < band ? height - y : band};
         /* The band's offset is a push constant, recorded into this band's command buffer. */
-        view->tile_x = 0, view->tile_y = y;
+        view->tile_x = 0, view->tile_y = y - st->pad;
         frame_desc f = {.view = view};
         status = frame_ring_submit(&ring, &f, j);
     }
@@ -197,15 +210,17 @@ static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band
 }
 
 /* Auto exposure of a banded image: the log-average over every band (a first pass that writes nothing). */
-static double tiles_auto_exposure(const options *o, sky_renderer *r, sky_view *view, int band, int height)
+static double tiles_auto_exposure(const bands_state *st, sky_renderer *r, sky_view *view, int band, int height)
 {
+    const options *o = st->o;
     double log_sum = 0.0, count = 0.0;
     for (int y = 0; y < height && !stop_requested(); y += band) {
-        view->tile_x = 0, view->tile_y = y;
+        view->tile_x = 0, view->tile_y = y - st->pad;
         frame_desc f = {.view = view};
         sky_renderer_render(r, &f);
         int rows = height - y < band ? height - y : band;
-        light_log_sum(o, view, r->readback_linear.mapped, o->width, height, y, rows, &log_sum, &count);
+        frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
+        light_log_sum(o, view, band_rows(st, &px).linear, o->width, height, y, rows, &log_sum, &count);
     }
     sky_view v = *view;
     light_expose(&v, count > 0.0 ? exp(log_sum / count) : 1e-4);
@@ -247,7 +262,8 @@ int tiles_render(const options *o, gpu_context *ctx)
     model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
     light_render_atmosphere(o, &lit);
     sky_features features = options_features(o);
-    sky_renderer_desc rdesc = {.width = (uint32_t)width, .height = (uint32_t)band, .bloom = view.bloom,
+    int pad = bands > 1 ? 1 : 0;   /* band_rows */
+    sky_renderer_desc rdesc = {.width = (uint32_t)width, .height = (uint32_t)(band + 2 * pad), .bloom = view.bloom,
                                .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB, .render_scale = 1.0,
                                .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips, .atmosphere = &lit,
                                .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
@@ -258,8 +274,8 @@ int tiles_render(const options *o, gpu_context *ctx)
     snprintf(what, sizeof what, "rendering %s (%dx%d, %d bands)", o->output_count ? o->outputs[0] : "", width, height, bands);
     progress prog;
     progress_begin(&prog, stderr, o->quiet || bands < 2, what, height);
-    bands_state st = {o, outs, &prog, 0, NULL};
-    if (light_auto_exposure_wanted(o)) view.exposure_ev = tiles_auto_exposure(o, &r, &view, band, height);
+    bands_state st = {o, outs, &prog, 0, NULL, pad};
+    if (light_auto_exposure_wanted(o)) view.exposure_ev = tiles_auto_exposure(&st, &r, &view, band, height);
     int status = slots >= 2 ? bands_ring(&st, &r, &view, band, slots) : bands_serial(&st, &r, &view, band);
     char err[512];
     for (int i = 0; i < o->output_count && status == 0; ++i) {

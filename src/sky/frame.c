@@ -369,6 +369,10 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     gpu_barrier_flush(cmd, &b);
     SkyPush push = sky_view_push(v, r->hdr.extent.width, r->hdr.extent.height,
                                  (double)r->desc.width / (double)r->desc.height);
+    /* The horizon from the camera's altitude in double; at render scale 1 the sky pass resolves each pixel's
+     * coverage of sky and ground, below it the tone map's upsample does (shaders/glsl/horizon.glsl). */
+    sky_view_set_horizon(&push, v, r->medium.bottom_radius, r->medium.top_radius - r->medium.bottom_radius,
+                         r->hdr.extent.width == r->desc.width && r->hdr.extent.height == r->desc.height);
     t = timed_begin(r, cmd, "sky");
     sky_pass_record(&r->sky, cmd, kind, mode, &r->hdr, &push);
     timed_end(r, cmd, t);

@@ -58,14 +58,15 @@ typedef enum sky_pass_kind { SKY_PASS_FRAGMENT = 0, SKY_PASS_COMPUTE = 1, SKY_PA
 typedef struct sky_pass {
     VkDescriptorSetLayout set_layouts[2];        /* [kind] */
     VkPipelineLayout layouts[2];                 /* [kind] */
-    VkPipeline pipelines[2][3];                  /* [kind][mode] */
+    VkPipeline pipelines[2][4];                  /* [kind][mode], mode 3: the lookup blending into the march */
     VkDescriptorSet sets[2];                     /* [kind]; the compute set also holds the HDR storage image */
+    const pass_shared *shared;                   /* for the blend variant, built at its first use */
 } sky_pass;
 void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts);
 void sky_pass_destroy(sky_pass *p, const pass_shared *s);
 /* Point the compute path's storage binding at (a new) HDR image. */
 void sky_pass_set_target(sky_pass *p, const pass_shared *s, const gpu_image *hdr);
-void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind, sky_mode mode,
+void sky_pass_record(sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind, sky_mode mode,
                      const gpu_image *hdr, const SkyPush *push);
 
 /* --- Bloom (bloom.c): N downsamples into a mip chain (5 by default), N-1 additive upsamples back to mip 0 --- */

@@ -181,7 +181,7 @@ void post_record_upsample(const post_compute *p, const bloom_chain *bloom, VkCom
 void post_record_tonemap(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, VkExtent2D extent,
                          const TonemapPush *tm)
 {
-    PostPush push = {.tonemap = tm->params};
+    PostPush push = {.tonemap = tm->params, .dither = tm->dither};
     if (p->mip_count > 1) {
         VkExtent2D m1 = gpu_mip_extent(bloom->mips.extent, 1);
         push.bloom = (vksky_vec4){1.0f / (float)m1.width, 1.0f / (float)m1.height, 1.0f, 0.0f};

@@ -11,6 +11,8 @@
 #include "sky_fill_frag.h"
 #include "sky_lookup_comp.h"
 #include "sky_lookup_frag.h"
+#include "sky_blend_comp.h"
+#include "sky_blend_frag.h"
 #include "fullscreen_vert.h"
 #include "sky_march_frag.h"
 #include "bloom_downsample_frag.h"
@@ -30,6 +32,8 @@ const sky_spirv spirv_sky_fill_comp = SPIRV(spv_sky_fill_comp);
 const sky_spirv spirv_sky_fill_frag = SPIRV(spv_sky_fill_frag);
 const sky_spirv spirv_sky_lookup_comp = SPIRV(spv_sky_lookup_comp);
 const sky_spirv spirv_sky_lookup_frag = SPIRV(spv_sky_lookup_frag);
+const sky_spirv spirv_sky_blend_comp = SPIRV(spv_sky_blend_comp);
+const sky_spirv spirv_sky_blend_frag = SPIRV(spv_sky_blend_frag);
 const sky_spirv spirv_fullscreen_vert = SPIRV(spv_fullscreen_vert);
 const sky_spirv spirv_sky_march_frag = SPIRV(spv_sky_march_frag);
 const sky_spirv spirv_bloom_downsample = SPIRV(spv_bloom_downsample_frag);

@@ -7,7 +7,8 @@
 typedef struct sky_spirv { const uint32_t *code; size_t size; } sky_spirv;
 extern const sky_spirv spirv_transmittance_lut, spirv_transmittance_lut_f32, spirv_multiscatter_lut,
     spirv_multiscatter_lut_f32, spirv_skyview_lut, spirv_ground_irradiance_lut, spirv_fullscreen_vert, spirv_sky_march_frag, spirv_sky_lookup_frag,
-    spirv_sky_march_comp, spirv_sky_lookup_comp, spirv_sky_fill_frag, spirv_sky_fill_comp,
+    spirv_sky_march_comp, spirv_sky_lookup_comp, spirv_sky_fill_frag, spirv_sky_fill_comp, spirv_sky_blend_frag,
+    spirv_sky_blend_comp,
     spirv_bloom_downsample, spirv_bloom_upsample, spirv_tonemap, spirv_tonemap_composite;
 /* A hash of all the embedded SPIR-V (generated at build time): the pipeline cache's build key. */
 const char *sky_shaders_key(void);

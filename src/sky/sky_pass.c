@@ -1,13 +1,34 @@
 #include "sky/passes.h"
 #include "sky/shaders.h"
 
-/* One pipeline per (kind, mode), each from its own SPIR-V variant: no per-pixel branch on the mode. */
+/* One pipeline per (kind, mode), each from its own SPIR-V variant: no per-pixel branch on the mode. Mode 3 is the
+ * sky-view lookup from 10 km up, blending into the march on the way to space and marching the rays near the
+ * horizon (shaders/glsl/horizon.glsl): its own variant, because on lavapipe a march merely present in the
+ * lookup shader costs every pixel (measured: 8x the lookup's sky pass with no pixel marching). */
+#define SKY_MODE_BLEND 3
 static const sky_spirv *variant(int kind, int mode)
 {
-    static const sky_spirv *const table[2][3] = {
-        {&spirv_sky_march_frag, &spirv_sky_lookup_frag, &spirv_sky_fill_frag},
-        {&spirv_sky_march_comp, &spirv_sky_lookup_comp, &spirv_sky_fill_comp}};
+    static const sky_spirv *const table[2][4] = {
+        {&spirv_sky_march_frag, &spirv_sky_lookup_frag, &spirv_sky_fill_frag, &spirv_sky_blend_frag},
+        {&spirv_sky_march_comp, &spirv_sky_lookup_comp, &spirv_sky_fill_comp, &spirv_sky_blend_comp}};
     return table[kind][mode];
+}
+
+static VkPipeline make_pipeline(const sky_pass *p, const pass_shared *s, int kind, int mode)
+{
+    static const char *const names_km[2][4] = {
+        {"sky march (fragment)", "sky lookup (fragment)", "sky fill (fragment)", "sky blend (fragment)"},
+        {"sky march (compute)", "sky lookup (compute)", "sky fill (compute)", "sky blend (compute)"}};
+    const char *name = names_km[kind][mode];
+    const sky_spirv *spv = variant(kind, mode);
+    VkFormat format = HDR_FORMAT;
+    VkShaderModule m = gpu_shader_module(s->ctx, spv->code, spv->size, name);
+    VkPipeline pipeline = kind == SKY_PASS_FRAGMENT
+        ? gpu_fullscreen_pipeline_spec(s->ctx, p->layouts[kind], s->fullscreen_vs, m, s->spec, &format, 1,
+                                       GPU_BLEND_NONE, name)
+        : gpu_compute_pipeline_spec(s->ctx, p->layouts[kind], m, s->spec, name);
+    vkDestroyShaderModule(s->ctx->device, m, NULL);
+    return pipeline;
 }
 
 void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
@@ -17,7 +38,6 @@ void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
     VkDescriptorType types[] = {UBO, SAMPLED, SAMPLED, SAMPLED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, SAMPLED};
     VkShaderStageFlags stages[2] = {VK_SHADER_STAGE_FRAGMENT_BIT, VK_SHADER_STAGE_COMPUTE_BIT};
     const char *names[2] = {"sky (fragment)", "sky (compute)"};
-    VkFormat format = HDR_FORMAT;
     for (int kind = 0; kind < 2; ++kind) {
         /* Binding 4 (the HDR storage image) is the compute path's; the fragment layout leaves it unused. */
         p->set_layouts[kind] = gpu_set_layout(ctx, types, 6, stages[kind], names[kind]);
@@ -28,21 +48,12 @@ void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
         gpu_write_sampled(ctx, p->sets[kind], 2, luts->multiscatter_view, s->linear_clamp);
         gpu_write_sampled(ctx, p->sets[kind], 3, luts->skyview.view, s->linear_clamp);
         gpu_write_sampled(ctx, p->sets[kind], 5, luts->ground_irradiance_view, s->linear_clamp);
-        for (int mode = 0; mode < 3; ++mode) {
-            static const char *const names_km[2][3] = {
-                {"sky march (fragment)", "sky lookup (fragment)", "sky fill (fragment)"},
-                {"sky march (compute)", "sky lookup (compute)", "sky fill (compute)"}};
-            const char *name = names_km[kind][mode];
-            const sky_spirv *spv = variant(kind, mode);
-            VkShaderModule m = gpu_shader_module(ctx, spv->code, spv->size, name);
-            if (kind == SKY_PASS_FRAGMENT)
-                p->pipelines[kind][mode] = gpu_fullscreen_pipeline_spec(ctx, p->layouts[kind], s->fullscreen_vs, m,
-                                                                        s->spec, &format, 1, GPU_BLEND_NONE, name);
-            else
-                p->pipelines[kind][mode] = gpu_compute_pipeline_spec(ctx, p->layouts[kind], m, s->spec, name);
-            vkDestroyShaderModule(ctx->device, m, NULL);
-        }
+        /* The blend variant, the largest shader, is built at its first use (a camera above 10 km): lavapipe compiles
+         * at creation, a second or more of every run's start. */
+        for (int mode = 0; mode < 3; ++mode) p->pipelines[kind][mode] = make_pipeline(p, s, kind, mode);
+        p->pipelines[kind][SKY_MODE_BLEND] = VK_NULL_HANDLE;
     }
+    p->shared = s;
 }
 
 void sky_pass_set_target(sky_pass *p, const pass_shared *s, const gpu_image *hdr)
@@ -54,14 +65,14 @@ void sky_pass_destroy(sky_pass *p, const pass_shared *s)
 {
     VkDevice d = s->ctx->device;
     for (int kind = 0; kind < 2; ++kind) {
-        for (int mode = 0; mode < 3; ++mode) vkDestroyPipeline(d, p->pipelines[kind][mode], NULL);
+        for (int mode = 0; mode < 4; ++mode) vkDestroyPipeline(d, p->pipelines[kind][mode], NULL);
         vkDestroyPipelineLayout(d, p->layouts[kind], NULL);
         vkDestroyDescriptorSetLayout(d, p->set_layouts[kind], NULL);
     }
     *p = (sky_pass){0};
 }
 
-void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind, sky_mode mode,
+void sky_pass_record(sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind, sky_mode mode,
                      const gpu_image *hdr, const SkyPush *push)
 {
     VkPipelineBindPoint bind = kind == SKY_PASS_COMPUTE ? VK_PIPELINE_BIND_POINT_COMPUTE : VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -71,7 +82,11 @@ void sky_pass_record(const sky_pass *p, VkCommandBuffer cmd, sky_pass_kind kind,
         gpu_attachment target = {hdr->view, VK_ATTACHMENT_LOAD_OP_DONT_CARE};
         gpu_begin_rendering(cmd, hdr->extent, &target, 1);
     }
-    vkCmdBindPipeline(cmd, bind, p->pipelines[kind][mode]);
+    /* The lookup above a tenth of the atmosphere's height (horizon.w > 0: the march's weight near the horizon) is
+     * the blend. */
+    int variant_mode = mode == SKY_MODE_SKYVIEW && push->horizon.w > 0.0f ? SKY_MODE_BLEND : (int)mode;
+    if (!p->pipelines[kind][variant_mode]) p->pipelines[kind][variant_mode] = make_pipeline(p, p->shared, kind, variant_mode);
+    vkCmdBindPipeline(cmd, bind, p->pipelines[kind][variant_mode]);
     vkCmdBindDescriptorSets(cmd, bind, p->layouts[kind], 0, 1, &p->sets[kind], 0, NULL);
     vkCmdPushConstants(cmd, p->layouts[kind], stage, 0, sizeof *push, push);
     if (kind == SKY_PASS_FRAGMENT) {

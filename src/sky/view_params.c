@@ -86,11 +86,39 @@ sky_mode sky_view_resolve_mode(const sky_view *v, double atmosphere_top_km)
     return inside ? SKY_MODE_SKYVIEW : SKY_MODE_MARCH;
 }
 
+double sky_view_horizon_sine(double altitude_km, double ground_radius_km)
+{
+    double h = altitude_km > 0.0 ? altitude_km : 0.0, r = ground_radius_km + h;
+    return -sqrt(h * (2.0 * ground_radius_km + h)) / r;
+}
+
+double sky_view_march_blend(double altitude_km, double atmosphere_top_km)
+{
+    double x = (altitude_km - 0.25 * atmosphere_top_km) / (0.75 * atmosphere_top_km);
+    return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x;
+}
+
+double sky_view_horizon_march_blend(double altitude_km, double atmosphere_top_km)
+{
+    double x = (altitude_km - 0.1 * atmosphere_top_km) / (0.2 * atmosphere_top_km);
+    return x < 0.0 ? 0.0 : x > 1.0 ? 1.0 : x;
+}
+
+void sky_view_set_horizon(SkyPush *push, const sky_view *v, double ground_radius_km, double atmosphere_top_km,
+                          bool resolve)
+{
+    push->horizon = (vksky_vec4){(float)sky_view_horizon_sine(v->altitude_km, ground_radius_km), resolve ? 1.0f : 0.0f,
+                                 (float)sky_view_march_blend(v->altitude_km, atmosphere_top_km),
+                                 (float)sky_view_horizon_march_blend(v->altitude_km, atmosphere_top_km)};
+}
+
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader)
 {
     /* Photometric: a camera's saturation-based exposure, H = L / (1.2 2^EV100) (ISO 12232, K = 12.5 and q = 0.65
      * folded into the 1.2), on HDR values that hold L x light_scale. */
     double multiplier = v->ev100 ? 1.0 / (v->light_scale * 1.2 * exp2(v->exposure_ev)) : exp2(v->exposure_ev);
     return (TonemapPush){.params = {(float)multiplier, (float)v->tonemap,
-                                    v->bloom ? (float)v->bloom_strength : 0.0f, encode_srgb_in_shader ? 1.0f : 0.0f}};
+                                    v->bloom ? (float)v->bloom_strength : 0.0f, encode_srgb_in_shader ? 1.0f : 0.0f},
+                         .dither = {v->no_dither ? 0.0f : 1.0f, (float)v->tile_x, (float)v->tile_y,
+                                    (float)v->whole_height}};
 }

@@ -28,6 +28,7 @@ typedef struct sky_view {
     int projection;                         /* sky_projection (sky/projection.h): pixel -> direction */
     int tile_x, tile_y;                     /* tiled renders: this frame's pixel offset in the whole image */
     int whole_width, whole_height;          /* tiled renders: the whole image (0: the frame is the whole image) */
+    bool no_dither;                         /* the 8-bit display output without its triangular dither */
 } sky_view;
 
 sky_view sky_view_default(void);
@@ -45,5 +46,18 @@ void sky_view_basis(const sky_view *v, double forward[3], double right[3], doubl
 SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height, double aspect);
 /* The sky-view LUT pass's push constants (its own march settings). */
 SkyPush sky_view_skyview_push(const sky_view *v);
+/* The sine of the horizon's elevation seen from altitude h above a sphere of radius R (both km), in double:
+ * -sqrt(h (2R + h)) / (R + h) (no planet-scale subtraction); 0 at h = 0. */
+double sky_view_horizon_sine(double altitude_km, double ground_radius_km);
+/* The push's horizon: its sine for this view's altitude over a planet of radius R; `resolve`: the sky pass writes the
+ * output's own pixels (render scale 1) and resolves their coverage of sky and ground itself. */
+void sky_view_set_horizon(SkyPush *push, const sky_view *v, double ground_radius_km, double atmosphere_top_km,
+                          bool resolve);
+/* The sky-view lookup's weight of the per-pixel march at this altitude: 0 below a quarter of the atmosphere's height, 1 at
+ * its top, linear between (the lookup and the march meet where --sky-mode auto switches). */
+double sky_view_march_blend(double altitude_km, double atmosphere_top_km);
+/* The same for the rays near the horizon and below 3 degrees of elevation (shaders/glsl/horizon.glsl), where the LUT
+ * is furthest off high up: 0 below a tenth of the atmosphere's height, 1 from three tenths (10 and 30 km on Earth). */
+double sky_view_horizon_march_blend(double altitude_km, double atmosphere_top_km);
 TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader);
 #endif

@@ -1,0 +1,19 @@
+/* Measured by tools/tradeoff --emit-horizon-table on llvmpipe (LLVM 15.0.6, 256 bits): the relative luminance error over the pixels
+ * within 2 px of the analytic horizon of a 240x135 frame against the per-pixel march (ultra) of the same
+ * view, max and mean (tools/tradeoff_horizon.h). --max-error refuses a configuration whose max on a
+ * class exceeds the bound. Regenerate: tradeoff --emit-horizon-table FILE. */
+typedef struct quality_horizon { const char *config; int scene; double max, mean; } quality_horizon;
+static const quality_horizon quality_horizon_table[] = {
+    {"low", 2, 0.21300, 0.01943},
+    {"medium", 2, 0.00283, 0.00074},
+    {"high", 2, 0.00131, 0.00015},
+    {"ultra", 2, 0.00000, 0.00000},
+    {"medium-skyview96-s24-scale0.5-bloomq", 2, 0.20648, 0.01990},
+    {"low", 4, 0.13881, 0.03880},
+    {"medium", 4, 0.00673, 0.00359},
+    {"high", 4, 0.00274, 0.00168},
+    {"ultra", 4, 0.00000, 0.00000},
+    {"medium-skyview96-s24-scale0.5-bloomq", 4, 0.11072, 0.01351},
+};
+static const int quality_horizon_table_count =
+    (int)(sizeof quality_horizon_table / sizeof quality_horizon_table[0]);
