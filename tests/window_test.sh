@@ -16,7 +16,10 @@ if [ "${2:-}" = "--keys-inside-xvfb" ]; then
     work=$3
     # A scene file to edit and reload with F5 while the window runs.
     cp "$(dirname "$SELF")/../scenes/earth-clear.json" "$work/scene.json"
-    "$VKSKY" --validate --frames 100000 --width 320 --height 180 --sun-elevation -5 --pitch 10 \
+    # A fixed EV100 (here and in the baseline, 3a): auto exposure, the photometric default of the window, would
+    # bring both frames to the same mean level; F5 reloads the scene file, so the scene says it too.
+    sed -i 's/"exposure_ev": 0,/"exposure_ev100": 12,/' "$work/scene.json"
+    "$VKSKY" --validate --frames 100000 --width 320 --height 180 --sun-elevation -5 --pitch 10 --exposure 12 \
         --scene "$work/scene.json" --screenshot "$work/keys.png" >"$work/keys.out" 2>"$work/keys.err" &
     pid=$!
     # Window title "vksky | 12.3 fps | GPU 45.60 ms | sun 12.0° | ..." appears once frames are being presented.
@@ -87,7 +90,7 @@ grep -q "^test: minimized for" "$work/rs.out" || fail "resize run: the minimised
 grep -q "^validation_messages 0$" "$work/rs.out" || fail "resize run: no validation count printed"
 
 # 3a. Baseline: the same start without keys (sun at -5 deg).
-xvfb "$VKSKY" --validate --frames 20 --width 320 --height 180 --sun-elevation -5 --pitch 10 \
+xvfb "$VKSKY" --validate --frames 20 --width 320 --height 180 --sun-elevation -5 --pitch 10 --exposure 12 \
     --screenshot "$work/base.png" >"$work/base.out" 2>"$work/base.err"
 expect_clean "baseline run" $? "$work/base.err"
 grep -q "^sun_elevation -5.000$" "$work/base.out" || fail "baseline run: sun moved: $(grep sun_ "$work/base.out")"

@@ -321,7 +321,7 @@ static int parse_quality(const scene_ctx *c, const cJSON *q)
     if (preset >= 0) {
         const quality_config *qc = quality_preset(preset_words[preset]);
         quality_apply(qc, v, lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
-        o->quality = qc->name;
+        o->quality = preset_words[preset];   /* the word, as the flag keeps it (a preset may be another name's row) */
     }
     int mode = (int)v->mode, pass = (int)v->pass_kind, f32 = lut->lut_f32 ? 1 : 0, quarter = o->bloom_quarter ? 1 : 0;
     static const char *const bloom_res_words[] = {"half", "quarter"};   /* as --bloom-res */
