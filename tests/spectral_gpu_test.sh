@@ -26,8 +26,10 @@ check() {
 }
 # Limits: the GPU's RGB numerics at --quality high against the RGB reference on the same views (sunset, 12x7: 0.22 %
 # p95 luminance, CIEDE2000 p95 0.41, max 0.48 on lavapipe) with room for the half-float readback of each group.
-check sunset 4 0.01 0.6 --sun-elevation 2 --sun-azimuth 0 --yaw 0 --pitch 8 --fov 60
-check twilight 8 0.01 0.5 --no-multiscatter --sun-elevation -4 --sun-azimuth 0 --yaw 0 --pitch 6 --fov 60
+# The views keep the horizon out of the image: the GPU anti-aliases it (each pixel's coverage, issue 26) where the
+# reference samples the pixel's centre ray, so a pixel the horizon crosses is not the same quantity in the two.
+check sunset 4 0.01 0.6 --sun-elevation 2 --sun-azimuth 0 --yaw 0 --pitch 35 --fov 60
+check twilight 8 0.01 0.5 --no-multiscatter --sun-elevation -4 --sun-azimuth 0 --yaw 0 --pitch 35 --fov 60
 check noon 16 0.01 0.5 --no-multiscatter --sun-elevation 60 --sun-azimuth 0 --yaw 180 --pitch 30 --fov 70
 
 # --spectral 0 is the RGB renderer, untouched.
