@@ -1,0 +1,262 @@
+/* vksky: Hillaire's sky and atmosphere (EGSR 2020) as a C library over Vulkan 1.3.
+ *
+ * The host owns the instance, the device, the queue, its command buffers and its images. vksky builds its LUTs,
+ * its pipelines and its own intermediate images on the host's device and records its passes into a command
+ * buffer the host gives it, writing the host's images; it never creates a device when given one, never submits
+ * per frame, never calls exit(), never prints: every call returns a vksky_result and every message goes to the
+ * host's callback. docs/library.md is the integration recipe; docs/synchronization.md's chapter "A library in a
+ * frame it does not own" is the contract each image follows.
+ *
+ * Include your Vulkan header (<vulkan/vulkan.h>, or <volk.h>) before this one; vksky.h includes
+ * <vulkan/vulkan_core.h> itself only when neither was included.
+ *
+ * Threads: calls on one context, or on renderers of one context, must not overlap (one thread at a time, or the
+ * host's lock); different contexts are independent. vksky_record only records: the host submits the command buffer,
+ * and must not destroy a renderer or change its scene while a command buffer it recorded is pending.
+ *
+ * Units: lengths in metres unless a name says otherwise; angles in degrees; +Y up in the host's world, the ground
+ * (the planet's surface) at y = 0 below the world origin unless vksky_camera.origin_altitude_m says otherwise. */
+#ifndef VKSKY_H
+#define VKSKY_H
+#if !defined(VULKAN_CORE_H_)
+#include <vulkan/vulkan_core.h>
+#endif
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(VKSKY_BUILDING_LIBRARY) && defined(__GNUC__)
+#define VKSKY_API __attribute__((visibility("default")))
+#else
+#define VKSKY_API
+#endif
+
+/* The ABI this header describes. A host passes it in every *_desc; a library built for another ABI refuses the
+ * call with VKSKY_ERROR_ABI_MISMATCH instead of reading a struct of another shape. */
+#define VKSKY_ABI_VERSION 1u
+VKSKY_API uint32_t vksky_abi_version(void);
+VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
+
+typedef enum vksky_result {
+    VKSKY_SUCCESS = 0,
+    VKSKY_ERROR_INVALID_ARGUMENT = -1,   /* a NULL handle, a size of 0, an unknown name, a value out of range */
+    VKSKY_ERROR_ABI_MISMATCH = -2,       /* desc.abi_version is not this library's VKSKY_ABI_VERSION */
+    VKSKY_ERROR_UNSUPPORTED = -3,        /* the device lacks what vksky needs (Vulkan 1.3, a format, a feature) */
+    VKSKY_ERROR_VULKAN = -4,             /* a Vulkan call failed (the message callback names it and its VkResult) */
+    VKSKY_ERROR_OUT_OF_MEMORY = -5,      /* host or device memory */
+    VKSKY_ERROR_IO = -6,                 /* a file could not be read */
+    VKSKY_ERROR_PARSE = -7,              /* a scene file or EXR is malformed (the callback says where) */
+    VKSKY_ERROR_DEVICE_LOST = -8
+} vksky_result;
+VKSKY_API const char *vksky_result_name(vksky_result result);
+
+typedef enum vksky_severity {
+    VKSKY_SEVERITY_INFO = 0,
+    VKSKY_SEVERITY_WARNING = 1,
+    VKSKY_SEVERITY_ERROR = 2,            /* the call that printed it returns an error */
+    VKSKY_SEVERITY_VALIDATION = 3        /* the validation layer (only with a context vksky created, validation on) */
+} vksky_severity;
+/* One message, one line, no trailing newline. Called on the thread that made the vksky call. */
+typedef void (*vksky_message_fn)(void *user, vksky_severity severity, const char *message);
+
+typedef struct vksky_context vksky_context;      /* the device vksky works on: the host's, or its own */
+typedef struct vksky_scene vksky_scene;          /* planet, medium, sun: a value, no GPU state */
+typedef struct vksky_renderer vksky_renderer;    /* LUTs, pipelines, intermediate images for one output size */
+
+/* ---- Contexts ------------------------------------------------------------------------------------------------- */
+
+/* The host's device. It must be Vulkan 1.3 with the features of vksky_device_requirements enabled. */
+typedef struct vksky_context_desc {
+    uint32_t abi_version;                            /* VKSKY_ABI_VERSION */
+    PFN_vkGetInstanceProcAddr get_instance_proc_addr;   /* the host's loader entry (vksky keeps no global loader
+                                                           state of the host's: its function pointers are its own) */
+    VkInstance instance;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    uint32_t queue_family;                           /* the family whose command buffers vksky_record receives */
+    uint32_t queue_index;                            /* the queue vksky may submit its one-time work to (uploads at
+                                                        creation); vksky_record never submits */
+    const VkAllocationCallbacks *allocator;          /* NULL: Vulkan's default; used for every object vksky makes */
+    VkPipelineCache pipeline_cache;                  /* the host's, or VK_NULL_HANDLE */
+    vksky_message_fn message;                        /* NULL: messages are dropped */
+    void *message_user;
+} vksky_context_desc;
+
+/* What the host must enable on its device for vksky: Vulkan 1.3 core features (synchronization2, dynamicRendering),
+ * and optionally vulkanMemoryModel + vulkanMemoryModelDeviceScope (the single-pass bloom downsample). Fills the
+ * booleans the host should set in its VkPhysicalDeviceVulkan13Features / 12Features chain. */
+typedef struct vksky_device_requirements {
+    bool synchronization2, dynamic_rendering;       /* required */
+    bool vulkan_memory_model, vulkan_memory_model_device_scope;   /* optional: used when enabled */
+} vksky_device_requirements;
+VKSKY_API void vksky_get_device_requirements(vksky_device_requirements *out);
+
+VKSKY_API vksky_result vksky_context_create(const vksky_context_desc *desc, vksky_context **out);
+
+/* vksky makes its own instance and device (the command-line tool, the window, tests). */
+typedef struct vksky_own_device_desc {
+    uint32_t abi_version;                            /* VKSKY_ABI_VERSION */
+    int device_index;                                /* -1: pick (discrete > integrated > virtual > CPU) */
+    bool validation;                                 /* Khronos validation + synchronization validation; its
+                                                        messages go to the callback as VKSKY_SEVERITY_VALIDATION */
+    const char *const *instance_extensions;          /* extra (e.g. from glfwGetRequiredInstanceExtensions) */
+    uint32_t instance_extension_count;
+    bool swapchain;                                  /* enable VK_KHR_swapchain on the device */
+    vksky_message_fn message;
+    void *message_user;
+} vksky_own_device_desc;
+VKSKY_API vksky_result vksky_context_create_own(const vksky_own_device_desc *desc, vksky_context **out);
+
+/* Destroys what vksky made (its device too, for vksky_context_create_own). Every renderer of the context must be
+ * destroyed first. NULL is ignored. */
+VKSKY_API void vksky_context_destroy(vksky_context *context);
+
+/* The handles of a context (its own device's, or the host's as given). */
+typedef struct vksky_context_handles {
+    VkInstance instance;
+    VkPhysicalDevice physical_device;
+    VkDevice device;
+    VkQueue queue;
+    uint32_t queue_family;
+} vksky_context_handles;
+VKSKY_API void vksky_context_get_handles(const vksky_context *context, vksky_context_handles *out);
+
+/* Validation messages seen by a context vksky created with validation on. */
+VKSKY_API uint32_t vksky_context_validation_message_count(const vksky_context *context);
+
+/* ---- Scenes: values ------------------------------------------------------------------------------------------ */
+
+/* Earth as in Hillaire 2020 Table 1, the sun at 20 degrees. */
+VKSKY_API vksky_result vksky_scene_create_earth(vksky_scene **out);
+/* A scene by file (scene JSON, or an EXR written by vksky: its vksky:scene header) or by the name of a shipped
+ * scene ("mars", "hazy", ... as `vksky --list-scenes` prints). Errors: VKSKY_ERROR_IO, VKSKY_ERROR_PARSE (the
+ * message callback, if `message` is not NULL, gets the same line the CLI prints). */
+VKSKY_API vksky_result vksky_scene_load(const char *path_or_name, vksky_message_fn message, void *message_user,
+                                        vksky_scene **out);
+VKSKY_API vksky_result vksky_scene_copy(const vksky_scene *scene, vksky_scene **out);
+VKSKY_API void vksky_scene_destroy(vksky_scene *scene);
+/* The sun's direction: azimuth from north (the host world's -Z with +Y up) towards east (+X), elevation above the
+ * horizon. */
+VKSKY_API vksky_result vksky_scene_set_sun(vksky_scene *scene, double azimuth_deg, double elevation_deg);
+VKSKY_API void vksky_scene_get_sun(const vksky_scene *scene, double *azimuth_deg, double *elevation_deg);
+VKSKY_API double vksky_scene_ground_radius_m(const vksky_scene *scene);
+VKSKY_API double vksky_scene_atmosphere_top_m(const vksky_scene *scene);
+/* The sun's illuminance at the top of the atmosphere in the scene's units (lux with VKSKY_UNITS_PHOTOMETRIC). */
+VKSKY_API double vksky_scene_sun_illuminance(const vksky_scene *scene);
+
+/* ---- Renderers ------------------------------------------------------------------------------------------------ */
+
+typedef enum vksky_output {
+    /* The whole frame of the command-line tool: sky, sun disc, bloom, exposure, tone map, dither, written to the
+     * host's 8-bit colour image (a swapchain image, UNORM or SRGB). */
+    VKSKY_OUTPUT_DISPLAY = 0,
+    /* Scene-linear: the sky written behind the host's geometry (where its depth is the far plane) and the aerial
+     * perspective applied to the geometry (colour x transmittance + in-scattering), in the host's HDR colour image
+     * (RGBA16F or RGBA32F, storage-capable); the host tone-maps. */
+    VKSKY_OUTPUT_SCENE_LINEAR = 1,
+    /* No image written: the LUTs only, for the host's own shaders (vksky_get_luts, include/vksky_luts.glsl). */
+    VKSKY_OUTPUT_LUTS_ONLY = 2
+} vksky_output;
+
+typedef enum vksky_units {
+    VKSKY_UNITS_PHOTOMETRIC = 0,   /* cd/m2 times vksky_frame.light_scale; the sun from the solar spectrum */
+    VKSKY_UNITS_RELATIVE = 1       /* the lesson's: the sun 20, 20, 20 */
+} vksky_units;
+
+typedef struct vksky_renderer_desc {
+    uint32_t abi_version;          /* VKSKY_ABI_VERSION */
+    vksky_output output;
+    uint32_t width, height;        /* the host image's size (ignored for LUTS_ONLY) */
+    VkFormat target_format;        /* the host colour image's format */
+    /* Quality: a preset by name ("low", "medium", "high", "ultra", "cpu", "auto"; NULL: "auto" for this device), or
+     * with max_error > 0 the cheapest measured configuration whose mean error is within it (`--max-error`). */
+    const char *quality;
+    double max_error;
+    bool bloom;                    /* DISPLAY only */
+    vksky_units units;
+    const vksky_scene *scene;      /* NULL: Earth. Copied: the host may destroy it after the call. */
+} vksky_renderer_desc;
+
+VKSKY_API vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_desc *desc,
+                                             vksky_renderer **out);
+/* The host must know no command buffer recorded for it is pending. NULL is ignored. */
+VKSKY_API void vksky_renderer_destroy(vksky_renderer *renderer);
+/* A new scene (copied). The LUTs are rebuilt by the next vksky_record if the medium changed; the pipelines only if
+ * the scene needs another variant (species present, multi-scattering, ground, phase model). No command buffer
+ * recorded for the renderer may be pending. */
+VKSKY_API vksky_result vksky_renderer_set_scene(vksky_renderer *renderer, const vksky_scene *scene);
+VKSKY_API vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uint32_t height);
+
+/* ---- Frames --------------------------------------------------------------------------------------------------- */
+
+/* How an image is used just before vksky's first access (what vksky waits for) or just after its last (what vksky
+ * makes its writes available to): the host's stage, access and layout. layout UNDEFINED in `before`: the contents
+ * are not needed (DISPLAY overwrites every pixel). */
+typedef struct vksky_image_use {
+    VkPipelineStageFlags2 stage;
+    VkAccessFlags2 access;
+    VkImageLayout layout;
+} vksky_image_use;
+
+typedef struct vksky_image {
+    VkImage image;
+    VkImageView view;              /* a 2D colour (or depth) view of mip 0, layer 0 */
+    VkFormat format;
+    VkExtent2D extent;
+    vksky_image_use before, after;
+} vksky_image;
+
+/* The host's camera. The world: metres, +Y up, the world origin origin_altitude_m above the ground (the planet's
+ * centre straight below it), so the ground is the sphere through y = -origin_altitude_m. Matrices are column-major as GLSL reads them: view (world -> eye) and
+ * projection (eye -> Vulkan clip space: y down, depth 0..1; reversed depth is detected from the matrix). */
+typedef struct vksky_camera {
+    double position_m[3];          /* world */
+    double origin_altitude_m;      /* the world origin's altitude above the ground */
+    double view[16];
+    double projection[16];
+} vksky_camera;
+
+/* The matrices vksky's command-line camera uses: yaw (0: north, -Z; 90: east, +X) and pitch in degrees, the vertical
+ * field of view, width / height, the near plane (far at infinity, reversed depth: 1 at near, 0 at infinity). */
+VKSKY_API void vksky_camera_look(vksky_camera *camera, double yaw_deg, double pitch_deg, double vertical_fov_deg,
+                                 double aspect, double near_m);
+
+typedef struct vksky_frame {
+    const vksky_camera *camera;
+    /* The exposure: EV100 with VKSKY_UNITS_PHOTOMETRIC (DISPLAY: the tone map's; SCENE_LINEAR: none applied), stops
+     * with RELATIVE. */
+    double exposure;
+    vksky_image color;             /* DISPLAY: the 8-bit image; SCENE_LINEAR: the HDR image holding the geometry */
+    const vksky_image *depth;      /* SCENE_LINEAR: the host's depth (sampled; NULL: sky in every pixel) */
+    bool force_luts;               /* rebuild the LUTs even if their inputs did not change (benchmarks) */
+} vksky_frame;
+
+/* Records into `cmd` (recording, outside a render pass, on the context's queue family): the LUT passes when the
+ * scene's medium changed since the LUTs were last built, then the output's passes, with every barrier between them
+ * and on the host's images (from color.before / depth.before to vksky's uses and back to .after). No allocation,
+ * no submission, no wait. LUTS_ONLY: the LUTs only, left readable by compute and fragment shaders. */
+VKSKY_API vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame);
+
+/* LUT-only mode (any output): the LUT views and the sampler to read them with, in the layout
+ * SHADER_READ_ONLY_OPTIMAL after vksky_record, readable by compute and fragment shaders; the uniform block's values
+ * the host's shaders need (include/vksky_luts.glsl declares the functions that sample them). */
+typedef struct vksky_luts {
+    VkImageView transmittance, multiscatter, skyview;
+    VkSampler sampler;             /* linear, clamp to edge */
+    float bottom_radius_km, top_radius_km;
+    float sun_direction[3];        /* in vksky's local frame of the last recorded frame */
+    float sun_illuminance[3];
+    /* The barrier's destination side a host uses to wait for the LUTs in its own passes: */
+    VkPipelineStageFlags2 ready_stage;
+    VkAccessFlags2 ready_access;
+} vksky_luts;
+VKSKY_API vksky_result vksky_get_luts(const vksky_renderer *renderer, vksky_luts *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
