@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The layout, checked (docs/architecture.md): each module of src/ includes only the modules below it, no two
-# source units include each other (directly or around a circle), and no file in src/ is longer than a newcomer
+# source units include each other (directly or around a circle), no two files of src/reference call each other
+# (directly or around a circle), and no file in src/ is longer than a newcomer
 # reads in one sitting (600 lines).
 #
 #   app -> sky -> gpu          app -> io        app -> reference -> model        sky -> model
@@ -66,11 +67,37 @@ if [ -n "$loops" ]; then
   fail=1
 fi
 
+# Circles of calls between the files of a module whose files share one internal header (src/reference: every file
+# includes ref_internal.h, so the include graph above cannot see who calls whom). A file calls another when its
+# code (comments stripped by the preprocessor, no includes expanded) names a function the other defines at file
+# scope (not static); tsort reports a loop. E.g. multiscatter.c calling sun_table_eval while psi_table.c calls
+# multiscatter_row would be one if both lived in psi_table.c.
+calls=$(mktemp)
+trap 'rm -f "$edges" "$calls"' EXIT
+for mod in reference; do
+  for def in "$mod"/*.c; do
+    # File-scope definitions: a line at column 0 that is not static, a preprocessor line or a declaration (';').
+    names=$(grep -E '^[A-Za-z_][A-Za-z0-9_ *]*[ *]([a-z_][a-z0-9_]*)\(' "$def" | grep -Ev '^(static|typedef|extern)\b|;[[:space:]]*$' \
+            | sed -E 's/^[A-Za-z_][A-Za-z0-9_ *]*[ *]([a-z_][a-z0-9_]*)\(.*/\1/' | sort -u)
+    [ -n "$names" ] || continue
+    pattern="\\b($(echo "$names" | paste -sd'|'))[[:space:]]*\\("
+    for caller in "$mod"/*.c; do
+      [ "$caller" = "$def" ] && continue
+      ${CC:-cc} -fpreprocessed -dD -E -P "$caller" 2>/dev/null | grep -Eq "$pattern" && echo "$caller $def"
+    done
+  done
+done >"$calls"
+loops=$(tsort "$calls" 2>&1 >/dev/null | grep -v '^tsort: .*: input contains a loop:$')
+if [ -n "$loops" ]; then
+  echo "layering: call circle between files (each calls a function the other defines):"; echo "$loops" | sed 's/^tsort: /  /'
+  fail=1
+fi
+
 # File length.
 for f in */*.c */*.h; do
   n=$(wc -l <"$f")
   [ "$n" -le 600 ] || { echo "layering: $f has $n lines (at most 600: split it along its seams)"; fail=1; }
 done
 
-[ $fail -eq 0 ] && echo "layering: $(wc -l <"$edges") includes in $(ls */*.c */*.h | wc -l) files follow the layering; no circles; no file over 600 lines"
+[ $fail -eq 0 ] && echo "layering: $(wc -l <"$edges") includes in $(ls */*.c */*.h | wc -l) files follow the layering; no circles (includes; calls within reference/: $(wc -l <"$calls") edges); no file over 600 lines"
 exit $fail

@@ -5,7 +5,8 @@
  *   geometry.c     ray/sphere geometry: ground hits, shadow and fade crossings, the graded ray steps
  *   mappings.c     directions, the Bruneton transmittance-LUT mapping, the Ms LUT texel parameters
  *   multiscatter.c the Psi quadratures (ref_multiscatter, ref_multiscatter_converged) and their polar rules
- *   psi_table.c    the sun transmittance table, the Psi table, its cache and their bicubic interpolation
+ *   sun_table.c    the bicubic taps, the sun transmittance table, the cancellation flag (used by the two below)
+ *   psi_table.c    the Psi table and its cache (filled by multiscatter.c's quadrature)
  *   radiance.c     ref_sky_radiance (the view march), ref_quality_converged, ref_pixel_dir
  *
  * Everything is double precision. Geometry never forms Rb + h and subtracts Rb again: altitudes along a ray come
@@ -150,7 +151,7 @@ void bruneton_x(const model_atmosphere *a, double h, double mu, double *x_mu, do
 void bruneton_params(const model_atmosphere *a, double x_mu, double x_r, double *h_out, double *mu_out);
 
 /* ---------------------------------------------------------------------------------------------------------- */
-/* Tables and their interpolation (psi_table.c)                                                               */
+/* Tables and their interpolation (sun_table.c)                                                               */
 
 static inline void catmull_rom(double f, double w[4])
 {
@@ -186,6 +187,9 @@ sun_table *sun_table_build(const model_atmosphere *a);
 
 /* Bicubic lookup of the sun table at (h, mu), clamped to [0, 1]. */
 void sun_table_eval(const sun_table *t, const model_atmosphere *a, double h, double mu, double T[3]);
+
+/* Whether the flag given to ref_set_cancel is raised (a table build stops between rows). */
+int ref_cancelled(void);
 
 /* ---------------------------------------------------------------------------------------------------------- */
 /* Psi quadrature (multiscatter.c)                                                                            */
