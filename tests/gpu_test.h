@@ -9,17 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int test_failures;
-#define CHECK(cond, ...)                                                                                    \
-    do {                                                                                                    \
-        if (!(cond)) {                                                                                      \
-            ++test_failures;                                                                                \
-            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                                 \
-            fprintf(stderr, __VA_ARGS__);                                                                   \
-            fputc('\n', stderr);                                                                            \
-        }                                                                                                   \
-    } while (0)
+#include "check.h"
 
 static const double TEST_DEG = 3.14159265358979323846 / 180.0;
 static const double SUN_RADIUS_RAD = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
@@ -137,8 +127,8 @@ static inline int test_finish(const char *name)
 {
     unsigned messages = gpu_validation_message_count();
     CHECK(messages == 0, "validation reported %u messages", messages);
-    if (test_failures) fprintf(stderr, "%s: %d failure(s)\n", name, test_failures);
+    if (check_failures) fprintf(stderr, "%s: %d failure(s)\n", name, check_failures);
     else printf("%s: ok\n", name);
-    return test_failures ? 1 : 0;
+    return check_failures ? 1 : 0;
 }
 #endif

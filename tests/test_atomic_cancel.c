@@ -12,17 +12,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-static int failures;
-#define CHECK(cond, ...)                                                                                              \
-    do {                                                                                                              \
-        if (!(cond)) {                                                                                                \
-            failures++;                                                                                               \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                                               \
-            printf(__VA_ARGS__);                                                                                      \
-            printf("\n");                                                                                             \
-        }                                                                                                             \
-    } while (0)
+#include "check.h"
 
 static int entries(const char *dir)
 {
@@ -74,7 +64,7 @@ int main(void)
     CHECK(entries(dir) == 3, "%d entries after the good writes (expected 3)", entries(dir));
 
     unlink(png), unlink(exr), unlink(old), rmdir(dir);
-    if (failures) printf("atomic_cancel: %d failure(s)\n", failures);
+    if (check_failures) printf("atomic_cancel: %d failure(s)\n", check_failures);
     else printf("atomic_cancel: ok\n");
-    return failures != 0;
+    return check_failures != 0;
 }

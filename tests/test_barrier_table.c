@@ -10,17 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int failures;
-#define CHECK(cond, ...)                                                                                    \
-    do {                                                                                                    \
-        if (!(cond)) {                                                                                      \
-            ++failures;                                                                                     \
-            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                                 \
-            fprintf(stderr, __VA_ARGS__);                                                                   \
-            fputc('\n', stderr);                                                                            \
-        }                                                                                                   \
-    } while (0)
+#include "check.h"
 
 /* Read access bits of synchronization2 (everything gpu_write_accesses must drop). */
 static const VkAccessFlags2 READS = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT |
@@ -393,8 +383,8 @@ int main(void)
     test_hazard_names();
     test_trace_and_drop();
     test_weaken_and_memory();
-    if (failures) {
-        fprintf(stderr, "test_barrier_table: %d failure(s)\n", failures);
+    if (check_failures) {
+        fprintf(stderr, "test_barrier_table: %d failure(s)\n", check_failures);
         return 1;
     }
     printf("test_barrier_table: ok\n");

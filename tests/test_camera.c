@@ -4,17 +4,7 @@
 #include "app/camera.h"
 #include <math.h>
 #include <stdio.h>
-
-static int failures;
-#define CHECK(cond, ...)                                                                                    \
-    do {                                                                                                    \
-        if (!(cond)) {                                                                                      \
-            printf("FAIL %s:%d: ", __FILE__, __LINE__);                                                     \
-            printf(__VA_ARGS__);                                                                            \
-            printf("\n");                                                                                   \
-            failures++;                                                                                     \
-        }                                                                                                   \
-    } while (0)
+#include "check.h"
 
 static sky_view start_view(double alt, double yaw, double pitch)
 {
@@ -111,8 +101,8 @@ int main(void)
     test_ground_clamp();
     test_level_flight();
     test_space_and_limits();
-    if (failures) {
-        printf("test_camera: %d failure(s)\n", failures);
+    if (check_failures) {
+        printf("test_camera: %d failure(s)\n", check_failures);
         return 1;
     }
     printf("test_camera: ok\n");

@@ -23,18 +23,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-static int g_fail = 0, g_checks = 0;
-#define CHECK(cond, ...)                                                                                               \
-    do {                                                                                                               \
-        ++g_checks;                                                                                                    \
-        if (!(cond)) {                                                                                                 \
-            ++g_fail;                                                                                                  \
-            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                                            \
-            fprintf(stderr, __VA_ARGS__);                                                                              \
-            fputc('\n', stderr);                                                                                       \
-        }                                                                                                              \
-    } while (0)
+#include "check.h"
 
 static char g_dir[128];
 static const char *comp_name[] = {"NONE", "RLE", "ZIPS", "ZIP", "PIZ", "PXR24", "B44", "B44A", "DWAA", "DWAB"};
@@ -687,7 +676,7 @@ static int check_files(int argc, char **argv)
         }
     }
     printf("%d regression files read cleanly\n", argc);
-    return g_fail ? 1 : 0;
+    return check_failures ? 1 : 0;
 }
 
 /* --dir DIR: check_files on every file in DIR (but README*). */
@@ -738,6 +727,6 @@ int main(int argc, char **argv)
         printf("files kept in %s\n", g_dir);
     else if (system(cmd) != 0)
         fprintf(stderr, "could not remove %s\n", g_dir);
-    printf("%d checks, %d failures\n", g_checks, g_fail);
-    return g_fail ? 1 : 0;
+    printf("%d checks, %d failures\n", check_count, check_failures);
+    return check_failures ? 1 : 0;
 }

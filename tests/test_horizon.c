@@ -305,7 +305,7 @@ int main(int argc, char **argv)
     if (!*only || !strcmp(only, "sweep")) test_sweep(&ctx);
     if (!*only || !strcmp(only, "dither")) test_dither(&ctx);
     gpu_context_destroy(&ctx);
-    if (test_failures) fprintf(stderr, "test_horizon: %d failure(s)\n", test_failures);
+    if (check_failures) fprintf(stderr, "test_horizon: %d failure(s)\n", check_failures);
     else printf("test_horizon: all checks pass\n");
-    return test_failures ? 1 : 0;
+    return check_failures ? 1 : 0;
 }

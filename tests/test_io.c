@@ -31,20 +31,7 @@
 #include <unistd.h>
 
 #include <openexr.h>
-
-static int g_failures = 0;
-static int g_checks = 0;
-
-#define CHECK(cond, ...)                                                                                               \
-    do {                                                                                                               \
-        ++g_checks;                                                                                                    \
-        if (!(cond)) {                                                                                                 \
-            ++g_failures;                                                                                              \
-            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                                            \
-            fprintf(stderr, __VA_ARGS__);                                                                              \
-            fputc('\n', stderr);                                                                                       \
-        }                                                                                                              \
-    } while (0)
+#include "check.h"
 
 static char g_dir[256]; /* scratch directory */
 
@@ -829,8 +816,8 @@ int main(void)
 
     if (rmdir(g_dir) != 0) {
         fprintf(stderr, "note: scratch directory %s not empty: %s\n", g_dir, strerror(errno));
-        ++g_failures;
+        ++check_failures;
     }
-    printf("test_io: %d checks, %d failures\n", g_checks, g_failures);
-    return g_failures ? 1 : 0;
+    printf("test_io: %d checks, %d failures\n", check_count, check_failures);
+    return check_failures ? 1 : 0;
 }

@@ -9,9 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-
-static int failures;
-#define CHECK(cond, ...) do { if (!(cond)) { printf("FAIL: "); printf(__VA_ARGS__); printf("\n"); ++failures; } } while (0)
+#include "check.h"
 
 /* The table row of a configuration on a scene class (by name; the presets measured under their own names). */
 static const quality_measurement *row_of(const quality_measurement *table, int count, const char *config, int scene)
@@ -122,6 +120,6 @@ int main(void)
     CHECK(lesson && lesson->mode == SKY_CHOICE_MARCH && lesson->steps == 32 && lesson->render_scale == 1.0,
           "--quality lesson is not the 32-step march at full size");
     CHECK(quality_preset("auto") == NULL, "auto is not a fixed preset");
-    if (failures) printf("%d failures\n", failures);
-    return failures != 0;
+    if (check_failures) printf("%d check_failures\n", check_failures);
+    return check_failures != 0;
 }

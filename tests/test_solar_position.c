@@ -12,9 +12,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-
-static int failures;
-#define CHECK(cond, ...) do { if (!(cond)) { ++failures; printf("FAIL: " __VA_ARGS__); printf("\n"); } } while (0)
+#include "check.h"
 
 static const double PI = 3.14159265358979323846;
 static double rad(double d) { return d * PI / 180.0; }
@@ -166,7 +164,7 @@ int main(void)
     against_almanac();
     sanity();
     invalid();
-    if (failures) printf("%d failure(s)\n", failures);
+    if (check_failures) printf("%d failure(s)\n", check_failures);
     else printf("solar_position: all checks pass\n");
-    return failures ? 1 : 0;
+    return check_failures ? 1 : 0;
 }

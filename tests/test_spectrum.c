@@ -15,9 +15,7 @@
 #include "model/spectrum.h"
 #include <math.h>
 #include <stdio.h>
-
-static int failures;
-#define CHECK(cond, ...) do { if (!(cond)) { ++failures; printf("FAIL: " __VA_ARGS__); printf("\n"); } } while (0)
+#include "check.h"
 
 static double rel(double a, double b) { return fabs(a - b) / fabs(b); }
 
@@ -132,9 +130,9 @@ int main(void)
     CHECK(p[0] == 0 && p[1] == 0 && p[2] == 0 && spectrum_solar_irradiance(831.0) == 0 &&
               spectrum_ozone_cross_section(300.0) == 0, "zero outside 360-830 nm");
 
-    if (failures)
-        printf("%d failure(s)\n", failures);
+    if (check_failures)
+        printf("%d failure(s)\n", check_failures);
     else
         printf("spectrum: all checks passed\n");
-    return failures ? 1 : 0;
+    return check_failures ? 1 : 0;
 }
