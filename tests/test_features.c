@@ -29,12 +29,14 @@ static run render(gpu_context *ctx, const model_atmosphere *a, const sky_feature
     sky_renderer_set_features(&r, f);
     frame_desc fd = {.view = &v};
     FILE *first = fmemopen(out.first_passes, sizeof out.first_passes - 1, "w");
-    r.pass_trace = first;
+    gpu_barrier_trace_passes(first);
     sky_renderer_render(&r, &fd);
+    gpu_barrier_trace_passes(NULL);
     fclose(first);
     FILE *trace = fmemopen(out.passes, sizeof out.passes - 1, "w");
-    r.pass_trace = trace;
+    gpu_barrier_trace_passes(trace);
     sky_renderer_render(&r, &fd);
+    gpu_barrier_trace_passes(NULL);
     fclose(trace);
     const uint16_t *half = r.readback_linear.mapped;
     for (int c = 0; c < 3; ++c) out.centre[c] = io_half_to_float(half[4 * ((N / 2) * N + N / 2) + c]);

@@ -5,9 +5,9 @@
 #extension GL_GOOGLE_include_directive : require
 #include "atmosphere.glsl"
 
-layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
-layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
-layout(set = 0, binding = 3, rgba16f) uniform writeonly image3D ap_volume_out;
+layout(set = 0, binding = VKSKY_BINDING_TRANSMITTANCE_LUT) uniform sampler2D transmittance_lut;
+layout(set = 0, binding = VKSKY_BINDING_MULTISCATTER_LUT) uniform sampler2D multiscatter_lut;
+layout(set = 0, binding = VKSKY_BINDING_OUTPUT, rgba16f) uniform writeonly image3D ap_volume_out;
 layout(push_constant) uniform Push { CompositePush push; };
 
 /* A segment to a froxel never ends on the lit ground (lit_ground is not called): no ground-irradiance LUT. */

@@ -3,7 +3,7 @@
  * ground, never the planet-scale radius minus the ground radius) and the cosine mu of a ray's zenith angle. */
 #include "shared.h"
 
-layout(std140, set = 0, binding = 0) uniform AtmosphereUbo { AtmosphereParams atmo; };
+layout(std140, set = 0, binding = VKSKY_BINDING_ATMOSPHERE) uniform AtmosphereUbo { AtmosphereParams atmo; };
 
 /* The scene's variant (see shared.h): species with zero coefficients, multi-scattering, the sun disc and a lit
  * ground cost nothing when absent. */

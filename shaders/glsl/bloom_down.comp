@@ -7,8 +7,8 @@
 #include "bloom_filter.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform sampler2D src;
-layout(set = 0, binding = 1, rgba16f) uniform writeonly image2D dst;
+layout(set = 0, binding = VKSKY_BINDING_POST_SOURCE) uniform sampler2D src;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP, rgba16f) uniform writeonly image2D dst;
 layout(push_constant) uniform Push { PostPush push; };   /* params: xy 1/source size, z 1 = first level, w threshold */
 
 void main()

@@ -34,16 +34,16 @@
 #define STACK 256
 
 layout(local_size_x = TILE, local_size_y = TILE) in;
-layout(set = 0, binding = 0) uniform sampler2D hdr;
-layout(set = 0, binding = 1, rgba16f) uniform nonprivate image2D mip0;
-layout(set = 0, binding = 2, rgba16f) uniform nonprivate image2D mip1;
-layout(set = 0, binding = 3, rgba16f) uniform nonprivate image2D mip2;
-layout(set = 0, binding = 4, rgba16f) uniform nonprivate image2D mip3;
-layout(set = 0, binding = 5, rgba16f) uniform nonprivate image2D mip4;
-layout(set = 0, binding = 6, rgba16f) uniform nonprivate image2D mip5;
-layout(set = 0, binding = 7, rgba16f) uniform nonprivate image2D mip6;
-layout(set = 0, binding = 8, rgba16f) uniform nonprivate image2D mip7;
-layout(set = 0, binding = 9, r32ui) uniform nonprivate uimage2D counters;
+layout(set = 0, binding = VKSKY_BINDING_POST_SOURCE) uniform sampler2D hdr;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP + 0, rgba16f) uniform nonprivate image2D mip0;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP + 1, rgba16f) uniform nonprivate image2D mip1;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP + 2, rgba16f) uniform nonprivate image2D mip2;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP + 3, rgba16f) uniform nonprivate image2D mip3;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP + 4, rgba16f) uniform nonprivate image2D mip4;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP + 5, rgba16f) uniform nonprivate image2D mip5;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP + 6, rgba16f) uniform nonprivate image2D mip6;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP + 7, rgba16f) uniform nonprivate image2D mip7;
+layout(set = 0, binding = VKSKY_BINDING_SPD_COUNTERS, r32ui) uniform nonprivate uimage2D counters;
 layout(push_constant) uniform Push { PostPush push; };   /* params: x mip count, y threshold */
 
 /* Workgroup shared memory, touched only through relaxed atomics at workgroup scope (ordered by the control

@@ -6,8 +6,8 @@
 #include "bloom_filter.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform sampler2D src;                 /* mip i + 1 */
-layout(set = 0, binding = 1, rgba16f) uniform image2D dst;          /* mip i */
+layout(set = 0, binding = VKSKY_BINDING_POST_SOURCE) uniform sampler2D src;                 /* mip i + 1 */
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP, rgba16f) uniform image2D dst;          /* mip i */
 layout(push_constant) uniform Push { PostPush push; };
 
 void main()

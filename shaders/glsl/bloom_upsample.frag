@@ -5,7 +5,7 @@
 #include "shared.h"
 #include "bloom_filter.glsl"
 
-layout(set = 0, binding = 0) uniform sampler2D src;
+layout(set = 0, binding = VKSKY_BINDING_POST_SOURCE) uniform sampler2D src;
 layout(push_constant) uniform Push { BloomPush push; };
 layout(location = 0) in vec2 in_uv;
 layout(location = 0) out vec4 out_color;

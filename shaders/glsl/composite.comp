@@ -7,17 +7,17 @@
 #extension GL_GOOGLE_include_directive : require
 #include "atmosphere.glsl"
 
-layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
-layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
-layout(set = 0, binding = 5) uniform sampler2D ground_irradiance_lut;
+layout(set = 0, binding = VKSKY_BINDING_TRANSMITTANCE_LUT) uniform sampler2D transmittance_lut;
+layout(set = 0, binding = VKSKY_BINDING_MULTISCATTER_LUT) uniform sampler2D multiscatter_lut;
+layout(set = 0, binding = VKSKY_BINDING_GROUND_IRRADIANCE_LUT) uniform sampler2D ground_irradiance_lut;
 /* The inputs, one image of 2 bands: rows [0, H) the beauty RGBA, rows [H, 2H) the world position XYZ (H: the rows of
  * the frame's band being composited). */
-layout(set = 0, binding = 3) uniform sampler2D composite_in;
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D composite_out;
+layout(set = 0, binding = VKSKY_BINDING_COMPOSITE_IN) uniform sampler2D composite_in;
+layout(set = 0, binding = VKSKY_BINDING_OUTPUT, rgba32f) uniform writeonly image2D composite_out;
 layout(push_constant) uniform Push { CompositePush push; };
 #ifdef AERIAL_VOLUME
 /* --aerial-perspective volume: the froxel volume (ap_volume.comp), trilinear, clamped. */
-layout(set = 0, binding = 6) uniform sampler3D ap_volume;
+layout(set = 0, binding = VKSKY_BINDING_AP_VOLUME) uniform sampler3D ap_volume;
 #endif
 
 #include "sky_common.glsl"

@@ -8,12 +8,12 @@
 
 #define THREADS 64
 layout(local_size_x = THREADS) in;
-layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
-layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
+layout(set = 0, binding = VKSKY_BINDING_TRANSMITTANCE_LUT) uniform sampler2D transmittance_lut;
+layout(set = 0, binding = VKSKY_BINDING_MULTISCATTER_LUT) uniform sampler2D multiscatter_lut;
 #ifndef LUT_FORMAT
 #define LUT_FORMAT rgba16f
 #endif
-layout(set = 0, binding = 3, LUT_FORMAT) uniform writeonly image2D irradiance_out;
+layout(set = 0, binding = VKSKY_BINDING_OUTPUT, LUT_FORMAT) uniform writeonly image2D irradiance_out;
 /* Upward directions never meet the ground: no ground term inside this march. */
 #define GROUND_SKY_IRRADIANCE(mu_s) vec3(0.0)
 #include "sky_common.glsl"

@@ -13,11 +13,11 @@
 #define PHASE_CELL 4
 #endif
 layout(local_size_x = THREADS) in;
-layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
+layout(set = 0, binding = VKSKY_BINDING_TRANSMITTANCE_LUT) uniform sampler2D transmittance_lut;
 #ifndef LUT_FORMAT
 #define LUT_FORMAT rgba16f
 #endif
-layout(set = 0, binding = 2, LUT_FORMAT) uniform writeonly image2D multiscatter_out;
+layout(set = 0, binding = VKSKY_BINDING_OUTPUT, LUT_FORMAT) uniform writeonly image2D multiscatter_out;
 
 shared vec3 shared_l[THREADS];
 shared vec3 shared_f[THREADS];

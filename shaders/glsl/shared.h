@@ -4,6 +4,8 @@
 #ifndef VKSKY_SHARED_H
 #define VKSKY_SHARED_H
 
+#include "bindings.h"   /* every pass's descriptor bindings */
+
 #ifdef VULKAN
 #define VKSKY_STRUCT(name) struct name
 #define VKSKY_END(name) ;

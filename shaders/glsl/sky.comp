@@ -9,7 +9,7 @@
 #include "horizon.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D hdr_out;
+layout(set = 0, binding = VKSKY_BINDING_OUTPUT, rgba16f) uniform writeonly image2D hdr_out;
 
 void main()
 {

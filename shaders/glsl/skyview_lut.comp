@@ -5,10 +5,10 @@
 #include "atmosphere.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 1) uniform sampler2D transmittance_lut;
-layout(set = 0, binding = 2) uniform sampler2D multiscatter_lut;
-layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D skyview_out;
-layout(set = 0, binding = 4) uniform sampler2D ground_irradiance_lut;
+layout(set = 0, binding = VKSKY_BINDING_TRANSMITTANCE_LUT) uniform sampler2D transmittance_lut;
+layout(set = 0, binding = VKSKY_BINDING_MULTISCATTER_LUT) uniform sampler2D multiscatter_lut;
+layout(set = 0, binding = VKSKY_BINDING_OUTPUT, rgba16f) uniform writeonly image2D skyview_out;
+layout(set = 0, binding = VKSKY_BINDING_GROUND_IRRADIANCE_LUT) uniform sampler2D ground_irradiance_lut;
 layout(push_constant) uniform Push { SkyPush push; };
 #include "sky_common.glsl"
 

@@ -12,12 +12,12 @@
 #include "dither.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform sampler2D hdr;
-layout(set = 0, binding = 1) uniform sampler2D bloom0;
-layout(set = 0, binding = 2) uniform sampler2D bloom1;
-layout(set = 0, binding = 3, rgba8) uniform writeonly image2D display;
+layout(set = 0, binding = VKSKY_BINDING_POST_SOURCE) uniform sampler2D hdr;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP) uniform sampler2D bloom0;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP + 1) uniform sampler2D bloom1;
+layout(set = 0, binding = VKSKY_BINDING_TONEMAP_DISPLAY, rgba8) uniform writeonly image2D display;
 #ifdef VKSKY_COMPOSITE
-layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D composite;
+layout(set = 0, binding = VKSKY_BINDING_TONEMAP_COMPOSITE, rgba16f) uniform writeonly image2D composite;
 #endif
 layout(push_constant) uniform Push { PostPush push; };
 

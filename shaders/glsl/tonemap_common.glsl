@@ -5,8 +5,8 @@
 #include "hdr_upsample.glsl"
 #include "dither.glsl"
 
-layout(set = 0, binding = 0) uniform sampler2D hdr;
-layout(set = 0, binding = 1) uniform sampler2D bloom;
+layout(set = 0, binding = VKSKY_BINDING_POST_SOURCE) uniform sampler2D hdr;
+layout(set = 0, binding = VKSKY_BINDING_POST_MIP) uniform sampler2D bloom;
 layout(push_constant) uniform Push { TonemapPush push; };
 layout(location = 0) in vec2 in_uv;
 layout(location = 0) out vec4 out_display;

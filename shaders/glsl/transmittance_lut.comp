@@ -7,7 +7,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #ifndef LUT_FORMAT
 #define LUT_FORMAT rgba16f
 #endif
-layout(set = 0, binding = 1, LUT_FORMAT) uniform writeonly image2D transmittance_out;
+layout(set = 0, binding = VKSKY_BINDING_OUTPUT, LUT_FORMAT) uniform writeonly image2D transmittance_out;
 
 void main()
 {

@@ -106,7 +106,7 @@ static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32
                                .bloom_mips = (uint32_t)o->bloom_mips, .atmosphere = &o->atmosphere,
                                .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
     sky_renderer_create(r, ctx, &rdesc);
-    if (o->trace_passes) r->pass_trace = stdout;
+    if (o->trace_passes) gpu_barrier_trace_passes(stdout);
     return 0;
 }
 

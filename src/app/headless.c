@@ -107,18 +107,9 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
     }
     VkCommandBuffer cmd = gpu_begin_commands(r->ctx);
     for (int i = 0; i < n && i < 16; ++i) {
-        if (i > 0) {
-            /* Between real readback frames the fence wait and the host's read order the next copy into the
-             * readback buffers after the previous one; in one command buffer this barrier stands in for them. */
-            gpu_barrier_batch b = gpu_barrier_batch_begin("between frames (VKSKY_FRAMES)");
-            gpu_barrier_add_buffer(&b, "frames.readback_linear", "readback_linear", r->readback_linear.buffer,
-                                   GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
-            gpu_barrier_add_buffer(&b, "frames.readback_display", "readback_display", r->readback_display.buffer,
-                                   GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
-            gpu_barrier_flush(cmd, &b);
-        }
         frame_desc fi = *f;
         fi.force_luts = f->force_luts || i > 0;
+        fi.follows_frame = i > 0;   /* the readback copies' write-after-write: a barrier of frame_record's */
         frame_record(r, cmd, &fi);
     }
     gpu_submit_and_wait(r->ctx, cmd);
@@ -205,7 +196,7 @@ int headless_run(const options *given)
                                .bloom_quarter = o->bloom_quarter, .atmosphere = &lit,
                                .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
     sky_renderer_create(&r, &ctx, &rdesc);
-    if (o->trace_passes) r.pass_trace = stdout;
+    if (o->trace_passes) gpu_barrier_trace_passes(stdout);
 
     int status = 0;
     if (stop_requested()) {

@@ -268,7 +268,7 @@ int tiles_render(const options *o, gpu_context *ctx)
                                .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips, .atmosphere = &lit,
                                .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
     sky_renderer_create(&r, ctx, &rdesc);
-    if (o->trace_passes) r.pass_trace = stdout;
+    if (o->trace_passes) gpu_barrier_trace_passes(stdout);
 
     char what[300];
     snprintf(what, sizeof what, "rendering %s (%dx%d, %d bands)", o->output_count ? o->outputs[0] : "", width, height, bands);

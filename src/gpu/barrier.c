@@ -46,6 +46,7 @@ static const gpu_usage_info usages[GPU_USAGE_COUNT] = {
 };
 
 static FILE *trace_out;
+static FILE *pass_out;   /* --trace-passes */
 static const char *drop_name;
 static unsigned drop_count;
 /* The mask mutation (gpu_barrier_set_weaken): which barrier, which field, the mask it gets instead. */
@@ -119,9 +120,11 @@ VkImageMemoryBarrier2 gpu_image_barrier(VkImage image, VkImageSubresourceRange r
 gpu_barrier_batch gpu_barrier_batch_begin(const char *point) { return (gpu_barrier_batch){.point = point}; }
 
 void gpu_barrier_trace(FILE *out) { trace_out = out; }
+void gpu_barrier_trace_passes(FILE *out) { pass_out = out; }
 void gpu_barrier_trace_pass(const char *pass)
 {
-    if (trace_out) fprintf(trace_out, "pass %s\n", pass);
+    FILE *out = trace_out ? trace_out : pass_out;
+    if (out) fprintf(out, "pass %s\n", pass);
 }
 void gpu_barrier_trace_commands(void)
 {

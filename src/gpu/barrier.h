@@ -75,8 +75,11 @@ void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b);
 
 /* Trace / drop controls (process-wide; set once by the app before recording). */
 void gpu_barrier_trace(FILE *out);
-/* With the trace on, a line "pass <name>" where a pass begins (called by gpu_label_begin), so the trace reads as
- * the frame: passes and the barriers between them. */
+/* The pass list alone (--trace-passes): a line "pass <name>" where each pass begins, to `out` (NULL: off). */
+void gpu_barrier_trace_passes(FILE *out);
+/* The one place a pass is traced (called by gpu_label_begin, which every pass and copy of a frame opens): a line
+ * "pass <name>" into the barrier trace if it is on, so that it reads as the frame (passes and the barriers between
+ * them), else into the pass list's stream; printed once even when both are on. */
 void gpu_barrier_trace_pass(const char *pass);
 /* With the trace on, a line "commands" where a command buffer begins (called by gpu_begin_commands): barriers of
  * two submissions can never share a call. */

@@ -9,14 +9,14 @@ VkShaderModule gpu_shader_module(const gpu_context *ctx, const uint32_t *code, s
     return m;
 }
 
-VkDescriptorSetLayout gpu_set_layout(const gpu_context *ctx, const VkDescriptorType *types, uint32_t count,
+VkDescriptorSetLayout gpu_set_layout(const gpu_context *ctx, const gpu_slot *slots, uint32_t count,
                                      VkShaderStageFlags stages, const char *name)
 {
     VkDescriptorSetLayoutBinding bindings[16] = {{0}};
     if (count > 16) count = 16;
     for (uint32_t i = 0; i < count; ++i)
         bindings[i] = (VkDescriptorSetLayoutBinding){
-            .binding = i, .descriptorType = types[i], .descriptorCount = 1, .stageFlags = stages};
+            .binding = slots[i].binding, .descriptorType = slots[i].type, .descriptorCount = 1, .stageFlags = stages};
     VkDescriptorSetLayoutCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = count, .pBindings = bindings};
     VkDescriptorSetLayout layout;

@@ -6,8 +6,13 @@
 
 VkShaderModule gpu_shader_module(const gpu_context *ctx, const uint32_t *code, size_t size, const char *name);
 
-/* A set layout from a list of descriptor types; binding i gets types[i], all visible to `stages`. */
-VkDescriptorSetLayout gpu_set_layout(const gpu_context *ctx, const VkDescriptorType *types, uint32_t count,
+/* One binding of a set layout: its number (the renderer names them in shaders/glsl/bindings.h) and type. */
+typedef struct gpu_slot {
+    uint32_t binding;
+    VkDescriptorType type;
+} gpu_slot;
+/* A set layout from a list of slots (at most 16), all visible to `stages`. */
+VkDescriptorSetLayout gpu_set_layout(const gpu_context *ctx, const gpu_slot *slots, uint32_t count,
                                      VkShaderStageFlags stages, const char *name);
 VkPipelineLayout gpu_pipeline_layout(const gpu_context *ctx, VkDescriptorSetLayout set_layout, uint32_t push_size,
                                      VkShaderStageFlags push_stages, const char *name);

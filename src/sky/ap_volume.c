@@ -55,17 +55,19 @@ int ap_volume_create(ap_volume *a, sky_renderer *r, const ap_volume_desc *d, cha
     VkDescriptorPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1,
                                         .poolSizeCount = 3, .pPoolSizes = sizes};
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, NULL, &a->pool));
-    VkDescriptorType types[] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE};
-    a->set_layout = gpu_set_layout(ctx, types, 4, VK_SHADER_STAGE_COMPUTE_BIT, "ap_volume");
+    const gpu_slot slots[] = {{VKSKY_BINDING_ATMOSPHERE, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                              {VKSKY_BINDING_TRANSMITTANCE_LUT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                              {VKSKY_BINDING_MULTISCATTER_LUT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                              {VKSKY_BINDING_OUTPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
+    a->set_layout = gpu_set_layout(ctx, slots, 4, VK_SHADER_STAGE_COMPUTE_BIT, "ap_volume");
     a->layout = gpu_pipeline_layout(ctx, a->set_layout, sizeof(CompositePush), VK_SHADER_STAGE_COMPUTE_BIT,
                                     "ap_volume");
     a->set = gpu_alloc_set(ctx, a->pool, a->set_layout, "ap_volume");
     const pass_shared *s = &r->shared;
-    gpu_write_uniform(ctx, a->set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
-    gpu_write_sampled(ctx, a->set, 1, r->luts.transmittance.view, s->linear_clamp);
-    gpu_write_sampled(ctx, a->set, 2, r->luts.multiscatter_view, s->linear_clamp);
-    gpu_write_storage(ctx, a->set, 3, a->image.view);
+    gpu_write_uniform(ctx, a->set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
+    gpu_write_sampled(ctx, a->set, VKSKY_BINDING_TRANSMITTANCE_LUT, r->luts.transmittance.view, s->linear_clamp);
+    gpu_write_sampled(ctx, a->set, VKSKY_BINDING_MULTISCATTER_LUT, r->luts.multiscatter_view, s->linear_clamp);
+    gpu_write_storage(ctx, a->set, VKSKY_BINDING_OUTPUT, a->image.view);
     ap_volume_spec spec;
     ap_volume_spec_make(s->spec, d, &spec);
     VkShaderModule m = gpu_shader_module(ctx, spv_ap_volume_comp, sizeof spv_ap_volume_comp, "ap_volume.comp");

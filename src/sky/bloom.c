@@ -15,8 +15,8 @@ void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, ui
     gpu_image_create(ctx, &b->mips, "bloom mips", HDR_FORMAT, w ? w : 1, h ? h : 1, b->mip_count,
                      VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT);
 
-    VkDescriptorType types[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-    b->set_layout = gpu_set_layout(ctx, types, 1, VK_SHADER_STAGE_FRAGMENT_BIT, "bloom set layout");
+    const gpu_slot slots[] = {{VKSKY_BINDING_POST_SOURCE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
+    b->set_layout = gpu_set_layout(ctx, slots, 1, VK_SHADER_STAGE_FRAGMENT_BIT, "bloom set layout");
     b->layout = gpu_pipeline_layout(ctx, b->set_layout, sizeof(BloomPush), VK_SHADER_STAGE_FRAGMENT_BIT, "bloom layout");
     VkFormat format = HDR_FORMAT;
     VkShaderModule down = gpu_shader_module(ctx, spirv_bloom_downsample.code, spirv_bloom_downsample.size, "bloom_downsample.frag");
@@ -28,10 +28,10 @@ void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, ui
     vkDestroyShaderModule(ctx->device, up, NULL);
     for (uint32_t i = 0; i < b->mip_count; ++i) {
         b->down_sets[i] = gpu_alloc_set(ctx, s->pool, b->set_layout, "bloom downsample set");
-        gpu_write_sampled(ctx, b->down_sets[i], 0, i == 0 ? hdr->view : b->mips.mip_views[i - 1], s->linear_clamp);
+        gpu_write_sampled(ctx, b->down_sets[i], VKSKY_BINDING_POST_SOURCE, i == 0 ? hdr->view : b->mips.mip_views[i - 1], s->linear_clamp);
         if (i + 1 < b->mip_count) {
             b->up_sets[i] = gpu_alloc_set(ctx, s->pool, b->set_layout, "bloom upsample set");
-            gpu_write_sampled(ctx, b->up_sets[i], 0, b->mips.mip_views[i + 1], s->linear_clamp);
+            gpu_write_sampled(ctx, b->up_sets[i], VKSKY_BINDING_POST_SOURCE, b->mips.mip_views[i + 1], s->linear_clamp);
         }
     }
 }

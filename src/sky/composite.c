@@ -185,21 +185,25 @@ int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint
                                         .poolSizeCount = 3, .pPoolSizes = sizes};
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, NULL, &c->pool));
     const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    /* Binding 6, the volume, only in the volume variant (composite.comp with AERIAL_VOLUME). */
-    VkDescriptorType types[] = {UBO, SAMPLED, SAMPLED, SAMPLED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, SAMPLED, SAMPLED};
-    c->set_layout = gpu_set_layout(ctx, types, c->has_volume ? 7 : 6, VK_SHADER_STAGE_COMPUTE_BIT, "composite");
+    /* The volume (the last slot) only in the volume variant (composite.comp with AERIAL_VOLUME). */
+    const gpu_slot slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_TRANSMITTANCE_LUT, SAMPLED},
+                              {VKSKY_BINDING_MULTISCATTER_LUT, SAMPLED}, {VKSKY_BINDING_GROUND_IRRADIANCE_LUT, SAMPLED},
+                              {VKSKY_BINDING_COMPOSITE_IN, SAMPLED}, {VKSKY_BINDING_OUTPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
+                              {VKSKY_BINDING_AP_VOLUME, SAMPLED}};
+    c->set_layout = gpu_set_layout(ctx, slots, c->has_volume ? 7 : 6, VK_SHADER_STAGE_COMPUTE_BIT, "composite");
     c->layout = gpu_pipeline_layout(ctx, c->set_layout, sizeof(CompositePush), VK_SHADER_STAGE_COMPUTE_BIT, "composite");
     c->set = gpu_alloc_set(ctx, c->pool, c->set_layout, "composite");
     const pass_shared *s = &r->shared;
-    gpu_write_uniform(ctx, c->set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
-    gpu_write_sampled(ctx, c->set, 1, r->luts.transmittance.view, s->linear_clamp);
-    gpu_write_sampled(ctx, c->set, 2, r->luts.multiscatter_view, s->linear_clamp);
-    gpu_write_sampled(ctx, c->set, 3, c->input.view, c->nearest);
-    gpu_write_storage(ctx, c->set, 4, c->output.view);
-    gpu_write_sampled(ctx, c->set, 5, r->luts.ground_irradiance_view, s->linear_clamp);
+    gpu_write_uniform(ctx, c->set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
+    gpu_write_sampled(ctx, c->set, VKSKY_BINDING_TRANSMITTANCE_LUT, r->luts.transmittance.view, s->linear_clamp);
+    gpu_write_sampled(ctx, c->set, VKSKY_BINDING_MULTISCATTER_LUT, r->luts.multiscatter_view, s->linear_clamp);
+    gpu_write_sampled(ctx, c->set, VKSKY_BINDING_GROUND_IRRADIANCE_LUT, r->luts.ground_irradiance_view,
+                      s->linear_clamp);
+    gpu_write_sampled(ctx, c->set, VKSKY_BINDING_COMPOSITE_IN, c->input.view, c->nearest);
+    gpu_write_storage(ctx, c->set, VKSKY_BINDING_OUTPUT, c->output.view);
     VkShaderModule m;
     if (c->has_volume) {
-        gpu_write_sampled(ctx, c->set, 6, c->volume.image.view, s->linear_clamp);
+        gpu_write_sampled(ctx, c->set, VKSKY_BINDING_AP_VOLUME, c->volume.image.view, s->linear_clamp);
         ap_volume_spec spec;
         ap_volume_spec_make(s->spec, volume, &spec);
         m = gpu_shader_module(ctx, spv_composite_volume_comp, sizeof spv_composite_volume_comp, "composite.comp");
@@ -242,7 +246,6 @@ const float *sky_composite_layer(const sky_composite *c, int k)
 /* A pass: trace line, debug label, GPU timestamps (as frame.c's passes). */
 static uint32_t pass_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
 {
-    if (r->pass_trace) fprintf(r->pass_trace, "pass %s\n", pass);
     gpu_label_begin(r->ctx, cmd, pass);
     return gpu_timer_begin(&r->timer, cmd, pass);
 }
@@ -254,7 +257,7 @@ static void pass_end(sky_renderer *r, VkCommandBuffer cmd, uint32_t slot)
 }
 
 void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer cmd, const CompositePush *push,
-                            bool force_luts)
+                            bool force_luts, bool follows_frame)
 {
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     r->active_timer = &r->timer;
@@ -313,6 +316,12 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
     b = gpu_barrier_batch_begin("after composite");
     gpu_barrier_add_image(&b, "aovs.write_to_copy", "aovs", c->output.image, one, GPU_USAGE_COMPUTE_STORAGE_WRITE,
                           GPU_USAGE_TRANSFER_SRC, false);
+    /* The previous frame's copy wrote the readback buffer; this frame's copy rewrites it: WAW. Between real frames
+     * the fence and the host's read order them; frames recorded back to back into one command buffer
+     * (VKSKY_FRAMES) need this barrier instead. */
+    if (follows_frame)
+        gpu_barrier_add_buffer(&b, "frames.aovs_readback", "aovs_readback", c->readback.buffer, GPU_USAGE_TRANSFER_DST,
+                               GPU_USAGE_TRANSFER_DST);
     gpu_barrier_flush(cmd, &b);
     t = pass_begin(r, cmd, "composite_readback");
     region.imageExtent = (VkExtent3D){c->width, VKSKY_AOV_COUNT * c->height, 1};
@@ -330,17 +339,8 @@ void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer c
 double sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames)
 {
     VkCommandBuffer cmd = gpu_begin_commands(r->ctx);
-    for (int i = 0; i < (frames > 1 ? frames : 1) && i < 16; ++i) {
-        if (i > 0) {
-            /* Between real frames the fence and the host's read order the next copy into the readback buffer
-             * after the previous one; in one command buffer (VKSKY_FRAMES) this barrier stands in for them. */
-            gpu_barrier_batch b = gpu_barrier_batch_begin("between frames (VKSKY_FRAMES)");
-            gpu_barrier_add_buffer(&b, "frames.aovs_readback", "aovs_readback", c->readback.buffer,
-                                   GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
-            gpu_barrier_flush(cmd, &b);
-        }
-        composite_frame_record(r, c, cmd, push, i > 0);
-    }
+    for (int i = 0; i < (frames > 1 ? frames : 1) && i < 16; ++i)
+        composite_frame_record(r, c, cmd, push, i > 0, i > 0);
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     gpu_submit_and_wait(r->ctx, cmd);

@@ -66,9 +66,10 @@ float *sky_composite_inputs(sky_composite *c);
 /* After rendering: layer k (VKSKY_AOV_*) as width x height RGBA floats. */
 const float *sky_composite_layer(const sky_composite *c, int k);
 
-/* The composite frame, in order, with its barriers (composite.c). */
+/* The composite frame, in order, with its barriers (composite.c). `follows_frame`: another composite frame was
+ * recorded before this one into the same command buffer (VKSKY_FRAMES); its copy wrote the readback buffer. */
 void composite_frame_record(sky_renderer *r, sky_composite *c, VkCommandBuffer cmd, const CompositePush *push,
-                            bool force_luts);
+                            bool force_luts, bool follows_frame);
 /* Record `frames` frames (tests: VKSKY_FRAMES) into one command buffer, submit, wait, read back. Returns wall
  * milliseconds from submit to fence. */
 double sky_composite_render(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames);

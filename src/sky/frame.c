@@ -2,7 +2,10 @@
  *
  * Read this function top to bottom beside docs/synchronization.md. Each barrier names who wrote, who reads and
  * the hazard it prevents (RAW read-after-write, WAR write-after-read, WAW, layout transition). Passes record
- * their own draws/dispatches (luts.c, sky_pass.c, bloom.c, tonemap.c); barriers live only here. */
+ * their own draws/dispatches (luts.c, sky_pass.c, bloom.c, tonemap.c); barriers live only in the frame functions,
+ * one per kind of frame, each read top to bottom: frame_record (a view: headless, bands, sequences, the window,
+ * readback and capture included), frame_record_lut_readback (a LUT to the host, tests) here, and
+ * composite_frame_record (the composite's frame, composite.c). Nothing else in src/ records a barrier. */
 #include "sky/frame.h"
 #include "sky/view_params.h"
 
@@ -17,9 +20,9 @@
 #define HDR_LAST_USE_COMPUTE GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED
 #define CHAIN_LAST_USE_COMPUTE GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED
 
+/* A pass: its debug label (gpu_label_begin also prints its `pass` trace line, the one pass trace) and timestamps. */
 static uint32_t timed_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
 {
-    if (r->pass_trace) fprintf(r->pass_trace, "pass %s\n", pass);
     gpu_label_begin(r->ctx, cmd, pass);
     return gpu_timer_begin(r->active_timer, cmd, pass);
 }
@@ -173,14 +176,23 @@ void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_bar
 /* Step 5, readback: the tone map (`writer`) wrote the display and composite images; the copies read them: RAW +
  * layout. Then the copies wrote the host buffers; the CPU reads them after the fence: RAW (a fence alone does
  * not make device writes visible to the host; the HOST_READ barrier does). */
-static void record_readback(sky_renderer *r, VkCommandBuffer cmd, gpu_usage writer, const char *display_name,
-                            const char *composite_name)
+static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f, gpu_usage writer,
+                            const char *display_name, const char *composite_name)
 {
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     gpu_barrier_batch b = gpu_barrier_batch_begin("before readback");
     gpu_barrier_add_image(&b, display_name, "display", r->display.image, one, writer, GPU_USAGE_TRANSFER_SRC, false);
     gpu_barrier_add_image(&b, composite_name, "composite", r->composite.image, one, writer, GPU_USAGE_TRANSFER_SRC,
                           false);
+    if (f->follows_frame) {
+        /* The previous frame's copies wrote the readback buffers; this frame's copies rewrite them: WAW. Between
+         * real frames the fence wait and the host's read order them; frames recorded back to back into one command
+         * buffer (VKSKY_FRAMES) need this barrier instead. */
+        gpu_barrier_add_buffer(&b, "frames.readback_linear", "readback_linear", r->readback_linear.buffer,
+                               GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
+        gpu_barrier_add_buffer(&b, "frames.readback_display", "readback_display", r->readback_display.buffer,
+                               GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
+    }
     gpu_barrier_flush(cmd, &b);
     uint32_t t = timed_begin(r, cmd, "readback");
     copy_to_buffer(cmd, r->composite.image, r->composite.extent, r->readback_linear.buffer);
@@ -310,7 +322,7 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
         post_record_tonemap(pc, bl, cmd, r->display.extent, &tm);
         timed_end(r, cmd, t);
         if (r->desc.readback) {
-            record_readback(r, cmd, GPU_USAGE_COMPUTE_STORAGE_WRITE, "display.storage_to_copy",
+            record_readback(r, cmd, f, GPU_USAGE_COMPUTE_STORAGE_WRITE, "display.storage_to_copy",
                             "composite.storage_to_copy");
         }
         return true;
@@ -429,7 +441,8 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
 
     /* 5. Readback (headless): record_readback. */
     if (r->desc.readback && !f->target) {
-        record_readback(r, cmd, GPU_USAGE_COLOR_ATTACHMENT_WRITE, "display.write_to_copy", "composite.write_to_copy");
+        record_readback(r, cmd, f, GPU_USAGE_COLOR_ATTACHMENT_WRITE, "display.write_to_copy",
+                        "composite.write_to_copy");
     }
 
     /* 6. An external target (swapchain image): optionally captured (screenshot), then handed to its next user.
@@ -457,4 +470,26 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                                   false);
         gpu_barrier_flush(cmd, &b);
     }
+}
+
+/* The LUT readback's frame (tests). The LUT passes wrote the LUT and made it readable by shaders; the copy reads it:
+ * RAW + layout to TRANSFER_SRC. Then the image goes back to the sampled layout for later frames (WAR against the
+ * copy) and the copy's writes to the host buffer are made visible to the host after the fence (RAW). */
+void frame_record_lut_readback(sky_renderer *r, VkCommandBuffer cmd, const gpu_image *img, const char *name,
+                               VkBuffer buffer)
+{
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before lut readback");
+    gpu_barrier_add_image(&b, "lut_readback.to_copy", name, img->image, one, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED,
+                          GPU_USAGE_TRANSFER_SRC, false);
+    gpu_barrier_flush(cmd, &b);
+    gpu_label_begin(r->ctx, cmd, "lut_readback");
+    copy_to_buffer(cmd, img->image, img->extent, buffer);
+    gpu_label_end(r->ctx, cmd);
+    b = gpu_barrier_batch_begin("after lut readback");
+    gpu_barrier_add_image(&b, "lut_readback.to_sample", name, img->image, one, GPU_USAGE_TRANSFER_SRC,
+                          GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    gpu_barrier_add_buffer(&b, "lut_readback.to_host", "lut_readback", buffer, GPU_USAGE_TRANSFER_DST,
+                           GPU_USAGE_HOST_READ);
+    gpu_barrier_flush(cmd, &b);
 }

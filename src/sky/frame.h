@@ -19,6 +19,8 @@ typedef struct frame_desc {
     bool force_luts;             /* recompute the LUTs even if they are up to date (benchmarks) */
     const frame_target *target;  /* NULL: the renderer's own display image (headless) */
     gpu_timer *timer;            /* NULL: the renderer's timer (one per frame in flight otherwise) */
+    bool follows_frame;          /* another frame was recorded before this one into the same command buffer
+                                    (VKSKY_FRAMES): its readback copies wrote the buffers this frame's rewrite */
 } frame_desc;
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 /* A frame's first step alone (the composite frame's too): the LUT passes and their barriers, when the atmosphere
@@ -26,5 +28,9 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 /* `next`: the batch of the point after the LUTs, which receives their last barrier (one call per point); NULL:
  * flushed here. */
 void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next);
+/* A frame of its own (tests): LUT `img` (named `name`, last made readable by a LUT pass) copied into the host buffer
+ * `buffer`, and back to the sampled layout for later frames. */
+void frame_record_lut_readback(sky_renderer *r, VkCommandBuffer cmd, const gpu_image *img, const char *name,
+                               VkBuffer buffer);
 
 #endif

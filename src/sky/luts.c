@@ -32,54 +32,64 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
 
     const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                            STORAGE = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    VkDescriptorType t_types[] = {UBO, STORAGE};
-    l->transmittance_set_layout = gpu_set_layout(ctx, t_types, 2, VK_SHADER_STAGE_COMPUTE_BIT, "transmittance set layout");
+    /* Binding numbers: shaders/glsl/bindings.h, one slot per resource in every pass. */
+    const gpu_slot t_slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_OUTPUT, STORAGE}};
+    l->transmittance_set_layout = gpu_set_layout(ctx, t_slots, 2, VK_SHADER_STAGE_COMPUTE_BIT, "transmittance set layout");
     l->transmittance_layout = gpu_pipeline_layout(ctx, l->transmittance_set_layout, 0, 0, "transmittance layout");
     l->transmittance_pipeline = compute_pipeline(s, l->transmittance_layout,
                                                  q->lut_f32 ? &spirv_transmittance_lut_f32 : &spirv_transmittance_lut,
                                                  "transmittance LUT");
     l->transmittance_set = gpu_alloc_set(ctx, s->pool, l->transmittance_set_layout, "transmittance set");
-    gpu_write_uniform(ctx, l->transmittance_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
-    gpu_write_storage(ctx, l->transmittance_set, 1, l->transmittance.view);
+    gpu_write_uniform(ctx, l->transmittance_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
+                      sizeof(AtmosphereParams));
+    gpu_write_storage(ctx, l->transmittance_set, VKSKY_BINDING_OUTPUT, l->transmittance.view);
 
     if (multiscatter) {
-        VkDescriptorType m_types[] = {UBO, SAMPLED, STORAGE};
-        l->multiscatter_set_layout = gpu_set_layout(ctx, m_types, 3, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
+        const gpu_slot m_slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_TRANSMITTANCE_LUT, SAMPLED},
+                                    {VKSKY_BINDING_OUTPUT, STORAGE}};
+        l->multiscatter_set_layout = gpu_set_layout(ctx, m_slots, 3, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
         l->multiscatter_layout = gpu_pipeline_layout(ctx, l->multiscatter_set_layout, 0, 0, "multiscatter layout");
         l->multiscatter_pipeline = compute_pipeline(s, l->multiscatter_layout,
                                                     q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut,
                                                     "multiscatter LUT");
         l->multiscatter_set = gpu_alloc_set(ctx, s->pool, l->multiscatter_set_layout, "multiscatter set");
-        gpu_write_uniform(ctx, l->multiscatter_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
-        gpu_write_sampled(ctx, l->multiscatter_set, 1, l->transmittance.view, s->linear_clamp);
-        gpu_write_storage(ctx, l->multiscatter_set, 2, l->multiscatter.view);
+        gpu_write_uniform(ctx, l->multiscatter_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
+                          sizeof(AtmosphereParams));
+        gpu_write_sampled(ctx, l->multiscatter_set, VKSKY_BINDING_TRANSMITTANCE_LUT, l->transmittance.view,
+                          s->linear_clamp);
+        gpu_write_storage(ctx, l->multiscatter_set, VKSKY_BINDING_OUTPUT, l->multiscatter.view);
     }
 
     if (ground) {
         gpu_image_create(ctx, &l->ground_irradiance, "ground irradiance LUT", format, 64, 1, 1, usage);
-        VkDescriptorType g_types[] = {UBO, SAMPLED, SAMPLED, STORAGE};
-        l->ground_set_layout = gpu_set_layout(ctx, g_types, 4, VK_SHADER_STAGE_COMPUTE_BIT, "ground irradiance set layout");
+        const gpu_slot g_slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_TRANSMITTANCE_LUT, SAMPLED},
+                                    {VKSKY_BINDING_MULTISCATTER_LUT, SAMPLED}, {VKSKY_BINDING_OUTPUT, STORAGE}};
+        l->ground_set_layout = gpu_set_layout(ctx, g_slots, 4, VK_SHADER_STAGE_COMPUTE_BIT, "ground irradiance set layout");
         l->ground_layout = gpu_pipeline_layout(ctx, l->ground_set_layout, 0, 0, "ground irradiance layout");
         l->ground_pipeline = compute_pipeline(s, l->ground_layout, &spirv_ground_irradiance_lut, "ground irradiance LUT");
         l->ground_set = gpu_alloc_set(ctx, s->pool, l->ground_set_layout, "ground irradiance set");
-        gpu_write_uniform(ctx, l->ground_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
-        gpu_write_sampled(ctx, l->ground_set, 1, l->transmittance.view, s->linear_clamp);
-        gpu_write_sampled(ctx, l->ground_set, 2, l->multiscatter_view, s->linear_clamp);
-        gpu_write_storage(ctx, l->ground_set, 3, l->ground_irradiance.view);
+        gpu_write_uniform(ctx, l->ground_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
+                          sizeof(AtmosphereParams));
+        gpu_write_sampled(ctx, l->ground_set, VKSKY_BINDING_TRANSMITTANCE_LUT, l->transmittance.view, s->linear_clamp);
+        gpu_write_sampled(ctx, l->ground_set, VKSKY_BINDING_MULTISCATTER_LUT, l->multiscatter_view, s->linear_clamp);
+        gpu_write_storage(ctx, l->ground_set, VKSKY_BINDING_OUTPUT, l->ground_irradiance.view);
     }
     l->ground_irradiance_view = ground ? l->ground_irradiance.view : l->transmittance.view;
 
-    VkDescriptorType v_types[] = {UBO, SAMPLED, SAMPLED, STORAGE, SAMPLED};
-    l->skyview_set_layout = gpu_set_layout(ctx, v_types, 5, VK_SHADER_STAGE_COMPUTE_BIT, "skyview set layout");
+    const gpu_slot v_slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_TRANSMITTANCE_LUT, SAMPLED},
+                                {VKSKY_BINDING_MULTISCATTER_LUT, SAMPLED}, {VKSKY_BINDING_GROUND_IRRADIANCE_LUT, SAMPLED},
+                                {VKSKY_BINDING_OUTPUT, STORAGE}};
+    l->skyview_set_layout = gpu_set_layout(ctx, v_slots, 5, VK_SHADER_STAGE_COMPUTE_BIT, "skyview set layout");
     l->skyview_layout = gpu_pipeline_layout(ctx, l->skyview_set_layout, sizeof(SkyPush), VK_SHADER_STAGE_COMPUTE_BIT,
                                             "skyview layout");
     l->skyview_pipeline = compute_pipeline(s, l->skyview_layout, &spirv_skyview_lut, "skyview LUT");
     l->skyview_set = gpu_alloc_set(ctx, s->pool, l->skyview_set_layout, "skyview set");
-    gpu_write_uniform(ctx, l->skyview_set, 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
-    gpu_write_sampled(ctx, l->skyview_set, 1, l->transmittance.view, s->linear_clamp);
-    gpu_write_sampled(ctx, l->skyview_set, 2, l->multiscatter_view, s->linear_clamp);
-    gpu_write_storage(ctx, l->skyview_set, 3, l->skyview.view);
-    gpu_write_sampled(ctx, l->skyview_set, 4, l->ground_irradiance_view, s->linear_clamp);
+    gpu_write_uniform(ctx, l->skyview_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
+    gpu_write_sampled(ctx, l->skyview_set, VKSKY_BINDING_TRANSMITTANCE_LUT, l->transmittance.view, s->linear_clamp);
+    gpu_write_sampled(ctx, l->skyview_set, VKSKY_BINDING_MULTISCATTER_LUT, l->multiscatter_view, s->linear_clamp);
+    gpu_write_sampled(ctx, l->skyview_set, VKSKY_BINDING_GROUND_IRRADIANCE_LUT, l->ground_irradiance_view,
+                      s->linear_clamp);
+    gpu_write_storage(ctx, l->skyview_set, VKSKY_BINDING_OUTPUT, l->skyview.view);
 }
 
 void luts_destroy(sky_luts *l, const pass_shared *s)

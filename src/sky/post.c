@@ -47,39 +47,40 @@ static void create_bloom(post_compute *p, const pass_shared *s, const gpu_image 
 
     /* The single pass: the HDR image (sampled), 8 mip bindings (levels past the chain repeat its last mip; the
      * shader never touches them), the counters. */
-    VkDescriptorType spd_types[10] = {SAMPLED, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE, STORAGE};
-    p->spd_set_layout = gpu_set_layout(ctx, spd_types, 10, VK_SHADER_STAGE_COMPUTE_BIT, "bloom spd set layout");
+    gpu_slot spd_slots[2 + BLOOM_MAX_MIPS] = {{VKSKY_BINDING_POST_SOURCE, SAMPLED}, {VKSKY_BINDING_SPD_COUNTERS, STORAGE}};
+    for (uint32_t k = 0; k < BLOOM_MAX_MIPS; ++k) spd_slots[2 + k] = (gpu_slot){VKSKY_BINDING_POST_MIP + k, STORAGE};
+    p->spd_set_layout = gpu_set_layout(ctx, spd_slots, 2 + BLOOM_MAX_MIPS, VK_SHADER_STAGE_COMPUTE_BIT, "bloom spd set layout");
     p->spd_layout = gpu_pipeline_layout(ctx, p->spd_set_layout, sizeof(PostPush), VK_SHADER_STAGE_COMPUTE_BIT, "bloom spd layout");
     /* Written in the Vulkan memory model at device scope: without vulkanMemoryModelDeviceScope (optional even in
      * Vulkan 1.3) there is no single pass, and frame.c records the per-level downsample instead. */
     if (ctx->memory_model_device_scope)
         p->spd_pipeline = compute_pipeline(ctx, p->spd_layout, &spirv_bloom_spd, "bloom spd");
     p->spd_set = gpu_alloc_set(ctx, p->pool, p->spd_set_layout, "bloom spd set");
-    write_image(ctx, p->spd_set, 0, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    write_image(ctx, p->spd_set, VKSKY_BINDING_POST_SOURCE, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     for (uint32_t k = 0; k < BLOOM_MAX_MIPS; ++k) {
         uint32_t m = k < b->mip_count ? k : b->mip_count - 1;
-        write_image(ctx, p->spd_set, 1 + k, STORAGE, b->mips.mip_views[m], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+        write_image(ctx, p->spd_set, VKSKY_BINDING_POST_MIP + k, STORAGE, b->mips.mip_views[m], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
     }
-    write_image(ctx, p->spd_set, 9, STORAGE, p->counters.view, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+    write_image(ctx, p->spd_set, VKSKY_BINDING_SPD_COUNTERS, STORAGE, p->counters.view, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
 
     /* Upsamples: mip i + 1 sampled (GENERAL: the whole chain stays in GENERAL), mip i read-modify-written. */
-    VkDescriptorType up_types[2] = {SAMPLED, STORAGE};
-    p->up_set_layout = gpu_set_layout(ctx, up_types, 2, VK_SHADER_STAGE_COMPUTE_BIT, "bloom up set layout");
+    const gpu_slot up_slots[] = {{VKSKY_BINDING_POST_SOURCE, SAMPLED}, {VKSKY_BINDING_POST_MIP, STORAGE}};
+    p->up_set_layout = gpu_set_layout(ctx, up_slots, 2, VK_SHADER_STAGE_COMPUTE_BIT, "bloom up set layout");
     p->up_layout = gpu_pipeline_layout(ctx, p->up_set_layout, sizeof(PostPush), VK_SHADER_STAGE_COMPUTE_BIT, "bloom up layout");
     p->up_pipeline = compute_pipeline(ctx, p->up_layout, &spirv_bloom_up_comp, "bloom upsample (compute)");
     p->down_pipeline = compute_pipeline(ctx, p->up_layout, &spirv_bloom_down_comp, "bloom downsample (compute)");
     for (uint32_t k = 0; k < b->mip_count; ++k) {
         p->down_sets[k] = gpu_alloc_set(ctx, p->pool, p->up_set_layout, "bloom down set");
         if (k == 0)
-            write_image(ctx, p->down_sets[k], 0, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            write_image(ctx, p->down_sets[k], VKSKY_BINDING_POST_SOURCE, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         else
-            write_image(ctx, p->down_sets[k], 0, SAMPLED, b->mips.mip_views[k - 1], s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
-        write_image(ctx, p->down_sets[k], 1, STORAGE, b->mips.mip_views[k], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+            write_image(ctx, p->down_sets[k], VKSKY_BINDING_POST_SOURCE, SAMPLED, b->mips.mip_views[k - 1], s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
+        write_image(ctx, p->down_sets[k], VKSKY_BINDING_POST_MIP, STORAGE, b->mips.mip_views[k], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
     }
     for (uint32_t i = 0; i + 1 < b->mip_count; ++i) {
         p->up_sets[i] = gpu_alloc_set(ctx, p->pool, p->up_set_layout, "bloom up set");
-        write_image(ctx, p->up_sets[i], 0, SAMPLED, b->mips.mip_views[i + 1], s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
-        write_image(ctx, p->up_sets[i], 1, STORAGE, b->mips.mip_views[i], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+        write_image(ctx, p->up_sets[i], VKSKY_BINDING_POST_SOURCE, SAMPLED, b->mips.mip_views[i + 1], s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
+        write_image(ctx, p->up_sets[i], VKSKY_BINDING_POST_MIP, STORAGE, b->mips.mip_views[i], VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
     }
 }
 
@@ -97,27 +98,29 @@ void post_compute_create(post_compute *p, const pass_shared *s, const gpu_image 
     if (bloom) create_bloom(p, s, hdr, bloom);
     if (!p->tonemap) return;
     const VkDescriptorType SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, STORAGE = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    VkDescriptorType types[5] = {SAMPLED, SAMPLED, SAMPLED, STORAGE, STORAGE};
-    p->tonemap_set_layout = gpu_set_layout(ctx, types, p->composite ? 5 : 4, VK_SHADER_STAGE_COMPUTE_BIT, "tonemap (compute) set layout");
+    const gpu_slot slots[] = {{VKSKY_BINDING_POST_SOURCE, SAMPLED}, {VKSKY_BINDING_POST_MIP, SAMPLED},
+                              {VKSKY_BINDING_POST_MIP + 1, SAMPLED}, {VKSKY_BINDING_TONEMAP_DISPLAY, STORAGE},
+                              {VKSKY_BINDING_TONEMAP_COMPOSITE, STORAGE}};
+    p->tonemap_set_layout = gpu_set_layout(ctx, slots, p->composite ? 5 : 4, VK_SHADER_STAGE_COMPUTE_BIT, "tonemap (compute) set layout");
     p->tonemap_layout = gpu_pipeline_layout(ctx, p->tonemap_set_layout, sizeof(PostPush), VK_SHADER_STAGE_COMPUTE_BIT,
                                             "tonemap (compute) layout");
     p->tonemap_pipeline = compute_pipeline(ctx, p->tonemap_layout,
                                            p->composite ? &spirv_tonemap_composite_comp : &spirv_tonemap_comp,
                                            "tonemap (compute)");
     p->tonemap_set = gpu_alloc_set(ctx, p->pool, p->tonemap_set_layout, "tonemap (compute) set");
-    write_image(ctx, p->tonemap_set, 0, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    write_image(ctx, p->tonemap_set, VKSKY_BINDING_POST_SOURCE, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     /* Without a chain the HDR image stands in for the bloom mips (never sampled: strength 0). */
     for (uint32_t i = 0; i < 2; ++i) {
         if (bloom) {
             VkImageView v = bloom->mips.mip_views[i < bloom->mip_count ? i : 0];
-            write_image(ctx, p->tonemap_set, 1 + i, SAMPLED, v, s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
+            write_image(ctx, p->tonemap_set, VKSKY_BINDING_POST_MIP + i, SAMPLED, v, s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
         } else {
-            write_image(ctx, p->tonemap_set, 1 + i, SAMPLED, hdr->view, s->linear_clamp,
+            write_image(ctx, p->tonemap_set, VKSKY_BINDING_POST_MIP + i, SAMPLED, hdr->view, s->linear_clamp,
                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         }
     }
-    write_image(ctx, p->tonemap_set, 3, STORAGE, display, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
-    if (p->composite) write_image(ctx, p->tonemap_set, 4, STORAGE, composite, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+    write_image(ctx, p->tonemap_set, VKSKY_BINDING_TONEMAP_DISPLAY, STORAGE, display, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+    if (p->composite) write_image(ctx, p->tonemap_set, VKSKY_BINDING_TONEMAP_COMPOSITE, STORAGE, composite, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
 }
 
 void post_compute_destroy(post_compute *p, const pass_shared *s)

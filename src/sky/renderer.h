@@ -53,7 +53,6 @@ typedef struct sky_renderer {
     sky_variant variant;         /* of the pipelines built now */
     VkSpecializationMapEntry spec_entries[VKSKY_SPEC_COUNT];
     VkSpecializationInfo spec;
-    FILE *pass_trace;            /* non-NULL: print "pass <name>" for every pass a frame records */
     uint64_t lut_hash;           /* of the atmosphere the LUTs hold; 0: never computed */
     bool luts_valid;
     int variant_builds;          /* times the variant's pipelines were built (--timings) */

@@ -35,19 +35,23 @@ void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
 {
     const gpu_context *ctx = s->ctx;
     const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    VkDescriptorType types[] = {UBO, SAMPLED, SAMPLED, SAMPLED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, SAMPLED};
+    const gpu_slot slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_TRANSMITTANCE_LUT, SAMPLED},
+                              {VKSKY_BINDING_MULTISCATTER_LUT, SAMPLED}, {VKSKY_BINDING_SKYVIEW_LUT, SAMPLED},
+                              {VKSKY_BINDING_GROUND_IRRADIANCE_LUT, SAMPLED},
+                              {VKSKY_BINDING_OUTPUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
     VkShaderStageFlags stages[2] = {VK_SHADER_STAGE_FRAGMENT_BIT, VK_SHADER_STAGE_COMPUTE_BIT};
     const char *names[2] = {"sky (fragment)", "sky (compute)"};
     for (int kind = 0; kind < 2; ++kind) {
-        /* Binding 4 (the HDR storage image) is the compute path's; the fragment layout leaves it unused. */
-        p->set_layouts[kind] = gpu_set_layout(ctx, types, 6, stages[kind], names[kind]);
+        /* VKSKY_BINDING_OUTPUT (the HDR storage image) is the compute path's; the fragment layout leaves it unused. */
+        p->set_layouts[kind] = gpu_set_layout(ctx, slots, 6, stages[kind], names[kind]);
         p->layouts[kind] = gpu_pipeline_layout(ctx, p->set_layouts[kind], sizeof(SkyPush), stages[kind], names[kind]);
         p->sets[kind] = gpu_alloc_set(ctx, s->pool, p->set_layouts[kind], names[kind]);
-        gpu_write_uniform(ctx, p->sets[kind], 0, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
-        gpu_write_sampled(ctx, p->sets[kind], 1, luts->transmittance.view, s->linear_clamp);
-        gpu_write_sampled(ctx, p->sets[kind], 2, luts->multiscatter_view, s->linear_clamp);
-        gpu_write_sampled(ctx, p->sets[kind], 3, luts->skyview.view, s->linear_clamp);
-        gpu_write_sampled(ctx, p->sets[kind], 5, luts->ground_irradiance_view, s->linear_clamp);
+        VkDescriptorSet set = p->sets[kind];
+        gpu_write_uniform(ctx, set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
+        gpu_write_sampled(ctx, set, VKSKY_BINDING_TRANSMITTANCE_LUT, luts->transmittance.view, s->linear_clamp);
+        gpu_write_sampled(ctx, set, VKSKY_BINDING_MULTISCATTER_LUT, luts->multiscatter_view, s->linear_clamp);
+        gpu_write_sampled(ctx, set, VKSKY_BINDING_SKYVIEW_LUT, luts->skyview.view, s->linear_clamp);
+        gpu_write_sampled(ctx, set, VKSKY_BINDING_GROUND_IRRADIANCE_LUT, luts->ground_irradiance_view, s->linear_clamp);
         /* The blend variant, the largest shader, is built at its first use (a camera above 10 km): lavapipe compiles
          * at creation, a second or more of every run's start. */
         for (int mode = 0; mode < 3; ++mode) p->pipelines[kind][mode] = make_pipeline(p, s, kind, mode);
@@ -58,7 +62,7 @@ void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
 
 void sky_pass_set_target(sky_pass *p, const pass_shared *s, const gpu_image *hdr)
 {
-    gpu_write_storage(s->ctx, p->sets[SKY_PASS_COMPUTE], 4, hdr->view);
+    gpu_write_storage(s->ctx, p->sets[SKY_PASS_COMPUTE], VKSKY_BINDING_OUTPUT, hdr->view);
 }
 
 void sky_pass_destroy(sky_pass *p, const pass_shared *s)

@@ -41,23 +41,7 @@ VkFormat sky_renderer_read_lut(sky_renderer *r, int which, void *texels_out)
     gpu_buffer_create(ctx, &buf, "lut readback", count * (f32 ? sizeof(float) : sizeof(uint16_t)),
                       VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     VkCommandBuffer cmd = gpu_begin_commands(ctx);
-    /* The LUT passes wrote the LUT and made it readable by shaders; the copy reads it: to TRANSFER_SRC. */
-    gpu_barrier_batch b = gpu_barrier_batch_begin("before lut readback");
-    gpu_barrier_add_image(&b, "lut_readback.to_copy", name, img->image, gpu_color_range(0, 1),
-                          GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, GPU_USAGE_TRANSFER_SRC, false);
-    gpu_barrier_flush(cmd, &b);
-    VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                                .imageExtent = {img->extent.width, img->extent.height, 1}};
-    gpu_label_begin(ctx, cmd, "lut_readback");
-    vkCmdCopyImageToBuffer(cmd, img->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buf.buffer, 1, &region);
-    gpu_label_end(ctx, cmd);
-    /* Back to the sampled layout for later frames (WAR against the copy); the buffer to the host (RAW). */
-    b = gpu_barrier_batch_begin("after lut readback");
-    gpu_barrier_add_image(&b, "lut_readback.to_sample", name, img->image, gpu_color_range(0, 1),
-                          GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
-    gpu_barrier_add_buffer(&b, "lut_readback.to_host", "lut_readback", buf.buffer, GPU_USAGE_TRANSFER_DST,
-                           GPU_USAGE_HOST_READ);
-    gpu_barrier_flush(cmd, &b);
+    frame_record_lut_readback(r, cmd, img, name, buf.buffer);
     gpu_submit_and_wait(ctx, cmd);
     gpu_buffer_invalidate(ctx, &buf);
     /* As stored: the half -> float conversion is the caller's (io/ has it; sky/ may not include io/). */

@@ -6,8 +6,9 @@ void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view,
 {
     const gpu_context *ctx = s->ctx;
     t->composite = composite;
-    VkDescriptorType types[] = {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
-    t->set_layout = gpu_set_layout(ctx, types, 2, VK_SHADER_STAGE_FRAGMENT_BIT, "tonemap set layout");
+    const gpu_slot slots[] = {{VKSKY_BINDING_POST_SOURCE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                              {VKSKY_BINDING_POST_MIP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
+    t->set_layout = gpu_set_layout(ctx, slots, 2, VK_SHADER_STAGE_FRAGMENT_BIT, "tonemap set layout");
     t->layout = gpu_pipeline_layout(ctx, t->set_layout, sizeof(TonemapPush), VK_SHADER_STAGE_FRAGMENT_BIT, "tonemap layout");
     const sky_spirv *spv = composite ? &spirv_tonemap_composite : &spirv_tonemap;
     VkShaderModule fs = gpu_shader_module(ctx, spv->code, spv->size, composite ? "tonemap_composite.frag" : "tonemap.frag");
@@ -16,8 +17,8 @@ void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view,
                                           GPU_BLEND_NONE, "tonemap");
     vkDestroyShaderModule(ctx->device, fs, NULL);
     t->set = gpu_alloc_set(ctx, s->pool, t->set_layout, "tonemap set");
-    gpu_write_sampled(ctx, t->set, 0, hdr_view, s->linear_clamp);
-    gpu_write_sampled(ctx, t->set, 1, bloom_view, s->linear_clamp);
+    gpu_write_sampled(ctx, t->set, VKSKY_BINDING_POST_SOURCE, hdr_view, s->linear_clamp);
+    gpu_write_sampled(ctx, t->set, VKSKY_BINDING_POST_MIP, bloom_view, s->linear_clamp);
 }
 
 void tonemap_destroy(tonemap_pass *t, const pass_shared *s)
