@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The layout, checked (docs/architecture.md): each module of src/ includes only the modules below it, no two
 # source units include each other (directly or around a circle), no two files of src/reference call each other
-# (directly or around a circle), and no file in src/ is longer than a newcomer
+# (directly or around a circle), no binding number outside shaders/glsl/bindings.h, and no file in src/ is longer
+# than a newcomer
 # reads in one sitting (600 lines).
 #
 #   app -> sky -> gpu          app -> io        app -> reference -> model        sky -> model
@@ -91,6 +92,17 @@ loops=$(tsort "$calls" 2>&1 >/dev/null | grep -v '^tsort: .*: input contains a l
 if [ -n "$loops" ]; then
   echo "layering: call circle between files (each calls a function the other defines):"; echo "$loops" | sed 's/^tsort: /  /'
   fail=1
+fi
+
+# Bindings defined once (shaders/glsl/bindings.h, for C and GLSL): no shader declares a binding by number, no C call
+# writes a descriptor to a numbered binding, no set layout is built from a bare list of types.
+if [ -d ../shaders/glsl ]; then
+  literal=$(grep -nE 'binding[[:space:]]*=[[:space:]]*[0-9]' ../shaders/glsl/* | grep -v '^../shaders/glsl/bindings.h:')
+  literal+=$(grep -nE '(gpu_write_(uniform|sampled|storage)|write_image)\([^,]+,[^,]+,[[:space:]]*[0-9]' */*.c)
+  if [ -n "$literal" ]; then
+    echo "layering: binding numbers outside shaders/glsl/bindings.h (name them there):"; echo "$literal" | sed 's/^/  /'
+    fail=1
+  fi
 fi
 
 # File length.

@@ -5,11 +5,14 @@
  * stage, access and layout a scenario there uses for the same kind of access. Then the builder: the source side
  * carries only write accesses, a discard starts from UNDEFINED, every field lands where it belongs; the hazard
  * names; and the trace line format that tools/sync_doc.sh parses. No device is created: building a barrier and
- * adding it to a batch record nothing (only gpu_barrier_flush calls Vulkan). */
+ * adding it to a batch record nothing (only gpu_barrier_flush calls Vulkan). Also: buffer hazards, the one pass
+ * trace, and each batch array's overflow check. */
 #include "gpu/barrier.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include "check.h"
 
 /* Read access bits of synchronization2 (everything gpu_write_accesses must drop). */
@@ -375,6 +378,116 @@ static void test_weaken_and_memory(void)
     CHECK(strcmp(text, want) == 0, "trace:\n%s\nexpected:\n%s", text, want);
 }
 
+/* A buffer barrier's hazard is computed from its two usages like an image's (no layout): the readback buffer that
+ * the next frame's copy rewrites is write-after-write, a copy source then rewritten is write-after-read. */
+static void test_buffer_hazards(void)
+{
+    FILE *f = tmpfile();
+    CHECK(f != NULL, "tmpfile");
+    if (!f) return;
+    gpu_barrier_trace(f);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("p");
+    gpu_barrier_add_buffer(&b, "t.waw", "buf", (VkBuffer)(uintptr_t)2, GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
+    gpu_barrier_add_buffer(&b, "t.war", "buf", (VkBuffer)(uintptr_t)2, GPU_USAGE_TRANSFER_SRC, GPU_USAGE_TRANSFER_DST);
+    gpu_barrier_trace(NULL);
+    CHECK(b.buffer_count == 2, "batch holds %u buffers, expected 2", b.buffer_count);
+    CHECK(b.buffers[0].srcAccessMask == VK_ACCESS_2_TRANSFER_WRITE_BIT &&
+              b.buffers[0].dstAccessMask == VK_ACCESS_2_TRANSFER_WRITE_BIT,
+          "WAW barrier masks src 0x%llx dst 0x%llx", (unsigned long long)b.buffers[0].srcAccessMask,
+          (unsigned long long)b.buffers[0].dstAccessMask);
+    CHECK(b.buffers[1].srcAccessMask == 0, "a read contributed a source access");
+    char text[1024] = {0};
+    rewind(f);
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = 0;
+    CHECK(strstr(text, "barrier t.waw ") && strstr(strstr(text, "barrier t.waw "), "hazard=WAW\n"),
+          "the copy-after-copy buffer barrier is not traced as WAW:\n%s", text);
+    CHECK(strstr(text, "barrier t.war ") && strstr(strstr(text, "barrier t.war "), "hazard=WAR\n"),
+          "the copy-source-then-rewritten buffer barrier is not traced as WAR:\n%s", text);
+}
+
+/* One pass trace: a pass line is printed once, into the barrier trace when it is on (even when the pass list is
+ * on too, into the same stream), else into the pass list's stream; barrier lines never go to the pass list. */
+static void test_one_pass_trace(void)
+{
+    FILE *f = tmpfile();
+    CHECK(f != NULL, "tmpfile");
+    if (!f) return;
+    gpu_barrier_trace(f);
+    gpu_barrier_trace_passes(f);
+    gpu_barrier_trace_pass("both_on");
+    gpu_barrier_trace(NULL);
+    gpu_barrier_trace_pass("passes_only");
+    gpu_barrier_batch b = gpu_barrier_batch_begin("p");
+    gpu_barrier_add_memory(&b, "t.not_in_pass_list", "x", GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW);
+    gpu_barrier_trace_passes(NULL);
+    gpu_barrier_trace_pass("all_off");
+    char text[512] = {0};
+    rewind(f);
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = 0;
+    CHECK(strcmp(text, "pass both_on\npass passes_only\n") == 0, "pass trace:\n%s", text);
+}
+
+/* Each of a batch's arrays stops at its capacity with one line on stderr naming the batch, never writing past it
+ * (run in a child: the overflow ends the process). kind 0 images, 1 buffers, 2 global barriers. */
+static void overflow_child(int kind, uint32_t count)
+{
+    gpu_barrier_batch b = gpu_barrier_batch_begin("overflowing point");
+    for (uint32_t i = 0; i < count; ++i) {
+        if (kind == 0)
+            gpu_barrier_add_image(&b, "t.img", "img", (VkImage)(uintptr_t)1, mips(0, 1), GPU_USAGE_COMPUTE_STORAGE_WRITE,
+                                  GPU_USAGE_COMPUTE_SAMPLED, false);
+        else if (kind == 1)
+            gpu_barrier_add_buffer(&b, "t.buf", "buf", (VkBuffer)(uintptr_t)2, GPU_USAGE_TRANSFER_DST,
+                                   GPU_USAGE_HOST_READ);
+        else
+            gpu_barrier_add_memory(&b, "t.mem", "x", GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW);
+    }
+    uint32_t held = kind == 0 ? b.image_count : kind == 1 ? b.buffer_count : b.memory_count;
+    _exit(held == count ? 0 : 3);
+}
+
+static void test_batch_overflow(void)
+{
+    const uint32_t capacity[3] = {GPU_BATCH_MAX, (uint32_t)(sizeof((gpu_barrier_batch){0}.buffers) / sizeof(VkBufferMemoryBarrier2)),
+                                  (uint32_t)(sizeof((gpu_barrier_batch){0}.memory) / sizeof(VkMemoryBarrier2))};
+    const char *what[3] = {"images", "buffers", "global barriers"};
+    for (int kind = 0; kind < 3; ++kind) {
+        for (int over = 0; over < 2; ++over) {
+            char path[] = "/tmp/vksky_overflow_XXXXXX";
+            int fd = mkstemp(path);
+            CHECK(fd >= 0, "mkstemp");
+            if (fd < 0) return;
+            fflush(NULL);
+            pid_t pid = fork();
+            if (pid == 0) {
+                dup2(fd, 2);
+                overflow_child(kind, capacity[kind] + (uint32_t)over);
+            }
+            int status = 0;
+            waitpid(pid, &status, 0);
+            char err[512] = {0};
+            ssize_t n = pread(fd, err, sizeof err - 1, 0);
+            close(fd);
+            unlink(path);
+            if (n < 0) n = 0;
+            err[n] = 0;
+            int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+            if (!over)
+                CHECK(code == 0 && !err[0], "%u %s (the capacity) did not fit: exit %d, stderr '%s'", capacity[kind],
+                      what[kind], code, err);
+            else
+                CHECK(code == 1 && strstr(err, "internal error") && strstr(err, "'overflowing point'") &&
+                          strchr(err, '\n') && !strchr(err, '\n')[1],
+                      "%u %s (one over the capacity): exit %d (expected 1), stderr '%s' (expected one line naming "
+                      "the batch)", capacity[kind] + 1, what[kind], code, err);
+        }
+    }
+}
+
 int main(void)
 {
     test_usage_table();
@@ -383,6 +496,9 @@ int main(void)
     test_hazard_names();
     test_trace_and_drop();
     test_weaken_and_memory();
+    test_buffer_hazards();
+    test_one_pass_trace();
+    test_batch_overflow();
     if (check_failures) {
         fprintf(stderr, "test_barrier_table: %d failure(s)\n", check_failures);
         return 1;
