@@ -2,8 +2,7 @@
 # The layout, checked (docs/architecture.md): each module of src/ includes only the modules below it, no two
 # source units include each other (directly or around a circle), no two files of src/reference call each other
 # (directly or around a circle), no binding number outside shaders/glsl/bindings.h, and no file in src/ is longer
-# than a newcomer
-# reads in one sitting (600 lines).
+# than a newcomer reads in one sitting (600 lines).
 #
 #   app -> sky -> gpu          app -> io        app -> reference -> model        sky -> model
 #
