@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The layout, checked (docs/architecture.md): each module of src/ includes only the modules below it, no two
 # source units include each other (directly or around a circle), no two files of src/reference call each other
-# (directly or around a circle), no binding number outside shaders/glsl/bindings.h, and no file in src/ is longer
-# than a newcomer reads in one sitting (600 lines).
+# (directly or around a circle), no binding number outside shaders/glsl/bindings.h, no barrier recorded outside the
+# frame functions, and no file in src/ is longer than a newcomer reads in one sitting (600 lines).
 #
 #   app -> sky -> gpu          app -> io        app -> reference -> model        sky -> model
 #
@@ -102,6 +102,15 @@ if [ -d ../shaders/glsl ]; then
     echo "layering: binding numbers outside shaders/glsl/bindings.h (name them there):"; echo "$literal" | sed 's/^/  /'
     fail=1
   fi
+fi
+
+# The spine: barriers are recorded only by the frame functions (src/sky/frame.c, and the composite's frame in
+# src/sky/composite.c); src/gpu/barrier.c builds them. Any other file that records one breaks the claim that a
+# learner reads one function per kind of frame and sees every barrier.
+stray=$(grep -nE 'gpu_barrier_(add_[a-z]+|flush)\(|vkCmdPipelineBarrier2?\(' */*.c | grep -vE '^(sky/frame\.c|sky/composite\.c|gpu/barrier\.c):')
+if [ -n "$stray" ]; then
+  echo "layering: a barrier recorded outside the frame functions (sky/frame.c, sky/composite.c):"; echo "$stray" | sed 's/^/  /'
+  fail=1
 fi
 
 # File length.
