@@ -19,11 +19,11 @@ static int check_failures, check_count;
         }                                                                                                   \
     } while (0)
 
-/* |a - b| <= tol (NaN fails), with both values in the message. */
+/* |a - b| < tol (NaN fails), with both values in the message. */
 #define CHECK_NEAR(a, b, tol, what)                                                                         \
     do {                                                                                                    \
         double check_a_ = (double)(a), check_b_ = (double)(b);                                              \
-        CHECK(fabs(check_a_ - check_b_) <= (double)(tol), "%s: %.9g vs %.9g (tolerance %g)", what, check_a_, \
+        CHECK(fabs(check_a_ - check_b_) < (double)(tol), "%s: %.9g vs %.9g (tolerance %g)", what, check_a_, \
               check_b_, (double)(tol));                                                                     \
     } while (0)
 

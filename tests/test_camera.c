@@ -58,7 +58,7 @@ static void test_ground_clamp(void)
     camera_init(&c, &v);
     fly(&c, (camera_input){.up = -1, .forward = 1, .boost = true}, 5.0, 1.0 / 60.0);
     CHECK(c.altitude_km == CAMERA_MIN_ALTITUDE_KM, "altitude %.12f after diving", c.altitude_km);
-    CHECK(fabs(altitude_ld(&c) - CAMERA_MIN_ALTITUDE_KM) < 1e-9, "|pos| - Rb = %.12f", altitude_ld(&c));
+    CHECK_NEAR(altitude_ld(&c), CAMERA_MIN_ALTITUDE_KM, 1e-9, "|pos| - Rb at the lowest altitude");
 }
 
 /* Level flight for 2000 km: the transported frame keeps the view level (pitch 0 in the local frame) and the
@@ -71,7 +71,7 @@ static void test_level_flight(void)
     fly(&c, (camera_input){.forward = 1, .boost = true}, 1000.0, 1.0 / 60.0);
     camera_to_view(&c, &out);
     double travelled = atan2(sqrt(c.pos[0] * c.pos[0] + c.pos[2] * c.pos[2]), c.pos[1]) * CAMERA_GROUND_RADIUS_KM;
-    CHECK(fabs(travelled - 2000.0) < 1.0, "travelled %.3f km over the ground", travelled);
+    CHECK_NEAR(travelled, 2000.0, 1.0, "km travelled over the ground");
     CHECK(fabs(out.pitch_deg) < 1e-6 && fabs(out.yaw_deg - 40.0) < 1e-6, "after level flight yaw %.9f pitch %.9f",
           out.yaw_deg, out.pitch_deg);
     CHECK(out.altitude_km > 1.0 && out.altitude_km < 1.01, "altitude %.9f", out.altitude_km);
@@ -86,12 +86,12 @@ static void test_space_and_limits(void)
     camera_init(&c, &v);
     fly(&c, (camera_input){.up = 1, .boost = true}, 300.0, 0.1);
     camera_to_view(&c, &out);
-    CHECK(fabs(out.altitude_km - 600.001) < 1e-6, "altitude %.9f after 300 s up at 2 km/s", out.altitude_km);
+    CHECK_NEAR(out.altitude_km, 600.001, 1e-6, "altitude after 300 s up at 2 km/s");
     camera_update(&c, &(camera_input){.pitch_deg = 500, .sun_elevation_deg = 500, .sun_azimuth_deg = 200}, 0.0);
     camera_to_view(&c, &out);
     CHECK(out.pitch_deg <= 89.9 + 1e-9 && out.pitch_deg > 89.0, "pitch %.9f after looking far up", out.pitch_deg);
     CHECK(out.sun_elevation_deg == 90.0, "sun elevation %.9f not clamped to 90", out.sun_elevation_deg);
-    CHECK(fabs(out.sun_azimuth_deg - (-160.0)) < 1e-9, "sun azimuth %.9f, expected -160", out.sun_azimuth_deg);
+    CHECK_NEAR(out.sun_azimuth_deg, -160.0, 1e-9, "sun azimuth");
 }
 
 int main(void)
