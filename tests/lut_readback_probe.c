@@ -1,5 +1,6 @@
-/* The frame around sky_renderer_read_lut() (src/sky/submit.c), for the drop and mutation tests of its barriers
- * (lut_readback.to_copy / .to_sample / .to_host; tests/barrier_drops.txt, config lut_readback): a frame that
+/* The frame around sky_renderer_read_lut() (src/sky/submit.c, which submits frame_record_lut_readback() of
+ * src/sky/frame.c), for the drop and mutation tests of its barriers (lut_readback.to_copy / .to_sample / .to_host;
+ * tests/barrier_drops.txt, config lut_readback): a frame that
  * computes the LUTs, the readback of the transmittance LUT, and a second frame that samples the LUT again.
  * Run by tests/barrier_drop_test.sh like vksky: `--validate` and `--trace-barriers` are the only options; the
  * environment's VKSKY_DROP_BARRIER / VKSKY_WEAKEN_BARRIER apply. Exit 1 if validation reported anything. */
