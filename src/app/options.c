@@ -360,7 +360,7 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
             o->quality_auto = true;
             o->quality_classes = classes;
         } else if (o->max_error > 0.0) {
-            q = quality_pick(o->max_error, classes, &measured);
+            q = quality_pick(o->max_error, classes, device_is_cpu(o, argc, argv), &measured);
             quality_class_names(classes, picked_scene, sizeof picked_scene);
             o->quality_classes = classes;
             if (!q) {

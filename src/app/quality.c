@@ -242,11 +242,15 @@ void quality_class_names(unsigned classes, char *out, size_t size)
             used += (size_t)snprintf(out + used, size - used, "%s%s", used ? "+" : "", quality_scenes[c].name);
 }
 
-const quality_config *quality_pick(double max_error, unsigned classes, double *measured)
+const quality_config *quality_pick(double max_error, unsigned classes, bool cpu_device, double *measured)
 {
+    /* The running device's table (issue 31): on lavapipe the GPU's costs would pick by another machine's speed and
+     * quote another device's measurement. */
+    const quality_measurement *table = cpu_device ? quality_table_cpu : quality_table;
+    int count = cpu_device ? quality_table_cpu_count : quality_table_count;
     double budget[QUALITY_SCENE_COUNT];
     for (int c = 0; c < QUALITY_SCENE_COUNT; ++c) budget[c] = max_error;
-    return pick_from(quality_table, quality_table_count, budget, classes, measured, true);
+    return pick_from(table, count, budget, classes, measured, true);
 }
 
 const quality_config *quality_auto(unsigned classes, bool cpu_device, double *measured)

@@ -64,8 +64,9 @@ void quality_class_names(unsigned classes, char *out, size_t size);
 /* --max-error: the cheapest configuration whose measured mean relative luminance error is <= max_error on every
  * class of the set (its cost: its dearest class), and whose horizon-band error (the max over the pixels within 2 px
  * of the horizon against the per-pixel march, quality_horizon_table.h) is <= max_error as well (on a class that table
- * covers, a configuration it lacks is refused); NULL if none is (the caller says so). *measured gets its largest (mean) error. */
-const quality_config *quality_pick(double max_error, unsigned classes, double *measured);
+ * covers, a configuration it lacks is refused); NULL if none is (the caller says so). *measured gets its largest (mean) error.
+ * The table of the running device's kind, as quality_auto's. */
+const quality_config *quality_pick(double max_error, unsigned classes, bool cpu_device, double *measured);
 
 /* --quality auto (the default of a headless render): a point on the measured front, the cheapest measured
  * configuration whose mean error on each class of the set is within max(1 %, 1.25 x the best measured error on
