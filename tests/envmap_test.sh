@@ -61,10 +61,13 @@ VKSKY_TILE_PIXELS=3000 "$VKSKY" --validate --render "$work/p.exr" --width 100 --
     fail "banded perspective: $(cat "$work/stderr")"
 grep -q 'bloom is off' "$work/stderr" || fail "banded perspective: no note on bloom: $(cat "$work/stderr")"
 grep -q '100 %' "$work/stderr" || fail "no progress lines on a banded render: $(cat "$work/stderr")"
-VKSKY_TILE_PIXELS=3000 "$VKSKY" --quiet --render "$work/p.exr" --width 100 --height 80 --no-bloom "${S[@]}" 2>"$work/stderr"
+VKSKY_TILE_PIXELS=3000 "$VKSKY" --validate --quiet --render "$work/p.exr" --width 100 --height 80 --no-bloom "${S[@]}" \
+    2>"$work/stderr" || fail "--quiet banded render: exit $?"
 [ -s "$work/stderr" ] && fail "--quiet still printed: $(cat "$work/stderr")"
 
 # --- peak memory: 4096 x 2048 in 64-row bands vs in one band ---
+# Not validated (issue 31, on purpose): the layer's own memory would be measured with the renderer's; the same
+# banded and one-band paths ran validated above.
 rss() { # prints the maximum resident set size in kB of vksky "$@"
     /usr/bin/time -v "$VKSKY" --quiet "$@" 2>"$work/time" >/dev/null || { fail "vksky $*: $(tail -3 "$work/time")"; echo 0; return; }
     sed -n 's/.*Maximum resident set size (kbytes): //p' "$work/time"
@@ -80,7 +83,7 @@ oiiotool --info "$work/big.exr" | grep -q '4096 x 2048' || fail "big map size"
 
 # --- Ctrl-C in a long render: stops between bands, exit 130, nothing left (neither the file nor its temporary) ---
 mkdir "$work/sig"
-VKSKY_TILE_PIXELS=16384 "$VKSKY" --render "$work/sig/s.exr" --render "$work/sig/s.png" --projection equirect \
+VKSKY_TILE_PIXELS=16384 "$VKSKY" --validate --render "$work/sig/s.exr" --render "$work/sig/s.png" --projection equirect \
     --width 4096 2>"$work/stderr" &
 pid=$!
 for _ in $(seq 1 300); do ls -A "$work/sig" | grep -q tmp && break; sleep 0.1; done
@@ -97,7 +100,7 @@ rc=$?
 [ $rc -eq 2 ] && [ "$(wc -l <"$work/stderr")" -eq 1 ] && grep -q 'equirect, cubemap or fisheye' "$work/stderr" ||
     fail "--projection globe: exit $rc, stderr: $(cat "$work/stderr")"
 [ -e "$work/bad.exr" ] && fail "--projection globe wrote a file"
-"$VKSKY" --render "$work/n.exr" --projection equirect --width 64 --yaw 30 --height 99 --steps 4 2>"$work/stderr" ||
+"$VKSKY" --validate --render "$work/n.exr" --projection equirect --width 64 --yaw 30 --height 99 --steps 4 2>"$work/stderr" ||
     fail "equirect with --yaw: $(cat "$work/stderr")"
 grep -q 'ignores --yaw, --pitch and --fov' "$work/stderr" || fail "no note about --yaw: $(cat "$work/stderr")"
 grep -q -- '--height ignored' "$work/stderr" || fail "no note about --height: $(cat "$work/stderr")"

@@ -245,7 +245,7 @@ expect_bad "bad flag after a scene" "--fov" --scene "$MARS" "${R[@]}" --fov 0
 rgb() {
     "$VKSKY" --scene "$MARS" --width 65 --height 37 --no-bloom --validate --render "$work/mars.exr" "$@" 2>"$work/err" ||
         { fail "Mars render $* failed: $(head -c 400 "$work/err")"; echo "0 0 1"; return; }
-    "$PROBE" "$work/mars.exr" 32 18 || echo "0 0 1"
+    "$PROBE" "$work/mars.exr" 32 18 || { fail "exr_probe failed on the Mars render $*"; echo "0 0 1"; }
 }
 # ratio "R G B" -> R/B
 ratio() { echo "$1" | awk '{ printf "%.4f", ($3 > 0 ? $1 / $3 : 0) }'; }
@@ -258,8 +258,12 @@ noon=$(rgb --sun-elevation 60 --sun-azimuth 0 --yaw 0 --pitch 55)         # 5 de
 sunset=$(rgb --sun-elevation 1 --sun-azimuth 0 --yaw 0 --pitch 6)         # 5 deg above the setting sun
 gt "$(ratio "$noon")" "$(ratio "$sunset")" ||
     fail "Mars sunset aureole is not bluer than noon's: R/B noon $(ratio "$noon") ($noon), sunset $(ratio "$sunset") ($sunset)"
-earth=$("$VKSKY" --scene "$SCENES/earth-clear.json" --width 65 --height 37 --no-bloom --render "$work/earth.exr" \
-        --sun-elevation 45 --yaw 180 --pitch 40 2>/dev/null && "$PROBE" "$work/earth.exr" 32 18)
+# Validated and its exit statuses checked (issue 31: an empty probe gave the ratio 0, which passed).
+earth=$("$VKSKY" --scene "$SCENES/earth-clear.json" --width 65 --height 37 --no-bloom --validate \
+        --render "$work/earth.exr" --sun-elevation 45 --yaw 180 --pitch 40 2>"$work/err" &&
+        "$PROBE" "$work/earth.exr" 32 18) || fail "Earth render or probe failed: $(head -c 400 "$work/err")"
+[ "$(echo "$earth" | wc -w)" -ge 3 ] && gt "$(echo "$earth" | awk '{ print $3 }')" 0 ||
+    fail "the Earth day sky probe gave no blue channel: '$earth'"
 gt 1 "$(ratio "$earth")" || fail "the Earth day sky is not blue (R/B < 1): $earth"
 echo "scene_test: Mars R/B: day away $(ratio "$day"), side $(ratio "$side"), near the sun at noon $(ratio "$noon"), at sunset $(ratio "$sunset"); Earth day $(ratio "$earth")"
 

@@ -126,19 +126,8 @@ int main(void)
             CHECK(seed[i].T[c] < seed[i - 1].T[c], "T does not fall from point %d to %d", i - 1, i);
         }
 
-    /* The layers add up: in the reference, rayleigh + mie to the ground is the sky radiance of that ray. */
-    {
-        double v[3], sun[3], sky[3];
-        ref_quality q = ref_quality_converged();
-        ref_dir(90 * TEST_DEG, -2.0 * TEST_DEG, v);
-        ref_dir(0.0, 30 * TEST_DEG, sun);
-        ref_sky_radiance(&earth, 0.5, v, sun, q, sky);
-        ref_aerial ref;
-        ref_radiance_to_point(&earth, 0.5, v, sun, 1e9, q, &ref);
-        for (int c = 0; c < 3; ++c)
-            CHECK(rel(ref.rayleigh[c] + ref.mie[c], sky[c], 1e-12) < 1e-12, "reference layers %g + %g != sky %g",
-                  ref.rayleigh[c], ref.mie[c], sky[c]);
-    }
+    /* (Issue 31: the reference's "layers add up" check is gone: ref_radiance_to_point and ref_sky_radiance sum the
+     * same two terms, so it compared a sum with itself. The layers' sum is held against the GPU just below.) */
 
     /* A far ground point against the sky pass: from 500 m looking 2 deg down (the ground ~14 km away), the sky
      * pass renders the in-scattering up to the ground (Earth's ground is black); the composite to the point where

@@ -183,6 +183,23 @@ int main(int argc, char **argv)
           "1 mm / 1 m errors (%.2f%%, %.2f%%) differ from 1 km's (%.2f%%) by more than 2 points",
           100 * alt_results[1].err, 100 * alt_results[2].err, 100 * alt_results[3].err);
     continuity("altitude 99.999 | 100 km", &alt_results[4], &alt_results[5], 0.01);
+    /* Issue 31: 20 deg up from 99.999 and 100 km both see black space (0 | 0 meets any bound), so the boundary again
+     * on lit pixels: 5 deg below the tangent, the limb lit by a sun 30 deg up. */
+    {
+        result lit[2];
+        for (int i = 0; i < 2; ++i) {
+            extreme_case c = base("altitude", i ? "100 km (top), view 5 deg below the tangent"
+                                                : "99.999 km, view 5 deg below the tangent");
+            c.altitude = i ? 100.0 : 99.999;
+            c.pitch = tangent_pitch(c.altitude) - 5.0;
+            c.bound = 0.10;
+            lit[i] = check(&ctx, &c);
+            double l = 0.2126 * lit[i].gpu[0] + 0.7152 * lit[i].gpu[1] + 0.0722 * lit[i].gpu[2];
+            CHECK(l > 1e-3 * noon_luminance, "%s: not lit (luminance %g, noon %g): the continuity would compare "
+                  "black with black", c.label, l, noon_luminance);
+        }
+        continuity("altitude 99.999 | 100 km, the lit limb", &lit[0], &lit[1], 0.01);
+    }
 
     /* Sun elevation through the horizon and the night; view 20 deg up toward the sun's azimuth + 90. Below
      * -2 deg the defaults' 64-direction, RGBA16F multi-scattering LUT misses the thin lit sliver high up (off by

@@ -33,7 +33,9 @@ pngfile=$root/docs/frame_graph.png
 [ -x "$vksky" ] || { echo "sync_doc: no vksky at $vksky (build first, or give --vksky PATH)" >&2; exit 2; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-unset VKSKY_DROP_BARRIER VKSKY_FRAMES VKSKY_VALIDATION
+unset VKSKY_DROP_BARRIER VKSKY_FRAMES
+# Every traced frame runs validated (issue 31): a frame the guide documents must be clean, and a message exits 1.
+export VKSKY_VALIDATION=1
 
 # --- 1. Trace every configuration: $tmp/trace.<id> holds its "pass" and "barrier" lines. -------------------
 configs=$(awk '$1 == "config" { print $2 }' "$list")

@@ -356,6 +356,14 @@ int main(int argc, char **argv)
                     ctx.props.deviceName, cost_cpu ? "process CPU ms per whole frame, bloom and tone map included"
                                                    : "sky GPU ms", tw, th, frames, ew, eh, rw, rh,
                     cost_cpu ? " --cost cpu" : "");
+            /* The key of what was measured (issue 31): a build with other shaders or knobs sees its rows as estimates. */
+            const char *names[512];
+            int named = 0;
+            for (int i = 0; i < count && named < 512; ++i)
+                if (isfinite(rows[i].err.mean)) names[named++] = rows[i].config;
+            char key[96];
+            quality_names_key(names, named, key, sizeof key);
+            fprintf(t, "#define %s \"%s\"\n", cost_cpu ? "QUALITY_TABLE_CPU_KEY" : "QUALITY_TABLE_KEY", key);
             if (!cost_cpu)
                 fprintf(t, "typedef struct quality_measurement { const char *config; int scene; double gpu_ms, err_mean, err_p95; } quality_measurement;\n");
             fprintf(t, "static const quality_measurement %s[] = {\n", name);

@@ -341,6 +341,7 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
     const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
     double picked_error = 0.0;
     char picked_scene[96] = "";
+    bool picked_cpu = false;                    /* the table it picked from: the CPU device's or the GPU's */
     for (int pass = -1; pass < 2; ++pass) {
     if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
     if (pass == 1) {
@@ -360,7 +361,8 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
             o->quality_auto = true;
             o->quality_classes = classes;
         } else if (o->max_error > 0.0) {
-            q = quality_pick(o->max_error, classes, &measured);
+            picked_cpu = device_is_cpu(o, argc, argv);
+            q = quality_pick(o->max_error, classes, picked_cpu, &measured);
             quality_class_names(classes, picked_scene, sizeof picked_scene);
             o->quality_classes = classes;
             if (!q) {
@@ -428,6 +430,11 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);
+    /* Issue 31: a promise from a table measured with other shaders or knobs is an estimate, and says so. */
+    const char *estimate = picked && !quality_classes ? quality_table_estimate(picked_cpu) : NULL;
+    if (estimate)
+        fprintf(stderr, "vksky: note: --max-error: the %s table's rows are estimates (%s)\n",
+                picked_cpu ? "CPU device" : "GPU", estimate);
     if (o->dump_scene && !o->help && !o->version) exit(scene_dump(o, stdout));   /* --dump-scene: nothing else runs */
     light_finish(o);   /* after the dump: it writes the exposure as given */
     return 0;

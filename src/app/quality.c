@@ -1,4 +1,5 @@
 #include "app/quality.h"
+#include "sky/shaders.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -242,11 +243,15 @@ void quality_class_names(unsigned classes, char *out, size_t size)
             used += (size_t)snprintf(out + used, size - used, "%s%s", used ? "+" : "", quality_scenes[c].name);
 }
 
-const quality_config *quality_pick(double max_error, unsigned classes, double *measured)
+const quality_config *quality_pick(double max_error, unsigned classes, bool cpu_device, double *measured)
 {
+    /* The running device's table (issue 31): on lavapipe the GPU's costs would pick by another machine's speed and
+     * quote another device's measurement. */
+    const quality_measurement *table = cpu_device ? quality_table_cpu : quality_table;
+    int count = cpu_device ? quality_table_cpu_count : quality_table_count;
     double budget[QUALITY_SCENE_COUNT];
     for (int c = 0; c < QUALITY_SCENE_COUNT; ++c) budget[c] = max_error;
-    return pick_from(quality_table, quality_table_count, budget, classes, measured, true);
+    return pick_from(table, count, budget, classes, measured, true);
 }
 
 const quality_config *quality_auto(unsigned classes, bool cpu_device, double *measured)
@@ -261,4 +266,55 @@ const quality_config *quality_auto(unsigned classes, bool cpu_device, double *me
         budget[c] = fmax(QUALITY_AUTO_FLOOR, QUALITY_AUTO_SLACK * best);
     }
     return pick_from(table, count, budget, classes, measured, false);
+}
+
+/* The knobs of a configuration as text (no struct padding in the hash), hashed with FNV-1a. */
+static unsigned long knob_hash(unsigned long h, const quality_config *q)
+{
+    char text[320];
+    snprintf(text, sizeof text, "%s %d %d %d %d %.9g %.9g %d %d %d %d %d %d %d %d %d %d %.9g %d %d;", q->name,
+             (int)q->mode, (int)q->pass_kind, q->steps, q->max_steps, q->step_distribution, q->sample_offset,
+             q->skyview_width, q->skyview_height, q->skyview_steps, q->transmittance_width, q->transmittance_height,
+             q->transmittance_steps, q->multiscatter_size, q->multiscatter_sqrt_dirs, q->multiscatter_steps,
+             (int)q->lut_f32, q->render_scale, q->bloom_mips, (int)q->bloom_quarter);
+    for (const char *c = text; *c; ++c) h = (h ^ (unsigned char)*c) * 16777619ul & 0xfffffffful;
+    return h;
+}
+
+void quality_names_key(const char *const *names, int count, char *out, size_t size)
+{
+    unsigned long h = 2166136261ul;
+    for (int i = 0; i < count; ++i) {
+        bool first = true;   /* each configuration once, in order of first appearance */
+        for (int j = 0; j < i && first; ++j) first = strcmp(names[i], names[j]) != 0;
+        const quality_config *q = first ? config_named(names[i]) : NULL;
+        if (q) h = knob_hash(h, q);
+    }
+    snprintf(out, size, "%s/%08lx", sky_shaders_key(), h);
+}
+
+void quality_table_key(bool cpu_device, char *out, size_t size)
+{
+    const quality_measurement *table = cpu_device ? quality_table_cpu : quality_table;
+    int count = cpu_device ? quality_table_cpu_count : quality_table_count;
+    const char *names[256];
+    int n = 0;
+    for (int i = 0; i < count && n < 256; ++i) names[n++] = table[i].config;
+    quality_names_key(names, n, out, size);
+}
+
+const char *quality_table_recorded_key(bool cpu_device) { return cpu_device ? QUALITY_TABLE_CPU_KEY : QUALITY_TABLE_KEY; }
+
+const char *quality_table_estimate(bool cpu_device)
+{
+    char key[96];
+    quality_table_key(cpu_device, key, sizeof key);
+    if (!strcmp(key, quality_table_recorded_key(cpu_device))) return NULL;
+#ifdef QUALITY_TABLE_ESTIMATE
+    if (!cpu_device) return QUALITY_TABLE_ESTIMATE;
+#endif
+#ifdef QUALITY_TABLE_CPU_ESTIMATE
+    if (cpu_device) return QUALITY_TABLE_CPU_ESTIMATE;
+#endif
+    return "measured with other shaders or knobs than this build's";
 }

@@ -64,13 +64,24 @@ void quality_class_names(unsigned classes, char *out, size_t size);
 /* --max-error: the cheapest configuration whose measured mean relative luminance error is <= max_error on every
  * class of the set (its cost: its dearest class), and whose horizon-band error (the max over the pixels within 2 px
  * of the horizon against the per-pixel march, quality_horizon_table.h) is <= max_error as well (on a class that table
- * covers, a configuration it lacks is refused); NULL if none is (the caller says so). *measured gets its largest (mean) error. */
-const quality_config *quality_pick(double max_error, unsigned classes, double *measured);
+ * covers, a configuration it lacks is refused); NULL if none is (the caller says so). *measured gets its largest (mean) error.
+ * The table of the running device's kind, as quality_auto's. */
+const quality_config *quality_pick(double max_error, unsigned classes, bool cpu_device, double *measured);
 
 /* --quality auto (the default of a headless render): a point on the measured front, the cheapest measured
  * configuration whose mean error on each class of the set is within max(1 %, 1.25 x the best measured error on
  * that class), in the table of the device kind: GPU (quality_table.h, sky GPU ms on an H200) or CPU
  * (quality_table_cpu.h, CPU ms per whole frame on lavapipe). *measured: as quality_pick. */
+/* What a measured table was measured with (issue 31): "<shader key>/<knob hash>", the build's embedded SPIR-V hash
+ * (sky_shaders_key) and an FNV-1a hash of the knobs of every configuration its rows name. tools/tradeoff
+ * --emit-table records it (QUALITY_TABLE_KEY / QUALITY_TABLE_CPU_KEY); a table measured with other shaders or
+ * knobs is re-measured, or its rows are marked as estimates (QUALITY_TABLE_ESTIMATE / ..._CPU_ESTIMATE: why). */
+void quality_names_key(const char *const *names, int count, char *out, size_t size);
+void quality_table_key(bool cpu_device, char *out, size_t size);   /* this build's key for the compiled-in table */
+const char *quality_table_recorded_key(bool cpu_device);            /* the key the table records */
+/* NULL when the table was measured with this build's key; else why its rows are only estimates (the table's
+ * estimate note, or "measured with other shaders or knobs"). */
+const char *quality_table_estimate(bool cpu_device);
 #define QUALITY_AUTO_FLOOR 0.01
 #define QUALITY_AUTO_SLACK 1.25
 const quality_config *quality_auto(unsigned classes, bool cpu_device, double *measured);

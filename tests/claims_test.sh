@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The claims index (issue 31 item 4): every figure the README quotes is listed in docs/claims.md with what backs it.
+# A figure: a number followed by %, ms, fps, x (a factor, not an image size WxH), kB, MB, MiB, GB or GiB; compared with
+# the space before the unit removed. Fails on a README figure the index lacks, and on a ctest the index names
+# (`name` after "ctest") that tests/CMakeLists.txt does not define. Text only (grep, sed, awk).
+# Usage: claims_test.sh SOURCE_DIR
+set -u
+root=${1:?usage: claims_test.sh path/to/source}
+readme=$root/README.md index=$root/docs/claims.md
+[ -f "$readme" ] && [ -f "$index" ] || { echo "FAIL: no $readme or $index"; exit 1; }
+figures() {   # the figures of a file, one a line, normalised
+    sed -E 's/([0-9])×([0-9])/\1x\2/g' "$1" | grep -oE '[0-9]+(\.[0-9]+)? ?(%|ms|fps|×|MiB|GiB|MB|kB|GB)' |
+        sed 's/ //' | sort -u
+}
+fails=0
+figures "$readme" >"${TMPDIR:-/tmp}/claims.$$.readme"
+figures "$index" >"${TMPDIR:-/tmp}/claims.$$.index"
+trap 'rm -f "${TMPDIR:-/tmp}"/claims.$$.*' EXIT
+missing=$(comm -23 "${TMPDIR:-/tmp}/claims.$$.readme" "${TMPDIR:-/tmp}/claims.$$.index")
+if [ -n "$missing" ]; then
+    echo "FAIL: the README quotes figures docs/claims.md does not list (add each to its row, with what backs it):"
+    echo "$missing" | tr '\n' ' '; echo
+    fails=$((fails + 1))
+fi
+# Every ctest the index names exists (a row cannot point at a test that is gone).
+for t in $(grep -oE 'ctest `[a-z_0-9]+`(, `[a-z_0-9]+`)*' "$index" | grep -oE '`[a-z_0-9]+`' | tr -d '`' | sort -u); do
+    grep -qE "NAME $t( |\))|foreach\(t .*\b$t\b" "$root/tests/CMakeLists.txt" ||
+        { echo "FAIL: docs/claims.md names ctest '$t', which tests/CMakeLists.txt does not define"; fails=$((fails + 1)); }
+done
+n=$(wc -l <"${TMPDIR:-/tmp}/claims.$$.readme")
+[ "$n" -gt 50 ] || { echo "FAIL: only $n figures found in the README: the pattern is broken"; fails=$((fails + 1)); }
+[ $fails -eq 0 ] || exit 1
+echo "claims_test: ok ($n distinct README figures indexed)"
