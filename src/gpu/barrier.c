@@ -391,3 +391,41 @@ void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b)
     vkCmdPipelineBarrier2(cmd, &dep);
     b->image_count = b->buffer_count = b->memory_count = 0;
 }
+
+/* The library's host images: one side of the barrier is the host's own use (vksky_image_use), given as a value, not
+ * a row of the usage table. Named, traced, droppable and weakenable like every other barrier; an access-free host
+ * use (the presentation engine, a use the host does not name) counts as a reader, as GPU_USAGE_PRESENT does. */
+void gpu_barrier_add_image_info(gpu_barrier_batch *b, const char *name, const char *resource, VkImage image,
+                                VkImageSubresourceRange range, gpu_usage_info from, gpu_usage_info to, bool discard)
+{
+    VkImageMemoryBarrier2 barrier = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+        .srcStageMask = from.stage,
+        .srcAccessMask = gpu_write_accesses(from.access),
+        .dstStageMask = to.stage,
+        .dstAccessMask = to.access,
+        .oldLayout = discard ? VK_IMAGE_LAYOUT_UNDEFINED : from.layout,
+        .newLayout = to.layout,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image,
+        .subresourceRange = range,
+    };
+    const char *weakened = weaken(name, &barrier.srcStageMask, &barrier.srcAccessMask, &barrier.dstStageMask,
+                                  &barrier.dstAccessMask);
+    bool from_writes = gpu_write_accesses(from.access) != 0, to_writes = gpu_write_accesses(to.access) != 0;
+    bool from_reads = (from.access & ~gpu_write_accesses(from.access)) != 0 || from.access == 0;
+    bool to_reads = (to.access & ~gpu_write_accesses(to.access)) != 0 || to.access == 0;
+    bool raw = from_writes && to_reads, war = from_reads && to_writes, waw = from_writes && to_writes;
+    bool transition = barrier.oldLayout != barrier.newLayout;
+    char hazard[40];
+    snprintf(hazard, sizeof hazard, "%s%s%s%s%s%s%s", raw ? "RAW" : "", raw && war ? "+" : "", war ? "WAR" : "",
+             (raw || war) && waw ? "+" : "", waw ? "WAW" : "", (raw || war || waw) && transition ? "+" : "",
+             transition ? "layout" : "");
+    if (!hazard[0]) snprintf(hazard, sizeof hazard, "none");
+    bool drop = dropped(name);
+    trace_line(name, b->point, resource, "0", barrier.oldLayout, barrier.newLayout, barrier.srcStageMask,
+               barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, hazard, drop, weakened);
+    if (drop || b->image_count == GPU_BATCH_MAX) return;   /* a full batch: 16 images, the frame uses at most 6 */
+    b->images[b->image_count++] = barrier;
+}
