@@ -5,15 +5,16 @@
  * (a copy: the top rows sky, depth at the far plane; the bottom rows flat colour at 2 km and at 15 km along the view
  * axis), vksky records the pass, the host copies the colour image back. Two frames in one command buffer (colours
  * A then B, the same depth) put the cross-frame hazards inside what synchronization validation sees. Checks:
- *  - sky pixels equal the sky pass's frame of the same camera (vksky's own renderer, host_camera_look's matrices),
+ *  - sky pixels equal the sky pass's frame of the same camera (vksky's own renderer; the matrices built here from the CLI's conventions),
  *    every pixel of the sky half: within 2e-3 relative (fp16 storage twice and float rounding of two ray matrices);
  *  - per geometry pixel, T = (out_A - out_B) / (A - B) and S = out_A - A T (A = 1, B = 0: T = out_A - out_B, S = out_B) against the CPU reference's
  *    transmittance and in-scattering along the camera -> point segment (ref_radiance_to_point, converged): T within
  *    2e-3 absolute (two fp16 roundings near 1: < 1e-3, plus the 64-step march; measured 9.6e-4), S within 5 % (the
  *    default LUTs and a 64-step march, measured 3.9 %; test_aerial reaches 2 % with converged LUTs and 256 steps);
  *  - the far block is hazier than the near one: larger S, smaller T.
- * `--validate` and `--trace-barriers` as vksky; VKSKY_DROP_BARRIER / VKSKY_WEAKEN_BARRIER apply. Exit 1 on a failed
- * check or any validation message. */
+ * `--validate` and `--trace-barriers` as vksky; VKSKY_DROP_BARRIER / VKSKY_WEAKEN_BARRIER apply. The checks against
+ * the reference run with `--check` (ctest host_frame; the drop runs only need the frame). Exit 1 on a failed check or
+ * any validation message. */
 #include "gpu_test.h"
 #include "sky/host_frame.h"
 
@@ -52,6 +53,38 @@ static void host_image_create(const gpu_context *ctx, host_image *img, VkDeviceM
     img->extent = (VkExtent2D){W, H};
 }
 
+/* The matrices of vksky's command-line camera, written here from its conventions (sky_view_basis: yaw 0 north, -Z
+ * in a Y-up world; 90 east, +X): view rows right, up, -forward; Vulkan clip space, reversed depth, far at infinity. */
+static void camera_look(host_camera *c, double yaw_deg, double pitch_deg, double fov_y_deg, double aspect,
+                        double near_m)
+{
+    memset(c, 0, sizeof *c);
+    /* The CLI's view axis (sky_view_basis: local north, up, east) in the world's axes: north -Z, east +X. */
+    double y = yaw_deg * TEST_DEG, p = pitch_deg * TEST_DEG;
+    double f[3] = {cos(p) * sin(y), sin(p), -cos(p) * cos(y)}, r[3], u[3];
+    if (fabs(pitch_deg) >= 90.0 - 1e-9) {
+        r[0] = cos(y), r[1] = 0.0, r[2] = sin(y);   /* local dir(yaw + 90, 0), as sky_view_basis */
+    } else {
+        r[0] = -f[2], r[1] = 0.0, r[2] = f[0];      /* f x +Y */
+        double n = sqrt(r[0] * r[0] + r[2] * r[2]);
+        r[0] /= n, r[2] /= n;
+    }
+    u[0] = r[1] * f[2] - r[2] * f[1], u[1] = r[2] * f[0] - r[0] * f[2], u[2] = r[0] * f[1] - r[1] * f[0];
+    /* world -> eye: rows right, up, -forward (the eye looks down -Z); the camera at the world origin. */
+    for (int j = 0; j < 3; ++j) {
+        c->view[j * 4 + 0] = r[j];
+        c->view[j * 4 + 1] = u[j];
+        c->view[j * 4 + 2] = -f[j];
+    }
+    c->view[15] = 1.0;
+    /* Vulkan clip space (y down), reversed depth with the far plane at infinity: depth = near / distance. */
+    double t = tan(0.5 * fov_y_deg * TEST_DEG);
+    c->projection[0] = 1.0 / (t * aspect);
+    c->projection[5] = -1.0 / t;
+    c->projection[11] = -1.0;
+    c->projection[14] = near_m;
+}
+
 /* The host's own barrier (not vksky's: untraced, not drop-tested). */
 static void host_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkPipelineStageFlags2 ss,
                          VkAccessFlags2 sa, VkImageLayout from, VkPipelineStageFlags2 ds, VkAccessFlags2 da,
@@ -74,11 +107,13 @@ static double rel(double a, double b) { return fabs(a - b) / fmax(fabs(b), 1e-9)
 
 int main(int argc, char **argv)
 {
-    bool trace = false;
+    bool trace = false, check = false;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--trace-barriers")) trace = true;
+        else if (!strcmp(argv[i], "--check")) check = true;
         else if (strcmp(argv[i], "--validate") != 0) {
-            fprintf(stderr, "host_frame_probe: unknown option '%s' (accepted: --validate, --trace-barriers)\n", argv[i]);
+            fprintf(stderr, "host_frame_probe: unknown option '%s' (accepted: --validate, --trace-barriers, --check)\n",
+                    argv[i]);
             return 2;
         }
     }
@@ -110,7 +145,7 @@ int main(int argc, char **argv)
         return 1;
     }
     host_camera cam;
-    host_camera_look(&cam, view.yaw_deg, view.pitch_deg, view.fov_deg, (double)W / H, NEAR_M);
+    camera_look(&cam, view.yaw_deg, view.pitch_deg, view.fov_deg, (double)W / H, NEAR_M);
     cam.origin_altitude_m = ALT_M;
     HostFramePush push;
     if (host_frame_push(&cam, &view, earth.bottom_radius, earth.top_radius - earth.bottom_radius, W, H, true, &push,
@@ -160,12 +195,17 @@ int main(int argc, char **argv)
             host_barrier(cmd, depth.image, VK_IMAGE_ASPECT_DEPTH_BIT, VK_PIPELINE_STAGE_2_NONE, 0,
                          VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                          VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        /* The host's passes are labelled (the trace shows them between vksky's barrier points). */
+        gpu_label_begin(&ctx, cmd, "host_geometry");
         vkCmdCopyBufferToImage(cmd, upload[k].buffer, color.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &cc);
         vkCmdCopyBufferToImage(cmd, depth_upload.buffer, depth.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &dc);
+        gpu_label_end(&ctx, cmd);
         /* The second frame rebuilds the LUTs: their rewrite must wait for the first frame's pass (WAR). */
         host_frame_desc f = {.color = &color, .depth = &depth, .push = &push, .force_luts = k == 1};
         host_frame_record(&t.r, &hf, cmd, &f);
+        gpu_label_begin(&ctx, cmd, "host_readback");
         vkCmdCopyImageToBuffer(cmd, color.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback[k].buffer, 1, &cc);
+        gpu_label_end(&ctx, cmd);
     }
     VkBufferMemoryBarrier2 to_host[2];
     for (int k = 0; k < 2; ++k)
@@ -207,6 +247,8 @@ int main(int argc, char **argv)
                 ++sky_checked;
                 continue;
             }
+            /* The reference costs ~10 ms a point: every other row and column (192 points, the two probed ones among them). */
+            if (!check || x % 2 != 0 || y % 2 == 0) continue;
             /* The point: distance along the axis / the cosine of the pixel's ray with the axis. */
             double v[3];
             ref_pixel_dir(x, y, W, H, view.yaw_deg * TEST_DEG, view.pitch_deg * TEST_DEG, view.fov_deg * TEST_DEG, v);
@@ -232,8 +274,8 @@ int main(int argc, char **argv)
     printf("host_frame: %d sky pixels within %.2e of the sky pass; %d geometry pixels: max |dT| %.2e, max S error "
            "%.2f%% against the reference; green near (2 km) T %.4f S %.4f, far (15 km) T %.4f S %.4f\n",
            sky_checked, worst_sky, geo_checked, worst_T, 100 * worst_S, T_near, S_near, T_far, S_far);
-    CHECK(sky_checked == W * H / 2 && geo_checked == W * H / 2, "checked %d sky, %d geometry pixels", sky_checked, geo_checked);
-    CHECK(S_far > S_near && T_far < T_near, "the far block is not hazier than the near one");
+    CHECK(sky_checked == W * H / 2 && (!check || geo_checked >= W * H / 8), "checked %d sky, %d geometry pixels", sky_checked, geo_checked);
+    CHECK(!check || (S_far > S_near && T_far < T_near), "the far block is not hazier than the near one");
 
     for (int k = 0; k < 2; ++k) gpu_buffer_destroy(&ctx, &upload[k]), gpu_buffer_destroy(&ctx, &readback[k]);
     gpu_buffer_destroy(&ctx, &depth_upload);

@@ -402,21 +402,20 @@ void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b)
     b->image_count = b->buffer_count = b->memory_count = 0;
 }
 
-/* An image another program uses before or after vksky (a library host's image, docs/library.md): its usages come as
- * {stage, access, layout} values rather than from the table. The same rules: the source side contributes its
- * writes only, old layout UNDEFINED when `from` says the contents are not needed, the hazard computed from the
- * accesses (the host's layout UNDEFINED counts as "no access" on its side). */
-void gpu_barrier_add_image_use(gpu_barrier_batch *b, const char *name, const char *resource, VkImage image,
-                               VkImageSubresourceRange range, const gpu_usage_info *from, const gpu_usage_info *to)
+/* The library's host images: one side of the barrier is the host's own use (vksky_image_use), given as a value, not
+ * a row of the usage table. Named, traced, droppable and weakenable like every other barrier; an access-free host
+ * use (the presentation engine, a use the host does not name) counts as a reader, as GPU_USAGE_PRESENT does. */
+void gpu_barrier_add_image_info(gpu_barrier_batch *b, const char *name, const char *resource, VkImage image,
+                                VkImageSubresourceRange range, gpu_usage_info from, gpu_usage_info to, bool discard)
 {
     VkImageMemoryBarrier2 barrier = {
         .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-        .srcStageMask = from->stage,
-        .srcAccessMask = gpu_write_accesses(from->access),
-        .dstStageMask = to->stage,
-        .dstAccessMask = to->access,
-        .oldLayout = from->layout,
-        .newLayout = to->layout,
+        .srcStageMask = from.stage,
+        .srcAccessMask = gpu_write_accesses(from.access),
+        .dstStageMask = to.stage,
+        .dstAccessMask = to.access,
+        .oldLayout = discard ? VK_IMAGE_LAYOUT_UNDEFINED : from.layout,
+        .newLayout = to.layout,
         .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
         .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
         .image = image,
@@ -424,9 +423,11 @@ void gpu_barrier_add_image_use(gpu_barrier_batch *b, const char *name, const cha
     };
     const char *weakened = weaken(name, &barrier.srcStageMask, &barrier.srcAccessMask, &barrier.dstStageMask,
                                   &barrier.dstAccessMask);
-    VkAccessFlags2 fw = gpu_write_accesses(from->access), tw = gpu_write_accesses(to->access);
-    bool from_reads = (from->access & ~fw) != 0, to_reads = (to->access & ~tw) != 0;
-    bool raw = fw && to_reads, war = from_reads && tw, waw = fw && tw, transition = from->layout != to->layout;
+    bool from_writes = gpu_write_accesses(from.access) != 0, to_writes = gpu_write_accesses(to.access) != 0;
+    bool from_reads = (from.access & ~gpu_write_accesses(from.access)) != 0 || from.access == 0;
+    bool to_reads = (to.access & ~gpu_write_accesses(to.access)) != 0 || to.access == 0;
+    bool raw = from_writes && to_reads, war = from_reads && to_writes, waw = from_writes && to_writes;
+    bool transition = barrier.oldLayout != barrier.newLayout;
     char hazard[40];
     snprintf(hazard, sizeof hazard, "%s%s%s%s%s%s%s", raw ? "RAW" : "", raw && war ? "+" : "", war ? "WAR" : "",
              (raw || war) && waw ? "+" : "", waw ? "WAW" : "", (raw || war || waw) && transition ? "+" : "",
@@ -435,10 +436,6 @@ void gpu_barrier_add_image_use(gpu_barrier_batch *b, const char *name, const cha
     bool drop = dropped(name);
     trace_line(name, b->point, resource, "0", barrier.oldLayout, barrier.newLayout, barrier.srcStageMask,
                barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, hazard, drop, weakened);
-    if (drop) return;
-    if (b->image_count == GPU_BATCH_MAX) {
-        fprintf(stderr, "vksky: internal error: barrier batch '%s' is full\n", b->point);
-        exit(1);
-    }
+    if (drop || b->image_count == GPU_BATCH_MAX) return;   /* a full batch: 16 images, the frame uses at most 6 */
     b->images[b->image_count++] = barrier;
 }

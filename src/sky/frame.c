@@ -411,11 +411,15 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
      * fully rewritten. */
     frame_target own = {r->display.image, r->display.view, r->display.extent,
                         r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE,
-                        r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE, NULL};
+                        r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE, .capture = NULL};
     const frame_target *display = f->target ? f->target : &own;
     b = before_tonemap;
-    gpu_barrier_add_image(&b, "display.to_attachment", "display", display->image, one, display->before,
-                          GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+    if (display->host_uses)   /* the host's image: from its own last use (whatever it was) */
+        gpu_barrier_add_image_info(&b, "host.color.to_attachment", "host color", display->image, one,
+                                   display->host_before, *gpu_usage_get(GPU_USAGE_COLOR_ATTACHMENT_WRITE), true);
+    else
+        gpu_barrier_add_image(&b, "display.to_attachment", "display", display->image, one, display->before,
+                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
     if (r->desc.readback)
         gpu_barrier_add_image(&b, "composite.to_attachment", "composite", r->composite.image, one,
                               GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
@@ -452,7 +456,12 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                                    GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
             last = GPU_USAGE_TRANSFER_SRC;
         }
-        if (f->target->after != last)
+        /* The host's image: the tone map's writes made available to the host's next use, in its layout (RAW or
+         * WAW, and the layout it asked for). */
+        if (f->target->host_uses)
+            gpu_barrier_add_image_info(&b, "host.color.to_after", "host color", display->image, one,
+                                       *gpu_usage_get(last), f->target->host_after, false);
+        else if (f->target->after != last)
             gpu_barrier_add_image(&b, "display.to_present", "display", display->image, one, last, f->target->after,
                                   false);
         gpu_barrier_flush(cmd, &b);

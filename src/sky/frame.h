@@ -12,6 +12,10 @@ typedef struct frame_target {
     gpu_usage before;            /* GPU_USAGE_ACQUIRED for a swapchain image */
     gpu_usage after;             /* GPU_USAGE_PRESENT for a swapchain image */
     gpu_buffer *capture;         /* non-NULL: also copy the image into this host buffer (4 bytes a pixel) */
+    /* The library's host image (vksky_record): the host's own use before and after (stage, access, layout) instead
+     * of before/after; traced as host.color.to_attachment and host.color.to_after. */
+    bool host_uses;
+    gpu_usage_info host_before, host_after;
 } frame_target;
 
 typedef struct frame_desc {

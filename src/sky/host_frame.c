@@ -9,8 +9,6 @@
 #include <stdio.h>
 #include <string.h>
 
-static const double DEG = 3.14159265358979323846 / 180.0;
-
 /* --- The host's camera -> push constants ------------------------------------------------------------------ */
 
 /* Column-major 4x4 (m[col * 4 + row]), as GLSL and the host's matrices. */
@@ -60,36 +58,6 @@ static bool mat4_invert(const double m[16], double out[16])
 }
 
 static double len3(const double v[3]) { return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-
-void host_camera_look(host_camera *c, double yaw_deg, double pitch_deg, double fov_y_deg, double aspect,
-                      double near_m)
-{
-    memset(c, 0, sizeof *c);
-    /* The CLI's view axis (sky_view_basis: local north, up, east) in the world's axes: north -Z, east +X. */
-    double y = yaw_deg * DEG, p = pitch_deg * DEG;
-    double f[3] = {cos(p) * sin(y), sin(p), -cos(p) * cos(y)}, r[3], u[3];
-    if (fabs(pitch_deg) >= 90.0 - 1e-9) {
-        r[0] = cos(y), r[1] = 0.0, r[2] = sin(y);   /* local dir(yaw + 90, 0), as sky_view_basis */
-    } else {
-        r[0] = -f[2], r[1] = 0.0, r[2] = f[0];      /* f x +Y */
-        double n = len3(r);
-        r[0] /= n, r[2] /= n;
-    }
-    u[0] = r[1] * f[2] - r[2] * f[1], u[1] = r[2] * f[0] - r[0] * f[2], u[2] = r[0] * f[1] - r[1] * f[0];
-    /* world -> eye: rows right, up, -forward (the eye looks down -Z); the camera at the world origin. */
-    for (int j = 0; j < 3; ++j) {
-        c->view[j * 4 + 0] = r[j];
-        c->view[j * 4 + 1] = u[j];
-        c->view[j * 4 + 2] = -f[j];
-    }
-    c->view[15] = 1.0;
-    /* Vulkan clip space (y down), reversed depth with the far plane at infinity: depth = near / distance. */
-    double t = tan(0.5 * fov_y_deg * DEG);
-    c->projection[0] = 1.0 / (t * aspect);
-    c->projection[5] = -1.0 / t;
-    c->projection[11] = -1.0;
-    c->projection[14] = near_m;
-}
 
 int host_frame_push(const host_camera *camera, const sky_view *view, double ground_radius_km,
                     double atmosphere_top_km, uint32_t width, uint32_t height, bool has_depth, HostFramePush *out,
@@ -193,13 +161,13 @@ int host_frame_create(host_frame *h, sky_renderer *r, VkFormat color_format, cha
                                  .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
                                  .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
                                  .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
-    VK_CHECK(vkCreateSampler(ctx->device, &sinfo, NULL, &h->nearest));
+    VK_CHECK(vkCreateSampler(ctx->device, &sinfo, gpu_allocator(ctx->device), &h->nearest));
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, HOST_FRAME_SETS},
                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * HOST_FRAME_SETS},
                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, HOST_FRAME_SETS}};
     VkDescriptorPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
                                         .maxSets = HOST_FRAME_SETS, .poolSizeCount = 3, .pPoolSizes = sizes};
-    VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, NULL, &h->pool));
+    VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, gpu_allocator(ctx->device), &h->pool));
     const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     /* The sky pass's bindings (0-2, 5), the host's depth at 3 and its colour at 4. */
     VkDescriptorType types[] = {UBO, SAMPLED, SAMPLED, SAMPLED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, SAMPLED};
@@ -216,7 +184,7 @@ int host_frame_create(host_frame *h, sky_renderer *r, VkFormat color_format, cha
     VkShaderModule m = f32 ? gpu_shader_module(ctx, spv_host_frame_f32_comp, sizeof spv_host_frame_f32_comp, "host_frame.comp")
                            : gpu_shader_module(ctx, spv_host_frame_comp, sizeof spv_host_frame_comp, "host_frame.comp");
     h->pipeline = gpu_compute_pipeline_spec(ctx, h->layout, m, s->spec, "host_frame");
-    vkDestroyShaderModule(ctx->device, m, NULL);
+    vkDestroyShaderModule(ctx->device, m, gpu_allocator(ctx->device));
     return 0;
 }
 
@@ -224,11 +192,11 @@ void host_frame_destroy(host_frame *h, const sky_renderer *r)
 {
     VkDevice d = r->ctx->device;
     if (!h->pipeline) return;
-    vkDestroyPipeline(d, h->pipeline, NULL);
-    vkDestroyPipelineLayout(d, h->layout, NULL);
-    vkDestroyDescriptorSetLayout(d, h->set_layout, NULL);
-    vkDestroyDescriptorPool(d, h->pool, NULL);
-    vkDestroySampler(d, h->nearest, NULL);
+    vkDestroyPipeline(d, h->pipeline, gpu_allocator(d));
+    vkDestroyPipelineLayout(d, h->layout, gpu_allocator(d));
+    vkDestroyDescriptorSetLayout(d, h->set_layout, gpu_allocator(d));
+    vkDestroyDescriptorPool(d, h->pool, gpu_allocator(d));
+    vkDestroySampler(d, h->nearest, gpu_allocator(d));
     memset(h, 0, sizeof *h);
 }
 
@@ -280,11 +248,11 @@ void host_frame_record(sky_renderer *r, host_frame *h, VkCommandBuffer cmd, cons
     /* 2. The host's images, from the host's last use to the pass's. Colour: the host's geometry pass wrote it (RAW),
      * or read it (WAR); the pass reads and writes it in GENERAL. Depth: the host's depth test wrote it (RAW); the
      * pass samples it: to SHADER_READ_ONLY. */
-    gpu_barrier_add_image_use(&b, "host.color.to_storage", "host_color", color->image, one, &color->before,
-                              &COLOR_IN_PASS);
+    gpu_barrier_add_image_info(&b, "host.color.to_storage", "host_color", color->image, one, color->before,
+                               COLOR_IN_PASS, false);
     if (depth)
-        gpu_barrier_add_image_use(&b, "host.depth.to_sample", "host_depth", depth->image, depth_range,
-                                  &depth->before, &DEPTH_IN_PASS);
+        gpu_barrier_add_image_info(&b, "host.depth.to_sample", "host_depth", depth->image, depth_range,
+                                   depth->before, DEPTH_IN_PASS, false);
     gpu_barrier_flush(cmd, &b);
 
     /* 3. The pass: sky behind the geometry, aerial perspective on it. Without a depth image the transmittance LUT
@@ -304,10 +272,10 @@ void host_frame_record(sky_renderer *r, host_frame *h, VkCommandBuffer cmd, cons
      * in its layout. The pass sampled the depth; the host's next use (next frame's clear, its depth test) writes it
      * (WAR) in its layout. */
     b = gpu_barrier_batch_begin("after host_frame");
-    gpu_barrier_add_image_use(&b, "host.color.to_after", "host_color", color->image, one, &COLOR_IN_PASS,
-                              &color->after);
+    gpu_barrier_add_image_info(&b, "host.color.to_after", "host_color", color->image, one, COLOR_IN_PASS,
+                               color->after, false);
     if (depth)
-        gpu_barrier_add_image_use(&b, "host.depth.to_after", "host_depth", depth->image, depth_range, &DEPTH_IN_PASS,
-                                  &depth->after);
+        gpu_barrier_add_image_info(&b, "host.depth.to_after", "host_depth", depth->image, depth_range,
+                                   DEPTH_IN_PASS, depth->after, false);
     gpu_barrier_flush(cmd, &b);
 }

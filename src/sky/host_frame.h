@@ -30,12 +30,6 @@ typedef struct host_camera {
     double projection[16];
 } host_camera;
 
-/* The matrices of vksky's command-line camera (vksky_camera_look): the world origin, yaw 0 north (-Z), 90 east
- * (+X), pitch up, vertical fov, width / height, near plane; far at infinity with reversed depth (1 at the near
- * plane, 0 at infinity). */
-void host_camera_look(host_camera *c, double yaw_deg, double pitch_deg, double fov_y_deg, double aspect,
-                      double near_m);
-
 /* The pass's push constants for a camera, the sun and the march settings of `view` (its camera fields are not
  * read), over a width x height image. Returns 0, or -1 (the message in err) for a projection that is not a
  * perspective (the depth -> point mapping assumes w depends on depth alone) or a camera below the ground. */
