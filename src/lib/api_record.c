@@ -105,6 +105,57 @@ static gpu_usage_info image_use(vksky_image_use u)
     return (gpu_usage_info){.name = "host", .stage = u.stage, .access = u.access, .layout = u.layout};
 }
 
+static bool format_is_depth(VkFormat f)
+{
+    return f == VK_FORMAT_D16_UNORM || f == VK_FORMAT_X8_D24_UNORM_PACK32 || f == VK_FORMAT_D32_SFLOAT ||
+           f == VK_FORMAT_D16_UNORM_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D32_SFLOAT_S8_UINT;
+}
+
+/* SCENE_LINEAR: the host's camera to the pass's push constants (sky/host_frame.c), its images with their uses. */
+static vksky_result record_scene_linear(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
+{
+    vksky_context *c = renderer->ctx;
+    const vksky_image *img = &frame->color, *depth = frame->depth;
+    if (!frame->camera || !img->image || !img->view || (depth && (!depth->image || !depth->view))) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: SCENE_LINEAR needs frame.camera, frame.color's image and view, and frame.depth's "
+                    "(or depth NULL)");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    if (img->extent.width != renderer->desc.width || img->extent.height != renderer->desc.height ||
+        img->format != renderer->desc.target_format ||
+        (depth && (depth->extent.width != img->extent.width || depth->extent.height != img->extent.height ||
+                   !format_is_depth(depth->format)))) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: frame.color %ux%u format %d (the renderer: %ux%u format %d), frame.depth %ux%u "
+                    "format %d: expected the renderer's size and format, a depth format of the same size",
+                    img->extent.width, img->extent.height, (int)img->format, renderer->desc.width,
+                    renderer->desc.height, (int)renderer->desc.target_format, depth ? depth->extent.width : 0,
+                    depth ? depth->extent.height : 0, depth ? (int)depth->format : 0);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    host_camera cam;
+    memcpy(cam.position_m, frame->camera->position_m, sizeof cam.position_m);
+    cam.origin_altitude_m = frame->camera->origin_altitude_m;
+    memcpy(cam.view, frame->camera->view, sizeof cam.view);
+    memcpy(cam.projection, frame->camera->projection, sizeof cam.projection);
+    const model_atmosphere *a = &renderer->o.atmosphere;
+    HostFramePush push;
+    char err[200];
+    if (host_frame_push(&cam, &renderer->o.view, a->bottom_radius, a->top_radius - a->bottom_radius,
+                        img->extent.width, img->extent.height, depth != NULL, &push, err, sizeof err) != 0) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR, "vksky_record: %s", err);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    host_image color = {img->image, img->view, img->format, img->extent, image_use(img->before), image_use(img->after)};
+    host_image z = {0};
+    if (depth) z = (host_image){depth->image, depth->view, depth->format, depth->extent, image_use(depth->before),
+                                image_use(depth->after)};
+    host_frame_desc f = {.color = &color, .depth = depth ? &z : NULL, .push = &push, .force_luts = frame->force_luts};
+    host_frame_record(&renderer->r, &renderer->hf, cmd, &f);
+    return VKSKY_SUCCESS;
+}
+
 vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
 {
     if (!renderer || !cmd || !frame) return VKSKY_ERROR_INVALID_ARGUMENT;
@@ -114,6 +165,7 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
         frame_record_luts(&renderer->r, cmd, frame->force_luts, NULL);
         return VKSKY_SUCCESS;
     }
+    if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) return record_scene_linear(renderer, cmd, frame);
     const vksky_image *img = &frame->color;
     if (!frame->camera || !img->image || !img->view) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,

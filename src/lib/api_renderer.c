@@ -54,14 +54,8 @@ static vksky_result check_desc(vksky_context *c, const vksky_renderer_desc *d)
                     "vksky_renderer_create: abi_version %u; this library is ABI %u", d->abi_version, VKSKY_ABI_VERSION);
         return VKSKY_ERROR_ABI_MISMATCH;
     }
-    if (d->output == VKSKY_OUTPUT_SCENE_LINEAR) {
-        /* Scene-linear output (the sky behind the host's geometry, aerial perspective from its depth) is the
-         * host-frame work of issue 25's second part; this build records DISPLAY and LUTS_ONLY. */
-        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
-                    "vksky_renderer_create: VKSKY_OUTPUT_SCENE_LINEAR is not available in this build");
-        return VKSKY_ERROR_UNSUPPORTED;
-    }
-    if (d->output != VKSKY_OUTPUT_DISPLAY && d->output != VKSKY_OUTPUT_LUTS_ONLY) {
+    if (d->output != VKSKY_OUTPUT_DISPLAY && d->output != VKSKY_OUTPUT_LUTS_ONLY &&
+        d->output != VKSKY_OUTPUT_SCENE_LINEAR) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR, "vksky_renderer_create: output %d is unknown",
                     (int)d->output);
         return VKSKY_ERROR_INVALID_ARGUMENT;
@@ -72,7 +66,18 @@ static vksky_result check_desc(vksky_context *c, const vksky_renderer_desc *d)
                     "vksky_renderer_create: size %ux%u; expected 1..16384 each", d->width, d->height);
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
-    if (sized && !format_is_display(d->target_format)) {
+    if (d->output == VKSKY_OUTPUT_SCENE_LINEAR) {
+        /* The pass reads and writes the host's HDR image as a storage image (sky/host_frame.c). */
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(c->gpu.physical, d->target_format, &fp);
+        if (!host_frame_format_supported(d->target_format) ||
+            !(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT)) {
+            lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                        "vksky_renderer_create: target format %d; SCENE_LINEAR writes R16G16B16A16_SFLOAT or "
+                        "R32G32B32A32_SFLOAT as a storage image", (int)d->target_format);
+            return VKSKY_ERROR_UNSUPPORTED;
+        }
+    } else if (sized && !format_is_display(d->target_format)) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                     "vksky_renderer_create: target format %d; DISPLAY writes R8G8B8A8 or B8G8R8A8, UNORM or SRGB",
                     (int)d->target_format);
@@ -90,7 +95,8 @@ static vksky_result build(vksky_renderer *r)
     model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
     light_render_atmosphere(o, &lit);
     sky_features features = options_features(o);
-    bool luts_only = r->desc.output == VKSKY_OUTPUT_LUTS_ONLY;
+    /* LUTS_ONLY and SCENE_LINEAR need none of the frame's own images: a 1 x 1 frame the renderer never draws. */
+    bool luts_only = r->desc.output != VKSKY_OUTPUT_DISPLAY;
     sky_renderer_desc rdesc = {
         .width = luts_only ? 1 : (uint32_t)o->width, .height = luts_only ? 1 : (uint32_t)o->height,
         .bloom = o->view.bloom, .readback = false, .external_display = !luts_only,
@@ -101,11 +107,20 @@ static vksky_result build(vksky_renderer *r)
     gpu_trap trap;
     if (setjmp(trap.jump)) {
         lib_message(r->ctx->message, r->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
+        host_frame_destroy(&r->hf, &r->r);
         sky_renderer_destroy(&r->r);
         return lib_result_from_vk(trap.result);
     }
     gpu_trap_arm(&trap);
     sky_renderer_create(&r->r, &r->ctx->gpu, &rdesc);
+    char err[200];
+    if (r->desc.output == VKSKY_OUTPUT_SCENE_LINEAR && host_frame_create(&r->hf, &r->r, r->desc.target_format, err,
+                                                                         sizeof err) != 0) {
+        gpu_trap_arm(NULL);
+        lib_message(r->ctx->message, r->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", err);
+        sky_renderer_destroy(&r->r);
+        return VKSKY_ERROR_UNSUPPORTED;
+    }
     gpu_trap_arm(NULL);
     return VKSKY_SUCCESS;
 }
@@ -142,6 +157,7 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
 void vksky_renderer_destroy(vksky_renderer *renderer)
 {
     if (!renderer) return;
+    host_frame_destroy(&renderer->hf, &renderer->r);
     sky_renderer_destroy(&renderer->r);
     renderer->ctx->renderers--;
     free(renderer);
@@ -173,6 +189,16 @@ vksky_result vksky_renderer_set_scene(vksky_renderer *renderer, const vksky_scen
     gpu_trap_arm(&trap);
     renderer->r.features = features;   /* one upload, one variant build for both */
     sky_renderer_set_atmosphere(&renderer->r, &lit, options_sun_radius_rad(&o));
+    /* A new variant may bring new pipelines and LUT views: the SCENE_LINEAR pass is rebuilt over them. */
+    char err[200];
+    if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) {
+        host_frame_destroy(&renderer->hf, &renderer->r);
+        if (host_frame_create(&renderer->hf, &renderer->r, renderer->desc.target_format, err, sizeof err) != 0) {
+            gpu_trap_arm(NULL);
+            lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", err);
+            return VKSKY_ERROR_UNSUPPORTED;
+        }
+    }
     gpu_trap_arm(NULL);
     renderer->o = o;
     return VKSKY_SUCCESS;
@@ -182,6 +208,12 @@ vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uin
 {
     if (!renderer || width == 0 || height == 0 || width > 16384 || height > 16384) return VKSKY_ERROR_INVALID_ARGUMENT;
     if (renderer->desc.output == VKSKY_OUTPUT_LUTS_ONLY) return VKSKY_SUCCESS;
+    if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) {
+        /* The pass sizes its dispatch by the host's image: nothing of vksky's depends on the size. */
+        renderer->desc.width = width, renderer->desc.height = height;
+        renderer->o.width = (int)width, renderer->o.height = (int)height;
+        return VKSKY_SUCCESS;
+    }
     gpu_trap trap;
     if (setjmp(trap.jump)) {
         lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);

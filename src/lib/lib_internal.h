@@ -8,6 +8,7 @@
 #include "app/options_struct.h"
 #include "gpu/context.h"
 #include "sky/frame.h"
+#include "sky/host_frame.h"
 
 struct vksky_context {
     gpu_context gpu;
@@ -25,6 +26,7 @@ struct vksky_renderer {
     sky_renderer r;
     options o;                     /* the scene with the renderer's quality, size and units applied */
     vksky_renderer_desc desc;      /* as given (desc.scene and desc.quality not kept: they are the caller's) */
+    host_frame hf;                 /* SCENE_LINEAR: the pass over the host's colour and depth (sky/host_frame.h) */
 };
 
 /* One message line to the callback (NULL: dropped). */
