@@ -3,7 +3,8 @@
  * One thread per pixel of the host's HDR colour image, which already holds its geometry. Where the host's depth is
  * the far plane: the sky along the pixel's ray, as the sky pass computes it (sky_pixel, horizon.glsl). Elsewhere:
  * the point is reconstructed from the depth, and the pixel becomes colour x T + S over the camera -> point segment
- * (aerial_march, aerial.glsl, as the composite pass applies it). Units: the renderer's (the atmosphere's sun). */
+ * (aerial_march, aerial.glsl, as the composite pass applies it), alpha kept. Units: the renderer's (the atmosphere's
+ * sun: vksky_luts.sun_illuminance). */
 #extension GL_GOOGLE_include_directive : require
 #include "atmosphere.glsl"
 #include "host_frame_push.h"
@@ -37,8 +38,9 @@ void main()
     float d = mode < 1.5 ? texelFetch(host_depth, p, 0).r : push.depth.z;
     bool sky = mode > 0.5 ? d <= push.depth.z : d >= push.depth.z;
     if (sky) {
-        /* The pixel's own sky; its alpha (the horizon's distance, for the CLI's tone map) is not the host's. */
-        imageStore(host_color, p, vec4(sky_pixel(vec2(p) + 0.5, push.sky).rgb, 1.0));
+        /* The pixel's own sky; alpha 0: no geometry covers it (sky_pixel's alpha, the horizon's distance for the
+         * CLI's tone map, is not the host's). */
+        imageStore(host_color, p, vec4(sky_pixel(vec2(p) + 0.5, push.sky).rgb, 0.0));
         return;
     }
     vec4 color = imageLoad(host_color, p);

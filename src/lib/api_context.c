@@ -5,7 +5,7 @@
 void vksky_get_device_requirements(vksky_device_requirements *out)
 {
     if (!out) return;
-    *out = (vksky_device_requirements){.synchronization2 = true, .dynamic_rendering = true,
+    *out = (vksky_device_requirements){.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
                                        .vulkan_memory_model = true, .vulkan_memory_model_device_scope = true};
 }
 
