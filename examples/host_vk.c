@@ -1,5 +1,6 @@
 /* The example host's Vulkan boilerplate (host_vk.h). */
 #include "host_vk.h"
+#include "sky_host_scene.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -404,4 +405,102 @@ void hv_window_destroy(const hv_device *d, hv_window *w)
     vkDestroySemaphore(d->device, w->acquired, NULL);
     vkDestroySwapchainKHR(d->device, w->swapchain, NULL);
     vkDestroySurfaceKHR(d->instance, w->surface, NULL);
+}
+
+/* One quad (two triangles) of the mesh: corner c, edges u and v, normal n. */
+static float *quad(float *o, const double c[3], const double u[3], const double v[3], const double n[3], float albedo)
+{
+    static const int corners[6][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
+    for (int k = 0; k < 6; ++k, o += 7) {
+        for (int i = 0; i < 3; ++i) o[i] = (float)(c[i] + corners[k][0] * u[i] + corners[k][1] * v[i]), o[3 + i] = (float)n[i];
+        o[6] = albedo;
+    }
+    return o;
+}
+
+uint32_t hv_mesh_build(float *o)
+{
+    float *start = o;
+    double g = SCENE_GROUND_HALF_M;
+    o = quad(o, (double[]){-g, 0, -g}, (double[]){2 * g, 0, 0}, (double[]){0, 0, 2 * g}, (double[]){0, 1, 0},
+             SCENE_GROUND_ALBEDO);
+    for (int b = 0; b < SCENE_BOX_COUNT; ++b) {
+        const scene_box *s = &SCENE_BOXES[b];
+        double w = s->width_m, h = s->height_m, x0 = s->x_m - 0.5 * w, z0 = -s->distance_m;   /* front face at z0 */
+        o = quad(o, (double[]){x0, 0, z0}, (double[]){w, 0, 0}, (double[]){0, h, 0}, (double[]){0, 0, 1}, s->albedo);
+        o = quad(o, (double[]){x0, 0, z0 - w}, (double[]){w, 0, 0}, (double[]){0, h, 0}, (double[]){0, 0, -1}, s->albedo);
+        o = quad(o, (double[]){x0, 0, z0 - w}, (double[]){0, 0, w}, (double[]){0, h, 0}, (double[]){-1, 0, 0}, s->albedo);
+        o = quad(o, (double[]){x0 + w, 0, z0 - w}, (double[]){0, 0, w}, (double[]){0, h, 0}, (double[]){1, 0, 0}, s->albedo);
+        o = quad(o, (double[]){x0, h, z0 - w}, (double[]){w, 0, 0}, (double[]){0, 0, w}, (double[]){0, 1, 0}, s->albedo);
+    }
+    return (uint32_t)((o - start) / 7);
+}
+
+void hv_window_present(const hv_device *d, hv_window *w, VkCommandBuffer cmd, uint32_t index)
+{
+    /* The swapchain image after the acquire (its semaphore waited at COLOR_ATTACHMENT_OUTPUT, the barrier's source
+     * stage), written by the tone map, then handed to presentation. */
+    hv_barrier(cmd, w->images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
+               VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    VkRenderingAttachmentInfo ca = {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO, .imageView = w->views[index],
+                                    .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                    .loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE, .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
+    VkRenderingInfo ri = {.sType = VK_STRUCTURE_TYPE_RENDERING_INFO, .renderArea = {{0, 0}, w->extent},
+                          .layerCount = 1, .colorAttachmentCount = 1, .pColorAttachments = &ca};
+    vkCmdBeginRendering(cmd, &ri);
+    vkCmdSetViewport(cmd, 0, 1, &(VkViewport){0, 0, (float)w->extent.width, (float)w->extent.height, 0, 1});
+    vkCmdSetScissor(cmd, 0, 1, &(VkRect2D){{0, 0}, w->extent});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, w->tonemap);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, w->layout, 0, 1, &w->set, 0, NULL);
+    float exposure = 1.0f;
+    vkCmdPushConstants(cmd, w->layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof exposure, &exposure);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+    vkCmdEndRendering(cmd);
+    hv_barrier(cmd, w->images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+               VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+               VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    HV_CHECK(vkEndCommandBuffer(cmd));
+    VkSemaphoreSubmitInfo wait = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = w->acquired,
+                                  .stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT};
+    VkSemaphoreSubmitInfo signal = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = w->done[index],
+                                    .stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT};
+    VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = 1,
+                        .pWaitSemaphoreInfos = &wait, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi,
+                        .signalSemaphoreInfoCount = 1, .pSignalSemaphoreInfos = &signal};
+    HV_CHECK(vkQueueSubmit2(d->queue, 1, &si, VK_NULL_HANDLE));
+    VkPresentInfoKHR pi = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR, .waitSemaphoreCount = 1,
+                           .pWaitSemaphores = &w->done[index], .swapchainCount = 1, .pSwapchains = &w->swapchain,
+                           .pImageIndices = &index};
+    vkQueuePresentKHR(d->queue, &pi);
+    /* One frame in flight: simple, not fast (an engine keeps two, with a fence each). */
+    HV_CHECK(vkQueueWaitIdle(d->queue));
+    vkFreeCommandBuffers(d->device, d->pool, 1, &cmd);
+}
+
+int hv_write_exr_half(const char *path, const uint16_t *rgba, int width, int height)
+{
+    size_t n = 4 * (size_t)width * height;
+    float *f = malloc(sizeof(float) * n);
+    if (!f) return -1;
+    for (size_t i = 0; i < n; ++i) f[i] = hv_half_to_float(rgba[i]);
+    int r = hv_write_exr(path, f, width, height);
+    free(f);
+    return r;
+}
+
+void hv_copy_to_host(const hv_device *d, VkCommandBuffer cmd, VkImage image, VkExtent2D extent, const hv_buffer *buffer)
+{
+    VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                .imageExtent = {extent.width, extent.height, 1}};
+    vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer->buffer, 1, &region);
+    /* The copy wrote the buffer; the host reads it after the wait: RAW (the wait alone makes nothing visible). */
+    VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2, .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+                                .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT, .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .memoryBarrierCount = 1,
+                            .pMemoryBarriers = &to_host};
+    vkCmdPipelineBarrier2(cmd, &dep);
+    hv_submit_wait(d, cmd);
 }

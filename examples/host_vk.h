@@ -63,6 +63,11 @@ void hv_submit_wait(const hv_device *d, VkCommandBuffer cmd);
 float hv_half_to_float(uint16_t h);
 /* An uncompressed scanline EXR of float RGBA. 0 on success. */
 int hv_write_exr(const char *path, const float *rgba, int width, int height);
+/* The same from half-float RGBA (an RGBA16F image read back). */
+int hv_write_exr_half(const char *path, const uint16_t *rgba, int width, int height);
+/* Records the copy of a colour image (in TRANSFER_SRC_OPTIMAL) into `buffer` and the barrier that makes the copy
+ * visible to the host, submits `cmd`, waits and frees it. */
+void hv_copy_to_host(const hv_device *d, VkCommandBuffer cmd, VkImage image, VkExtent2D extent, const hv_buffer *buffer);
 #endif
 
 /* The window: a GLFW window, its surface and an sRGB FIFO swapchain, the semaphores of one frame in flight, and the
@@ -89,3 +94,11 @@ typedef struct hv_window {
 void hv_window_create(const hv_device *d, hv_window *w, GLFWwindow *window, VkImageView hdr_view,
                       const uint32_t *vs, size_t vs_size, const uint32_t *fs, size_t fs_size);
 void hv_window_destroy(const hv_device *d, hv_window *w);
+/* Records the tone map of the HDR image into swapchain image `index` at the end of `cmd`, submits it (waiting for the
+ * acquire, signalling the image's semaphore), presents, waits for the queue (one frame in flight: simple, not fast;
+ * an engine keeps two, with a fence each) and frees `cmd`. */
+void hv_window_present(const hv_device *d, hv_window *w, VkCommandBuffer cmd, uint32_t index);
+
+/* The mesh of sky_host_scene.h (the ground, every box's four sides and top) as triangles of (position, normal,
+ * albedo) into `out`; returns the vertex count ((1 + 5 boxes) x 6). */
+uint32_t hv_mesh_build(float *out);

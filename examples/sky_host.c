@@ -34,36 +34,6 @@ static void on_vksky(void *user, vksky_severity severity, const char *message)
     fprintf(stderr, "sky_host: vksky %s: %s\n", severity >= VKSKY_SEVERITY_ERROR ? "error" : "message", message);
 }
 
-/* One quad (two triangles) of the mesh: corner c, edges u and v, normal n. */
-static float *quad(float *o, const double c[3], const double u[3], const double v[3], const double n[3], float albedo)
-{
-    static const int corners[6][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
-    for (int k = 0; k < 6; ++k, o += 7) {
-        for (int i = 0; i < 3; ++i) o[i] = (float)(c[i] + corners[k][0] * u[i] + corners[k][1] * v[i]), o[3 + i] = (float)n[i];
-        o[6] = albedo;
-    }
-    return o;
-}
-
-/* The ground and every box's four sides and top. Returns the vertex count. */
-static uint32_t mesh_build(float *o)
-{
-    float *start = o;
-    double g = SCENE_GROUND_HALF_M;
-    o = quad(o, (double[]){-g, 0, -g}, (double[]){2 * g, 0, 0}, (double[]){0, 0, 2 * g}, (double[]){0, 1, 0},
-             SCENE_GROUND_ALBEDO);
-    for (int b = 0; b < SCENE_BOX_COUNT; ++b) {
-        const scene_box *s = &SCENE_BOXES[b];
-        double w = s->width_m, h = s->height_m, x0 = s->x_m - 0.5 * w, z0 = -s->distance_m;   /* front face at z0 */
-        o = quad(o, (double[]){x0, 0, z0}, (double[]){w, 0, 0}, (double[]){0, h, 0}, (double[]){0, 0, 1}, s->albedo);
-        o = quad(o, (double[]){x0, 0, z0 - w}, (double[]){w, 0, 0}, (double[]){0, h, 0}, (double[]){0, 0, -1}, s->albedo);
-        o = quad(o, (double[]){x0, 0, z0 - w}, (double[]){0, 0, w}, (double[]){0, h, 0}, (double[]){-1, 0, 0}, s->albedo);
-        o = quad(o, (double[]){x0 + w, 0, z0 - w}, (double[]){0, 0, w}, (double[]){0, h, 0}, (double[]){1, 0, 0}, s->albedo);
-        o = quad(o, (double[]){x0, h, z0 - w}, (double[]){w, 0, 0}, (double[]){0, 0, w}, (double[]){0, 1, 0}, s->albedo);
-    }
-    return (uint32_t)((o - start) / 7);
-}
-
 int main(int argc, char **argv)
 {
     bool validate = false;
@@ -133,7 +103,7 @@ int main(int argc, char **argv)
     hv_buffer mesh, readback;
     hv_buffer_create(&d, &mesh, (1 + 5 * SCENE_BOX_COUNT) * 6 * 7 * sizeof(float), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
     hv_buffer_create(&d, &readback, (VkDeviceSize)width * height * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-    uint32_t vertices = mesh_build(mesh.mapped);
+    uint32_t vertices = hv_mesh_build(mesh.mapped);   /* the ground and the boxes of sky_host_scene.h */
     mesh_push push = {.sun_illuminance = {luts.sun_illuminance[0], luts.sun_illuminance[1], luts.sun_illuminance[2]}};
     double az = SCENE_SUN_AZIMUTH_DEG * 3.14159265358979 / 180, el = SCENE_SUN_ELEVATION_DEG * 3.14159265358979 / 180;
     push.sun_dir[0] = (float)(cos(el) * sin(az)), push.sun_dir[1] = (float)sin(el), push.sun_dir[2] = (float)(-cos(el) * cos(az));
@@ -208,68 +178,16 @@ int main(int argc, char **argv)
                          .depth = &depth_img};
         if (vksky_record(sky, cmd, &f)) return 1;
 
-        if (out) {
-            VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                                        .imageExtent = {extent.width, extent.height, 1}};
-            vkCmdCopyImageToBuffer(cmd, hdr.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer, 1, &region);
-            VkMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                                        .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-                                        .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                        .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT,
-                                        .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT};
-            vkCmdPipelineBarrier2(cmd, &(VkDependencyInfo){.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
-                                                           .memoryBarrierCount = 1, .pMemoryBarriers = &to_host});
-            hv_submit_wait(&d, cmd);
+        if (out) {   /* offscreen: the copy to a host buffer, submit, wait (host_vk.c) */
+            hv_copy_to_host(&d, cmd, hdr.image, extent, &readback);
             continue;
         }
-        /* The window: tone map into the swapchain image (after the acquire), then present. */
-        hv_barrier(cmd, win.images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
-                   VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                   VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-        ca.imageView = win.views[index], ca.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-        ri.renderArea.extent = win.extent, ri.pDepthAttachment = NULL;
-        vkCmdBeginRendering(cmd, &ri);
-        vkCmdSetViewport(cmd, 0, 1, &(VkViewport){0, 0, (float)win.extent.width, (float)win.extent.height, 0, 1});
-        vkCmdSetScissor(cmd, 0, 1, &(VkRect2D){{0, 0}, win.extent});
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, win.tonemap);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, win.layout, 0, 1, &win.set, 0, NULL);
-        float exposure = 1.0f;
-        vkCmdPushConstants(cmd, win.layout, VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof exposure, &exposure);
-        vkCmdDraw(cmd, 3, 1, 0, 0);
-        vkCmdEndRendering(cmd);
-        hv_barrier(cmd, win.images[index], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                   VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                   VK_PIPELINE_STAGE_2_NONE, 0, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
-        HV_CHECK(vkEndCommandBuffer(cmd));
-        VkSemaphoreSubmitInfo wait = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = win.acquired,
-                                      .stageMask = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT};
-        VkSemaphoreSubmitInfo signal = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = win.done[index],
-                                        .stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT};
-        VkCommandBufferSubmitInfo cbi = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
-        VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = 1,
-                            .pWaitSemaphoreInfos = &wait, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cbi,
-                            .signalSemaphoreInfoCount = 1, .pSignalSemaphoreInfos = &signal};
-        HV_CHECK(vkQueueSubmit2(d.queue, 1, &si, VK_NULL_HANDLE));
-        VkPresentInfoKHR pi = {.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR, .waitSemaphoreCount = 1,
-                               .pWaitSemaphores = &win.done[index], .swapchainCount = 1, .pSwapchains = &win.swapchain,
-                               .pImageIndices = &index};
-        vkQueuePresentKHR(d.queue, &pi);
-        /* One frame in flight: simple, not fast (an engine keeps two, with a fence each). */
-        HV_CHECK(vkQueueWaitIdle(d.queue));
-        vkFreeCommandBuffers(d.device, d.pool, 1, &cmd);
+        /* The window: the host's tone map into the swapchain image, submit, present (host_vk.c). */
+        hv_window_present(&d, &win, cmd, index);
     }
 
-    int status = 0;
-    if (out) {
-        float *rgba = malloc(sizeof(float) * 4 * (size_t)width * height);
-        const uint16_t *half = readback.mapped;
-        for (size_t i = 0; rgba && i < 4 * (size_t)width * height; ++i) rgba[i] = hv_half_to_float(half[i]);
-        if (!rgba || hv_write_exr(out, rgba, width, height) != 0) {
-            fprintf(stderr, "sky_host: cannot write %s\n", out);
-            status = 1;
-        }
-        free(rgba);
-    }
+    int status = out && hv_write_exr_half(out, readback.mapped, width, height) != 0;
+    if (status) fprintf(stderr, "sky_host: cannot write %s\n", out);
     vkDeviceWaitIdle(d.device);
     vksky_renderer_destroy(sky);
     vksky_scene_destroy(scene);
