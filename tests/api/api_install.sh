@@ -12,7 +12,7 @@ fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 P=$work/prefix
 cmake --install "$BUILD" --prefix "$P" >"$work/install.log" 2>&1 || { cat "$work/install.log" >&2; echo "FAIL: cmake --install" >&2; exit 1; }
-for f in include/vksky.h include/vksky_luts.glsl lib/libvksky.so lib/libvksky.a lib/pkgconfig/vksky.pc \
+for f in include/vksky.h include/vksky_luts.glsl include/vksky/glsl/geometry.glsl include/vksky/glsl/lut_mapping.glsl lib/libvksky.so lib/libvksky.a lib/pkgconfig/vksky.pc \
          lib/cmake/vksky/vksky-config.cmake lib/cmake/vksky/vksky-config-version.cmake; do
     [ -e "$P/$f" ] || fail "not installed: $f"
 done
@@ -33,5 +33,8 @@ ldd "$work/c_static" 2>/dev/null | grep -q libvksky && fail "the static consumer
 cmake -S "$SRC" -B "$work/cm" -DCMAKE_PREFIX_PATH="$P" >"$work/cm.log" 2>&1 && cmake --build "$work/cm" >>"$work/cm.log" 2>&1 \
     || { cat "$work/cm.log" >&2; fail "build with find_package(vksky)"; }
 [ "$("$work/cm/consumer")" = "vksky $version abi 1" ] || fail "find_package consumer printed '$("$work/cm/consumer")'"
+# A host's shader through the installed GLSL include (its LUT mappings: vksky's own shader files, installed).
+glslangValidator --quiet -V --target-env vulkan1.3 -I"$P/include" -o "$work/luts_host.spv" "$SRC/luts_host.comp" \
+    >"$work/glsl.log" 2>&1 || { cat "$work/glsl.log" >&2; fail "luts_host.comp does not compile against include/vksky_luts.glsl"; }
 [ $fails -eq 0 ] && echo "api_install: headers, libvksky.so.0 + .a, vksky.pc and vksky-config.cmake installed; pkg-config (shared, static) and find_package consumers run"
 exit $fails
