@@ -21,6 +21,7 @@ allowed() {
     reference) echo "model" ;;
     sky) echo "gpu model" ;;
     app) echo "sky gpu io reference model" ;;
+    lib) echo "app sky gpu io reference model" ;;   # libvksky (include/vksky.h) over the renderer, the scene loader
     *) echo "UNKNOWN" ;;
   esac
 }

@@ -139,7 +139,7 @@ void gpu_buffer_create(const gpu_context *ctx, gpu_buffer *buf, const char *name
 void gpu_buffer_destroy(const gpu_context *ctx, gpu_buffer *buf)
 {
     if (!buf->buffer) return;
-    vkUnmapMemory(ctx->device, buf->memory);
+    if (buf->mapped) vkUnmapMemory(ctx->device, buf->memory);   /* not mapped: its creation failed half-way */
     vkDestroyBuffer(ctx->device, buf->buffer, gpu_allocator(ctx->device));
     vkFreeMemory(ctx->device, buf->memory, gpu_allocator(ctx->device));
     *buf = (gpu_buffer){0};

@@ -160,9 +160,16 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
 {
     if (!renderer || !cmd || !frame) return VKSKY_ERROR_INVALID_ARGUMENT;
     vksky_context *c = renderer->ctx;
+    sky_view v = renderer->o.view;
     if (renderer->desc.output == VKSKY_OUTPUT_LUTS_ONLY) {
-        /* The LUT passes alone, their last barrier flushed here: readable by compute and fragment shaders. */
-        frame_record_luts(&renderer->r, cmd, frame->force_luts, NULL);
+        /* The camera gives the sky-view LUT its altitude; without one, the scene's camera altitude serves. */
+        if (frame->camera && !camera_to_view(frame->camera, renderer->o.atmosphere.bottom_radius, &v)) {
+            lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                        "vksky_record: the camera's matrices give no rays (a singular or non-perspective projection)");
+            return VKSKY_ERROR_INVALID_ARGUMENT;
+        }
+        frame_desc f = {.view = &v, .force_luts = frame->force_luts};
+        frame_record_luts_only(&renderer->r, cmd, &f);
         return VKSKY_SUCCESS;
     }
     if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) return record_scene_linear(renderer, cmd, frame);
@@ -180,7 +187,6 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
                     renderer->desc.height, (int)renderer->desc.target_format);
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
-    sky_view v = renderer->o.view;
     if (!camera_to_view(frame->camera, renderer->o.atmosphere.bottom_radius, &v)) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                     "vksky_record: the camera's matrices give no rays (a singular or non-perspective projection)");

@@ -467,3 +467,28 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
         gpu_barrier_flush(cmd, &b);
     }
 }
+
+/* The library's LUT-only frame (vksky_record, VKSKY_OUTPUT_LUTS_ONLY): the LUTs when their inputs changed, then the
+ * sky-view LUT for this view's camera altitude and sun, left readable by compute and fragment shaders for the
+ * host's own passes. */
+void frame_record_luts_only(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
+{
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    r->active_timer = f->timer ? f->timer : &r->timer;
+    gpu_timer_reset(r->active_timer, cmd);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before skyview_lut");
+    record_luts_if_dirty(r, cmd, f->force_luts, &b);
+    /* The host's passes of the previous frame sampled the sky-view LUT (WAR); rewritten whole: UNDEFINED -> GENERAL. */
+    gpu_barrier_add_image(&b, "skyview.to_storage", "skyview_lut", r->luts.skyview.image, one,
+                          GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+    gpu_barrier_flush(cmd, &b);
+    SkyPush sv = sky_view_skyview_push(f->view);
+    uint32_t t = timed_begin(r, cmd, "skyview_lut");
+    luts_record_skyview(&r->luts, cmd, &sv);
+    timed_end(r, cmd, t);
+    /* The LUT pass wrote it; the host's compute or fragment shaders sample it: RAW + layout. */
+    b = gpu_barrier_batch_begin("after skyview_lut");
+    gpu_barrier_add_image(&b, "skyview.write_to_host", "skyview_lut", r->luts.skyview.image, one,
+                          GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    gpu_barrier_flush(cmd, &b);
+}

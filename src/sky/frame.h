@@ -30,5 +30,8 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 /* `next`: the batch of the point after the LUTs, which receives their last barrier (one call per point); NULL:
  * flushed here. */
 void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next);
+/* The library's LUT-only frame: the LUTs when stale, the sky-view LUT for f->view; afterwards all of them are
+ * readable by compute and fragment shaders (the host's). */
+void frame_record_luts_only(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 
 #endif
