@@ -53,12 +53,17 @@ vec3 vksky_transmittance(float h, float mu)
 }
 
 #ifdef VKSKY_MULTISCATTER_LUT
-// Hillaire's Psi_ms at altitude h for the sun at zenith cosine mu_s (multiply by the sun's illuminance and the
-// medium's scattering coefficient).
+// Hillaire's Psi_ms (per unit sun illuminance) at altitude h for the sun at zenith cosine mu_s. The LUT holds square
+// parts side by side (Psi^(1/4) and moments: shaders/glsl/sky_common.glsl, lookup_multiscatter); this reads the
+// first part as vksky's sky pass does.
 vec3 vksky_multiscatter(float h, float mu_s)
 {
     vec2 size = vec2(textureSize(VKSKY_MULTISCATTER_LUT, 0));
-    return textureLod(VKSKY_MULTISCATTER_LUT, vksky_multiscatter_uv(h, mu_s, size), 0.0).rgb;
+    float part = size.y / size.x;   // 1 / the number of parts
+    vec2 uv = vksky_multiscatter_uv(h, mu_s, size * vec2(part, 1.0)) * vec2(part, 1.0);
+    vec3 root2 = textureLod(VKSKY_MULTISCATTER_LUT, uv, 0.0).rgb;
+    root2 *= root2;
+    return root2 * root2;
 }
 #endif
 

@@ -8,14 +8,17 @@
 #include <volk.h>
 #include "api_host.h"
 #include "gpu/barrier.h"
+#include "luts_host_comp.h"
 
 int main(int argc, char **argv)
 {
-    bool trace = false;
+    bool trace = false, luts = false;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--trace-barriers")) trace = true;
+        else if (!strcmp(argv[i], "--luts")) luts = true;   /* LUTS_ONLY, the host's shader sampling the LUTs */
         else if (strcmp(argv[i], "--validate") != 0) {
-            fprintf(stderr, "api_drop_probe: unknown option '%s' (accepted: --validate, --trace-barriers)\n", argv[i]);
+            fprintf(stderr, "api_drop_probe: unknown option '%s' (accepted: --validate, --trace-barriers, --luts)\n",
+                    argv[i]);
             return 2;
         }
     }
@@ -32,7 +35,8 @@ int main(int argc, char **argv)
     vksky_context_desc cd = host_context_desc(&h, NULL);
     vksky_context *c = NULL;
     if (vksky_context_create(&cd, &c) != VKSKY_SUCCESS) return 1;
-    vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION, .output = VKSKY_OUTPUT_DISPLAY, .width = 64,
+    vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION,
+                             .output = luts ? VKSKY_OUTPUT_LUTS_ONLY : VKSKY_OUTPUT_DISPLAY, .width = 64,
                              .height = 64, .target_format = VK_FORMAT_R8G8B8A8_UNORM, .quality = "lesson",
                              .bloom = true, .units = VKSKY_UNITS_RELATIVE};
     vksky_renderer *r = NULL;
@@ -40,30 +44,23 @@ int main(int argc, char **argv)
     vksky_camera cam = {.origin_altitude_m = 1.0};
     vksky_camera_look(&cam, 0.0, 10.0, 75.0, 1.0, 0.1);
     vksky_frame f = {.camera = &cam, .color = host_image(&h, VK_FORMAT_R8G8B8A8_UNORM)};
+    host_luts pass;
+    vksky_luts l;
+    if (luts && (vksky_get_luts(r, &l) != VKSKY_SUCCESS)) return 1;
+    if (luts) host_luts_create(&h, &pass, &l, spv_luts_host, sizeof spv_luts_host, 64);
     if (trace) gpu_barrier_trace(stdout);
     host_begin(&h);
     for (int frame = 0; frame < 2; ++frame) {
-        if (frame > 0) {
-            /* The host's own: its two copies write one buffer (WAW). */
-            VkBufferMemoryBarrier2 waw = {.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-                                          .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-                                          .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                          .dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-                                          .dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                          .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                          .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .buffer = h.buffer,
-                                          .size = VK_WHOLE_SIZE};
-            VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .bufferMemoryBarrierCount = 1,
-                                    .pBufferMemoryBarriers = &waw};
-            vkCmdPipelineBarrier2(h.cmd, &dep);
-        }
+        if (frame > 0) host_buffer_waw(&h, luts ? pass.buffer : h.buffer);   /* the host's own: two copies, one buffer */
+        f.force_luts = frame > 0;   /* the second frame's LUT passes after the first frame's reads */
         if (vksky_record(r, h.cmd, &f) != VKSKY_SUCCESS) return 1;
-        if (frame == 0) {
-            gpu_barrier_trace_pass("host copy");   /* the host's own pass between the frames, for the trace */
-            host_copy(&h);
-        }
+        gpu_barrier_trace_pass(luts ? "host luts pass" : "host copy");   /* the host's own pass, for the trace */
+        if (luts) host_luts_record(&h, &pass);
+        else if (frame == 0) host_copy(&h);
     }
-    host_end_and_read(&h);
+    if (luts) host_submit(&h, pass.buffer);
+    else host_end_and_read(&h);
+    if (luts) host_luts_destroy(&h, &pass);
     gpu_barrier_trace(NULL);
     vksky_renderer_destroy(r);
     vksky_context_destroy(c);

@@ -11,6 +11,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef VKSKY_SANITIZE
+#include <dlfcn.h>
+#endif
 
 static int host_failures __attribute__((unused));
 #define HOST_CHECK(cond, ...)                                                                               \
@@ -85,6 +88,12 @@ static inline void host_create_device(host *h, const VkAllocationCallbacks *allo
 {
     memset(h, 0, sizeof *h);
     h->owns = true;
+#ifdef VKSKY_SANITIZE
+    /* As src/gpu/context.c does: the driver and the layer stay mapped at exit, so tests/lsan.supp can name their own
+     * leaks by library instead of an unknown frame that could hide one of ours. */
+    const char *libs[] = {"libvulkan.so.1", "libvulkan_lvp.so", "libVkLayer_khronos_validation.so"};
+    for (size_t i = 0; i < sizeof libs / sizeof libs[0]; ++i) dlopen(libs[i], RTLD_LAZY | RTLD_NODELETE);
+#endif
     const char *layer = "VK_LAYER_KHRONOS_validation", *ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
     VkValidationFeatureEnableEXT sync = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
     VkValidationFeaturesEXT features = {.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
@@ -252,5 +261,169 @@ static inline void host_destroy_device(host *h, const VkAllocationCallbacks *all
         (PFN_vkDestroyDebugUtilsMessengerEXT)vkGetInstanceProcAddr(h->instance, "vkDestroyDebugUtilsMessengerEXT");
     destroy_messenger(h->instance, h->messenger, NULL);
     vkDestroyInstance(h->instance, NULL);
+}
+
+/* The host's own pass over vksky's LUTs (VKSKY_OUTPUT_LUTS_ONLY): a compute shader built on include/vksky_luts.glsl
+ * (tests/api/consumer/luts_host.comp) writes an RGBA32F image of `width` x 3 texels, copied to a host buffer. */
+typedef struct host_luts {
+    VkDescriptorSetLayout set_layout;
+    VkPipelineLayout layout;
+    VkPipeline pipeline;
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+    VkImage image;
+    VkImageView view;
+    VkDeviceMemory image_memory, buffer_memory;
+    VkBuffer buffer;
+    const float *texels;          /* width x 3 RGBA floats after host_luts_end_and_read */
+    uint32_t width;
+    float radii[4];
+} host_luts;
+
+static inline void host_luts_create(host *h, host_luts *l, const vksky_luts *luts, const uint32_t *spv, size_t spv_size,
+                                    uint32_t width)
+{
+    memset(l, 0, sizeof *l);
+    l->width = width;
+    l->radii[0] = luts->bottom_radius_km, l->radii[1] = luts->top_radius_km;
+    VkDescriptorSetLayoutBinding b[4];
+    for (uint32_t i = 0; i < 4; ++i)
+        b[i] = (VkDescriptorSetLayoutBinding){i, i < 3 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                              1, VK_SHADER_STAGE_COMPUTE_BIT, NULL};
+    VkDescriptorSetLayoutCreateInfo sli = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                           .bindingCount = 4, .pBindings = b};
+    HOST_VK(vkCreateDescriptorSetLayout(h->device, &sli, NULL, &l->set_layout));
+    VkPushConstantRange pc = {VK_SHADER_STAGE_COMPUTE_BIT, 0, 16};
+    VkPipelineLayoutCreateInfo pli = {.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO, .setLayoutCount = 1,
+                                      .pSetLayouts = &l->set_layout, .pushConstantRangeCount = 1, .pPushConstantRanges = &pc};
+    HOST_VK(vkCreatePipelineLayout(h->device, &pli, NULL, &l->layout));
+    VkShaderModuleCreateInfo mi = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = spv_size, .pCode = spv};
+    VkShaderModule module;
+    HOST_VK(vkCreateShaderModule(h->device, &mi, NULL, &module));
+    VkComputePipelineCreateInfo ci = {.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO, .layout = l->layout,
+                                      .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                                                .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = module, .pName = "main"}};
+    HOST_VK(vkCreateComputePipelines(h->device, VK_NULL_HANDLE, 1, &ci, NULL, &l->pipeline));
+    vkDestroyShaderModule(h->device, module, NULL);
+    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
+    VkDescriptorPoolCreateInfo poi = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1,
+                                      .poolSizeCount = 2, .pPoolSizes = sizes};
+    HOST_VK(vkCreateDescriptorPool(h->device, &poi, NULL, &l->pool));
+    VkDescriptorSetAllocateInfo ai = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO, .descriptorPool = l->pool,
+                                      .descriptorSetCount = 1, .pSetLayouts = &l->set_layout};
+    HOST_VK(vkAllocateDescriptorSets(h->device, &ai, &l->set));
+    VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
+                            .format = VK_FORMAT_R32G32B32A32_SFLOAT, .extent = {width, 3, 1}, .mipLevels = 1,
+                            .arrayLayers = 1, .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL,
+                            .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT};
+    HOST_VK(vkCreateImage(h->device, &ii, NULL, &l->image));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(h->device, l->image, &req);
+    VkMemoryAllocateInfo mai = {.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size,
+                                .memoryTypeIndex = host_memory_type(h, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)};
+    HOST_VK(vkAllocateMemory(h->device, &mai, NULL, &l->image_memory));
+    HOST_VK(vkBindImageMemory(h->device, l->image, l->image_memory, 0));
+    VkImageViewCreateInfo vi = {.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO, .image = l->image,
+                                .viewType = VK_IMAGE_VIEW_TYPE_2D, .format = VK_FORMAT_R32G32B32A32_SFLOAT,
+                                .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    HOST_VK(vkCreateImageView(h->device, &vi, NULL, &l->view));
+    VkBufferCreateInfo bi = {.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = 16ull * width * 3,
+                             .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT};
+    HOST_VK(vkCreateBuffer(h->device, &bi, NULL, &l->buffer));
+    vkGetBufferMemoryRequirements(h->device, l->buffer, &req);
+    mai.allocationSize = req.size;
+    mai.memoryTypeIndex = host_memory_type(h, req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                                      VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    HOST_VK(vkAllocateMemory(h->device, &mai, NULL, &l->buffer_memory));
+    HOST_VK(vkBindBufferMemory(h->device, l->buffer, l->buffer_memory, 0));
+    void *mapped;
+    HOST_VK(vkMapMemory(h->device, l->buffer_memory, 0, VK_WHOLE_SIZE, 0, &mapped));
+    l->texels = mapped;
+    VkDescriptorImageInfo lut[3] = {{luts->sampler, luts->transmittance, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                                    {luts->sampler, luts->multiscatter, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                                    {luts->sampler, luts->skyview, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+    VkDescriptorImageInfo out = {VK_NULL_HANDLE, l->view, VK_IMAGE_LAYOUT_GENERAL};
+    VkWriteDescriptorSet w[2] = {
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = l->set, .dstBinding = 0, .descriptorCount = 3,
+         .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, .pImageInfo = lut},
+        {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = l->set, .dstBinding = 3, .descriptorCount = 1,
+         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, .pImageInfo = &out}};
+    vkUpdateDescriptorSets(h->device, 2, w, 0, NULL);
+}
+
+static inline void host_image_barrier(VkCommandBuffer cmd, VkImage image, VkPipelineStageFlags2 ss, VkAccessFlags2 sa,
+                                      VkPipelineStageFlags2 ds, VkAccessFlags2 da, VkImageLayout from, VkImageLayout to)
+{
+    VkImageMemoryBarrier2 b = {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2, .srcStageMask = ss, .srcAccessMask = sa,
+                               .dstStageMask = ds, .dstAccessMask = da, .oldLayout = from, .newLayout = to,
+                               .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                               .image = image, .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .imageMemoryBarrierCount = 1,
+                            .pImageMemoryBarriers = &b};
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+/* The host's pass after vksky_record (which left the LUTs ready for vksky_luts.ready_stage/ready_access): its
+ * output image rewritten (after the previous copy read it), then copied. */
+static inline void host_luts_record(host *h, host_luts *l)
+{
+    host_image_barrier(h->cmd, l->image, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                       VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+    vkCmdBindPipeline(h->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->pipeline);
+    vkCmdBindDescriptorSets(h->cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->layout, 0, 1, &l->set, 0, NULL);
+    vkCmdPushConstants(h->cmd, l->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 16, l->radii);
+    vkCmdDispatch(h->cmd, (l->width + 63) / 64, 1, 1);
+    host_image_barrier(h->cmd, l->image, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                       VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_GENERAL,
+                       VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1}, .imageExtent = {l->width, 3, 1}};
+    vkCmdCopyImageToBuffer(h->cmd, l->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, l->buffer, 1, &region);
+}
+
+/* The host's own barrier between two frames' copies into one buffer (WAW). */
+static inline void host_buffer_waw(host *h, VkBuffer buffer)
+{
+    VkBufferMemoryBarrier2 waw = {.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2, .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+                                  .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT, .dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+                                  .dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT, .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                  .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .buffer = buffer, .size = VK_WHOLE_SIZE};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .bufferMemoryBarrierCount = 1,
+                            .pBufferMemoryBarriers = &waw};
+    vkCmdPipelineBarrier2(h->cmd, &dep);
+}
+
+/* The host's end of the frame: its buffer made visible to its reads after the fence (RAW), submitted, waited. */
+static inline void host_submit(host *h, VkBuffer readback)
+{
+    VkBufferMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+                                      .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
+                                      .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                      .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT, .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
+                                      .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                                      .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .buffer = readback,
+                                      .size = VK_WHOLE_SIZE};
+    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .bufferMemoryBarrierCount = 1,
+                            .pBufferMemoryBarriers = &to_host};
+    vkCmdPipelineBarrier2(h->cmd, &dep);
+    HOST_VK(vkEndCommandBuffer(h->cmd));
+    VkCommandBufferSubmitInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &ci};
+    HOST_VK(vkQueueSubmit2(h->queue, 1, &si, h->fence));
+    HOST_VK(vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX));
+    HOST_VK(vkResetFences(h->device, 1, &h->fence));
+}
+
+static inline void host_luts_destroy(host *h, host_luts *l)
+{
+    vkDeviceWaitIdle(h->device);
+    vkDestroyBuffer(h->device, l->buffer, NULL);
+    vkFreeMemory(h->device, l->buffer_memory, NULL);
+    vkDestroyImageView(h->device, l->view, NULL);
+    vkDestroyImage(h->device, l->image, NULL);
+    vkFreeMemory(h->device, l->image_memory, NULL);
+    vkDestroyDescriptorPool(h->device, l->pool, NULL);
+    vkDestroyPipeline(h->device, l->pipeline, NULL);
+    vkDestroyPipelineLayout(h->device, l->layout, NULL);
+    vkDestroyDescriptorSetLayout(h->device, l->set_layout, NULL);
 }
 #endif

@@ -10,6 +10,9 @@
  * Validation + synchronization validation on throughout; any message fails. */
 #include "api_host.h"
 #include "io/png_io.h"
+#include "luts_host_comp.h"
+#include "model/medium.h"
+#include "reference/ref_atmosphere.h"
 #include <math.h>
 #include <stdint.h>
 
@@ -244,8 +247,76 @@ static int cycles(int n)
     return host_failures ? 1 : 0;
 }
 
+/* VKSKY_OUTPUT_LUTS_ONLY on the host's device: the host's compute shader (include/vksky_luts.glsl) samples the
+ * transmittance LUT as the CPU reference integrates it (within 1 %: a bilinear tap of a half-float LUT), and reads a
+ * multi-scattering LUT's Psi as the model's quadrature gives it with the same directions (within 2 %), and a
+ * sky-view radiance that is finite, positive and at the zenith bluer than red. */
+static int luts(void)
+{
+    host h;
+    host_create_device(&h, NULL);
+    host_create_target(&h, 4, 4, VK_FORMAT_R8G8B8A8_SRGB);   /* its command buffer and fence */
+    vksky_context_desc cd = host_context_desc(&h, NULL);
+    vksky_context *c = NULL;
+    if (vksky_context_create(&cd, &c) != VKSKY_SUCCESS) return 1;
+    vksky_renderer *r = make_renderer_of(c, 0, 0, VKSKY_OUTPUT_LUTS_ONLY, false);
+    vksky_luts l;
+    HOST_CHECK(vksky_get_luts(r, &l) == VKSKY_SUCCESS && l.transmittance && l.multiscatter && l.skyview && l.sampler,
+               "vksky_get_luts");
+    host_luts pass;
+    host_luts_create(&h, &pass, &l, spv_luts_host, sizeof spv_luts_host, 64);
+    vksky_camera cam = {.origin_altitude_m = 1.0};
+    vksky_camera_look(&cam, 0.0, 10.0, 75.0, 1.0, 0.1);
+    vksky_frame f = {.camera = &cam};
+    host_begin(&h);
+    for (int frame = 0; frame < 2; ++frame) {   /* twice: the second frame's LUT writes after the first's reads */
+        if (frame > 0) host_buffer_waw(&h, pass.buffer);
+        HOST_CHECK(vksky_record(r, h.cmd, &f) == VKSKY_SUCCESS, "vksky_record LUTS_ONLY");
+        host_luts_record(&h, &pass);
+        f.force_luts = true;
+    }
+    host_submit(&h, pass.buffer);
+    model_atmosphere earth;
+    model_atmosphere_earth(&earth);
+    double worst = 0.0, worst_ms = 0.0;
+    for (uint32_t i = 0; i < pass.width; ++i) {
+        double mu = 0.05 + (1.0 - 0.05) * i / (pass.width - 1), t[3], psi[3];
+        ref_transmittance(&earth, 1.0, mu, 2000, t);
+        for (int ch = 0; ch < 3; ++ch) {
+            double e = fabs(pass.texels[4 * i + ch] - t[ch]) / t[ch];
+            worst = e > worst ? e : worst;
+        }
+        /* Psi by the model's own quadrature with the preset's directions (medium: 32x32) and steps, a few texels. */
+        if (i % 16 == 0) {
+            ref_multiscatter(&earth, 1.0, mu, 32, 20, 40, psi);
+            for (int ch = 0; ch < 3; ++ch) {
+                double e = fabs(pass.texels[4 * (pass.width + i) + ch] - psi[ch]) / psi[ch];
+                worst_ms = e > worst_ms ? e : worst_ms;
+            }
+        }
+        const float *ms = pass.texels + 4 * (pass.width + i), *sky = pass.texels + 4 * (2 * pass.width + i);
+        for (int ch = 0; ch < 3; ++ch)
+            HOST_CHECK(isfinite(ms[ch]) && ms[ch] > 0 && isfinite(sky[ch]) && sky[ch] > 0,
+                       "texel %u: multiscatter %g, sky-view %g", i, ms[ch], sky[ch]);
+    }
+    const float *zenith = pass.texels + 4 * (3 * pass.width - 1);
+    printf("LUTS_ONLY: the host's transmittance within %.3f %% of the CPU reference, Psi within %.2f %%; zenith sky-view "
+           "%g %g %g\n", 100 * worst, 100 * worst_ms, zenith[0], zenith[1], zenith[2]);
+    HOST_CHECK(worst < 0.01, "transmittance off the reference by %.3f %%", 100 * worst);
+    HOST_CHECK(worst_ms < 0.02, "Psi off the reference by %.2f %% (the LUT stores Psi^(1/4) in half floats)", 100 * worst_ms);
+    HOST_CHECK(zenith[2] > zenith[0], "the zenith is not bluer than red");
+    host_luts_destroy(&h, &pass);
+    vksky_renderer_destroy(r);
+    vksky_context_destroy(c);
+    host_destroy_target(&h);
+    host_destroy_device(&h, NULL);
+    HOST_CHECK(host_validation_messages == 0, "%u validation messages", host_validation_messages);
+    return host_failures ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 2 && !strcmp(argv[1], "luts")) return luts();
     if (argc == 3 && !strcmp(argv[1], "compare")) return compare(argv[2]);
     if (argc == 3 && !strcmp(argv[1], "cycles")) return cycles(atoi(argv[2]));
     fprintf(stderr, "usage: api_render compare VKSKY_BIN | cycles N\n");
