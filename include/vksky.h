@@ -86,11 +86,13 @@ typedef struct vksky_context_desc {
     void *message_user;
 } vksky_context_desc;
 
-/* What the host must enable on its device for vksky: Vulkan 1.3 core features (synchronization2, dynamicRendering),
+/* What the host must enable on its device for vksky: Vulkan 1.3 core features (synchronization2, dynamicRendering,
+ * maintenance4: glslang's SPIR-V for Vulkan 1.3 declares compute workgroup sizes with LocalSizeId),
  * and optionally vulkanMemoryModel + vulkanMemoryModelDeviceScope (the single-pass bloom downsample). Fills the
  * booleans the host should set in its VkPhysicalDeviceVulkan13Features / 12Features chain. */
 typedef struct vksky_device_requirements {
     bool synchronization2, dynamic_rendering;       /* required */
+    bool maintenance4;                              /* required (VkPhysicalDeviceVulkan13Features.maintenance4) */
     bool vulkan_memory_model, vulkan_memory_model_device_scope;   /* optional: used when enabled */
 } vksky_device_requirements;
 VKSKY_API void vksky_get_device_requirements(vksky_device_requirements *out);

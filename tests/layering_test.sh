@@ -22,6 +22,7 @@ allowed() {
     reference) echo "model" ;;
     sky) echo "gpu model" ;;
     app) echo "sky gpu io reference model" ;;
+    lib) echo "app sky gpu io reference model" ;;   # libvksky (include/vksky.h) over the renderer, the scene loader
     *) echo "UNKNOWN" ;;
   esac
 }
@@ -40,9 +41,9 @@ while read -r f inc; do
   [ "$(allowed "$mod")" = UNKNOWN ] && { echo "layering: $f: module '$mod' is not in the layering table"; fail=1; continue; }
   case $inc in
     */*) target=${inc%%/*} ;;
-    # Unqualified names: the C/GLSL shared layout (shaders/glsl/shared.h) and the SPIR-V headers generated at
+    # Unqualified names: the C/GLSL shared layouts (shaders/glsl/shared.h, host_frame_push.h) and the SPIR-V headers generated at
     # build time (build/shaders/*_{comp,frag,vert}.h and shader_key.h, their hash), both for the renderer only.
-    shared.h|shader_key.h|*_comp.h|*_frag.h|*_vert.h) target=shaders ;;
+    shared.h|host_frame_push.h|shader_key.h|*_comp.h|*_frag.h|*_vert.h) target=shaders ;;
     *) target=UNQUALIFIED ;;
   esac
   if [ "$target" = shaders ]; then

@@ -33,4 +33,5 @@ export VKSKY_SOAK_ROUNDS=2 VKSKY_SOAK_RESIZES=40 VKSKY_SOAK_RSS_BOUND_KB=1000000
 cd "$BUILD"
 tests='io|exr_read|solar_position|metrics|camera|barrier_table|reference|path_tracer|cli|scenes|scene_fuzz|test_luts'
 tests+='|test_paths|test_features|composite|sun_place|sequences|atomic_cancel|signals|window_soak|app_fuzz_regressions'
+tests+='|api_errors|api_render|api_luts'   # libvksky (issue 25): every error path, Vulkan failures included, and the renders
 ctest -j"$(nproc)" --output-on-failure --timeout 600 -R "^($tests)\$"   # 600 s: a test without its own TIMEOUT

@@ -17,7 +17,9 @@
 #define VKSKY_BINDING_AP_VOLUME 5             /* sampled: the froxel volume of --aerial-perspective volume */
 #define VKSKY_BINDING_COMPOSITE_IN 6          /* sampled: the composite's uploaded beauty and world position */
 #define VKSKY_BINDING_OUTPUT 7                /* storage image: what the compute pass writes (a LUT, the HDR image,
-                                                 the froxel volume, the composite's layers) */
+                                                 the froxel volume, the composite's layers, the host's colour
+                                                 image of the library's SCENE_LINEAR pass) */
+#define VKSKY_BINDING_HOST_DEPTH 8            /* sampled: the host's depth (the library's SCENE_LINEAR pass) */
 
 /* The post passes. */
 #define VKSKY_BINDING_POST_SOURCE 0           /* sampled: the HDR image, or the mip a bloom pass reads */

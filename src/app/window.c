@@ -129,7 +129,7 @@ static void record(app *a, frame_slot *f, uint32_t image, gpu_buffer *capture)
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     VK_CHECK(vkBeginCommandBuffer(f->cmd, &binfo));
     frame_target target = {a->sc.images[image], a->sc.views[image], a->sc.extent, GPU_USAGE_ACQUIRED,
-                           GPU_USAGE_PRESENT, capture};
+                           GPU_USAGE_PRESENT, .capture = capture};
     /* The renderer's own images (HDR, bloom mips, LUTs) are shared by both frames in flight. That is safe
      * without per-frame copies: both frames go to one queue, and a pipeline barrier's source scope covers
      * every command submitted before it on that queue, earlier submissions included. So the spine's first

@@ -65,6 +65,8 @@ typedef struct flag_name {
 static const flag_name stage_names[] = {
     {VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, "TOP_OF_PIPE"},
     {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, "COMPUTE_SHADER"},
+    {VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT, "EARLY_FRAGMENT_TESTS"},
+    {VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT, "LATE_FRAGMENT_TESTS"},
     {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, "FRAGMENT_SHADER"},
     {VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, "COLOR_ATTACHMENT_OUTPUT"},
     {VK_PIPELINE_STAGE_2_COPY_BIT, "COPY"},
@@ -79,6 +81,8 @@ static const flag_name access_names[] = {
     {VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, "SHADER_SAMPLED_READ"},
     {VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT, "COLOR_ATTACHMENT_READ"},
     {VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, "COLOR_ATTACHMENT_WRITE"},
+    {VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT, "DEPTH_STENCIL_ATTACHMENT_READ"},
+    {VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, "DEPTH_STENCIL_ATTACHMENT_WRITE"},
     {VK_ACCESS_2_TRANSFER_READ_BIT, "TRANSFER_READ"},
     {VK_ACCESS_2_TRANSFER_WRITE_BIT, "TRANSFER_WRITE"},
     {VK_ACCESS_2_HOST_READ_BIT, "HOST_READ"},
@@ -273,6 +277,12 @@ const char *gpu_layout_name(VkImageLayout layout)
     case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: return "TRANSFER_SRC_OPTIMAL";
     case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL: return "TRANSFER_DST_OPTIMAL";
     case VK_IMAGE_LAYOUT_PRESENT_SRC_KHR: return "PRESENT_SRC_KHR";
+    case VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL: return "DEPTH_STENCIL_ATTACHMENT_OPTIMAL";
+    case VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL: return "DEPTH_STENCIL_READ_ONLY_OPTIMAL";
+    case VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL: return "DEPTH_ATTACHMENT_OPTIMAL";
+    case VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL: return "DEPTH_READ_ONLY_OPTIMAL";
+    case VK_IMAGE_LAYOUT_ATTACHMENT_OPTIMAL: return "ATTACHMENT_OPTIMAL";
+    case VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL: return "READ_ONLY_OPTIMAL";
     default: return "OTHER";
     }
 }
@@ -393,4 +403,42 @@ void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b)
                 b->buffer_count, b->memory_count);
     vkCmdPipelineBarrier2(cmd, &dep);
     b->image_count = b->buffer_count = b->memory_count = 0;
+}
+
+/* The library's host images: one side of the barrier is the host's own use (vksky_image_use), given as a value, not
+ * a row of the usage table. Named, traced, droppable and weakenable like every other barrier; an access-free host
+ * use (the presentation engine, a use the host does not name) counts as a reader, as GPU_USAGE_PRESENT does. */
+void gpu_barrier_add_image_info(gpu_barrier_batch *b, const char *name, const char *resource, VkImage image,
+                                VkImageSubresourceRange range, gpu_usage_info from, gpu_usage_info to, bool discard)
+{
+    VkImageMemoryBarrier2 barrier = {
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+        .srcStageMask = from.stage,
+        .srcAccessMask = gpu_write_accesses(from.access),
+        .dstStageMask = to.stage,
+        .dstAccessMask = to.access,
+        .oldLayout = discard ? VK_IMAGE_LAYOUT_UNDEFINED : from.layout,
+        .newLayout = to.layout,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image,
+        .subresourceRange = range,
+    };
+    const char *weakened = weaken(name, &barrier.srcStageMask, &barrier.srcAccessMask, &barrier.dstStageMask,
+                                  &barrier.dstAccessMask);
+    bool from_writes = gpu_write_accesses(from.access) != 0, to_writes = gpu_write_accesses(to.access) != 0;
+    bool from_reads = (from.access & ~gpu_write_accesses(from.access)) != 0 || from.access == 0;
+    bool to_reads = (to.access & ~gpu_write_accesses(to.access)) != 0 || to.access == 0;
+    bool raw = from_writes && to_reads, war = from_reads && to_writes, waw = from_writes && to_writes;
+    bool transition = barrier.oldLayout != barrier.newLayout;
+    char hazard[40];
+    snprintf(hazard, sizeof hazard, "%s%s%s%s%s%s%s", raw ? "RAW" : "", raw && war ? "+" : "", war ? "WAR" : "",
+             (raw || war) && waw ? "+" : "", waw ? "WAW" : "", (raw || war || waw) && transition ? "+" : "",
+             transition ? "layout" : "");
+    if (!hazard[0]) snprintf(hazard, sizeof hazard, "none");
+    bool drop = dropped(name);
+    trace_line(name, b->point, resource, "0", barrier.oldLayout, barrier.newLayout, barrier.srcStageMask,
+               barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, hazard, drop, weakened);
+    if (drop || b->image_count == GPU_BATCH_MAX) return;   /* a full batch: 16 images, the frame uses at most 6 */
+    b->images[b->image_count++] = barrier;
 }

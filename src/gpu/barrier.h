@@ -64,6 +64,9 @@ void gpu_barrier_add_image(gpu_barrier_batch *b, const char *name, const char *r
                            VkImageSubresourceRange range, gpu_usage from, gpu_usage to, bool discard);
 void gpu_barrier_add_buffer(gpu_barrier_batch *b, const char *name, const char *resource, VkBuffer buffer,
                             gpu_usage from, gpu_usage to);
+/* The same with the usages given as values (the library's host images: vksky_image_use before and after). */
+void gpu_barrier_add_image_info(gpu_barrier_batch *b, const char *name, const char *resource, VkImage image,
+                                VkImageSubresourceRange range, gpu_usage_info from, gpu_usage_info to, bool discard);
 /* A global memory barrier (VkMemoryBarrier2): no resource, no layout. The canonical compute -> compute pattern on
  * images that stay in GENERAL (and on buffers): it orders every access of the source usage before every access
  * of the destination usage, whatever the resource. `resource` only labels the trace ("what it is for"). */

@@ -1,5 +1,6 @@
 #include "gpu/context.h"
 #include "gpu/barrier.h"
+#include <stdarg.h>
 #include <stdatomic.h>
 #ifdef VKSKY_SANITIZE
 #include <dlfcn.h>
@@ -27,10 +28,43 @@ const char *gpu_result_name(VkResult r)
     }
 }
 
+static _Thread_local gpu_trap *armed_trap;
+
+void gpu_trap_arm(gpu_trap *trap) { armed_trap = trap; }
+
+void gpu_fail(VkResult r, const char *text)
+{
+    gpu_trap *trap = armed_trap;
+    if (trap) {
+        armed_trap = NULL;   /* a failure while cleaning up after this one is the caller's to see, not a loop */
+        trap->result = r;
+        snprintf(trap->message, sizeof trap->message, "%s", text);
+        longjmp(trap->jump, 1);
+    }
+    fprintf(stderr, "vksky: %s\n", text);
+    exit(1);
+}
+
 void gpu_fail_vk(const char *file, int line, const char *call, VkResult r)
 {
-    fprintf(stderr, "vksky: %s:%d: %s failed: %s (%d)\n", file, line, call, gpu_result_name(r), (int)r);
-    exit(1);
+    char text[256];
+    /* The call's name alone ("vkCreateImage"), its result, where: the line a host's log can act on. */
+    int name_len = 0;
+    while (call[name_len] && call[name_len] != '(') name_len++;
+    if (armed_trap) snprintf(text, sizeof text, "%.*s failed: %s (%s:%d)", name_len, call, gpu_result_name(r), file, line);
+    else snprintf(text, sizeof text, "%s:%d: %s failed: %s (%d)", file, line, call, gpu_result_name(r), (int)r);
+    gpu_fail(r, text);
+}
+
+void gpu_report(const gpu_context *ctx, int severity, const char *format, ...)
+{
+    char text[512];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(text, sizeof text, format, args);
+    va_end(args);
+    if (ctx && ctx->message) ctx->message(ctx->message_user, severity, text);
+    else fprintf(stderr, "vksky: %s\n", text);
 }
 
 /* Every message of the validation layer is printed and counted; a run with any message exits non-zero
@@ -40,12 +74,14 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverity
                                                      const VkDebugUtilsMessengerCallbackDataEXT *data, void *user)
 {
     (void)types;
-    (void)user;
+    gpu_context *ctx = user;
     atomic_fetch_add(&validation_messages, 1);
     const char *level = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT     ? "error"
                         : severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT ? "warning"
                                                                                       : "info";
-    fprintf(stderr, "vksky: validation %s: %s\n", level, data->pMessage ? data->pMessage : "(no text)");
+    if (ctx) ctx->validation_messages++;
+    if (ctx && ctx->message) ctx->message(ctx->message_user, 3, data->pMessage ? data->pMessage : "(no text)");
+    else fprintf(stderr, "vksky: validation %s: %s\n", level, data->pMessage ? data->pMessage : "(no text)");
     return VK_FALSE;
 }
 
@@ -147,11 +183,11 @@ static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool 
     keep_vulkan_libraries_mapped();
 #endif
     if (volkInitialize() != VK_SUCCESS) {
-        if (!quiet) fprintf(stderr, "vksky: no Vulkan loader (libvulkan.so.1) found; install libvulkan1 and a driver (mesa-vulkan-drivers)\n");
+        if (!quiet) gpu_report(ctx, 2, "no Vulkan loader (libvulkan.so.1) found; install libvulkan1 and a driver (mesa-vulkan-drivers)");
         return -1;
     }
     if (volkGetInstanceVersion() < VK_API_VERSION_1_3) {
-        if (!quiet) fprintf(stderr, "vksky: the Vulkan loader is older than 1.3\n");
+        if (!quiet) gpu_report(ctx, 2, "the Vulkan loader is older than 1.3");
         return -1;
     }
     const char *extensions[16];
@@ -171,11 +207,11 @@ static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool 
 
     const char *layers[1] = {"VK_LAYER_KHRONOS_validation"};
     if (desc->validation && !has_layer(layers[0])) {
-        fprintf(stderr, "vksky: --validate needs the Khronos validation layer (Debian package vulkan-validationlayers)\n");
+        gpu_report(ctx, 2, "--validate needs the Khronos validation layer (Debian package vulkan-validationlayers)");
         return -1;
     }
     if (desc->validation && !ctx->debug_utils) {
-        fprintf(stderr, "vksky: --validate needs VK_EXT_debug_utils, which this loader lacks\n");
+        gpu_report(ctx, 2, "--validate needs VK_EXT_debug_utils, which this loader lacks");
         return -1;
     }
     /* Synchronization validation is off by default in the layer; it is the only thing that sees a missing
@@ -193,6 +229,7 @@ static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool 
         .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                        VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
         .pfnUserCallback = debug_callback,
+        .pUserData = ctx,
     };
     VkApplicationInfo app = {
         .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
@@ -212,7 +249,7 @@ static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool 
     };
     VkResult r = vkCreateInstance(&info, NULL, &ctx->instance);
     if (r != VK_SUCCESS) {
-        fprintf(stderr, "vksky: vkCreateInstance failed: %s\n", gpu_result_name(r));
+        gpu_report(ctx, 2, "vkCreateInstance failed: %s", gpu_result_name(r));
         return -1;
     }
     volkLoadInstanceOnly(ctx->instance);
@@ -257,16 +294,16 @@ static int pick_device(gpu_context *ctx, int index, bool quiet)
     if (n > 16) n = 16;
     vkEnumeratePhysicalDevices(ctx->instance, &n, pds);
     if (n == 0) {
-        if (!quiet) fprintf(stderr, "vksky: no Vulkan device found; install a driver (mesa-vulkan-drivers provides lavapipe)\n");
+        if (!quiet) gpu_report(ctx, 2, "no Vulkan device found; install a driver (mesa-vulkan-drivers provides lavapipe)");
         return -1;
     }
     if (index >= 0) {
         if ((uint32_t)index >= n) {
-            if (!quiet) fprintf(stderr, "vksky: --device %d: there are %u devices (0..%u); see --list-devices\n", index, n, n - 1);
+            if (!quiet) gpu_report(ctx, 2, "--device %d: there are %u devices (0..%u); see --list-devices", index, n, n - 1);
             return -2;
         }
         if (!device_is_usable(pds[index])) {
-            if (!quiet) fprintf(stderr, "vksky: --device %d does not support Vulkan 1.3 with a graphics+compute queue\n", index);
+            if (!quiet) gpu_report(ctx, 2, "--device %d does not support Vulkan 1.3 with a graphics+compute queue", index);
             return -2;
         }
         ctx->physical = pds[index];
@@ -282,7 +319,7 @@ static int pick_device(gpu_context *ctx, int index, bool quiet)
         }
     }
     if (best < 0) {
-        if (!quiet) fprintf(stderr, "vksky: no Vulkan 1.3 device with a graphics+compute queue\n");
+        if (!quiet) gpu_report(ctx, 2, "no Vulkan 1.3 device with a graphics+compute queue");
         return -1;
     }
     ctx->physical = pds[best];
@@ -350,7 +387,13 @@ static double now_ms(void)
 
 int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
 {
-    *ctx = (gpu_context){0};
+    return gpu_context_create_with(ctx, desc, NULL, NULL, NULL);
+}
+
+int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_message_fn message, void *user,
+                            const VkAllocationCallbacks *allocator)
+{
+    *ctx = (gpu_context){.message = message, .message_user = user, .allocator = allocator, .owns_device = true};
     double start = now_ms();
     if (parked && !desc->validation && desc->instance_extension_count == 0) {
         ctx->instance = parked, ctx->debug_utils = parked_debug_utils, ctx->instance_reused = true;
@@ -389,7 +432,7 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
     VkPhysicalDeviceFeatures2 f2 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &f13};
     vkGetPhysicalDeviceFeatures2(ctx->physical, &f2);
     if (!f13.synchronization2 || !f13.dynamicRendering || !f13.maintenance4) {
-        fprintf(stderr, "vksky: the device lacks synchronization2, dynamicRendering or maintenance4\n");
+        gpu_report(ctx, 2, "the device lacks synchronization2, dynamicRendering or maintenance4");
         gpu_context_destroy(ctx);
         return -1;
     }
@@ -430,13 +473,17 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
         .enabledExtensionCount = desc->want_swapchain ? (ctx->present_fences ? 2 : 1) : 0,
         .ppEnabledExtensionNames = dev_ext,
     };
-    VkResult r = vkCreateDevice(ctx->physical, &dinfo, NULL, &ctx->device);
+    VkResult r = vkCreateDevice(ctx->physical, &dinfo, ctx->allocator, &ctx->device);
     if (r != VK_SUCCESS) {
-        fprintf(stderr, "vksky: vkCreateDevice failed: %s\n", gpu_result_name(r));
+        gpu_report(ctx, 2, "vkCreateDevice failed: %s", gpu_result_name(r));
         gpu_context_destroy(ctx);
         return -1;
     }
-    volkLoadDevice(ctx->device);
+    /* Device functions straight from the driver while this is the only context of the process; beside another
+     * (an adopted host device may run on another driver) through the loader's dispatch, right for every device. */
+    if (gpu_context_live_count() == 0) volkLoadDevice(ctx->device);
+    else volkLoadInstance(ctx->instance);
+    gpu_allocator_register(ctx->device, ctx->allocator);
     vkGetDeviceQueue(ctx->device, ctx->queue_family, 0, &ctx->queue);
     gpu_set_name(ctx, VK_OBJECT_TYPE_QUEUE, (uint64_t)(uintptr_t)ctx->queue, "main queue");
 
@@ -445,9 +492,10 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
         .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
         .queueFamilyIndex = ctx->queue_family,
     };
-    VK_CHECK(vkCreateCommandPool(ctx->device, &pinfo, NULL, &ctx->command_pool));
+    VK_CHECK(vkCreateCommandPool(ctx->device, &pinfo, ctx->allocator, &ctx->command_pool));
     gpu_set_name(ctx, VK_OBJECT_TYPE_COMMAND_POOL, (uint64_t)ctx->command_pool, "main command pool");
     live_contexts++;
+    gpu_context_live_add(1);
     live_device_type = ctx->props.deviceType;
     ctx->instance_ms = instance_done - start;
     ctx->device_ms = now_ms() - instance_done;
@@ -456,11 +504,16 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
 
 void gpu_context_destroy(gpu_context *ctx)
 {
-    if (ctx->command_pool && live_contexts > 0) live_contexts--;   /* only a fully created context counted */
+    if (!ctx->owns_device) {
+        gpu_context_release(ctx);   /* the host's device: only what vksky made on it (context_adopt.c) */
+        return;
+    }
+    if (ctx->command_pool && live_contexts > 0) live_contexts--, gpu_context_live_add(-1);   /* counted once created */
     if (ctx->device) {
         vkDeviceWaitIdle(ctx->device);
-        if (ctx->command_pool) vkDestroyCommandPool(ctx->device, ctx->command_pool, NULL);
-        vkDestroyDevice(ctx->device, NULL);
+        if (ctx->command_pool) vkDestroyCommandPool(ctx->device, ctx->command_pool, ctx->allocator);
+        gpu_allocator_register(ctx->device, NULL);
+        vkDestroyDevice(ctx->device, ctx->allocator);
     }
     if (ctx->messenger) vkDestroyDebugUtilsMessengerEXT(ctx->instance, ctx->messenger, NULL);
     if (ctx->instance) vkDestroyInstance(ctx->instance, NULL);
@@ -517,7 +570,7 @@ void gpu_submit_and_wait(const gpu_context *ctx, VkCommandBuffer cmd)
     VK_CHECK(vkEndCommandBuffer(cmd));
     VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence fence;
-    VK_CHECK(vkCreateFence(ctx->device, &finfo, NULL, &fence));
+    VK_CHECK(vkCreateFence(ctx->device, &finfo, ctx->allocator, &fence));
     VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = cmd};
     VkSubmitInfo2 sinfo = {
         .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
@@ -526,6 +579,6 @@ void gpu_submit_and_wait(const gpu_context *ctx, VkCommandBuffer cmd)
     };
     VK_CHECK(vkQueueSubmit2(ctx->queue, 1, &sinfo, fence));
     VK_CHECK(vkWaitForFences(ctx->device, 1, &fence, VK_TRUE, UINT64_MAX));
-    vkDestroyFence(ctx->device, fence, NULL);
+    vkDestroyFence(ctx->device, fence, ctx->allocator);
     vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, &cmd);
 }

@@ -3,11 +3,13 @@
 #ifndef VKSKY_GPU_CONTEXT_H
 #define VKSKY_GPU_CONTEXT_H
 #include <volk.h>
+#include <setjmp.h>
 #include <stdbool.h>
 #include <stdio.h>
 
 /* Always-on check: prints file:line, the call and the VkResult name, then exits with status 1 (a runtime
- * failure, not a user error). Swapchain results are handled where they occur, never through this. */
+ * failure, not a user error); with a gpu_trap armed on the thread (the library's calls), jumps back to it instead.
+ * Swapchain results are handled where they occur, never through this. */
 #define VK_CHECK(call)                                                                                      \
     do {                                                                                                    \
         VkResult vk_check_result_ = (call);                                                                 \
@@ -21,6 +23,21 @@ typedef struct gpu_context_desc {
     unsigned instance_extension_count;
     bool want_swapchain;
 } gpu_context_desc;
+
+/* Where a failing Vulkan call goes instead of exit(1): the library arms one around each API call that creates
+ * (src/lib), gpu_fail_vk records the failure and jumps back, and the API destroys what was made and returns a result
+ * code. Everything the failed call made is reachable from the object being created (handles are written into it
+ * as they are made), so nothing leaks. */
+typedef struct gpu_trap {
+    jmp_buf jump;
+    VkResult result;
+    char message[256];        /* "vkCreateImage failed: VK_ERROR_OUT_OF_DEVICE_MEMORY (src/gpu/resources.c:40)" */
+} gpu_trap;
+void gpu_trap_arm(gpu_trap *trap);   /* NULL disarms */
+
+/* A message from src/gpu or src/sky (a context's problem, a validation message): severity 0 info, 1 warning, 2 error,
+ * 3 validation. Without one, messages go to stderr as "vksky: TEXT" (the CLI). */
+typedef void (*gpu_message_fn)(void *user, int severity, const char *text);
 
 typedef struct gpu_context {
     VkInstance instance;
@@ -43,10 +60,46 @@ typedef struct gpu_context {
     bool surface_maintenance1;    /* instance: VK_EXT_surface_maintenance1 (+ get_surface_capabilities2) enabled */
     bool present_fences;          /* device: VK_EXT_swapchain_maintenance1 enabled (present fences, docs §6) */
     bool memory_model_device_scope;   /* vulkanMemoryModel + ...DeviceScope enabled (bloom_spd.comp needs both) */
+    bool owns_device;             /* gpu_context_create made the instance and device; adopted: the host's */
+    const VkAllocationCallbacks *allocator;   /* every vkCreate/vkDestroy of src/gpu and src/sky (gpu_allocator) */
+    gpu_message_fn message;       /* NULL: stderr */
+    void *message_user;
+    unsigned validation_messages; /* this context's (gpu_validation_message_count: the process's) */
 } gpu_context;
 
-/* Returns 0 on success; -1 with a message on stderr (no device, validation layer missing, ...). */
+/* The host's device, adopted (libvksky's vksky_context_create): no instance or device is created; vksky's Vulkan
+ * function pointers come from the host's vkGetInstanceProcAddr (device calls through the loader's dispatch, right
+ * for any device, so two contexts on two devices never clash). */
+typedef struct gpu_adopt_desc {
+    PFN_vkGetInstanceProcAddr get_instance_proc_addr;
+    VkInstance instance;
+    VkPhysicalDevice physical;
+    VkDevice device;
+    uint32_t queue_family, queue_index;
+    const VkAllocationCallbacks *allocator;
+    VkPipelineCache pipeline_cache;
+    gpu_message_fn message;
+    void *message_user;
+} gpu_adopt_desc;
+
+/* Returns 0 on success; -1 with a message on stderr (no device, validation layer missing, ...); -2: a bad
+ * --device index. `message` (NULL: stderr) receives the messages instead, validation's included. */
 int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc);
+int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_message_fn message, void *user,
+                            const VkAllocationCallbacks *allocator);
+/* 0, or a VkResult (VK_ERROR_INITIALIZATION_FAILED: the device is older than Vulkan 1.3), a message sent. */
+VkResult gpu_context_adopt(gpu_context *ctx, const gpu_adopt_desc *desc);
+/* The allocation callbacks of the context that owns `device` (NULL: Vulkan's default); set (NULL: forget) by the
+ * context that makes or adopts the device. */
+const VkAllocationCallbacks *gpu_allocator(VkDevice device);
+void gpu_allocator_register(VkDevice device, const VkAllocationCallbacks *allocator);
+/* Contexts alive in the process, own and adopted (a second one keeps device calls on the loader's dispatch). */
+int gpu_context_live_count(void);
+void gpu_context_live_add(int delta);
+/* An adopted context's teardown (what vksky made on the host's device). */
+void gpu_context_release(gpu_context *ctx);
+/* One message through the context's callback, or stderr. */
+void gpu_report(const gpu_context *ctx, int severity, const char *format, ...) __attribute__((format(printf, 3, 4)));
 void gpu_context_destroy(gpu_context *ctx);
 /* Prints the physical devices with their indices (for --list-devices). Returns 0 or -1. */
 int gpu_list_devices(FILE *out);
@@ -67,4 +120,6 @@ void gpu_submit_and_wait(const gpu_context *ctx, VkCommandBuffer cmd);
 
 const char *gpu_result_name(VkResult r);
 _Noreturn void gpu_fail_vk(const char *file, int line, const char *call, VkResult r);
+/* A failure that is no Vulkan call's (no memory type fits): as gpu_fail_vk, with its own text. */
+_Noreturn void gpu_fail(VkResult r, const char *text);
 #endif

@@ -4,7 +4,7 @@ VkShaderModule gpu_shader_module(const gpu_context *ctx, const uint32_t *code, s
 {
     VkShaderModuleCreateInfo info = {.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO, .codeSize = size, .pCode = code};
     VkShaderModule m;
-    VK_CHECK(vkCreateShaderModule(ctx->device, &info, NULL, &m));
+    VK_CHECK(vkCreateShaderModule(ctx->device, &info, gpu_allocator(ctx->device), &m));
     gpu_set_name(ctx, VK_OBJECT_TYPE_SHADER_MODULE, (uint64_t)m, name);
     return m;
 }
@@ -20,7 +20,7 @@ VkDescriptorSetLayout gpu_set_layout(const gpu_context *ctx, const gpu_slot *slo
     VkDescriptorSetLayoutCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO, .bindingCount = count, .pBindings = bindings};
     VkDescriptorSetLayout layout;
-    VK_CHECK(vkCreateDescriptorSetLayout(ctx->device, &info, NULL, &layout));
+    VK_CHECK(vkCreateDescriptorSetLayout(ctx->device, &info, gpu_allocator(ctx->device), &layout));
     gpu_set_name(ctx, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, (uint64_t)layout, name);
     return layout;
 }
@@ -37,7 +37,7 @@ VkPipelineLayout gpu_pipeline_layout(const gpu_context *ctx, VkDescriptorSetLayo
         .pPushConstantRanges = &range,
     };
     VkPipelineLayout layout;
-    VK_CHECK(vkCreatePipelineLayout(ctx->device, &info, NULL, &layout));
+    VK_CHECK(vkCreatePipelineLayout(ctx->device, &info, gpu_allocator(ctx->device), &layout));
     gpu_set_name(ctx, VK_OBJECT_TYPE_PIPELINE_LAYOUT, (uint64_t)layout, name);
     return layout;
 }
@@ -58,7 +58,7 @@ VkPipeline gpu_compute_pipeline_spec(const gpu_context *ctx, VkPipelineLayout la
         .layout = layout,
     };
     VkPipeline p;
-    VK_CHECK(vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, NULL, &p));
+    VK_CHECK(vkCreateComputePipelines(ctx->device, ctx->pipeline_cache, 1, &info, gpu_allocator(ctx->device), &p));
     gpu_set_name(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)p, name);
     return p;
 }
@@ -120,7 +120,7 @@ VkPipeline gpu_fullscreen_pipeline_spec(const gpu_context *ctx, VkPipelineLayout
         .pRasterizationState = &raster, .pMultisampleState = &multisample, .pColorBlendState = &blend_state,
         .pDynamicState = &dynamic, .layout = layout};
     VkPipeline p;
-    VK_CHECK(vkCreateGraphicsPipelines(ctx->device, ctx->pipeline_cache, 1, &info, NULL, &p));
+    VK_CHECK(vkCreateGraphicsPipelines(ctx->device, ctx->pipeline_cache, 1, &info, gpu_allocator(ctx->device), &p));
     gpu_set_name(ctx, VK_OBJECT_TYPE_PIPELINE, (uint64_t)p, name);
     return p;
 }
@@ -171,7 +171,7 @@ VkSampler gpu_linear_clamp_sampler(const gpu_context *ctx, const char *name)
         .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
         .maxLod = 0.0f};
     VkSampler s;
-    VK_CHECK(vkCreateSampler(ctx->device, &info, NULL, &s));
+    VK_CHECK(vkCreateSampler(ctx->device, &info, gpu_allocator(ctx->device), &s));
     gpu_set_name(ctx, VK_OBJECT_TYPE_SAMPLER, (uint64_t)s, name);
     return s;
 }

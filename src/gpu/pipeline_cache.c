@@ -106,10 +106,10 @@ void gpu_pipeline_cache_open(gpu_context *ctx, const char *dir, const char *buil
             f->loaded_sum = read_u64(file + 56);
         } else if (why && strcmp(why, "from another build")) {
             /* A new build replaces the file without a word; anything else is worth one line. */
-            fprintf(stderr, "vksky: pipeline cache %s: %s; ignored, it will be replaced\n", f->path, why);
+            gpu_report(ctx, 1, "pipeline cache %s: %s; ignored, it will be replaced", f->path, why);
         }
     }
-    VK_CHECK(vkCreatePipelineCache(ctx->device, &info, NULL, &ctx->pipeline_cache));
+    VK_CHECK(vkCreatePipelineCache(ctx->device, &info, gpu_allocator(ctx->device), &ctx->pipeline_cache));
     gpu_set_name(ctx, VK_OBJECT_TYPE_PIPELINE_CACHE, (uint64_t)ctx->pipeline_cache, "pipeline cache");
     free(file);
     ctx->cache_file = f;
@@ -158,12 +158,12 @@ void gpu_pipeline_cache_close(gpu_context *ctx)
             /* Nothing new (a warm run): leave the file alone. */
             bool same = size == f->loaded_size && sum == f->loaded_sum;
             if (!same && save(f, data, size, sum) != 0)
-                fprintf(stderr, "vksky: pipeline cache not saved: %s: %s (the render is unaffected)\n", f->path,
+                gpu_report(ctx, 1, "pipeline cache not saved: %s: %s (the render is unaffected)", f->path,
                         strerror(errno));
         }
         free(data);
     }
-    if (ctx->pipeline_cache) vkDestroyPipelineCache(ctx->device, ctx->pipeline_cache, NULL);
+    if (ctx->pipeline_cache) vkDestroyPipelineCache(ctx->device, ctx->pipeline_cache, gpu_allocator(ctx->device));
     ctx->pipeline_cache = VK_NULL_HANDLE;
     free(f);
     ctx->cache_file = NULL;

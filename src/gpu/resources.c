@@ -9,8 +9,9 @@ static uint32_t find_memory_type(const gpu_context *ctx, uint32_t bits, VkMemory
         for (uint32_t i = 0; i < ctx->memory.memoryTypeCount; ++i)
             if ((bits & (1u << i)) && (ctx->memory.memoryTypes[i].propertyFlags & need) == need) return i;
     }
-    fprintf(stderr, "vksky: no suitable memory type (bits 0x%x, flags 0x%x)\n", bits, want);
-    exit(1);
+    char text[96];
+    snprintf(text, sizeof text, "no suitable memory type (bits 0x%x, flags 0x%x)", bits, want);
+    gpu_fail(VK_ERROR_OUT_OF_DEVICE_MEMORY, text);
 }
 
 VkImageSubresourceRange gpu_color_range(uint32_t base_mip, uint32_t count)
@@ -36,7 +37,7 @@ static VkImageView make_view(const gpu_context *ctx, VkImage image, VkImageViewT
         .subresourceRange = range,
     };
     VkImageView view;
-    VK_CHECK(vkCreateImageView(ctx->device, &info, NULL, &view));
+    VK_CHECK(vkCreateImageView(ctx->device, &info, gpu_allocator(ctx->device), &view));
     return view;
 }
 
@@ -57,7 +58,7 @@ static void image_create(const gpu_context *ctx, gpu_image *img, const char *nam
         .usage = usage,
         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED,
     };
-    VK_CHECK(vkCreateImage(ctx->device, &info, NULL, &img->image));
+    VK_CHECK(vkCreateImage(ctx->device, &info, gpu_allocator(ctx->device), &img->image));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx->device, img->image, &req);
     VkMemoryAllocateInfo alloc = {
@@ -65,7 +66,7 @@ static void image_create(const gpu_context *ctx, gpu_image *img, const char *nam
         .allocationSize = req.size,
         .memoryTypeIndex = find_memory_type(ctx, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0),
     };
-    VK_CHECK(vkAllocateMemory(ctx->device, &alloc, NULL, &img->memory));
+    VK_CHECK(vkAllocateMemory(ctx->device, &alloc, gpu_allocator(ctx->device), &img->memory));
     VK_CHECK(vkBindImageMemory(ctx->device, img->image, img->memory, 0));
     VkImageViewType view_type = type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
     img->view = make_view(ctx, img->image, view_type, format, gpu_color_range(0, mips));
@@ -97,10 +98,10 @@ void gpu_image_destroy(const gpu_context *ctx, gpu_image *img)
 {
     if (!img->image) return;
     for (uint32_t m = 0; m < GPU_MAX_MIPS; ++m)
-        if (img->mip_views[m] && img->mip_views[m] != img->view) vkDestroyImageView(ctx->device, img->mip_views[m], NULL);
-    vkDestroyImageView(ctx->device, img->view, NULL);
-    vkDestroyImage(ctx->device, img->image, NULL);
-    vkFreeMemory(ctx->device, img->memory, NULL);
+        if (img->mip_views[m] && img->mip_views[m] != img->view) vkDestroyImageView(ctx->device, img->mip_views[m], gpu_allocator(ctx->device));
+    vkDestroyImageView(ctx->device, img->view, gpu_allocator(ctx->device));
+    vkDestroyImage(ctx->device, img->image, gpu_allocator(ctx->device));
+    vkFreeMemory(ctx->device, img->memory, gpu_allocator(ctx->device));
     *img = (gpu_image){0};
 }
 
@@ -114,7 +115,7 @@ void gpu_buffer_create(const gpu_context *ctx, gpu_buffer *buf, const char *name
         .usage = usage,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
     };
-    VK_CHECK(vkCreateBuffer(ctx->device, &info, NULL, &buf->buffer));
+    VK_CHECK(vkCreateBuffer(ctx->device, &info, gpu_allocator(ctx->device), &buf->buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx->device, buf->buffer, &req);
     /* Host-visible buffers are read back (renders, LUTs) far more than written: prefer HOST_CACHED memory, which
@@ -128,7 +129,7 @@ void gpu_buffer_create(const gpu_context *ctx, gpu_buffer *buf, const char *name
     buf->coherent = (ctx->memory.memoryTypes[type].propertyFlags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) != 0;
     VkMemoryAllocateInfo alloc = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, .allocationSize = req.size, .memoryTypeIndex = type};
-    VK_CHECK(vkAllocateMemory(ctx->device, &alloc, NULL, &buf->memory));
+    VK_CHECK(vkAllocateMemory(ctx->device, &alloc, gpu_allocator(ctx->device), &buf->memory));
     VK_CHECK(vkBindBufferMemory(ctx->device, buf->buffer, buf->memory, 0));
     VK_CHECK(vkMapMemory(ctx->device, buf->memory, 0, VK_WHOLE_SIZE, 0, &buf->mapped));
     gpu_set_name(ctx, VK_OBJECT_TYPE_BUFFER, (uint64_t)buf->buffer, name);
@@ -138,9 +139,9 @@ void gpu_buffer_create(const gpu_context *ctx, gpu_buffer *buf, const char *name
 void gpu_buffer_destroy(const gpu_context *ctx, gpu_buffer *buf)
 {
     if (!buf->buffer) return;
-    vkUnmapMemory(ctx->device, buf->memory);
-    vkDestroyBuffer(ctx->device, buf->buffer, NULL);
-    vkFreeMemory(ctx->device, buf->memory, NULL);
+    if (buf->mapped) vkUnmapMemory(ctx->device, buf->memory);   /* not mapped: its creation failed half-way */
+    vkDestroyBuffer(ctx->device, buf->buffer, gpu_allocator(ctx->device));
+    vkFreeMemory(ctx->device, buf->memory, gpu_allocator(ctx->device));
     *buf = (gpu_buffer){0};
 }
 

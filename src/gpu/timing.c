@@ -6,13 +6,13 @@ void gpu_timer_create(const gpu_context *ctx, gpu_timer *t)
     if (!t->enabled) return;
     VkQueryPoolCreateInfo info = {.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
                                   .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = 2 * GPU_TIMER_MAX};
-    VK_CHECK(vkCreateQueryPool(ctx->device, &info, NULL, &t->pool));
+    VK_CHECK(vkCreateQueryPool(ctx->device, &info, gpu_allocator(ctx->device), &t->pool));
     gpu_set_name(ctx, VK_OBJECT_TYPE_QUERY_POOL, (uint64_t)t->pool, "pass timestamps");
 }
 
 void gpu_timer_destroy(const gpu_context *ctx, gpu_timer *t)
 {
-    if (t->pool) vkDestroyQueryPool(ctx->device, t->pool, NULL);
+    if (t->pool) vkDestroyQueryPool(ctx->device, t->pool, gpu_allocator(ctx->device));
     *t = (gpu_timer){0};
 }
 

@@ -16,7 +16,7 @@ void ap_volume_spec_make(const VkSpecializationInfo *base, const ap_volume_desc 
     size_t size = base ? base->dataSize : 0;
     size_t at = (size + 3) & ~(size_t)3;   /* the two floats, 4-aligned after the variant's data */
     if (n > VKSKY_SPEC_COUNT || at + 2 * sizeof(float) > sizeof out->data) {
-        fprintf(stderr, "vksky: internal error: specialization data too large for the volume (%zu bytes)\n", size);
+        gpu_report(NULL, 2, "internal error: specialization data too large for the volume (%zu bytes)", size);
         n = 0, size = 0, at = 0;
     }
     if (n) memcpy(out->entries, base->pMapEntries, n * sizeof *out->entries);
@@ -54,7 +54,7 @@ int ap_volume_create(ap_volume *a, sky_renderer *r, const ap_volume_desc *d, cha
                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
     VkDescriptorPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1,
                                         .poolSizeCount = 3, .pPoolSizes = sizes};
-    VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, NULL, &a->pool));
+    VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, gpu_allocator(ctx->device), &a->pool));
     const gpu_slot slots[] = {{VKSKY_BINDING_ATMOSPHERE, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
                               {VKSKY_BINDING_TRANSMITTANCE_LUT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
                               {VKSKY_BINDING_MULTISCATTER_LUT, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
@@ -72,7 +72,7 @@ int ap_volume_create(ap_volume *a, sky_renderer *r, const ap_volume_desc *d, cha
     ap_volume_spec_make(s->spec, d, &spec);
     VkShaderModule m = gpu_shader_module(ctx, spv_ap_volume_comp, sizeof spv_ap_volume_comp, "ap_volume.comp");
     a->pipeline = gpu_compute_pipeline_spec(ctx, a->layout, m, &spec.info, "ap_volume");
-    vkDestroyShaderModule(ctx->device, m, NULL);
+    vkDestroyShaderModule(ctx->device, m, gpu_allocator(ctx->device));
     return 0;
 }
 
@@ -81,10 +81,10 @@ void ap_volume_destroy(ap_volume *a, const sky_renderer *r)
     const gpu_context *ctx = r->ctx;
     if (!a->pipeline) return;
     vkDeviceWaitIdle(ctx->device);
-    vkDestroyPipeline(ctx->device, a->pipeline, NULL);
-    vkDestroyPipelineLayout(ctx->device, a->layout, NULL);
-    vkDestroyDescriptorSetLayout(ctx->device, a->set_layout, NULL);
-    vkDestroyDescriptorPool(ctx->device, a->pool, NULL);
+    vkDestroyPipeline(ctx->device, a->pipeline, gpu_allocator(ctx->device));
+    vkDestroyPipelineLayout(ctx->device, a->layout, gpu_allocator(ctx->device));
+    vkDestroyDescriptorSetLayout(ctx->device, a->set_layout, gpu_allocator(ctx->device));
+    vkDestroyDescriptorPool(ctx->device, a->pool, gpu_allocator(ctx->device));
     gpu_image_destroy(ctx, &a->image);
     memset(a, 0, sizeof *a);
 }

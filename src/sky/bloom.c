@@ -24,8 +24,8 @@ void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, ui
     b->down_pipeline = gpu_fullscreen_pipeline(ctx, b->layout, s->fullscreen_vs, down, &format, 1, GPU_BLEND_NONE, "bloom downsample");
     /* Upsample adds onto what the downsample left in the mip: blend ONE + ONE with load op LOAD. */
     b->up_pipeline = gpu_fullscreen_pipeline(ctx, b->layout, s->fullscreen_vs, up, &format, 1, GPU_BLEND_ADDITIVE, "bloom upsample");
-    vkDestroyShaderModule(ctx->device, down, NULL);
-    vkDestroyShaderModule(ctx->device, up, NULL);
+    vkDestroyShaderModule(ctx->device, down, gpu_allocator(ctx->device));
+    vkDestroyShaderModule(ctx->device, up, gpu_allocator(ctx->device));
     for (uint32_t i = 0; i < b->mip_count; ++i) {
         b->down_sets[i] = gpu_alloc_set(ctx, s->pool, b->set_layout, "bloom downsample set");
         gpu_write_sampled(ctx, b->down_sets[i], VKSKY_BINDING_POST_SOURCE, i == 0 ? hdr->view : b->mips.mip_views[i - 1], s->linear_clamp);
@@ -39,10 +39,10 @@ void bloom_create(bloom_chain *b, const pass_shared *s, const gpu_image *hdr, ui
 void bloom_destroy(bloom_chain *b, const pass_shared *s)
 {
     VkDevice d = s->ctx->device;
-    vkDestroyPipeline(d, b->down_pipeline, NULL);
-    vkDestroyPipeline(d, b->up_pipeline, NULL);
-    vkDestroyPipelineLayout(d, b->layout, NULL);
-    vkDestroyDescriptorSetLayout(d, b->set_layout, NULL);
+    vkDestroyPipeline(d, b->down_pipeline, gpu_allocator(d));
+    vkDestroyPipeline(d, b->up_pipeline, gpu_allocator(d));
+    vkDestroyPipelineLayout(d, b->layout, gpu_allocator(d));
+    vkDestroyDescriptorSetLayout(d, b->set_layout, gpu_allocator(d));
     gpu_image_destroy(s->ctx, &b->mips);
 }
 

@@ -177,13 +177,13 @@ int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint
                                  .addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
                                  .addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE,
                                  .addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE};
-    VK_CHECK(vkCreateSampler(ctx->device, &sinfo, NULL, &c->nearest));
+    VK_CHECK(vkCreateSampler(ctx->device, &sinfo, gpu_allocator(ctx->device), &c->nearest));
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5},
                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
     VkDescriptorPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 1,
                                         .poolSizeCount = 3, .pPoolSizes = sizes};
-    VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, NULL, &c->pool));
+    VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, gpu_allocator(ctx->device), &c->pool));
     const VkDescriptorType UBO = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     /* The volume (the last slot) only in the volume variant (composite.comp with AERIAL_VOLUME). */
     const gpu_slot slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_TRANSMITTANCE_LUT, SAMPLED},
@@ -212,7 +212,7 @@ int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint
         m = gpu_shader_module(ctx, spv_composite_comp, sizeof spv_composite_comp, "composite.comp");
         c->pipeline = gpu_compute_pipeline_spec(ctx, c->layout, m, s->spec, "composite");
     }
-    vkDestroyShaderModule(ctx->device, m, NULL);
+    vkDestroyShaderModule(ctx->device, m, gpu_allocator(ctx->device));
     return 0;
 }
 
@@ -221,11 +221,11 @@ void sky_composite_destroy(sky_composite *c, const sky_renderer *r)
     const gpu_context *ctx = r->ctx;
     if (!c->pipeline) return;
     vkDeviceWaitIdle(ctx->device);
-    vkDestroyPipeline(ctx->device, c->pipeline, NULL);
-    vkDestroyPipelineLayout(ctx->device, c->layout, NULL);
-    vkDestroyDescriptorSetLayout(ctx->device, c->set_layout, NULL);
-    vkDestroyDescriptorPool(ctx->device, c->pool, NULL);
-    vkDestroySampler(ctx->device, c->nearest, NULL);
+    vkDestroyPipeline(ctx->device, c->pipeline, gpu_allocator(ctx->device));
+    vkDestroyPipelineLayout(ctx->device, c->layout, gpu_allocator(ctx->device));
+    vkDestroyDescriptorSetLayout(ctx->device, c->set_layout, gpu_allocator(ctx->device));
+    vkDestroyDescriptorPool(ctx->device, c->pool, gpu_allocator(ctx->device));
+    vkDestroySampler(ctx->device, c->nearest, gpu_allocator(ctx->device));
     gpu_buffer_destroy(ctx, &c->upload);
     gpu_buffer_destroy(ctx, &c->readback);
     gpu_image_destroy(ctx, &c->input);

@@ -423,11 +423,15 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
      * fully rewritten. */
     frame_target own = {r->display.image, r->display.view, r->display.extent,
                         r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE,
-                        r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE, NULL};
+                        r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE, .capture = NULL};
     const frame_target *display = f->target ? f->target : &own;
     b = before_tonemap;
-    gpu_barrier_add_image(&b, "display.to_attachment", "display", display->image, one, display->before,
-                          GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+    if (display->host_uses)   /* the host's image: from its own last use (whatever it was) */
+        gpu_barrier_add_image_info(&b, "host.color.to_attachment", "host color", display->image, one,
+                                   display->host_before, *gpu_usage_get(GPU_USAGE_COLOR_ATTACHMENT_WRITE), true);
+    else
+        gpu_barrier_add_image(&b, "display.to_attachment", "display", display->image, one, display->before,
+                              GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
     if (r->desc.readback)
         gpu_barrier_add_image(&b, "composite.to_attachment", "composite", r->composite.image, one,
                               GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
@@ -465,7 +469,12 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                                    GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
             last = GPU_USAGE_TRANSFER_SRC;
         }
-        if (f->target->after != last)
+        /* The host's image: the tone map's writes made available to the host's next use, in its layout (RAW or
+         * WAW, and the layout it asked for). */
+        if (f->target->host_uses)
+            gpu_barrier_add_image_info(&b, "host.color.to_after", "host color", display->image, one,
+                                       *gpu_usage_get(last), f->target->host_after, false);
+        else if (f->target->after != last)
             gpu_barrier_add_image(&b, "display.to_present", "display", display->image, one, last, f->target->after,
                                   false);
         gpu_barrier_flush(cmd, &b);
@@ -491,5 +500,30 @@ void frame_record_lut_readback(sky_renderer *r, VkCommandBuffer cmd, const gpu_i
                           GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
     gpu_barrier_add_buffer(&b, "lut_readback.to_host", "lut_readback", buffer, GPU_USAGE_TRANSFER_DST,
                            GPU_USAGE_HOST_READ);
+    gpu_barrier_flush(cmd, &b);
+}
+
+/* The library's LUT-only frame (vksky_record, VKSKY_OUTPUT_LUTS_ONLY): the LUTs when their inputs changed, then the
+ * sky-view LUT for this view's camera altitude and sun, left readable by compute and fragment shaders for the
+ * host's own passes. */
+void frame_record_luts_only(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
+{
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    r->active_timer = f->timer ? f->timer : &r->timer;
+    gpu_timer_reset(r->active_timer, cmd);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before skyview_lut");
+    record_luts_if_dirty(r, cmd, f->force_luts, &b);
+    /* The host's passes of the previous frame sampled the sky-view LUT (WAR); rewritten whole: UNDEFINED -> GENERAL. */
+    gpu_barrier_add_image(&b, "skyview.to_storage", "skyview_lut", r->luts.skyview.image, one,
+                          GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+    gpu_barrier_flush(cmd, &b);
+    SkyPush sv = sky_view_skyview_push(f->view);
+    uint32_t t = timed_begin(r, cmd, "skyview_lut");
+    luts_record_skyview(&r->luts, cmd, &sv);
+    timed_end(r, cmd, t);
+    /* The LUT pass wrote it; the host's compute or fragment shaders sample it: RAW + layout. */
+    b = gpu_barrier_batch_begin("after skyview_lut");
+    gpu_barrier_add_image(&b, "skyview.write_to_host", "skyview_lut", r->luts.skyview.image, one,
+                          GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
     gpu_barrier_flush(cmd, &b);
 }

@@ -12,6 +12,10 @@ typedef struct frame_target {
     gpu_usage before;            /* GPU_USAGE_ACQUIRED for a swapchain image */
     gpu_usage after;             /* GPU_USAGE_PRESENT for a swapchain image */
     gpu_buffer *capture;         /* non-NULL: also copy the image into this host buffer (4 bytes a pixel) */
+    /* The library's host image (vksky_record): the host's own use before and after (stage, access, layout) instead
+     * of before/after; traced as host.color.to_attachment and host.color.to_after. */
+    bool host_uses;
+    gpu_usage_info host_before, host_after;
 } frame_target;
 
 typedef struct frame_desc {
@@ -32,5 +36,8 @@ void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_bar
  * `buffer`, and back to the sampled layout for later frames. */
 void frame_record_lut_readback(sky_renderer *r, VkCommandBuffer cmd, const gpu_image *img, const char *name,
                                VkBuffer buffer);
+/* The library's LUT-only frame: the LUTs when stale, the sky-view LUT for f->view; afterwards all of them are
+ * readable by compute and fragment shaders (the host's). */
+void frame_record_luts_only(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 
 #endif

@@ -6,7 +6,7 @@ static VkPipeline compute_pipeline(const pass_shared *s, VkPipelineLayout layout
     const gpu_context *ctx = s->ctx;
     VkShaderModule m = gpu_shader_module(ctx, spv->code, spv->size, name);
     VkPipeline p = gpu_compute_pipeline_spec(ctx, layout, m, s->spec, name);
-    vkDestroyShaderModule(ctx->device, m, NULL);
+    vkDestroyShaderModule(ctx->device, m, gpu_allocator(ctx->device));
     return p;
 }
 
@@ -100,9 +100,9 @@ void luts_destroy(sky_luts *l, const pass_shared *s)
     VkDescriptorSetLayout set_layouts[] = {l->transmittance_set_layout, l->multiscatter_set_layout,
                                            l->skyview_set_layout, l->ground_set_layout};
     for (int i = 0; i < 4; ++i) {
-        vkDestroyPipeline(d, pipelines[i], NULL);
-        vkDestroyPipelineLayout(d, layouts[i], NULL);
-        vkDestroyDescriptorSetLayout(d, set_layouts[i], NULL);
+        vkDestroyPipeline(d, pipelines[i], gpu_allocator(d));
+        vkDestroyPipelineLayout(d, layouts[i], gpu_allocator(d));
+        vkDestroyDescriptorSetLayout(d, set_layouts[i], gpu_allocator(d));
     }
     gpu_image_destroy(s->ctx, &l->transmittance);
     gpu_image_destroy(s->ctx, &l->multiscatter);

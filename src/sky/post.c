@@ -17,7 +17,7 @@ static VkPipeline compute_pipeline(const gpu_context *ctx, VkPipelineLayout layo
 {
     VkShaderModule m = gpu_shader_module(ctx, spv->code, spv->size, name);
     VkPipeline p = gpu_compute_pipeline(ctx, layout, m, name);
-    vkDestroyShaderModule(ctx->device, m, NULL);
+    vkDestroyShaderModule(ctx->device, m, gpu_allocator(ctx->device));
     return p;
 }
 
@@ -94,7 +94,7 @@ void post_compute_create(post_compute *p, const pass_shared *s, const gpu_image 
                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 32}};
     VkDescriptorPoolCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 20,
                                        .poolSizeCount = 2, .pPoolSizes = sizes};
-    VK_CHECK(vkCreateDescriptorPool(ctx->device, &info, NULL, &p->pool));
+    VK_CHECK(vkCreateDescriptorPool(ctx->device, &info, gpu_allocator(ctx->device), &p->pool));
     if (bloom) create_bloom(p, s, hdr, bloom);
     if (!p->tonemap) return;
     const VkDescriptorType SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, STORAGE = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
@@ -126,17 +126,17 @@ void post_compute_create(post_compute *p, const pass_shared *s, const gpu_image 
 void post_compute_destroy(post_compute *p, const pass_shared *s)
 {
     VkDevice d = s->ctx->device;
-    if (p->down_pipeline) vkDestroyPipeline(d, p->down_pipeline, NULL);
+    if (p->down_pipeline) vkDestroyPipeline(d, p->down_pipeline, gpu_allocator(d));
     VkPipeline pipelines[3] = {p->spd_pipeline, p->up_pipeline, p->tonemap_pipeline};
     VkPipelineLayout layouts[3] = {p->spd_layout, p->up_layout, p->tonemap_layout};
     VkDescriptorSetLayout set_layouts[3] = {p->spd_set_layout, p->up_set_layout, p->tonemap_set_layout};
     for (int i = 0; i < 3; ++i) {
-        if (pipelines[i]) vkDestroyPipeline(d, pipelines[i], NULL);
-        if (layouts[i]) vkDestroyPipelineLayout(d, layouts[i], NULL);
-        if (set_layouts[i]) vkDestroyDescriptorSetLayout(d, set_layouts[i], NULL);
+        if (pipelines[i]) vkDestroyPipeline(d, pipelines[i], gpu_allocator(d));
+        if (layouts[i]) vkDestroyPipelineLayout(d, layouts[i], gpu_allocator(d));
+        if (set_layouts[i]) vkDestroyDescriptorSetLayout(d, set_layouts[i], gpu_allocator(d));
     }
     gpu_image_destroy(s->ctx, &p->counters);
-    vkDestroyDescriptorPool(d, p->pool, NULL);
+    vkDestroyDescriptorPool(d, p->pool, gpu_allocator(d));
     *p = (post_compute){0};
 }
 

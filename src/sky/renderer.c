@@ -59,8 +59,8 @@ static void create_sized(sky_renderer *r)
                             compute_tonemap && desc->readback ? r->composite.view : VK_NULL_HANDLE);
     if (r->post_kind == POST_PASS_COMPUTE && desc->bloom && desc->bloom_downsample == BLOOM_DOWN_SINGLE_PASS &&
         !r->post.spd_pipeline)
-        fprintf(stderr, "vksky: --bloom-downsample single-pass needs the device feature vulkanMemoryModelDeviceScope, "
-                        "which this device lacks: the per-level downsample runs instead\n");
+        gpu_report(r->ctx, 1, "--bloom-downsample single-pass needs the device feature vulkanMemoryModelDeviceScope, "
+                              "which this device lacks: the per-level downsample runs instead");
 }
 
 static void destroy_sized(sky_renderer *r)
@@ -149,14 +149,14 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8}};
     VkDescriptorPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 32,
                                         .poolSizeCount = 3, .pPoolSizes = sizes};
-    VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, NULL, &s->pool));
+    VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, gpu_allocator(ctx->device), &s->pool));
     s->linear_clamp = gpu_linear_clamp_sampler(ctx, "linear clamp");
     gpu_buffer_create(ctx, &s->atmosphere_ubo, "atmosphere uniforms", sizeof(AtmosphereParams),
                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
     s->fullscreen_vs = gpu_shader_module(ctx, spirv_fullscreen_vert.code, spirv_fullscreen_vert.size, "fullscreen.vert");
 
     VkDescriptorPoolCreateInfo size_info = pinfo;
-    VK_CHECK(vkCreateDescriptorPool(ctx->device, &size_info, NULL, &r->size_pool));
+    VK_CHECK(vkCreateDescriptorPool(ctx->device, &size_info, gpu_allocator(ctx->device), &r->size_pool));
     model_atmosphere_earth(&r->medium);
     r->features = sky_features_default();
     r->sun_angular_radius = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
@@ -177,14 +177,14 @@ void sky_renderer_destroy(sky_renderer *r)
     pass_shared *s = &r->shared;
     vkDeviceWaitIdle(ctx->device);
     gpu_timer_destroy(ctx, &r->timer);
-    destroy_sized(r);
-    vkDestroyDescriptorPool(ctx->device, r->size_pool, NULL);
+    if (r->size_pool) destroy_sized(r);   /* absent when creation failed before it (the library's trap) */
+    vkDestroyDescriptorPool(ctx->device, r->size_pool, gpu_allocator(ctx->device));
     sky_pass_destroy(&r->sky, s);
     luts_destroy(&r->luts, s);
-    vkDestroyShaderModule(ctx->device, s->fullscreen_vs, NULL);
+    vkDestroyShaderModule(ctx->device, s->fullscreen_vs, gpu_allocator(ctx->device));
     gpu_buffer_destroy(ctx, &s->atmosphere_ubo);
-    vkDestroySampler(ctx->device, s->linear_clamp, NULL);
-    vkDestroyDescriptorPool(ctx->device, s->pool, NULL);
+    vkDestroySampler(ctx->device, s->linear_clamp, gpu_allocator(ctx->device));
+    vkDestroyDescriptorPool(ctx->device, s->pool, gpu_allocator(ctx->device));
     memset(r, 0, sizeof *r);
 }
 

@@ -27,7 +27,7 @@ static VkPipeline make_pipeline(const sky_pass *p, const pass_shared *s, int kin
         ? gpu_fullscreen_pipeline_spec(s->ctx, p->layouts[kind], s->fullscreen_vs, m, s->spec, &format, 1,
                                        GPU_BLEND_NONE, name)
         : gpu_compute_pipeline_spec(s->ctx, p->layouts[kind], m, s->spec, name);
-    vkDestroyShaderModule(s->ctx->device, m, NULL);
+    vkDestroyShaderModule(s->ctx->device, m, gpu_allocator(s->ctx->device));
     return pipeline;
 }
 
@@ -69,9 +69,9 @@ void sky_pass_destroy(sky_pass *p, const pass_shared *s)
 {
     VkDevice d = s->ctx->device;
     for (int kind = 0; kind < 2; ++kind) {
-        for (int mode = 0; mode < 4; ++mode) vkDestroyPipeline(d, p->pipelines[kind][mode], NULL);
-        vkDestroyPipelineLayout(d, p->layouts[kind], NULL);
-        vkDestroyDescriptorSetLayout(d, p->set_layouts[kind], NULL);
+        for (int mode = 0; mode < 4; ++mode) vkDestroyPipeline(d, p->pipelines[kind][mode], gpu_allocator(d));
+        vkDestroyPipelineLayout(d, p->layouts[kind], gpu_allocator(d));
+        vkDestroyDescriptorSetLayout(d, p->set_layouts[kind], gpu_allocator(d));
     }
     *p = (sky_pass){0};
 }

@@ -15,7 +15,7 @@ void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view,
     VkFormat formats[2] = {display_format, HDR_FORMAT};
     t->pipeline = gpu_fullscreen_pipeline(ctx, t->layout, s->fullscreen_vs, fs, formats, composite ? 2 : 1,
                                           GPU_BLEND_NONE, "tonemap");
-    vkDestroyShaderModule(ctx->device, fs, NULL);
+    vkDestroyShaderModule(ctx->device, fs, gpu_allocator(ctx->device));
     t->set = gpu_alloc_set(ctx, s->pool, t->set_layout, "tonemap set");
     gpu_write_sampled(ctx, t->set, VKSKY_BINDING_POST_SOURCE, hdr_view, s->linear_clamp);
     gpu_write_sampled(ctx, t->set, VKSKY_BINDING_POST_MIP, bloom_view, s->linear_clamp);
@@ -23,9 +23,9 @@ void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view,
 
 void tonemap_destroy(tonemap_pass *t, const pass_shared *s)
 {
-    vkDestroyPipeline(s->ctx->device, t->pipeline, NULL);
-    vkDestroyPipelineLayout(s->ctx->device, t->layout, NULL);
-    vkDestroyDescriptorSetLayout(s->ctx->device, t->set_layout, NULL);
+    vkDestroyPipeline(s->ctx->device, t->pipeline, gpu_allocator(s->ctx->device));
+    vkDestroyPipelineLayout(s->ctx->device, t->layout, gpu_allocator(s->ctx->device));
+    vkDestroyDescriptorSetLayout(s->ctx->device, t->set_layout, gpu_allocator(s->ctx->device));
 }
 
 void tonemap_record(const tonemap_pass *t, VkCommandBuffer cmd, VkExtent2D extent, VkImageView display,

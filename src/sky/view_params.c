@@ -49,14 +49,17 @@ SkyPush sky_view_push(const sky_view *v, uint32_t width, uint32_t height, double
         aspect = (double)v->whole_width / (double)v->whole_height;
     }
     double ty = tan(0.5 * v->fov_deg * DEG), tx = ty * aspect;
+    double rx[3] = {right[0] * tx, right[1] * tx, right[2] * tx}, uy[3] = {up[0] * ty, up[1] * ty, up[2] * ty};
+    if (v->ray_given)
+        for (int i = 0; i < 3; ++i) f[i] = v->ray_forward[i], rx[i] = v->ray_right[i], uy[i] = v->ray_up[i];
     double sun[3];
     dir_from_angles(v->sun_azimuth_deg, v->sun_elevation_deg, sun);
     int max_steps = v->max_steps > v->steps ? v->max_steps : v->steps;
     return (SkyPush){
         .forward = {(float)f[0], (float)f[1], (float)f[2], (float)v->altitude_km},
         /* w: 1 / width (the cube map: 1 / face size = 1 / width as well) */
-        .right = {(float)(right[0] * tx), (float)(right[1] * tx), (float)(right[2] * tx), 1.0f / (float)width},
-        .up = {(float)(up[0] * ty), (float)(up[1] * ty), (float)(up[2] * ty), 1.0f / (float)height},
+        .right = {(float)rx[0], (float)rx[1], (float)rx[2], 1.0f / (float)width},
+        .up = {(float)uy[0], (float)uy[1], (float)uy[2], 1.0f / (float)height},
         .sun_dir = {(float)sun[0], (float)sun[1], (float)sun[2], (float)v->step_distribution},
         .march = {(float)v->steps, (float)max_steps, (float)v->sample_offset, (float)v->steps_ramp_km},
         .projection = {(float)v->projection, (float)v->tile_x, (float)v->tile_y, 0.0f},

@@ -29,6 +29,10 @@ typedef struct sky_view {
     int tile_x, tile_y;                     /* tiled renders: this frame's pixel offset in the whole image */
     int whole_width, whole_height;          /* tiled renders: the whole image (0: the frame is the whole image) */
     bool no_dither;                         /* the 8-bit display output without its triangular dither */
+    /* The library's host camera (its matrices): the rays' basis in the march frame given instead of yaw, pitch and
+     * fov: a pixel's ray is ray_forward + x ray_right + y ray_up, x and y in [-1, 1] (y = 1: top row). */
+    bool ray_given;
+    double ray_forward[3], ray_right[3], ray_up[3];
 } sky_view;
 
 sky_view sky_view_default(void);

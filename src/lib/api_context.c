@@ -1,0 +1,105 @@
+/* Contexts: the host's device adopted, or vksky's own (include/vksky.h). */
+#include "lib/lib_internal.h"
+#include <stdlib.h>
+
+void vksky_get_device_requirements(vksky_device_requirements *out)
+{
+    if (!out) return;
+    *out = (vksky_device_requirements){.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
+                                       .vulkan_memory_model = true, .vulkan_memory_model_device_scope = true};
+}
+
+vksky_result vksky_context_create(const vksky_context_desc *desc, vksky_context **out)
+{
+    if (out) *out = NULL;
+    if (!desc || !out) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (desc->abi_version != VKSKY_ABI_VERSION) {
+        lib_message(desc->message, desc->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_create: abi_version %u; this library is ABI %u", desc->abi_version,
+                    VKSKY_ABI_VERSION);
+        return VKSKY_ERROR_ABI_MISMATCH;
+    }
+    if (!desc->get_instance_proc_addr || !desc->instance || !desc->physical_device || !desc->device) {
+        lib_message(desc->message, desc->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_create: get_instance_proc_addr, instance, physical_device and device are required");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    vksky_context *c = calloc(1, sizeof *c);
+    if (!c) return VKSKY_ERROR_OUT_OF_MEMORY;
+    c->message = desc->message, c->message_user = desc->message_user;
+    gpu_adopt_desc adopt = {
+        .get_instance_proc_addr = desc->get_instance_proc_addr, .instance = desc->instance,
+        .physical = desc->physical_device, .device = desc->device, .queue_family = desc->queue_family,
+        .queue_index = desc->queue_index, .allocator = desc->allocator, .pipeline_cache = desc->pipeline_cache,
+        .message = lib_gpu_message, .message_user = c};
+    VkResult r = gpu_context_adopt(&c->gpu, &adopt);
+    if (r != VK_SUCCESS) {
+        free(c);
+        return r == VK_ERROR_INITIALIZATION_FAILED ? VKSKY_ERROR_UNSUPPORTED : lib_result_from_vk(r);
+    }
+    *out = c;
+    return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_context_create_own(const vksky_own_device_desc *desc, vksky_context **out)
+{
+    if (out) *out = NULL;
+    if (!desc || !out) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (desc->abi_version != VKSKY_ABI_VERSION) {
+        lib_message(desc->message, desc->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_create_own: abi_version %u; this library is ABI %u", desc->abi_version,
+                    VKSKY_ABI_VERSION);
+        return VKSKY_ERROR_ABI_MISMATCH;
+    }
+    vksky_context *c = calloc(1, sizeof *c);
+    if (!c) return VKSKY_ERROR_OUT_OF_MEMORY;
+    c->message = desc->message, c->message_user = desc->message_user;
+    gpu_context_desc gd = {.validation = desc->validation, .device_index = desc->device_index,
+                           .instance_extensions = desc->instance_extensions,
+                           .instance_extension_count = desc->instance_extension_count,
+                           .want_swapchain = desc->swapchain};
+    gpu_trap trap;
+    if (setjmp(trap.jump)) {
+        /* A failing Vulkan call after the device was made (its command pool, the messenger). */
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
+        gpu_context_destroy(&c->gpu);
+        free(c);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
+    int rc = gpu_context_create_with(&c->gpu, &gd, lib_gpu_message, c, NULL);
+    gpu_trap_arm(NULL);
+    if (rc != 0) {
+        free(c);
+        return rc == -2 ? VKSKY_ERROR_INVALID_ARGUMENT : VKSKY_ERROR_UNSUPPORTED;
+    }
+    *out = c;
+    return VKSKY_SUCCESS;
+}
+
+void vksky_context_destroy(vksky_context *context)
+{
+    if (!context) return;
+    if (context->renderers > 0)
+        lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_destroy: %d renderer%s still alive; destroy them first (the context is kept)",
+                    context->renderers, context->renderers == 1 ? "" : "s");
+    if (context->renderers > 0) return;
+    gpu_context_destroy(&context->gpu);
+    free(context);
+}
+
+void vksky_context_get_handles(const vksky_context *context, vksky_context_handles *out)
+{
+    if (!out) return;
+    *out = (vksky_context_handles){0};
+    if (!context) return;
+    *out = (vksky_context_handles){.instance = context->gpu.instance, .physical_device = context->gpu.physical,
+                                   .device = context->gpu.device, .queue = context->gpu.queue,
+                                   .queue_family = context->gpu.queue_family};
+}
+
+uint32_t vksky_context_validation_message_count(const vksky_context *context)
+{
+    return context ? context->gpu.validation_messages : 0;
+}

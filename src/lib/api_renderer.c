@@ -1,0 +1,228 @@
+/* Renderers: a sky_renderer built from a scene and a quality the way the CLI's headless run builds its own
+ * (app/headless.c), writing the host's image instead of its own (include/vksky.h). */
+#include "lib/lib_internal.h"
+#include "app/light.h"
+#include "app/options.h"
+#include "app/quality.h"
+#include <stdlib.h>
+#include <string.h>
+
+static bool format_is_display(VkFormat f)
+{
+    return f == VK_FORMAT_R8G8B8A8_UNORM || f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_B8G8R8A8_UNORM ||
+           f == VK_FORMAT_B8G8R8A8_SRGB;
+}
+
+/* The scene's options with the renderer's quality, size and units: what `vksky --render` would hold. */
+static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc *d, const options *scene,
+                                     options *o)
+{
+    *o = *scene;
+    o->units = d->units == VKSKY_UNITS_RELATIVE ? OPTIONS_UNITS_RELATIVE : OPTIONS_UNITS_PHOTOMETRIC;
+    light_finish(o);
+    const quality_config *q = NULL;
+    double measured = 0.0;
+    unsigned classes = quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
+    if (d->max_error > 0.0) {
+        q = quality_pick(d->max_error, classes, &measured);
+        if (!q) {
+            lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                        "max_error %g: no measured configuration reaches it; try a larger budget or \"ultra\"",
+                        d->max_error);
+            return VKSKY_ERROR_INVALID_ARGUMENT;
+        }
+    } else if (!d->quality || !strcmp(d->quality, "auto")) {
+        q = quality_auto(classes, c->gpu.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, &measured);
+    } else {
+        q = quality_preset(d->quality);
+        if (!q) {
+            lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                        "quality \"%s\": expected low, medium, high, ultra, lesson, cpu or auto", d->quality);
+            return VKSKY_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
+    o->width = (int)d->width, o->height = (int)d->height;
+    o->view.bloom = d->bloom && d->output == VKSKY_OUTPUT_DISPLAY;
+    return VKSKY_SUCCESS;
+}
+
+static vksky_result check_desc(vksky_context *c, const vksky_renderer_desc *d)
+{
+    if (d->abi_version != VKSKY_ABI_VERSION) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_renderer_create: abi_version %u; this library is ABI %u", d->abi_version, VKSKY_ABI_VERSION);
+        return VKSKY_ERROR_ABI_MISMATCH;
+    }
+    if (d->output != VKSKY_OUTPUT_DISPLAY && d->output != VKSKY_OUTPUT_LUTS_ONLY &&
+        d->output != VKSKY_OUTPUT_SCENE_LINEAR) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR, "vksky_renderer_create: output %d is unknown",
+                    (int)d->output);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    bool sized = d->output != VKSKY_OUTPUT_LUTS_ONLY;
+    if (sized && (d->width == 0 || d->height == 0 || d->width > 16384 || d->height > 16384)) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_renderer_create: size %ux%u; expected 1..16384 each", d->width, d->height);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    if (d->output == VKSKY_OUTPUT_SCENE_LINEAR) {
+        /* The pass reads and writes the host's HDR image as a storage image (sky/host_frame.c). */
+        VkFormatProperties fp;
+        vkGetPhysicalDeviceFormatProperties(c->gpu.physical, d->target_format, &fp);
+        if (!host_frame_format_supported(d->target_format) ||
+            !(fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT)) {
+            lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                        "vksky_renderer_create: target format %d; SCENE_LINEAR writes R16G16B16A16_SFLOAT or "
+                        "R32G32B32A32_SFLOAT as a storage image", (int)d->target_format);
+            return VKSKY_ERROR_UNSUPPORTED;
+        }
+    } else if (sized && !format_is_display(d->target_format)) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_renderer_create: target format %d; DISPLAY writes R8G8B8A8 or B8G8R8A8, UNORM or SRGB",
+                    (int)d->target_format);
+        return VKSKY_ERROR_UNSUPPORTED;
+    }
+    if (d->units != VKSKY_UNITS_PHOTOMETRIC && d->units != VKSKY_UNITS_RELATIVE) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (!(d->max_error >= 0.0)) return VKSKY_ERROR_INVALID_ARGUMENT;
+    return VKSKY_SUCCESS;
+}
+
+/* Creates r->r for r->o; Vulkan failures come back through the trap, with everything made so far destroyed. */
+static vksky_result build(vksky_renderer *r)
+{
+    const options *o = &r->o;
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    light_render_atmosphere(o, &lit);
+    sky_features features = options_features(o);
+    /* LUTS_ONLY and SCENE_LINEAR need none of the frame's own images: a 1 x 1 frame the renderer never draws. */
+    bool luts_only = r->desc.output != VKSKY_OUTPUT_DISPLAY;
+    sky_renderer_desc rdesc = {
+        .width = luts_only ? 1 : (uint32_t)o->width, .height = luts_only ? 1 : (uint32_t)o->height,
+        .bloom = o->view.bloom, .readback = false, .external_display = !luts_only,
+        .display_format = luts_only ? VK_FORMAT_R8G8B8A8_SRGB : r->desc.target_format,
+        .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
+        .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample, .bloom_quarter = o->bloom_quarter,
+        .atmosphere = &lit, .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
+    gpu_trap trap;
+    if (setjmp(trap.jump)) {
+        lib_message(r->ctx->message, r->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
+        host_frame_destroy(&r->hf, &r->r);
+        sky_renderer_destroy(&r->r);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
+    sky_renderer_create(&r->r, &r->ctx->gpu, &rdesc);
+    char err[200];
+    if (r->desc.output == VKSKY_OUTPUT_SCENE_LINEAR && host_frame_create(&r->hf, &r->r, r->desc.target_format, err,
+                                                                         sizeof err) != 0) {
+        gpu_trap_arm(NULL);
+        lib_message(r->ctx->message, r->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", err);
+        sky_renderer_destroy(&r->r);
+        return VKSKY_ERROR_UNSUPPORTED;
+    }
+    gpu_trap_arm(NULL);
+    return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_desc *desc, vksky_renderer **out)
+{
+    if (out) *out = NULL;
+    if (!context || !desc || !out) return VKSKY_ERROR_INVALID_ARGUMENT;
+    vksky_result res = check_desc(context, desc);
+    if (res != VKSKY_SUCCESS) return res;
+    vksky_renderer *r = calloc(1, sizeof *r);
+    vksky_scene *earth = NULL;
+    if (!r) return VKSKY_ERROR_OUT_OF_MEMORY;
+    const vksky_scene *scene = desc->scene;
+    if (!scene && (res = vksky_scene_create_earth(&earth)) != VKSKY_SUCCESS) {
+        free(r);
+        return res;
+    }
+    r->ctx = context;
+    r->desc = *desc;
+    r->desc.scene = NULL, r->desc.quality = NULL;
+    res = renderer_options(context, desc, scene ? &scene->o : &earth->o, &r->o);
+    vksky_scene_destroy(earth);
+    if (res == VKSKY_SUCCESS) res = build(r);
+    if (res != VKSKY_SUCCESS) {
+        free(r);
+        return res;
+    }
+    context->renderers++;
+    *out = r;
+    return VKSKY_SUCCESS;
+}
+
+void vksky_renderer_destroy(vksky_renderer *renderer)
+{
+    if (!renderer) return;
+    host_frame_destroy(&renderer->hf, &renderer->r);
+    sky_renderer_destroy(&renderer->r);
+    renderer->ctx->renderers--;
+    free(renderer);
+}
+
+vksky_result vksky_renderer_set_scene(vksky_renderer *renderer, const vksky_scene *scene)
+{
+    if (!renderer || !scene) return VKSKY_ERROR_INVALID_ARGUMENT;
+    /* The scene whole (medium, features, sun, camera altitude); the renderer's quality, size and units stay. */
+    const options *was = &renderer->o;
+    options o = scene->o;
+    sky_view view = was->view;
+    view.sun_azimuth_deg = o.view.sun_azimuth_deg, view.sun_elevation_deg = o.view.sun_elevation_deg;
+    view.altitude_km = o.view.altitude_km;
+    o.view = view;
+    o.lut = was->lut, o.render_scale = was->render_scale, o.bloom_mips = was->bloom_mips;
+    o.bloom_quarter = was->bloom_quarter, o.post_pass = was->post_pass, o.bloom_downsample = was->bloom_downsample;
+    o.width = was->width, o.height = was->height, o.units = was->units;
+    light_finish(&o);
+    model_atmosphere lit;
+    light_render_atmosphere(&o, &lit);
+    sky_features features = options_features(&o);
+    gpu_trap trap;
+    if (setjmp(trap.jump)) {
+        /* A failed pipeline rebuild leaves no usable renderer: the host destroys it. */
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
+    renderer->r.features = features;   /* one upload, one variant build for both */
+    sky_renderer_set_atmosphere(&renderer->r, &lit, options_sun_radius_rad(&o));
+    /* A new variant may bring new pipelines and LUT views: the SCENE_LINEAR pass is rebuilt over them. */
+    char err[200];
+    if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) {
+        host_frame_destroy(&renderer->hf, &renderer->r);
+        if (host_frame_create(&renderer->hf, &renderer->r, renderer->desc.target_format, err, sizeof err) != 0) {
+            gpu_trap_arm(NULL);
+            lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", err);
+            return VKSKY_ERROR_UNSUPPORTED;
+        }
+    }
+    gpu_trap_arm(NULL);
+    renderer->o = o;
+    return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uint32_t height)
+{
+    if (!renderer || width == 0 || height == 0 || width > 16384 || height > 16384) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (renderer->desc.output == VKSKY_OUTPUT_LUTS_ONLY) return VKSKY_SUCCESS;
+    if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) {
+        /* The pass sizes its dispatch by the host's image: nothing of vksky's depends on the size. */
+        renderer->desc.width = width, renderer->desc.height = height;
+        renderer->o.width = (int)width, renderer->o.height = (int)height;
+        return VKSKY_SUCCESS;
+    }
+    gpu_trap trap;
+    if (setjmp(trap.jump)) {
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
+    sky_renderer_resize(&renderer->r, width, height);
+    gpu_trap_arm(NULL);
+    renderer->desc.width = width, renderer->desc.height = height;
+    renderer->o.width = (int)width, renderer->o.height = (int)height;
+    return VKSKY_SUCCESS;
+}

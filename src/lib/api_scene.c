@@ -1,0 +1,125 @@
+/* Scenes: values made by the CLI's own loader (include/vksky.h). */
+#include "lib/lib_internal.h"
+#include "app/light.h"
+#include "app/options.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The scene loader reports a bad file as one line on stderr (the CLI's contract); the library hands that line to
+ * the host's callback instead, so stderr is pointed at a memory stream for the call. Calls on scenes must not
+ * overlap another thread's use of stderr (the header's rule: one thread at a time per context, and loading is
+ * not per frame). */
+int lib_options_load(const char *path_or_name, options *o, char *why, size_t why_size)
+{
+    char *argv_store[] = {"vksky", "--quality", "low", "--scene", (char *)path_or_name, NULL};
+    int argc = path_or_name ? 5 : 3;
+    char *captured = NULL;
+    size_t captured_size = 0;
+    FILE *memory = open_memstream(&captured, &captured_size);
+    FILE *saved = stderr;
+    if (memory) stderr = memory;
+    int rc = options_parse(o, argc, argv_store);
+    if (memory) {
+        stderr = saved;
+        fclose(memory);
+    }
+    why[0] = 0;
+    if (captured) {
+        /* One line, without the CLI's "vksky: " and its newline. */
+        const char *text = strncmp(captured, "vksky: ", 7) ? captured : captured + 7;
+        snprintf(why, why_size, "%.*s", (int)strcspn(text, "\n"), text);
+        free(captured);
+    }
+    o->argc = 0, o->argv = NULL;   /* the loader's argv was this function's */
+    return rc;
+}
+
+static vksky_scene *scene_new(void)
+{
+    vksky_scene *s = calloc(1, sizeof *s);
+    return s;
+}
+
+vksky_result vksky_scene_create_earth(vksky_scene **out)
+{
+    if (!out) return VKSKY_ERROR_INVALID_ARGUMENT;
+    *out = NULL;
+    vksky_scene *s = scene_new();
+    if (!s) return VKSKY_ERROR_OUT_OF_MEMORY;
+    char why[256];
+    if (lib_options_load(NULL, &s->o, why, sizeof why) != 0) {
+        free(s);
+        return VKSKY_ERROR_PARSE;   /* the defaults always load; kept for a loader that one day checks more */
+    }
+    *out = s;
+    return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_scene_load(const char *path_or_name, vksky_message_fn message, void *message_user,
+                              vksky_scene **out)
+{
+    if (out) *out = NULL;
+    if (!path_or_name || !*path_or_name || !out) {
+        lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "vksky_scene_load: a path or a scene name is required");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    vksky_scene *s = scene_new();
+    if (!s) return VKSKY_ERROR_OUT_OF_MEMORY;
+    char why[512];
+    if (lib_options_load(path_or_name, &s->o, why, sizeof why) != 0) {
+        lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%s", why);
+        free(s);
+        /* The loader's own words tell an unreadable or unknown file from a malformed one. */
+        return strstr(why, "cannot read") || strstr(why, "no scene") || strstr(why, "not found") ? VKSKY_ERROR_IO
+                                                                                                 : VKSKY_ERROR_PARSE;
+    }
+    *out = s;
+    return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_scene_copy(const vksky_scene *scene, vksky_scene **out)
+{
+    if (out) *out = NULL;
+    if (!scene || !out) return VKSKY_ERROR_INVALID_ARGUMENT;
+    vksky_scene *s = scene_new();
+    if (!s) return VKSKY_ERROR_OUT_OF_MEMORY;
+    *s = *scene;
+    *out = s;
+    return VKSKY_SUCCESS;
+}
+
+void vksky_scene_destroy(vksky_scene *scene) { free(scene); }
+
+vksky_result vksky_scene_set_sun(vksky_scene *scene, double azimuth_deg, double elevation_deg)
+{
+    if (!scene || !(azimuth_deg >= -360.0 && azimuth_deg <= 360.0) || !(elevation_deg >= -90.0 && elevation_deg <= 90.0))
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    scene->o.view.sun_azimuth_deg = azimuth_deg;
+    scene->o.view.sun_elevation_deg = elevation_deg;
+    return VKSKY_SUCCESS;
+}
+
+void vksky_scene_get_sun(const vksky_scene *scene, double *azimuth_deg, double *elevation_deg)
+{
+    if (azimuth_deg) *azimuth_deg = scene ? scene->o.view.sun_azimuth_deg : 0.0;
+    if (elevation_deg) *elevation_deg = scene ? scene->o.view.sun_elevation_deg : 0.0;
+}
+
+double vksky_scene_ground_radius_m(const vksky_scene *scene)
+{
+    return scene ? scene->o.atmosphere.bottom_radius * 1000.0 : 0.0;
+}
+
+double vksky_scene_atmosphere_top_m(const vksky_scene *scene)
+{
+    return scene ? (scene->o.atmosphere.top_radius - scene->o.atmosphere.bottom_radius) * 1000.0 : 0.0;
+}
+
+double vksky_scene_sun_illuminance(const vksky_scene *scene)
+{
+    if (!scene) return 0.0;
+    double sun[3];
+    light_sun(&scene->o, sun);
+    return 0.2126 * sun[0] + 0.7152 * sun[1] + 0.0722 * sun[2];
+}

@@ -1,0 +1,42 @@
+/* libvksky's handles over the renderer (include/vksky.h is the contract; this is what stands behind it). The API
+ * is a thin layer: a context is a gpu_context, a scene is the command line's options value after the scene loader,
+ * a renderer is a sky_renderer built from them the way the CLI's headless run builds its own. */
+#ifndef VKSKY_LIB_INTERNAL_H
+#define VKSKY_LIB_INTERNAL_H
+#include <volk.h>
+#include <vksky.h>
+#include "app/options_struct.h"
+#include "gpu/context.h"
+#include "sky/frame.h"
+#include "sky/host_frame.h"
+
+struct vksky_context {
+    gpu_context gpu;
+    vksky_message_fn message;
+    void *message_user;
+    int renderers;                 /* alive: the context's destroy refuses to pull the device from under them */
+};
+
+struct vksky_scene {
+    options o;                     /* the scene loader's result on the CLI's defaults: medium, features, sun, units */
+};
+
+struct vksky_renderer {
+    vksky_context *ctx;
+    sky_renderer r;
+    options o;                     /* the scene with the renderer's quality, size and units applied */
+    vksky_renderer_desc desc;      /* as given (desc.scene and desc.quality not kept: they are the caller's) */
+    host_frame hf;                 /* SCENE_LINEAR: the pass over the host's colour and depth (sky/host_frame.h) */
+};
+
+/* One message line to the callback (NULL: dropped). */
+void lib_message(vksky_message_fn fn, void *user, vksky_severity severity, const char *format, ...)
+    __attribute__((format(printf, 4, 5)));
+/* gpu_context's messages (int severity) into a context's callback. */
+void lib_gpu_message(void *user, int severity, const char *text);
+/* A VkResult as the API's result. */
+vksky_result lib_result_from_vk(VkResult r);
+/* The CLI's defaults, then (path_or_name non-NULL) a scene file loaded onto them. 0 ok, else the scene loader's
+ * line in `why`. */
+int lib_options_load(const char *path_or_name, options *o, char *why, size_t why_size);
+#endif

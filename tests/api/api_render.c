@@ -1,0 +1,324 @@
+/* The API's renders, checked against the command-line tool (an independent path: its own context, its own display
+ * image, its own PNG writer) and against each other:
+ *   compare VKSKY_BIN: a DISPLAY frame through vksky_context_create_own + vksky_camera_look equals `vksky --render`'s
+ *     PNG of the same view (within 1/255); the same frame on a device the test made itself (its own instance, the
+ *     last queue of its last graphics+compute family) equals it too; two renderers of different sizes in one
+ *     process, each equal to the CLI's PNG of its size; 100 vksky_record calls allocate nothing through the
+ *     context's VkAllocationCallbacks.
+ *   cycles N: renderer create/destroy N times on one context: the live allocations through the callbacks return
+ *     to the same count, and the resident set does not grow.
+ * Validation + synchronization validation on throughout; any message fails. */
+#include "api_host.h"
+#include "io/png_io.h"
+#include "luts_host_comp.h"
+#include "model/medium.h"
+#include "reference/ref_atmosphere.h"
+#include <math.h>
+#include <stdint.h>
+
+/* Counting VkAllocationCallbacks: live blocks and calls. Each block keeps its size and alignment in the 16 bytes
+ * before it (the header is `align` bytes, align >= 16). */
+typedef struct counter { long live, calls; } counter;
+static void *count_alloc(void *user, size_t size, size_t align, VkSystemAllocationScope scope)
+{
+    (void)scope;
+    counter *c = user;
+    if (align < 16) align = 16;
+    unsigned char *base = aligned_alloc(align, ((size + 2 * align - 1) / align) * align);
+    if (!base) return NULL;
+    c->live++, c->calls++;
+    size_t *header = (size_t *)(base + align);
+    header[-1] = align, header[-2] = size;
+    return base + align;
+}
+static void count_free(void *user, void *mem)
+{
+    if (!mem) return;
+    counter *c = user;
+    c->live--;
+    free((unsigned char *)mem - ((size_t *)mem)[-1]);
+}
+static void *count_realloc(void *user, void *old, size_t size, size_t align, VkSystemAllocationScope scope)
+{
+    if (!old) return count_alloc(user, size, align, scope);
+    if (!size) { count_free(user, old); return NULL; }
+    void *p = count_alloc(user, size, align, scope);
+    if (!p) return NULL;
+    size_t old_size = ((size_t *)old)[-2];
+    memcpy(p, old, old_size < size ? old_size : size);
+    count_free(user, old);
+    return p;
+}
+
+static VkAllocationCallbacks counting(counter *c)
+{
+    return (VkAllocationCallbacks){.pUserData = c, .pfnAllocation = count_alloc, .pfnReallocation = count_realloc,
+                                   .pfnFree = count_free};
+}
+
+static const double YAW = 30.0, PITCH = 10.0, FOV = 75.0, EV100 = 12.0;
+
+/* `vksky --render` of the test's view at width x height: the reference PNG's pixels (RGBA). */
+static uint8_t *cli_png(const char *vksky, const char *dir, int width, int height)
+{
+    char path[512], cmd[1400], err[200];
+    snprintf(path, sizeof path, "%s/cli_%dx%d.png", dir, width, height);
+    snprintf(cmd, sizeof cmd, "%s --render %s --width %d --height %d --yaw %g --pitch %g --fov %g --exposure %g "
+             "--quality medium --validate", vksky, path, width, height, YAW, PITCH, FOV, EV100);
+    if (system(cmd) != 0) {
+        fprintf(stderr, "FAIL: %s\n", cmd);
+        exit(1);
+    }
+    int w = 0, h = 0;
+    uint8_t *rgba = NULL;
+    if (io_read_png(path, &w, &h, &rgba, err, sizeof err) != 0 || w != width || h != height) {
+        fprintf(stderr, "FAIL: %s: %s\n", path, err);
+        exit(1);
+    }
+    return rgba;
+}
+
+static vksky_renderer *make_renderer_of(vksky_context *c, uint32_t w, uint32_t h, vksky_output output, bool bloom)
+{
+    vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION, .output = output, .width = w,
+                             .height = h, .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = "medium",
+                             .bloom = bloom, .units = VKSKY_UNITS_PHOTOMETRIC};
+    vksky_renderer *r = NULL;
+    vksky_result res = vksky_renderer_create(c, &d, &r);
+    HOST_CHECK(res == VKSKY_SUCCESS, "vksky_renderer_create: %s", vksky_result_name(res));
+    if (!r) exit(1);
+    return r;
+}
+
+static vksky_renderer *make_renderer(vksky_context *c, uint32_t w, uint32_t h)
+{
+    return make_renderer_of(c, w, h, VKSKY_OUTPUT_DISPLAY, true);
+}
+
+/* One frame through the API into the host's image; the pixels stay in h->mapped. */
+static void api_frame(host *h, vksky_renderer *r)
+{
+    vksky_camera cam = {.origin_altitude_m = 1.0};   /* the CLI's default camera: 1 m above the ground */
+    vksky_camera_look(&cam, YAW, PITCH, FOV, (double)h->width / h->height, 0.1);
+    vksky_frame f = {.camera = &cam, .exposure = EV100, .color = host_image(h, VK_FORMAT_R8G8B8A8_SRGB)};
+    host_begin(h);
+    vksky_result res = vksky_record(r, h->cmd, &f);
+    HOST_CHECK(res == VKSKY_SUCCESS, "vksky_record: %s", vksky_result_name(res));
+    host_end_and_read(h);
+}
+
+/* Largest difference of any channel (alpha aside), in 8-bit steps. */
+static int max_difference(const uint8_t *a, const uint8_t *b, size_t pixels, const char *what)
+{
+    int worst = 0;
+    size_t at = 0;
+    for (size_t i = 0; i < pixels; ++i)
+        for (int ch = 0; ch < 3; ++ch) {
+            int d = abs((int)a[4 * i + ch] - (int)b[4 * i + ch]);
+            if (d > worst) worst = d, at = i;
+        }
+    printf("%s: max difference %d/255 (pixel %zu)\n", what, worst, at);
+    return worst;
+}
+
+static int compare(const char *vksky)
+{
+    char dir[] = "/tmp/vksky_api_XXXXXX";
+    if (!mkdtemp(dir)) return 1;
+    const uint32_t W = 96, H = 54, W2 = 64, H2 = 64;
+    uint8_t *cli = cli_png(vksky, dir, (int)W, (int)H), *cli2 = cli_png(vksky, dir, (int)W2, (int)H2);
+    uint8_t *own_pixels = malloc(4 * W * H);
+    /* The reference is a sky, not a blank: blue over the horizon, its rows not all alike. */
+    int lo = 255, hi = 0;
+    for (size_t i = 0; i < (size_t)W * H; ++i) lo = cli[4 * i + 2] < lo ? cli[4 * i + 2] : lo, hi = cli[4 * i + 2] > hi ? cli[4 * i + 2] : hi;
+    HOST_CHECK(hi - lo > 40 && cli[2] > cli[0], "the CLI's reference is no sky (blue %d..%d, top-left %d,%d,%d)", lo, hi,
+               cli[0], cli[1], cli[2]);
+
+    /* 1. vksky's own device: the same view as the CLI's. Two renderers of different sizes, alive together. */
+    vksky_own_device_desc od = {.abi_version = VKSKY_ABI_VERSION, .device_index = -1, .validation = true,
+                                .message = api_message};
+    vksky_context *own = NULL;
+    vksky_result res = vksky_context_create_own(&od, &own);
+    HOST_CHECK(res == VKSKY_SUCCESS, "vksky_context_create_own: %s", vksky_result_name(res));
+    if (!own) return 1;
+    host h, h2;
+    host_from_context(&h, own);
+    host_from_context(&h2, own);
+    host_create_target(&h, W, H, VK_FORMAT_R8G8B8A8_SRGB);
+    host_create_target(&h2, W2, H2, VK_FORMAT_R8G8B8A8_SRGB);
+    vksky_renderer *r = make_renderer(own, W, H), *r2 = make_renderer(own, W2, H2);
+    api_frame(&h, r);
+    api_frame(&h2, r2);
+    api_frame(&h, r);   /* the second frame: the LUTs kept, every barrier from the previous frame's uses */
+    memcpy(own_pixels, h.mapped, 4 * W * H);
+    HOST_CHECK(max_difference(own_pixels, cli, W * H, "own device vs CLI") <= 1, "the API's frame differs from the CLI's");
+    HOST_CHECK(max_difference(h2.mapped, cli2, W2 * H2, "second renderer vs CLI") <= 1,
+               "the second renderer's frame differs from the CLI's");
+    vksky_renderer_destroy(r2);
+    vksky_renderer_destroy(r);
+    host_destroy_target(&h2);
+    host_destroy_target(&h);
+    HOST_CHECK(vksky_context_validation_message_count(own) == 0, "%u validation messages",
+               vksky_context_validation_message_count(own));
+    vksky_context_destroy(own);
+
+    /* 2. The host's own device, with counting allocation callbacks: same image; no allocation per frame. */
+    counter count = {0};
+    VkAllocationCallbacks cb = counting(&count);
+    host_create_device(&h, NULL);
+    host_create_target(&h, W, H, VK_FORMAT_R8G8B8A8_SRGB);
+    vksky_context_desc cd = host_context_desc(&h, &cb);
+    vksky_context *hc = NULL;
+    res = vksky_context_create(&cd, &hc);
+    HOST_CHECK(res == VKSKY_SUCCESS, "vksky_context_create: %s", vksky_result_name(res));
+    if (!hc) return 1;
+    r = make_renderer(hc, W, H);
+    HOST_CHECK(count.calls > 0, "the renderer made nothing through the host's allocation callbacks");
+    api_frame(&h, r);
+    HOST_CHECK(max_difference(h.mapped, own_pixels, W * H, "host device vs own device") == 0,
+               "the host device's frame differs from vksky's own device's");
+    long calls_before = count.calls, live_before = count.live;
+    vksky_camera cam = {.origin_altitude_m = 1.0};
+    vksky_camera_look(&cam, YAW, PITCH, FOV, (double)W / H, 0.1);
+    vksky_frame f = {.camera = &cam, .exposure = EV100, .color = host_image(&h, VK_FORMAT_R8G8B8A8_SRGB)};
+    for (int i = 0; i < 100; ++i) {
+        host_begin(&h);
+        vksky_record(r, h.cmd, &f);
+        HOST_VK(vkEndCommandBuffer(h.cmd));
+    }
+    printf("100 vksky_record calls: %ld allocations through the callbacks (live %ld -> %ld)\n",
+           count.calls - calls_before, live_before, count.live);
+    HOST_CHECK(count.calls == calls_before && count.live == live_before, "vksky_record allocated");
+    vksky_renderer_destroy(r);
+    vksky_context_destroy(hc);
+    HOST_CHECK(count.live == 0, "%ld blocks still allocated after every vksky object was destroyed", count.live);
+    host_destroy_target(&h);
+    host_destroy_device(&h, NULL);
+    HOST_CHECK(host_validation_messages == 0, "%u validation messages on the host's device", host_validation_messages);
+    HOST_CHECK(api_messages[VKSKY_SEVERITY_ERROR] + api_messages[VKSKY_SEVERITY_VALIDATION] == 0,
+               "vksky reported errors");
+    free(cli), free(cli2), free(own_pixels);
+    char rm[600];
+    snprintf(rm, sizeof rm, "rm -rf %s", dir);
+    if (system(rm) != 0) return 1;
+    return host_failures ? 1 : 0;
+}
+
+static long rss_kb(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    long kb = -1;
+    while (f && fgets(line, sizeof line, f))
+        if (!strncmp(line, "VmRSS:", 6)) kb = atol(line + 6);
+    if (f) fclose(f);
+    return kb;
+}
+
+static int cycles(int n)
+{
+    counter count = {0};
+    VkAllocationCallbacks cb = counting(&count);
+    host h;
+    host_create_device(&h, NULL);
+    vksky_context_desc cd = host_context_desc(&h, &cb);
+    /* The host's pipeline cache: the pipelines of every renderer after the first come from it (lavapipe compiles
+     * at creation), as they would in an engine that keeps one. */
+    VkPipelineCacheCreateInfo pci = {.sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+    HOST_VK(vkCreatePipelineCache(h.device, &pci, NULL, &cd.pipeline_cache));
+    vksky_context *c = NULL;
+    if (vksky_context_create(&cd, &c) != VKSKY_SUCCESS) return 1;
+    long live0 = 0, rss0 = 0;
+    for (int i = 0; i < n; ++i) {
+        vksky_renderer *r = make_renderer_of(c, 32, 18, getenv("API_LUTS") ? VKSKY_OUTPUT_LUTS_ONLY : VKSKY_OUTPUT_DISPLAY,
+                                             !getenv("API_NOBLOOM"));
+        vksky_renderer_destroy(r);
+        if (i == 9) live0 = count.live, rss0 = rss_kb();   /* after warm-up: caches, the loader's tables */
+    }
+    long rss1 = rss_kb();
+    printf("%d renderers: live blocks %ld -> %ld, VmRSS %ld -> %ld kB\n", n, live0, count.live, rss0, rss1);
+    HOST_CHECK(count.live == live0, "live allocations grew from %ld to %ld", live0, count.live);
+    HOST_CHECK(rss1 - rss0 < 8 * 1024, "resident set grew by %ld kB", rss1 - rss0);
+    vksky_context_destroy(c);
+    vkDestroyPipelineCache(h.device, cd.pipeline_cache, NULL);
+    host_destroy_device(&h, NULL);
+    HOST_CHECK(count.live == 0, "%ld blocks left after the context", count.live);
+    HOST_CHECK(host_validation_messages == 0, "%u validation messages", host_validation_messages);
+    return host_failures ? 1 : 0;
+}
+
+/* VKSKY_OUTPUT_LUTS_ONLY on the host's device: the host's compute shader (include/vksky_luts.glsl) samples the
+ * transmittance LUT as the CPU reference integrates it (within 1 %: a bilinear tap of a half-float LUT), and reads a
+ * multi-scattering LUT's Psi as the model's quadrature gives it with the same directions (within 2 %), and a
+ * sky-view radiance that is finite, positive and at the zenith bluer than red. */
+static int luts(void)
+{
+    host h;
+    host_create_device(&h, NULL);
+    host_create_target(&h, 4, 4, VK_FORMAT_R8G8B8A8_SRGB);   /* its command buffer and fence */
+    vksky_context_desc cd = host_context_desc(&h, NULL);
+    vksky_context *c = NULL;
+    if (vksky_context_create(&cd, &c) != VKSKY_SUCCESS) return 1;
+    vksky_renderer *r = make_renderer_of(c, 0, 0, VKSKY_OUTPUT_LUTS_ONLY, false);
+    vksky_luts l;
+    HOST_CHECK(vksky_get_luts(r, &l) == VKSKY_SUCCESS && l.transmittance && l.multiscatter && l.skyview && l.sampler,
+               "vksky_get_luts");
+    host_luts pass;
+    host_luts_create(&h, &pass, &l, spv_luts_host, sizeof spv_luts_host, 64);
+    vksky_camera cam = {.origin_altitude_m = 1.0};
+    vksky_camera_look(&cam, 0.0, 10.0, 75.0, 1.0, 0.1);
+    vksky_frame f = {.camera = &cam};
+    host_begin(&h);
+    for (int frame = 0; frame < 2; ++frame) {   /* twice: the second frame's LUT writes after the first's reads */
+        if (frame > 0) host_buffer_waw(&h, pass.buffer);
+        HOST_CHECK(vksky_record(r, h.cmd, &f) == VKSKY_SUCCESS, "vksky_record LUTS_ONLY");
+        host_luts_record(&h, &pass);
+        f.force_luts = true;
+    }
+    host_submit(&h, pass.buffer);
+    model_atmosphere earth;
+    model_atmosphere_earth(&earth);
+    double worst = 0.0, worst_ms = 0.0;
+    for (uint32_t i = 0; i < pass.width; ++i) {
+        double mu = 0.05 + (1.0 - 0.05) * i / (pass.width - 1), t[3], psi[3];
+        ref_transmittance(&earth, 1.0, mu, 2000, t);
+        for (int ch = 0; ch < 3; ++ch) {
+            double e = fabs(pass.texels[4 * i + ch] - t[ch]) / t[ch];
+            worst = e > worst ? e : worst;
+        }
+        /* Psi by the model's own quadrature with the preset's directions (medium: 32x32) and steps, a few texels. */
+        if (i % 16 == 0) {
+            ref_multiscatter(&earth, 1.0, mu, 32, 20, 40, psi);
+            for (int ch = 0; ch < 3; ++ch) {
+                double e = fabs(pass.texels[4 * (pass.width + i) + ch] - psi[ch]) / psi[ch];
+                worst_ms = e > worst_ms ? e : worst_ms;
+            }
+        }
+        const float *ms = pass.texels + 4 * (pass.width + i), *sky = pass.texels + 4 * (2 * pass.width + i);
+        for (int ch = 0; ch < 3; ++ch)
+            HOST_CHECK(isfinite(ms[ch]) && ms[ch] > 0 && isfinite(sky[ch]) && sky[ch] > 0,
+                       "texel %u: multiscatter %g, sky-view %g", i, ms[ch], sky[ch]);
+    }
+    const float *zenith = pass.texels + 4 * (3 * pass.width - 1);
+    printf("LUTS_ONLY: the host's transmittance within %.3f %% of the CPU reference, Psi within %.2f %%; zenith sky-view "
+           "%g %g %g\n", 100 * worst, 100 * worst_ms, zenith[0], zenith[1], zenith[2]);
+    HOST_CHECK(worst < 0.01, "transmittance off the reference by %.3f %%", 100 * worst);
+    HOST_CHECK(worst_ms < 0.02, "Psi off the reference by %.2f %% (the LUT stores Psi^(1/4) in half floats)", 100 * worst_ms);
+    HOST_CHECK(zenith[2] > zenith[0], "the zenith is not bluer than red");
+    host_luts_destroy(&h, &pass);
+    vksky_renderer_destroy(r);
+    vksky_context_destroy(c);
+    host_destroy_target(&h);
+    host_destroy_device(&h, NULL);
+    HOST_CHECK(host_validation_messages == 0, "%u validation messages", host_validation_messages);
+    return host_failures ? 1 : 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 2 && !strcmp(argv[1], "luts")) return luts();
+    if (argc == 3 && !strcmp(argv[1], "compare")) return compare(argv[2]);
+    if (argc == 3 && !strcmp(argv[1], "cycles")) return cycles(atoi(argv[2]));
+    fprintf(stderr, "usage: api_render compare VKSKY_BIN | cycles N\n");
+    return 2;
+}
