@@ -348,6 +348,6 @@ int main(int argc, char **argv)
     gpu_context_destroy(&ctx);
     unsigned messages = gpu_validation_message_count();
     if (messages) fprintf(stderr, "host_frame_probe: validation reported %u message(s)\n", messages);
-    if (test_failures) fprintf(stderr, "host_frame_probe: %d failure(s)\n", test_failures);
-    return messages || test_failures ? 1 : 0;
+    if (check_failures) fprintf(stderr, "host_frame_probe: %d failure(s)\n", check_failures);
+    return messages || check_failures ? 1 : 0;
 }

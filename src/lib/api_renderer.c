@@ -23,8 +23,9 @@ static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc
     const quality_config *q = NULL;
     double measured = 0.0;
     unsigned classes = quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
+    bool cpu_device = c->gpu.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     if (d->max_error > 0.0) {
-        q = quality_pick(d->max_error, classes, &measured);
+        q = quality_pick(d->max_error, classes, cpu_device, &measured);   /* the running device's table */
         if (!q) {
             lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                         "max_error %g: no measured configuration reaches it; try a larger budget or \"ultra\"",
@@ -32,7 +33,7 @@ static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
     } else if (!d->quality || !strcmp(d->quality, "auto")) {
-        q = quality_auto(classes, c->gpu.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, &measured);
+        q = quality_auto(classes, cpu_device, &measured);
     } else {
         q = quality_preset(d->quality);
         if (!q) {
