@@ -2,6 +2,7 @@
  * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
  * stderr and exit status 2, before any output file exists. */
 #include "app/composite_app.h"
+#include "app/render_values.h"
 #include "app/composite_bands.h"
 #include "app/composite_layers.h"
 #include "app/exr_header.h"
@@ -98,13 +99,15 @@ static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32
     startup_open_cache(ctx, o);
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
-    sky_features features = options_features(o);
-    features.sun_disc_power = false;   /* the composite keeps the lesson's scale and disc (docs/units.md) */
-    sky_renderer_desc rdesc = {.width = width, .height = height, .bloom = readback && o->view.bloom,
-                               .readback = readback, .display_format = VK_FORMAT_R8G8B8A8_SRGB,
-                               .render_scale = readback ? o->render_scale : 1.0, .lut = o->lut,
-                               .bloom_mips = (uint32_t)o->bloom_mips, .atmosphere = &o->atmosphere,
-                               .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
+    /* The composite keeps the lesson's scale and disc (docs/units.md): the medium as given, the disc unpowered. */
+    render_scene scene = {.atmosphere = o->atmosphere, .sun_radius_rad = options_sun_radius_rad(o),
+                          .features = options_features(o)};
+    scene.features.sun_disc_power = false;
+    render_quality quality = render_quality_of(o);
+    if (!readback) quality.render_scale = 1.0;
+    sky_renderer_desc rdesc = render_desc(&quality, &scene);
+    rdesc.width = width, rdesc.height = height, rdesc.bloom = readback && o->view.bloom;
+    rdesc.readback = readback, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
     sky_renderer_create(r, ctx, &rdesc);
     if (o->trace_passes) r->pass_trace = stdout;
     return 0;

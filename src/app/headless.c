@@ -1,4 +1,5 @@
 #include "app/headless.h"
+#include "app/render_values.h"
 #include "app/light.h"
 #include "app/cpu_time.h"
 #include "app/frame_ring.h"
@@ -195,15 +196,12 @@ int headless_run(const options *given)
         return finish(&ctx, tiles_render(o, &ctx), o->timings);
 
     sky_renderer r;
-    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
-    light_render_atmosphere(o, &lit);
-    sky_features features = options_features(o);
-    sky_renderer_desc rdesc = {.width = (uint32_t)o->width, .height = (uint32_t)o->height, .bloom = o->view.bloom,
-                               .readback = o->output_count > 0, .display_format = VK_FORMAT_R8G8B8A8_SRGB,
-                               .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
-                               .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample,
-                               .bloom_quarter = o->bloom_quarter, .atmosphere = &lit,
-                               .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
+    render_scene scene;
+    render_scene_of(o, &scene);
+    render_quality quality = render_quality_of(o);
+    sky_renderer_desc rdesc = render_desc(&quality, &scene);
+    rdesc.width = (uint32_t)o->width, rdesc.height = (uint32_t)o->height, rdesc.bloom = o->view.bloom;
+    rdesc.readback = o->output_count > 0, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
     sky_renderer_create(&r, &ctx, &rdesc);
     if (o->trace_passes) r.pass_trace = stdout;
 

@@ -1,5 +1,6 @@
 /* The frames of a sequence (sequence.h). */
 #include "app/sequence.h"
+#include "app/render_values.h"
 #include "app/exr_header.h"
 #include "app/frame_ring.h"
 #include "app/light.h"
@@ -208,11 +209,9 @@ static int sequence_render_serial(const options *base, sky_renderer *r, sequence
             continue;
         }
         /* Same values: the renderer keeps its LUTs (their hash is unchanged) and its pipelines. */
-        model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
-        light_render_atmosphere(&f, &lit);
-        sky_renderer_set_atmosphere(r, &lit, options_sun_radius_rad(&f));
-        sky_features features = options_features(&f);
-        sky_renderer_set_features(r, &features);
+        render_scene scene;
+        render_scene_of(&f, &scene);
+        render_scene_set(r, &scene);
         bool luts = sky_renderer_luts_dirty(r);
         lut_computations += luts;
         frame_desc desc = {.view = &f.view};
@@ -261,13 +260,6 @@ static int consume_frame(void *user, const frame_ring_pixels *px, void *job)
     return 0;
 }
 
-/* What the renderer is given per frame; a change means a host write of the uniform block (ring.drain first). */
-typedef struct renderer_inputs {
-    model_atmosphere atmosphere;
-    double sun_radius;
-    sky_features features;
-} renderer_inputs;
-
 /* The pipelined loop (frame_ring.h): frame N+1 renders while frame N is written. Same frames, same files, same
  * order and lines as the serial loop. */
 static int sequence_render_ring(const options *base, sky_renderer *r, int slots, FILE *trace)
@@ -276,7 +268,7 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
     frame_ring ring;
     if (frame_ring_create(&ring, r, slots, consume_frame, &state, trace)) return 1;
     int lut_computations = 0, status = 0;
-    renderer_inputs last;
+    render_scene last;
     bool have_last = false;
     for (int i = base->frame_first; i <= base->frame_last && !stop_requested() && status == 0; ++i) {
         frame_job *j = calloc(1, sizeof *j);
@@ -300,16 +292,14 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
                 break;
             }
         }
-        renderer_inputs in;
-        memset(&in, 0, sizeof in);   /* compared bytewise: a difference in padding alone costs a needless drain */
-        light_render_atmosphere(&j->f, &in.atmosphere);   /* the sun in the HDR image's units (app/light.h) */
-        in.sun_radius = options_sun_radius_rad(&j->f);
-        in.features = options_features(&j->f);
+        /* What the renderer is given; a change means a host write of the uniform block (ring.drain first). Compared
+         * bytewise (render_scene_of zeroes the padding: no needless drain). */
+        render_scene in;
+        render_scene_of(&j->f, &in);
         if (!have_last || memcmp(&in, &last, sizeof in)) {
             /* The uniform block (and maybe pipelines, LUTs) change: no frame in flight may still read them. */
             if (have_last) frame_ring_drain(&ring);
-            sky_renderer_set_atmosphere(r, &in.atmosphere, in.sun_radius);
-            sky_renderer_set_features(r, &in.features);
+            render_scene_set(r, &in);
             last = in, have_last = true;
         }
         j->frame = i;

@@ -103,8 +103,7 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
         }
         sky_features feat = base_features;
         group_albedo(&base_features, nm, feat.ground_albedo);
-        sky_renderer_set_atmosphere(r, &a, sun_radius);
-        sky_renderer_set_features(r, &feat);
+        sky_renderer_set_scene(r, &a, sun_radius, &feat);
         job.inner(r, f);
         for (size_t i = 0; i < pixels; ++i) {
             const uint16_t *p = px + 4 * i;
@@ -124,8 +123,7 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
         }
     }
     free(xyz);
-    sky_renderer_set_features(r, &base_features);
-    sky_renderer_set_atmosphere(r, &base, sun_radius);
+    sky_renderer_set_scene(r, &base, sun_radius, &base_features);
 }
 
 /* The worst CIEDE2000 per scene class (quality_scenes' order: noon, afternoon, sunset, twilight, 10 km, 400 km, sun 0,

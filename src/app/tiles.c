@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/tiles.h"
+#include "app/render_values.h"
 #include "app/exr_header.h"
 #include "app/frame_ring.h"
 #include "app/light.h"
@@ -259,14 +260,14 @@ int tiles_render(const options *o, gpu_context *ctx)
         return 1;
     }
     sky_renderer r;
-    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
-    light_render_atmosphere(o, &lit);
-    sky_features features = options_features(o);
+    render_scene scene;
+    render_scene_of(o, &scene);
+    render_quality quality = render_quality_of(o);
+    quality.render_scale = 1.0;   /* bands are drawn at full size (a band's rows are its own) */
     int pad = bands > 1 ? 1 : 0;   /* band_rows */
-    sky_renderer_desc rdesc = {.width = (uint32_t)width, .height = (uint32_t)(band + 2 * pad), .bloom = view.bloom,
-                               .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB, .render_scale = 1.0,
-                               .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips, .atmosphere = &lit,
-                               .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
+    sky_renderer_desc rdesc = render_desc(&quality, &scene);
+    rdesc.width = (uint32_t)width, rdesc.height = (uint32_t)(band + 2 * pad), rdesc.bloom = view.bloom;
+    rdesc.readback = true, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
     sky_renderer_create(&r, ctx, &rdesc);
     if (o->trace_passes) r.pass_trace = stdout;
 

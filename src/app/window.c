@@ -19,6 +19,7 @@
  * The window in three files: this one (the loop, frames in flight, screenshot, title, setup), swapchain.c (the
  * swapchain's life) and window_input.c (the controls); their shared state is app/window_app.h. */
 #include "app/startup.h"
+#include "app/render_values.h"
 #include "app/cpu_time.h"
 #include "app/light.h"
 #include "app/window_app.h"
@@ -428,15 +429,12 @@ static int start_rendering(app *a)
     }
     frames_create(a);
     /* The bloom chain is always allocated so B can toggle it; --no-bloom only starts with it off. */
-    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
-    light_render_atmosphere(o, &lit);
-    sky_features features = options_features(o);
-    sky_renderer_desc rdesc = {.width = a->sc.extent.width, .height = a->sc.extent.height, .bloom = true,
-                               .readback = false, .external_display = true, .display_format = a->sc.format.format,
-                               .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
-                               .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample,
-                               .bloom_quarter = o->bloom_quarter, .atmosphere = &lit,
-                               .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
+    render_scene scene;
+    render_scene_of(o, &scene);
+    render_quality quality = render_quality_of(o);
+    sky_renderer_desc rdesc = render_desc(&quality, &scene);
+    rdesc.width = a->sc.extent.width, rdesc.height = a->sc.extent.height, rdesc.bloom = true;
+    rdesc.external_display = true, rdesc.display_format = a->sc.format.format;
     sky_renderer_create(&a->renderer, &a->ctx, &rdesc);
     a->view = o->view;
     /* Photometric units without --exposure: auto exposure, metered now so the first frame is already exposed. */

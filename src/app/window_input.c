@@ -1,6 +1,7 @@
 /* The window's input: the controls table, key presses (toggles, steps, F5 reload), mouse capture and look, and
  * the held keys polled once a frame into the fly camera and the sun. */
 #include "app/window_app.h"
+#include "app/render_values.h"
 #include "app/light.h"
 #include <math.h>
 #include <string.h>
@@ -58,11 +59,9 @@ static void reload_scene(app *a)
     /* The atmosphere uniform buffer is shared by the frames in flight: wait for them before rewriting it. */
     vkDeviceWaitIdle(a->ctx.device);
     sky_variant before = a->renderer.variant;
-    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
-    light_render_atmosphere(&fresh, &lit);
-    sky_renderer_set_atmosphere(&a->renderer, &lit, options_sun_radius_rad(&fresh));
-    sky_features features = options_features(&fresh);
-    sky_renderer_set_features(&a->renderer, &features);
+    render_scene scene;
+    render_scene_of(&fresh, &scene);
+    render_scene_set(&a->renderer, &scene);
     printf("scene reloaded: %s (LUTs %s, pipelines %s)\n", a->o->scene_path,
            sky_renderer_luts_dirty(&a->renderer) ? "recomputed" : "kept",
            memcmp(&before, &a->renderer.variant, sizeof before) ? "rebuilt" : "kept");
