@@ -7,6 +7,7 @@
 #include "app/quality.h"
 #include "app/window.h"
 #include "app/reference_run.h"
+#include "app/scene_dump.h"
 #include "app/scene_find.h"
 #include "app/sequence.h"
 #include "app/startup.h"
@@ -30,6 +31,7 @@ int main(int argc, char **argv)
         printf("vksky %s\n", VKSKY_VERSION);
         return 0;
     }
+    if (o.dump_scene) return scene_dump(&o, stdout);   /* the effective scene as JSON; nothing else runs */
     options_throughput_install(&o);   /* --threads, --exr-compression: how every file of the run is encoded */
     if (o.list_scenes) return scene_list(stdout);
     if (o.list_devices) return gpu_list_devices(stdout) == 0 ? 0 : 1;

@@ -9,7 +9,6 @@
 #include "app/options_throughput.h"
 #include "app/help.h"
 #include "app/light.h"
-#include "app/scene_dump.h"
 #include "gpu/context.h"
 #include <errno.h>
 #include <math.h>
@@ -428,7 +427,7 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);
-    if (o->dump_scene && !o->help && !o->version) exit(scene_dump(o, stdout));   /* --dump-scene: nothing else runs */
-    light_finish(o);   /* after the dump: it writes the exposure as given */
+    /* --dump-scene writes the exposure as given: the caller dumps these options (main.c), nothing else runs. */
+    if (!o->dump_scene || o->help || o->version) light_finish(o);
     return 0;
 }
