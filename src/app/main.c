@@ -14,93 +14,100 @@
 #include "app/spectral_render.h"
 #include <stdlib.h>
 
-int main(int argc, char **argv)
+static int run(options *o, int argc, char **argv)
 {
-    startup_begin();
-    options o;
     composite_options co;   /* its flags leave argv here; the shared table never sees them */
     if (composite_options_extract(&co, &argc, argv) != 0) return 2;
-    if (options_parse(&o, argc, argv) != 0) return 2;
-    if (o.help) {
+    if (options_parse(o, argc, argv) != 0) return 2;
+    if (o->help) {
         options_print_help(stdout);
         composite_options_print_help(stdout);
         stop_print_help(stdout);
         return 0;
     }
-    if (o.version) {
+    if (o->version) {
         printf("vksky %s\n", VKSKY_VERSION);
         return 0;
     }
-    if (o.dump_scene) return scene_dump(&o, stdout);   /* the effective scene as JSON; nothing else runs */
-    options_throughput_install(&o);   /* --threads, --exr-compression: how every file of the run is encoded */
-    if (o.list_scenes) return scene_list(stdout);
-    if (o.list_devices) return gpu_list_devices(stdout) == 0 ? 0 : 1;
-    if (o.path_trace && !o.reference) {
+    if (o->dump_scene) return scene_dump(o, stdout);   /* the effective scene as JSON; nothing else runs */
+    options_throughput_install(o);   /* --threads, --exr-compression: how every file of the run is encoded */
+    if (o->list_scenes) return scene_list(stdout);
+    if (o->list_devices) return gpu_list_devices(stdout) == 0 ? 0 : 1;
+    if (o->path_trace && !o->reference) {
         fprintf(stderr, "vksky: --path-trace: only with --reference\n");
         return 2;
     }
-    if (o.irradiance && !o.reference) {
+    if (o->irradiance && !o->reference) {
         fprintf(stderr, "vksky: --irradiance: only with --reference\n");
         return 2;
     }
-    if (o.reference && o.spectral > 0 && o.spectral < 3) {
+    if (o->reference && o->spectral > 0 && o->spectral < 3) {
         fprintf(stderr, "vksky: --spectral: %d wavelengths with --reference; expected 0 (RGB) or 3 to 120\n",
-                o.spectral);
+                o->spectral);
         return 2;
     }
-    if (o.reference) {
-        if (o.bench_frames) {
+    if (o->reference) {
+        if (o->bench_frames) {
             fprintf(stderr, "vksky: --bench: not with --reference\n");
             return 2;
         }
-        return reference_run(&o);
+        return reference_run(o);
     }
-    if ((co.input || co.aovs) && sequence_active(&o)) {
+    if ((co.input || co.aovs) && sequence_active(o)) {
         fprintf(stderr, "vksky: %s: not with %s (one image; a sequence renders plain sky frames)\n",
-                o.animate_count ? "--animate" : o.frame_range_set ? "--frame-range" : "--frame-count",
+                o->animate_count ? "--animate" : o->frame_range_set ? "--frame-range" : "--frame-count",
                 co.input ? "--composite" : "--aovs");
         return 2;
     }
-    if (o.spectral && (co.input || co.aovs)) {
+    if (o->spectral && (co.input || co.aovs)) {
         fprintf(stderr, "vksky: --spectral: not with %s (the GPU's spectral path renders plain sky images)\n",
                 co.input ? "--composite" : "--aovs");
         return 2;
     }
-    if (o.max_color_error > 0.0) {   /* the colour axis of the trade: the fewest wavelengths that keep the promise */
-        if (o.spectral || o.reference) {
+    if (o->max_color_error > 0.0) {   /* the colour axis of the trade: the fewest wavelengths that keep the promise */
+        if (o->spectral || o->reference) {
             fprintf(stderr, "vksky: --max-color-error: not with %s; give one or the other\n",
-                    o.reference ? "--reference" : "--spectral");
+                    o->reference ? "--reference" : "--spectral");
             return 2;
         }
-        unsigned classes = o.quality_classes ? o.quality_classes
-                                             : quality_class_bit(o.view.altitude_km, o.view.sun_elevation_deg);
+        unsigned classes = o->quality_classes ? o->quality_classes
+                                             : quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
         char names[96];
         double measured;
-        int n = spectral_pick(o.max_color_error, classes, &measured);
+        int n = spectral_pick(o->max_color_error, classes, &measured);
         quality_class_names(classes, names, sizeof names);
         if (n < 0) {
             fprintf(stderr, "vksky: --max-color-error: no measured colour setting reaches CIEDE2000 %g on a %s scene "
-                            "(the best: %.2f); try a larger budget\n", o.max_color_error, names, measured);
+                            "(the best: %.2f); try a larger budget\n", o->max_color_error, names, measured);
             return 2;
         }
-        o.spectral = n;
+        o->spectral = n;
         char flag[80];
-        snprintf(flag, sizeof flag, "--max-color-error %g (picked --spectral %d)", o.max_color_error, n);
-        if (spectral_render_check(&o, flag)) return 2;
+        snprintf(flag, sizeof flag, "--max-color-error %g (picked --spectral %d)", o->max_color_error, n);
+        if (spectral_render_check(o, flag)) return 2;
         printf("vksky: --max-color-error %g: picked --spectral %d (measured worst CIEDE2000 %.2f on the '%s' scene)\n",
-               o.max_color_error, n, measured, names);
+               o->max_color_error, n, measured, names);
     }
-    if (spectral_render_check(&o, "--spectral")) return 2;   /* the GPU's --spectral: EXR renders only */
+    if (spectral_render_check(o, "--spectral")) return 2;   /* the GPU's --spectral: EXR renders only */
     /* The composite keeps the lesson's scale (docs/units.md: the layers add up with the render's own units): its
      * header says so (vksky:units). */
-    if (co.input || co.aovs) o.units = OPTIONS_UNITS_RELATIVE;
-    if (co.input) return composite_run(&o, &co);
-    if (co.aovs) return composite_aovs_run(&o, &co);
-    if (o.output_count == 0 && o.bench_frames == 0) return window_run(&o);
-    if (o.frames || o.screenshot) {
+    if (co.input || co.aovs) o->units = OPTIONS_UNITS_RELATIVE;
+    if (co.input) return composite_run(o, &co);
+    if (co.aovs) return composite_aovs_run(o, &co);
+    if (o->output_count == 0 && o->bench_frames == 0) return window_run(o);
+    if (o->frames || o->screenshot) {
         fprintf(stderr, "vksky: %s: only for the interactive window (not with --render or --bench)\n",
-                o.frames ? "--frames" : "--screenshot");
+                o->frames ? "--frames" : "--screenshot");
         return 2;
     }
-    return headless_run(&o);
+    return headless_run(o);
+}
+
+int main(int argc, char **argv)
+{
+    startup_begin();
+    options o = {0};
+    int rc = run(&o, argc, argv);
+    options_release(&o);
+    return rc;
 }

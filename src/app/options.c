@@ -130,11 +130,10 @@ static bool has_extension(const char *path, const char *ext)
     return n > e && strcasecmp(path + n - e, ext) == 0;
 }
 
-static int apply(options *o, const flag *f, const char *value)
+/* One flag's value: x for a numeric flag (value may then be NULL), the text for the others. */
+static int apply_value(options *o, const flag *f, const char *value, double x)
 {
     const char *n = f->name;
-    double x = 0;
-    if ((f->kind == ARG_INT || f->kind == ARG_DOUBLE) && parse_number(f, value, &x) != 0) return 2;
     int handled = options_tooling_apply(o, n, value, x);   /* the sun by date and place, --list-scenes */
     if (handled >= 0) return handled;
     handled = options_sequence_apply(o, n, value, x);   /* --animate, --frame-count, --frame-range */
@@ -287,6 +286,13 @@ static int apply(options *o, const flag *f, const char *value)
     return 0;
 }
 
+static int apply(options *o, const flag *f, const char *value)
+{
+    double x = 0;
+    if ((f->kind == ARG_INT || f->kind == ARG_DOUBLE) && parse_number(f, value, &x) != 0) return 2;
+    return apply_value(o, f, value, x);
+}
+
 /* No --render, --bench, --reference or an informational flag: the window will open. */
 static bool window_mode(int argc, char **argv)
 {
@@ -315,6 +321,8 @@ static bool device_is_cpu(const options *o, int argc, char **argv)
     VkPhysicalDeviceType type;
     return gpu_device_type(o->device_index, &type) == 0 && type == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
+
+static int finish(options *o, int argc, char **argv, bool exposure_flag);
 
 int options_parse(options *o, int argc, char **argv) { return options_parse_for_classes(o, argc, argv, 0); }
 
@@ -408,6 +416,31 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
             if (apply(o, f, value) != 0) return 2;
     }
     }
+    /* A sequence's frames start from here: the flags and the scene read, nothing derived yet (options_frame). */
+    if (o->animate_count > 0) {
+        o->unresolved = malloc(sizeof *o);
+        if (!o->unresolved) return bad("--animate", "out of memory");
+        *o->unresolved = *o;
+    }
+    bool exposure_flag = false;   /* a scene's exposure gives way to --auto-exposure; the flag does not */
+    for (int i = 1; i < argc; ++i) exposure_flag = exposure_flag || !strncmp(argv[i], "--exposure", 10);
+    if (finish(o, argc, argv, exposure_flag)) {
+        options_release(o);
+        return 2;
+    }
+    /* The --max-error choice, reported only now: every flag has been read and accepted. */
+    if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
+        fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
+                "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
+                o->max_error, picked->name, picked_error, picked_scene);
+    return 0;
+}
+
+/* What follows the flags: the sun from a date and place, the frame range, the density scales, the checks across
+ * flags, the projection's image size, the exposure in the output's units. A sequence frame runs it again on its own
+ * values (options_frame); argc 1 there: the projection's notes about the command line were printed once. */
+static int finish(options *o, int argc, char **argv, bool exposure_flag)
+{
     if (options_tooling_resolve(o) || options_sequence_resolve(o)) return 2;
     scale3(o->atmosphere.rayleigh_scattering, o->scales[0]);
     scale3(o->atmosphere.mie_scattering, o->scales[1]);
@@ -419,15 +452,41 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         return bad("--max-steps", msg);
     }
     if (options_projection_finish(o, argc, argv) != 0) return 2;
-    bool exposure_flag = false;   /* a scene's exposure gives way to --auto-exposure; the flag does not */
-    for (int i = 1; i < argc; ++i) exposure_flag = exposure_flag || !strncmp(argv[i], "--exposure", 10);
     if (o->auto_exposure && exposure_flag) return bad("--auto-exposure", "not with --exposure; give one or the other");
-    /* The --max-error choice, reported only now: every flag has been read and accepted. */
-    if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
-        fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
-                "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
-                o->max_error, picked->name, picked_error, picked_scene);
     /* --dump-scene writes the exposure as given: the caller dumps these options (main.c), nothing else runs. */
     if (!o->dump_scene || o->help || o->version) light_finish(o);
     return 0;
+}
+
+int options_frame(const options *base, const char *const *names, const double *values, int count, options *out)
+{
+    if (!base->unresolved) {
+        *out = *base;
+        out->unresolved = NULL;   /* the base's to release */
+        return 0;
+    }
+    *out = *base->unresolved;
+    out->unresolved = NULL;
+    bool exposure_flag = false;
+    for (int i = 1; i < base->argc; ++i) exposure_flag = exposure_flag || !strncmp(base->argv[i], "--exposure", 10);
+    for (int k = 0; k < count; ++k) {
+        const flag *f = flags_find(names[k], strlen(names[k]));
+        if (!f) return bad(names[k], "names no flag");   /* --animate checked it: not expected */
+        if (!strcmp(names[k], "--time")) {   /* the clock's value: decimal hours to the millisecond */
+            char text[16];
+            sequence_time_text(values[k], text);
+            if (apply_value(out, f, text, 0.0)) return 2;
+        } else if (apply_value(out, f, NULL, values[k])) {
+            return 2;
+        }
+        exposure_flag = exposure_flag || !strcmp(names[k], "--exposure");
+    }
+    char *no_args[] = {base->argv[0], NULL};
+    return finish(out, 1, no_args, exposure_flag);
+}
+
+void options_release(options *o)
+{
+    free(o->unresolved);
+    o->unresolved = NULL;
 }

@@ -17,5 +17,13 @@ int options_parse(options *o, int argc, char **argv);
  * instead of the view's own: a sequence's frames keep one configuration (sequence.c). 0: the view's class. */
 int options_parse_for_classes(options *o, int argc, char **argv, unsigned quality_classes);
 
+/* A sequence frame's options: the base's flags and scene (as read before anything was derived from them) with the
+ * animated flags set to their values, then finished as a parse finishes: no text, no second reading of the scene
+ * file, no device probe. names[k]: a numeric flag, or "--time" with values[k] in decimal hours. Without an animation
+ * the base itself. 0 ok, 2 bad (one line printed). */
+int options_frame(const options *base, const char *const *names, const double *values, int count, options *out);
+/* What a parse allocated (a sequence's unresolved options); the options stay usable as values. */
+void options_release(options *o);
+
 void options_print_help(FILE *out);
 #endif

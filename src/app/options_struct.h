@@ -101,5 +101,8 @@ typedef struct options {
     /* start-up (issue 27): app/startup.c */
     bool no_cache;                              /* --no-cache: no pipeline cache on disk (read or written) */
     bool timings;                               /* --timings: where the first image's time went, on stderr */
+    /* sequences (issue 25): the options as the flags and scene left them, before the derived steps (malloc'd by the
+     * parse when something is animated; options_release): each frame sets its animated values there and finishes */
+    struct options *unresolved;
 } options;
 #endif

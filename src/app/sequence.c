@@ -22,53 +22,25 @@ bool sequence_active(const options *o) { return o->frame_count > 1 || o->animate
 
 static int frame_count(const options *o) { return o->frame_count > 0 ? o->frame_count : 1; }
 
-/* Animation a's value at frame i, as the flag's text (time: "HH:MM:SS.mmm" from decimal hours). */
-static void animated_value(const options_animation *a, int frame, int count, char *out, size_t out_size)
+/* Animation a's value at frame i: linear from FROM to TO, an integer flag's rounded. */
+static double animated_value(const options_animation *a, int frame, int count)
 {
     double t = count > 1 ? (double)frame / (double)(count - 1) : 0.0;
     double v = (1.0 - t) * a->from + t * a->to;
     double lo = fmin(a->from, a->to), hi = fmax(a->from, a->to);
     v = fmin(fmax(v, lo), hi);   /* rounding never steps outside FROM..TO (and so the flag's range) */
-    if (!strcmp(a->flag_name, "--time")) {
-        char text[16];
-        sequence_time_text(v, text);
-        snprintf(out, out_size, "--time=%s", text);
-    } else if (a->integer) {
-        snprintf(out, out_size, "%s=%lld", a->flag_name, llround(v));
-    } else {
-        snprintf(out, out_size, "%s=%.17g", a->flag_name, v);
-    }
+    return a->integer ? (double)llround(v) : v;
 }
 
 int sequence_frame_options(const options *base, int frame, options *out)
 {
-    if (base->animate_count == 0) {
-        *out = *base;
-        return 0;
-    }
-    enum { VALUE_SIZE = 96 };
-    int argc = base->argc + base->animate_count;
-    char **argv = calloc((size_t)argc + 1, sizeof *argv);
-    char *values = calloc((size_t)base->animate_count, VALUE_SIZE);
-    if (!argv || !values) {
-        free(argv);
-        free(values);
-        fprintf(stderr, "vksky: --animate: out of memory\n");
-        return 2;
-    }
-    memcpy(argv, base->argv, (size_t)base->argc * sizeof *argv);
+    const char *names[OPTIONS_MAX_ANIMATE];
+    double values[OPTIONS_MAX_ANIMATE];
     for (int k = 0; k < base->animate_count; ++k) {
-        char *v = values + (size_t)k * VALUE_SIZE;
-        animated_value(&base->animate[k], frame, frame_count(base), v, VALUE_SIZE);
-        argv[base->argc + k] = v;   /* last: overrides the flag and the scene */
+        names[k] = base->animate[k].flag_name;
+        values[k] = animated_value(&base->animate[k], frame, frame_count(base));
     }
-    int rc = options_parse_for_classes(out, argc, argv, base->quality_classes);
-    /* The frame's options keep no pointer into the appended values (they are numbers by now); the command line they
-     * record is the one given. */
-    out->argc = base->argc, out->argv = base->argv;
-    free(argv);
-    free(values);
-    return rc;
+    return options_frame(base, names, values, base->animate_count, out);
 }
 
 /* A --render value's file for a frame: the pattern filled in, or a value without one %d as it is. */
@@ -99,6 +71,7 @@ static int choose_sequence_quality(options *base)
         if (sequence_frame_options(base, i, &f)) return 2;
         classes |= quality_class_bit(f.view.altitude_km, f.view.sun_elevation_deg);
     }
+    options_release(base);   /* parsed again: a new unresolved copy */
     return options_parse_for_classes(base, base->argc, base->argv, classes);
 }
 

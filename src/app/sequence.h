@@ -1,7 +1,7 @@
 /* Sequences (issue 14 item 4): the frames --animate, --frame-count and --frame-range ask for, rendered by one
- * renderer in one process. A frame's options are the command line's with each animated flag's value for that frame
- * appended (frame i of N at t = i / (N - 1), linear from FROM to TO): so frame i is exactly what a single render with
- * those flags makes, whichever job of a split sequence renders it. */
+ * renderer in one process. A frame's options are the command line's with each animated flag set to its value for
+ * that frame (frame i of N at t = i / (N - 1), linear from FROM to TO; options_frame: values, not text): so frame i is
+ * exactly what a single render with those flags makes, whichever job of a split sequence renders it. */
 #ifndef VKSKY_APP_SEQUENCE_H
 #define VKSKY_APP_SEQUENCE_H
 #include "app/options_struct.h"
