@@ -490,3 +490,9 @@ void options_release(options *o)
     free(o->unresolved);
     o->unresolved = NULL;
 }
+
+int options_reload(const options *o, options *fresh)
+{
+    /* The command line as given: --scene reads the file as it is now, every other flag overrides it as at start. */
+    return options_parse(fresh, o->argc, o->argv);
+}

@@ -22,6 +22,10 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
  * file, no device probe. names[k]: a numeric flag, or "--time" with values[k] in decimal hours. Without an animation
  * the base itself. 0 ok, 2 bad (one line printed). */
 int options_frame(const options *base, const char *const *names, const double *values, int count, options *out);
+/* F5 in the window: the scene file read again and the command line's flags applied over it, as at start-up (a
+ * --sun-elevation given there keeps its value whatever the file now says). 0 ok, 2 bad (one line printed; *fresh
+ * then holds nothing to use). */
+int options_reload(const options *o, options *fresh);
 /* What a parse allocated (a sequence's unresolved options); the options stay usable as values. */
 void options_release(options *o);
 

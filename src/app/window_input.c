@@ -44,18 +44,18 @@ static const char *tonemap_name(int t)
 }
 
 /* Discrete keys (toggles, steps) act on the press; held keys are polled once a frame in window_input_read. */
-/* F5: reload the scene file's medium and features. The renderer recomputes only what changed: the LUTs when
- * their inputs' hash changed, the pipelines when the variant changed. The camera and the sun stay where the user
- * put them. A broken file leaves the current scene (its one-line error is printed). */
+/* F5: reload the scene file's medium and features, the command line's flags over them again (options_reload). The
+ * renderer recomputes only what changed: the LUTs when their inputs' hash changed, the pipelines when the variant
+ * changed. The camera and the sun stay where the user put them. A broken file leaves the current scene (its one-line
+ * error is printed). */
 static void reload_scene(app *a)
 {
     if (!a->o->scene_path) {
         printf("F5: no --scene file to reload\n");
         return;
     }
-    char *argv[] = {"vksky", "--scene", (char *)a->o->scene_path, "--render", "x.png"};
     options fresh;
-    if (options_parse(&fresh, 5, argv) != 0) return;
+    if (options_reload(a->o, &fresh) != 0) return;
     /* The atmosphere uniform buffer is shared by the frames in flight: wait for them before rewriting it. */
     vkDeviceWaitIdle(a->ctx.device);
     sky_variant before = a->renderer.variant;
