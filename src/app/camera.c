@@ -2,7 +2,6 @@
 #include <math.h>
 
 static const double DEG = 3.14159265358979323846 / 180.0;
-#define RB CAMERA_GROUND_RADIUS_KM
 #define MAX_PITCH_DEG 89.9   /* the renderer's basis needs a horizontal right vector: stay off the poles */
 
 /* --- A few quaternion helpers (unit quaternions, rotations only) ------------------------------------------- */
@@ -63,10 +62,11 @@ static void forward_local(const camera *c, double f[3])
     quat_rotate(quat_conj(c->frame), w, f);
 }
 
-void camera_init(camera *c, const sky_view *v)
+void camera_init(camera *c, const sky_view *v, double ground_radius_km)
 {
     double h = v->altitude_km < CAMERA_MIN_ALTITUDE_KM ? CAMERA_MIN_ALTITUDE_KM : v->altitude_km;
-    *c = (camera){.pos = {0.0, RB + h, 0.0}, .altitude_km = h, .frame = {1, 0, 0, 0},
+    *c = (camera){.pos = {0.0, ground_radius_km + h, 0.0}, .ground_radius_km = ground_radius_km, .altitude_km = h,
+                  .frame = {1, 0, 0, 0},
                   .sun_azimuth_deg = v->sun_azimuth_deg, .sun_elevation_deg = v->sun_elevation_deg};
     /* dir(yaw, pitch) = R_y(-yaw) R_z(pitch) X: pitch tilts X toward Y, then yaw turns it toward Z. */
     double pitch = fmax(-MAX_PITCH_DEG, fmin(MAX_PITCH_DEG, v->pitch_deg));
@@ -79,16 +79,17 @@ void camera_init(camera *c, const sky_view *v)
  * rotation that takes the old up to the new one, so flying level over the curved ground stays level. */
 static void camera_move(camera *c, const double d[3])
 {
+    const double rb = c->ground_radius_km;
     double up[3], p[3], new_up[3];
     local_up(c, up);
-    double r = RB + c->altitude_km;
+    double r = rb + c->altitude_km;
     for (int i = 0; i < 3; ++i) p[i] = c->pos[i] + d[i];
     double r_new = sqrt(dot3(p, p));
-    double h = (c->altitude_km * (2.0 * RB + c->altitude_km) + 2.0 * r * dot3(up, d) + dot3(d, d)) / (r_new + RB);
+    double h = (c->altitude_km * (2.0 * rb + c->altitude_km) + 2.0 * r * dot3(up, d) + dot3(d, d)) / (r_new + rb);
     if (h < CAMERA_MIN_ALTITUDE_KM) h = CAMERA_MIN_ALTITUDE_KM;   /* clamp: slide along the ground */
     for (int i = 0; i < 3; ++i) new_up[i] = p[i] / r_new;
     /* Keep position and altitude consistent by construction: |pos| = Rb + h exactly up to rounding. */
-    for (int i = 0; i < 3; ++i) c->pos[i] = new_up[i] * (RB + h);
+    for (int i = 0; i < 3; ++i) c->pos[i] = new_up[i] * (rb + h);
     c->altitude_km = h;
     camera_quat transport = quat_from_to(up, new_up);
     c->frame = quat_normalize(quat_mul(transport, c->frame));

@@ -8,7 +8,6 @@
 #define VKSKY_APP_CAMERA_H
 #include "sky/view_params.h"
 
-#define CAMERA_GROUND_RADIUS_KM 6360.0
 #define CAMERA_MIN_ALTITUDE_KM 0.0005     /* never inside the planet: half a metre above the ground */
 #define CAMERA_SPEED_KM_S 0.2
 #define CAMERA_BOOST 10.0
@@ -17,6 +16,7 @@ typedef struct camera_quat { double w, x, y, z; } camera_quat;
 
 typedef struct camera {
     double pos[3];          /* planet-centric km */
+    double ground_radius_km;   /* Rb: the scene's planet (model_atmosphere.bottom_radius), not always the Earth's */
     double altitude_km;     /* |pos| - Rb, tracked with a cancellation-free update (see camera_move) */
     camera_quat frame;      /* local -> world: local X = azimuth 0, local Y = up, local Z = azimuth 90 */
     camera_quat orient;     /* body -> world: body X = forward, body Y = up, body Z = right (renderer basis) */
@@ -31,8 +31,9 @@ typedef struct camera_input {
     double sun_azimuth_deg, sun_elevation_deg;   /* sun moves (elevation is clamped to [-90, 90]) */
 } camera_input;
 
-/* Start at (0, Rb + h, 0) looking along (yaw, pitch) of `v`, with its sun. */
-void camera_init(camera *c, const sky_view *v);
+/* Start at (0, Rb + h, 0) over a planet of radius Rb = ground_radius_km, looking along (yaw, pitch) of `v`, with its
+ * sun. */
+void camera_init(camera *c, const sky_view *v, double ground_radius_km);
 void camera_update(camera *c, const camera_input *in, double dt_s);
 /* Altitude, view yaw/pitch and sun in the local frame; other fields of `v` are kept. */
 void camera_to_view(const camera *c, sky_view *v);

@@ -441,7 +441,7 @@ static int start_rendering(app *a)
     a->auto_exposure = o->view.ev100 && (o->auto_exposure || !o->exposure_given);
     if (a->auto_exposure)
         light_expose(&a->view, light_meter_log_average(o, &a->view, (int)a->sc.extent.width, (int)a->sc.extent.height));
-    camera_init(&a->cam, &o->view);
+    camera_init(&a->cam, &o->view, o->atmosphere.bottom_radius);
     camera_to_view(&a->cam, &a->view);
     return 0;
 }

@@ -62,6 +62,11 @@ static void reload_scene(app *a)
     render_scene scene;
     render_scene_of(&fresh, &scene);
     render_scene_set(&a->renderer, &scene);
+    if (fresh.atmosphere.bottom_radius != a->cam.ground_radius_km) {
+        /* Another planet: the camera keeps its altitude, heading and sun over the new ground. */
+        camera_to_view(&a->cam, &a->view);
+        camera_init(&a->cam, &a->view, fresh.atmosphere.bottom_radius);
+    }
     printf("scene reloaded: %s (LUTs %s, pipelines %s)\n", a->o->scene_path,
            sky_renderer_luts_dirty(&a->renderer) ? "recomputed" : "kept",
            memcmp(&before, &a->renderer.variant, sizeof before) ? "rebuilt" : "kept");
