@@ -3,8 +3,13 @@
  *  - A sequence frame (options_frame: the base's values with the animated flags set as numbers) equals a parse of the
  *    command line with the frame's values appended as flags (the way frames were made before: text, parsed again).
  *  - F5 (options_reload) reads the scene file as it is now and keeps the command line's overrides: a --sun-elevation
- *    and a --mie-g given there survive a file that changes both; the file's other changes arrive. */
+ *    and a --mie-g given there survive a file that changes both; the file's other changes arrive.
+ *  - The loaders (render_values.h): a shipped scene by name gives the numbers its file states (mars.json: the planet's
+ *    radius on the camera, the sun, the camera, Mie g) and the values the CLI's --scene gives; a preset by name and
+ *    --max-error's pick give the quality the CLI's --quality / --max-error give. */
 #include "app/options.h"
+#include "app/quality.h"
+#include "app/render_values.h"
 #include "app/options_sequence.h"
 #include "app/sequence.h"
 #include <math.h>
@@ -117,8 +122,57 @@ static void check_frames(int argc, char **argv, const char *what)
     options_release(&base);
 }
 
+static bool same_quality(const render_quality *a, const render_quality *b)
+{
+    return a->mode == b->mode && a->pass_kind == b->pass_kind && a->steps == b->steps && a->max_steps == b->max_steps &&
+           a->skyview_steps == b->skyview_steps && a->steps_ramp_km == b->steps_ramp_km &&
+           a->sample_offset == b->sample_offset && a->step_distribution == b->step_distribution &&
+           same_luts(&a->lut, &b->lut) && a->render_scale == b->render_scale && a->bloom_mips == b->bloom_mips &&
+           a->post_pass == b->post_pass && a->bloom_downsample == b->bloom_downsample &&
+           a->bloom_quarter == b->bloom_quarter;
+}
+
+static void check_loaders(void)
+{
+    scene_value s, cs;
+    camera_value c, cc;
+    render_quality q, cq;
+    CHECK(values_load_scene("mars", &s, &c, NULL, NULL) == 0, "mars did not load");
+    /* scenes/mars.json's own numbers */
+    CHECK(c.ground_radius_km == 3389.5 && s.atmosphere.bottom_radius == 3389.5, "Mars' radius %g", c.ground_radius_km);
+    CHECK(s.sun_elevation_deg == 20 && c.yaw_deg == 30 && c.pitch_deg == 10 && c.fov_deg == 75 && c.altitude_km == 0.001,
+          "Mars' sun/camera %g %g %g %g %g", s.sun_elevation_deg, c.yaw_deg, c.pitch_deg, c.fov_deg, c.altitude_km);
+    CHECK(s.atmosphere.mie_g == 0.7 && s.ground_albedo[0] == 0.25, "Mars' g %g albedo %g", s.atmosphere.mie_g,
+          s.ground_albedo[0]);
+    options o;
+    char *argv[] = {"vksky", "--scene", "mars", "--render", "x.exr", "--units", "relative"};
+    CHECK(options_parse(&o, 7, argv) == 0, "--scene mars does not parse");
+    values_of(&o, &cs, &cc, NULL, NULL);
+    CHECK(!memcmp(&s.atmosphere, &cs.atmosphere, sizeof s.atmosphere) && c.yaw_deg == cc.yaw_deg &&
+          c.ground_radius_km == cc.ground_radius_km && s.sun_azimuth_deg == cs.sun_azimuth_deg,
+          "the loader and the CLI's --scene differ");
+    static const char *const presets[] = {"low", "medium", "high", "ultra", "lesson", "cpu"};
+    for (int i = 0; i < 6; ++i) {
+        char *pa[] = {"vksky", "--quality", (char *)presets[i], "--render", "x.exr"};
+        CHECK(values_quality_preset(presets[i], &q) == 0, "preset %s unknown", presets[i]);
+        CHECK(options_parse(&o, 5, pa) == 0, "--quality %s does not parse", presets[i]);
+        values_of(&o, NULL, NULL, &cq, NULL);
+        CHECK(same_quality(&q, &cq), "preset %s: the loader and --quality differ", presets[i]);
+    }
+    CHECK(values_quality_preset("bogus", &q) == 2, "an unknown preset loaded");
+    double measured = 0;
+    char *pm[] = {"vksky", "--max-error", "0.02", "--sun-elevation", "2", "--render", "x.exr"};
+    CHECK(values_quality_pick(0.02, quality_class_bit(0.001, 2.0), &q, &measured) == 0 && measured <= 0.02,
+          "--max-error 0.02 picked nothing within it (%g)", measured);
+    CHECK(options_parse(&o, 7, pm) == 0, "--max-error 0.02 does not parse");
+    values_of(&o, NULL, NULL, &cq, NULL);
+    CHECK(same_quality(&q, &cq), "--max-error: the loader and the CLI differ");
+    CHECK(values_quality_pick(1e-9, quality_class_bit(0.001, 2.0), &q, &measured) == 2, "1e-9 reached");
+}
+
 int main(void)
 {
+    check_loaders();
     const char *dir = getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp";
     check_reload(dir);
     char *a[] = {"vksky", "--render", "f%d.exr", "--frame-count", "4", "--animate", "sun-elevation=-2:30",

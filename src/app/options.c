@@ -326,14 +326,19 @@ static int finish(options *o, int argc, char **argv, bool exposure_flag);
 
 int options_parse(options *o, int argc, char **argv) { return options_parse_for_classes(o, argc, argv, 0); }
 
-int options_parse_for_classes(options *o, int argc, char **argv, unsigned quality_classes)
+void options_defaults(options *o)
 {
     *o = (options){.view = sky_view_default(), .width = 1280, .height = 720, .device_index = -1,
                    .lut = sky_lut_quality_default(), .render_scale = 1.0, .bloom_mips = 5,
                    .scales = {1.0, 1.0, 1.0}, .path_samples = 4096, .sun_angular_radius_deg = 0.265,
-                   .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true, .post_pass = POST_PASS_AUTO,
-                   .argc = argc, .argv = argv};
+                   .limb_darkening = 0.6, .sun_disc = true, .multiple_scattering = true, .post_pass = POST_PASS_AUTO};
     model_atmosphere_earth(&o->atmosphere);
+}
+
+int options_parse_for_classes(options *o, int argc, char **argv, unsigned quality_classes)
+{
+    options_defaults(o);
+    o->argc = argc, o->argv = argv;
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
     /* Three passes: --scene first (pass -1), wherever it stands; then the quality preset (or --max-error's choice)

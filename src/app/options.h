@@ -11,6 +11,8 @@
 sky_features options_features(const options *o);
 double options_sun_radius_rad(const options *o);
 
+/* Every field at its default: no flag, no scene (Hillaire 2020 Table 1, 1280x720, the lesson's knobs). */
+void options_defaults(options *o);
 /* 0: ok; 2: bad input (message printed). */
 int options_parse(options *o, int argc, char **argv);
 /* The same, with the quality choice (--quality auto, --max-error) made for a set of scene classes (quality.h)
