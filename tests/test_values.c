@@ -6,7 +6,8 @@
  *    and a --mie-g given there survive a file that changes both; the file's other changes arrive.
  *  - The loaders (render_values.h): a shipped scene by name gives the numbers its file states (mars.json: the planet's
  *    radius on the camera, the sun, the camera, Mie g) and the values the CLI's --scene gives; a preset by name and
- *    --max-error's pick give the quality the CLI's --quality / --max-error give. */
+ *    --max-error's pick give the quality the CLI's --quality / --max-error give.
+ *  - --dump-scene returns from the parser (main dumps; no exit inside option parsing). */
 #include "app/options.h"
 #include "app/quality.h"
 #include "app/render_values.h"
@@ -168,6 +169,9 @@ static void check_loaders(void)
     values_of(&o, NULL, NULL, &cq, NULL);
     CHECK(same_quality(&q, &cq), "--max-error: the loader and the CLI differ");
     CHECK(values_quality_pick(1e-9, quality_class_bit(0.001, 2.0), &q, &measured) == 2, "1e-9 reached");
+    /* --dump-scene is parsed, not acted on, by the parser (it used to exit inside it: this process would end here). */
+    char *pd[] = {"vksky", "--scene", "mars", "--dump-scene"};
+    CHECK(options_parse(&o, 4, pd) == 0 && o.dump_scene, "--dump-scene did not parse into the options");
 }
 
 int main(void)
