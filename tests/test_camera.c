@@ -2,7 +2,7 @@
  * double-precision position (checked against long double), the ground clamp holds, level flight over the
  * curved planet stays level (on the Earth and on Mars: the camera takes the scene's radius), and space is reachable.
  * No GPU. */
-#include "app/camera.h"
+#include "app/window/camera.h"
 #include <math.h>
 #include <stdio.h>
 

@@ -8,11 +8,11 @@
  *    radius on the camera, the sun, the camera, Mie g) and the values the CLI's --scene gives; a preset by name and
  *    --max-error's pick give the quality the CLI's --quality / --max-error give.
  *  - --dump-scene returns from the parser (main dumps; no exit inside option parsing). */
-#include "app/options.h"
-#include "app/quality.h"
-#include "app/render_values.h"
-#include "app/options_sequence.h"
-#include "app/sequence.h"
+#include "app/cli/options.h"
+#include "app/quality/quality.h"
+#include "app/scene/render_values.h"
+#include "app/cli/options_sequence.h"
+#include "app/runs/sequence.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -8,8 +8,8 @@
 #ifndef VKSKY_TESTS_FUZZ_APP_FUZZ_COMMON_H
 #define VKSKY_TESTS_FUZZ_APP_FUZZ_COMMON_H
 #define _GNU_SOURCE
-#include "app/options.h"
-#include "app/scene_dump.h"
+#include "app/cli/options.h"
+#include "app/scene/scene_dump.h"
 #include "gpu/context.h"
 #include <stdint.h>
 #include <stdio.h>
