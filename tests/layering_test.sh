@@ -5,11 +5,14 @@
 #
 #   app -> sky -> gpu          app -> io        app -> reference -> model        sky -> model
 #
-# A unit is a .c file and its .h (src/app/scene.c and src/app/scene.h are the unit app/scene); a unit includes
-# another when either of its files names the other's header; a header without a .c is not a unit. Usage: layering_test.sh SRC_DIR
+# A unit is a .c file and its .h (src/app/scene/scene.c and src/app/scene/scene.h are the unit app/scene/scene); a unit
+# includes another when either of its files names the other's header; a header without a .c is not a unit. A module's
+# files may sit in folders of their own at any depth (src/app/cli/...): the module is the first directory under src/,
+# and every rule holds in every folder. Usage: layering_test.sh SRC_DIR
 set -u
 SRC=${1:?usage: layering_test.sh path/to/src}
 cd "$SRC" || exit 2
+shopt -s globstar nullglob   # **/*.c: every file of every module, in subfolders too
 fail=0
 
 # What each module may include besides itself (module names are the directories under src/).
@@ -28,7 +31,7 @@ allowed() {
 # Every quoted include of every file: "file included" (system <...> includes are not layering).
 edges=$(mktemp)
 trap 'rm -f "$edges"' EXIT
-for f in */*.c */*.h; do
+for f in **/*.c **/*.h; do
   sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f" | while read -r inc; do
     echo "$f $inc"
   done
@@ -67,10 +70,10 @@ if [ -n "$loops" ]; then
 fi
 
 # File length.
-for f in */*.c */*.h; do
+for f in **/*.c **/*.h; do
   n=$(wc -l <"$f")
   [ "$n" -le 600 ] || { echo "layering: $f has $n lines (at most 600: split it along its seams)"; fail=1; }
 done
 
-[ $fail -eq 0 ] && echo "layering: $(wc -l <"$edges") includes in $(ls */*.c */*.h | wc -l) files follow the layering; no circles; no file over 600 lines"
+[ $fail -eq 0 ] && echo "layering: $(wc -l <"$edges") includes in $(ls **/*.c **/*.h | wc -l) files follow the layering; no circles; no file over 600 lines"
 exit $fail
