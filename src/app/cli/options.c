@@ -501,3 +501,16 @@ int options_reload(const options *o, options *fresh)
     /* The command line as given: --scene reads the file as it is now, every other flag overrides it as at start. */
     return options_parse(fresh, o->argc, o->argv);
 }
+
+int options_copy(options *dst, const options *src)
+{
+    *dst = *src;
+    if (!src->unresolved) return 0;
+    dst->unresolved = malloc(sizeof *dst->unresolved);
+    if (!dst->unresolved) {
+        fprintf(stderr, "vksky: out of memory\n");
+        return 1;
+    }
+    *dst->unresolved = *src->unresolved;
+    return 0;
+}

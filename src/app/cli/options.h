@@ -28,6 +28,9 @@ int options_frame(const options *base, const char *const *names, const double *v
  * --sun-elevation given there keeps its value whatever the file now says). 0 ok, 2 bad (one line printed; *fresh
  * then holds nothing to use). */
 int options_reload(const options *o, options *fresh);
+/* A copy that owns what it points to (a sequence's unresolved options): released apart from src. 0 ok, 1 out of
+ * memory (one line printed). */
+int options_copy(options *dst, const options *src);
 /* What a parse allocated (a sequence's unresolved options); the options stay usable as values. */
 void options_release(options *o);
 

@@ -163,14 +163,23 @@ static int finish(gpu_context *ctx, int status, bool timings)
     return stop_status(status);
 }
 
+static int run_checked(const options *o);
+
 int headless_run(const options *given)
 {
     stop_install();
     /* Refuse bad frames and unwritable outputs before any expensive work (exit 2, nothing written): every frame's
-     * options and files, one frame's or a sequence's (whose quality choice may then serve all its frames). */
-    options checked = *given;
-    if (sequence_check(&checked)) return 2;
-    const options *o = &checked;
+     * options and files, one frame's or a sequence's (whose quality choice may then serve all its frames). A copy of
+     * its own: the check may parse the sequence again under that choice. */
+    options checked;
+    if (options_copy(&checked, given)) return 1;
+    int status = sequence_check(&checked) ? 2 : run_checked(&checked);
+    options_release(&checked);
+    return status;
+}
+
+static int run_checked(const options *o)
+{
     if (o->output_count > 0 && o->bench_frames == 0 && tiles_wanted(o) && sequence_active(o)) {
         fprintf(stderr, "vksky: --animate/--frame-count/--frame-range: not with an environment map (--projection) or "
                         "an image over the band budget; render such frames one run each\n");
