@@ -44,10 +44,10 @@ read -r -a CAMERA <"$S/camera.txt"
 "$CHECK" "$work/out/vol.exr" "$S/render.exr" "$work/out/sky.exr" || fail "volume composite: layers or sky pixels"
 "$VKSKY" --composite "$S/render.exr" --render "$work/out/auto.exr" "${SUN[@]}" --max-error 0.05 --validate \
     2>"$work/err" || fail "auto composite: exit $? ($(cat "$work/err"))"
-# The cheapest volume whose worst view class is within 5 % (src/app/ap_trade_table.h): 32x32x32 (2.2 % near steep
+# The cheapest volume whose worst view class is within 5 % (src/app/quality/ap_trade_table.h): 32x32x32 (2.2 % near steep
 # ground); 16x16x16 is cheaper but 5.5 % there.
 grep -q "allows the volume 32x32x32 quadratic" "$work/err" ||
-    fail "auto with --max-error 0.05: did not take the cheapest volume within it (src/app/ap_trade_table.h): $(cat "$work/err")"
+    fail "auto with --max-error 0.05: did not take the cheapest volume within it (src/app/quality/ap_trade_table.h): $(cat "$work/err")"
 "$VKSKY" --composite "$S/render.exr" --render "$work/out/auto.exr" "${SUN[@]}" --max-error 0.003 --validate \
     2>"$work/err" || fail "auto composite, --max-error 0.003: exit $? ($(cat "$work/err"))"
 grep -q "auto: no measured froxel volume" "$work/err" ||

@@ -6,11 +6,14 @@
 #
 #   app -> sky -> gpu          app -> io        app -> reference -> model        sky -> model
 #
-# A unit is a .c file and its .h (src/app/scene.c and src/app/scene.h are the unit app/scene); a unit includes
-# another when either of its files names the other's header; a header without a .c is not a unit. Usage: layering_test.sh SRC_DIR
+# A unit is a .c file and its .h (src/app/scene/scene.c and src/app/scene/scene.h are the unit app/scene/scene); a unit
+# includes another when either of its files names the other's header; a header without a .c is not a unit. A module's
+# files may sit in folders of their own at any depth (src/app/cli/...): the module is the first directory under src/,
+# and every rule holds in every folder. Usage: layering_test.sh SRC_DIR
 set -u
 SRC=${1:?usage: layering_test.sh path/to/src}
 cd "$SRC" || exit 2
+shopt -s globstar nullglob   # **/*.c: every file of every module, in subfolders too
 fail=0
 
 # What each module may include besides itself (module names are the directories under src/).
@@ -30,7 +33,7 @@ allowed() {
 # Every quoted include of every file: "file included" (system <...> includes are not layering).
 edges=$(mktemp)
 trap 'rm -f "$edges"' EXIT
-for f in */*.c */*.h; do
+for f in **/*.c **/*.h; do
   sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f" | while read -r inc; do
     echo "$f $inc"
   done
@@ -98,7 +101,7 @@ fi
 # writes a descriptor to a numbered binding, no set layout is built from a bare list of types.
 if [ -d ../shaders/glsl ]; then
   literal=$(grep -nE 'binding[[:space:]]*=[[:space:]]*[0-9]' ../shaders/glsl/* | grep -v '^../shaders/glsl/bindings.h:')
-  literal+=$(grep -nE '(gpu_write_(uniform|sampled|storage)|write_image)\([^,]+,[^,]+,[[:space:]]*[0-9]' */*.c)
+  literal+=$(grep -nE '(gpu_write_(uniform|sampled|storage)|write_image)\([^,]+,[^,]+,[[:space:]]*[0-9]' **/*.c)
   if [ -n "$literal" ]; then
     echo "layering: binding numbers outside shaders/glsl/bindings.h (name them there):"; echo "$literal" | sed 's/^/  /'
     fail=1
@@ -108,17 +111,17 @@ fi
 # The spine: barriers are recorded only by the frame functions (src/sky/frame.c, the composite's frame in
 # src/sky/composite.c, the library's SCENE_LINEAR frame in src/sky/host_frame.c); src/gpu/barrier.c builds them. Any other file that records one breaks the claim that a
 # learner reads one function per kind of frame and sees every barrier.
-stray=$(grep -nE 'gpu_barrier_(add_[a-z]+|flush)\(|vkCmdPipelineBarrier2?\(' */*.c | grep -vE '^(sky/frame\.c|sky/composite\.c|sky/host_frame\.c|gpu/barrier\.c):')
+stray=$(grep -nE 'gpu_barrier_(add_[a-z]+|flush)\(|vkCmdPipelineBarrier2?\(' **/*.c | grep -vE '^(sky/frame\.c|sky/composite\.c|sky/host_frame\.c|gpu/barrier\.c):')
 if [ -n "$stray" ]; then
   echo "layering: a barrier recorded outside the frame functions (sky/frame.c, sky/composite.c, sky/host_frame.c):"; echo "$stray" | sed 's/^/  /'
   fail=1
 fi
 
 # File length.
-for f in */*.c */*.h; do
+for f in **/*.c **/*.h; do
   n=$(wc -l <"$f")
   [ "$n" -le 600 ] || { echo "layering: $f has $n lines (at most 600: split it along its seams)"; fail=1; }
 done
 
-[ $fail -eq 0 ] && echo "layering: $(wc -l <"$edges") includes in $(ls */*.c */*.h | wc -l) files follow the layering; no circles (includes; calls within reference/: $(wc -l <"$calls") edges); no file over 600 lines"
+[ $fail -eq 0 ] && echo "layering: $(wc -l <"$edges") includes in $(ls **/*.c **/*.h | wc -l) files follow the layering; no circles (includes; calls within reference/: $(wc -l <"$calls") edges); no file over 600 lines"
 exit $fail

@@ -35,7 +35,7 @@ cases=(
   "spdtiles --width 800 --height 512 --sun-elevation 8 --pitch 5 --quality medium --bloom-downsample single-pass"
   "quarter  --width 320 --height 180 --sun-elevation 3 --quality medium --bloom-res quarter"
 )
-# In the lesson's units: a photometric PNG is auto-exposed from its own frame (app/light.c), so two chains whose
+# In the lesson's units: a photometric PNG is auto-exposed from its own frame (app/scene/light.c), so two chains whose
 # blooms differ by rounding would also differ by their exposures; this test compares the chains at one exposure.
 for c in "${cases[@]}"; do
     read -r name args <<<"$c"

@@ -25,10 +25,10 @@ fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 export VKSKY_VALIDATION=1
 
-# The lesson's units: in photometric units the image's HDR scale follows the sun's elevation (app/light.c), so the
+# The lesson's units: in photometric units the image's HDR scale follows the sun's elevation (app/scene/light.c), so the
 # uniform block (and the drain count) would change with it; and auto exposure (the photometric default for PNG)
 # meters each frame's own pixels before its tone map, a host dependency that keeps such sequences on the serial loop
-# (app/sequence.c). The ring's waits are the same in both units.
+# (app/runs/sequence.c). The ring's waits are the same in both units.
 SUN=(--width 64 --height 48 --quality lesson --units relative --animate sun-elevation=-2:30 --frame-count 5)
 MEDIUM=(--width 64 --height 48 --quality lesson --units relative --animate sun-elevation=-2:30 --animate mie-g=0.7:0.85 --frame-count 4)
 EQ=(--width 128 --projection equirect --quality lesson)

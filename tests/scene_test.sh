@@ -210,7 +210,7 @@ bad_scene duplicate-field "camera.pitch_deg: given twice"
 bad_scene bad-preset "quality.preset: unknown value 'extreme'; expected low, medium, high, ultra, lesson or cpu"
 bad_scene max-steps-below "quality.max_steps: max_steps 16 is below steps 64"
 bad_scene not-square "quality.multiscatter_directions: 50 is not a perfect square"
-# the medium per wavelength (issue 32, app/scene_spectral.c)
+# the medium per wavelength (issue 32, app/scene/scene_spectral.c)
 bad_scene spectral-mie-both "spectral.mie: give either optical_depth_500 (with single_scattering_albedo) or scattering_550_per_km"
 bad_scene spectral-unknown-law "spectral.rayleigh.law: unknown value 'penndorf'; expected bodhaine or rgb"
 bad_scene spectral-negative-column "spectral.ozone.column_du: -3 is out of range; expected a number in [0, 10000]"

@@ -1,7 +1,8 @@
 /* The fly camera: directions round-trip through the local frame, the altitude stays consistent with the
  * double-precision position (checked against long double), the ground clamp holds, level flight over the
- * curved planet stays level, and space is reachable. No GPU. */
-#include "app/camera.h"
+ * curved planet stays level (on the Earth and on Mars: the camera takes the scene's radius), and space is reachable.
+ * No GPU. */
+#include "app/window/camera.h"
 #include <math.h>
 #include <stdio.h>
 #include "check.h"
@@ -13,11 +14,14 @@ static sky_view start_view(double alt, double yaw, double pitch)
     return v;
 }
 
+#define EARTH_RADIUS_KM 6360.0   /* the Earth scenes' ground */
+#define MARS_RADIUS_KM 3389.5    /* scenes/mars.json: the NASA fact sheet's mean radius */
+
 /* |pos| - Rb in long double: the independent altitude. */
-static double altitude_ld(const camera *c)
+static double altitude_ld(const camera *c, double rb)
 {
     long double x = c->pos[0], y = c->pos[1], z = c->pos[2];
-    return (double)(sqrtl(x * x + y * y + z * z) - (long double)CAMERA_GROUND_RADIUS_KM);
+    return (double)(sqrtl(x * x + y * y + z * z) - (long double)rb);
 }
 
 static void fly(camera *c, camera_input in, double seconds, double dt)
@@ -33,7 +37,7 @@ static void test_round_trip(void)
         for (int j = 0; j < 5; ++j) {
             sky_view v = start_view(0.001, yaws[i], pitches[j]), out = v;
             camera c;
-            camera_init(&c, &v);
+            camera_init(&c, &v, EARTH_RADIUS_KM);
             camera_to_view(&c, &out);
             CHECK(fabs(out.yaw_deg - yaws[i]) < 1e-9 && fabs(out.pitch_deg - pitches[j]) < 1e-9,
                   "yaw/pitch %g/%g came back as %.12f/%.12f", yaws[i], pitches[j], out.yaw_deg, out.pitch_deg);
@@ -46,7 +50,7 @@ static void test_forward_matches_renderer(void)
 {
     sky_view v = start_view(0.001, 90, 0);
     camera c;
-    camera_init(&c, &v);
+    camera_init(&c, &v, EARTH_RADIUS_KM);
     fly(&c, (camera_input){.forward = 1}, 1.0, 0.01);
     CHECK(fabs(c.pos[2] - 0.2) < 1e-6 && fabs(c.pos[0]) < 1e-9, "moved to %.9f %.9f %.9f", c.pos[0], c.pos[1], c.pos[2]);
 }
@@ -55,19 +59,19 @@ static void test_ground_clamp(void)
 {
     sky_view v = start_view(0.001, 0, -30);
     camera c;
-    camera_init(&c, &v);
+    camera_init(&c, &v, EARTH_RADIUS_KM);
     fly(&c, (camera_input){.up = -1, .forward = 1, .boost = true}, 5.0, 1.0 / 60.0);
     CHECK(c.altitude_km == CAMERA_MIN_ALTITUDE_KM, "altitude %.12f after diving", c.altitude_km);
-    CHECK_NEAR(altitude_ld(&c), CAMERA_MIN_ALTITUDE_KM, 1e-9, "|pos| - Rb at the lowest altitude");
+    CHECK_NEAR(altitude_ld(&c, EARTH_RADIUS_KM), CAMERA_MIN_ALTITUDE_KM, 1e-9, "|pos| - Rb at the lowest altitude");
 }
 
 /* Level flight for 2000 km: the transported frame keeps the view level (pitch 0 in the local frame) and the
  * heading fixed; the altitude only rises by the chord's sagitta per step. */
-static void test_level_flight(void)
+static void test_level_flight(double rb, const char *planet)
 {
     sky_view v = start_view(1.0, 40, 0), out = v;
     camera c;
-    camera_init(&c, &v);
+    camera_init(&c, &v, rb);
     fly(&c, (camera_input){.forward = 1, .boost = true}, 1000.0, 1.0 / 60.0);
     camera_to_view(&c, &out);
     double travelled = atan2(sqrt(c.pos[0] * c.pos[0] + c.pos[2] * c.pos[2]), c.pos[1]) * CAMERA_GROUND_RADIUS_KM;
@@ -75,15 +79,15 @@ static void test_level_flight(void)
     CHECK(fabs(out.pitch_deg) < 1e-6 && fabs(out.yaw_deg - 40.0) < 1e-6, "after level flight yaw %.9f pitch %.9f",
           out.yaw_deg, out.pitch_deg);
     CHECK(out.altitude_km > 1.0 && out.altitude_km < 1.01, "altitude %.9f", out.altitude_km);
-    CHECK(fabs(out.altitude_km - altitude_ld(&c)) < 1e-9, "tracked %.12f vs |pos| - Rb %.12f", out.altitude_km,
-          altitude_ld(&c));
+    CHECK(fabs(out.altitude_km - altitude_ld(&c, EARTH_RADIUS_KM)) < 1e-9, "tracked %.12f vs |pos| - Rb %.12f", out.altitude_km,
+          altitude_ld(&c, EARTH_RADIUS_KM));
 }
 
 static void test_space_and_limits(void)
 {
     sky_view v = start_view(0.001, 0, 10), out = v;
     camera c;
-    camera_init(&c, &v);
+    camera_init(&c, &v, EARTH_RADIUS_KM);
     fly(&c, (camera_input){.up = 1, .boost = true}, 300.0, 0.1);
     camera_to_view(&c, &out);
     CHECK_NEAR(out.altitude_km, 600.001, 1e-6, "altitude after 300 s up at 2 km/s");
@@ -99,7 +103,8 @@ int main(void)
     test_round_trip();
     test_forward_matches_renderer();
     test_ground_clamp();
-    test_level_flight();
+    test_level_flight(EARTH_RADIUS_KM, "Earth");
+    test_level_flight(MARS_RADIUS_KM, "Mars");   /* the scene's planet, not the Earth's radius */
     test_space_and_limits();
     if (check_failures) {
         printf("test_camera: %d failure(s)\n", check_failures);

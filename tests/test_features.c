@@ -233,6 +233,28 @@ int main(void)
         CHECK(sky_renderer_luts_dirty(&r), "an extra species' profile change did not make the LUTs dirty");
         sky_renderer_destroy(&r);
     }
+
+    /* A new scene whose medium and features both change the variant (no ozone, Cornette-Shanks): set together
+     * (sky_renderer_set_scene, what the app's sequences, F5 and --spectral call), the pipelines are built once for
+     * it, never for a mix of the old and the new scene; the same scene again builds nothing. */
+    {
+        sky_renderer r;
+        sky_renderer_desc desc = {.width = N, .height = N, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
+        sky_renderer_create(&r, &ctx, &desc);
+        int built = r.variant_builds;
+        model_atmosphere no_ozone = earth;
+        for (int c = 0; c < 3; ++c) no_ozone.ozone_absorption[c] = 0.0;
+        sky_features cs = defaults;
+        cs.mie_phase = 1;
+        sky_variant before = r.variant;
+        sky_renderer_set_scene(&r, &no_ozone, SUN_RADIUS_RAD, &cs);
+        CHECK(r.variant.ozone != before.ozone && r.variant.mie_phase != before.mie_phase,
+              "the new scene did not change both halves of the variant");
+        CHECK(r.variant_builds == built + 1, "a new scene built the variant %d times", r.variant_builds - built);
+        sky_renderer_set_scene(&r, &no_ozone, SUN_RADIUS_RAD, &cs);
+        CHECK(r.variant_builds == built + 1, "the same scene again rebuilt the variant");
+        sky_renderer_destroy(&r);
+    }
     gpu_context_destroy(&ctx);
     return test_finish("test_features");
 }

@@ -5,7 +5,7 @@
  *    by tools/tradeoff and listed in the README);
  *  - every preset renders, finite.
  * Validation + synchronization validation on; any message fails. */
-#include "app/quality.h"
+#include "app/quality/quality.h"
 #include "gpu_test.h"
 #include "reference/metrics.h"
 #include <string.h>

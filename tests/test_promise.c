@@ -12,9 +12,9 @@
  * at a 48x27 grid of its pixels: a configuration's error grows a little as the frame shrinks (its sky-view LUT and
  * render scale are fixed), so the promise is held here at a smaller frame than the table's and a pass is not
  * borrowed from size. VKSKY_PROMISE_SIZE=WxH overrides the frame (a documented run at the table's size). */
-#include "app/quality.h"
-#include "app/quality_table.h"
-#include "app/quality_table_cpu.h"
+#include "app/quality/quality.h"
+#include "app/quality/quality_table.h"
+#include "app/quality/quality_table_cpu.h"
 #include "gpu_test.h"
 
 enum { GRID_W = 48, GRID_H = 27 };

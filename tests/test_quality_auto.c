@@ -3,9 +3,9 @@
  * quality_table_cpu.h: CPU ms per frame on lavapipe; both measured by tools/tradeoff): no measured configuration is
  * both faster and more accurate, its error is within the stated budget (max(1 %, 1.25 x the best error of the
  * class)), and nothing cheaper meets that budget. The lesson's preset still resolves by name. No GPU. */
-#include "app/quality.h"
-#include "app/quality_table.h"
-#include "app/quality_table_cpu.h"
+#include "app/quality/quality.h"
+#include "app/quality/quality_table.h"
+#include "app/quality/quality_table_cpu.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>

@@ -17,7 +17,7 @@ int main(void)
 {
     gpu_context ctx;
     test_context(&ctx);
-    /* --quality ultra's LUTs (src/app/quality.c) and view steps. */
+    /* --quality ultra's LUTs (src/app/quality/quality.c) and view steps. */
     sky_lut_quality ultra = sky_lut_quality_default();
     ultra.transmittance_width = 512;
     ultra.transmittance_height = 128;

@@ -338,7 +338,7 @@ window_configs=$(awk '$1 == "config" && $3 == "window" { print $2 }' "$list")
 # --- 4. The diagram: passes in order, each edge labelled with the barriers recorded between two passes. -----
 # The window's semaphore stages, as window.c's submit() sets them (wait, then signal).
 sem_wait="" sem_signal=""
-read -r sem_wait sem_signal < <(awk '/^static void submit\(/ { f = 1 } f && /stageMask = / { s = $0; sub(/.*stageMask = VK_PIPELINE_STAGE_2_/, "", s); sub(/_BIT.*/, "", s); out = out " " s } f && /^}/ { f = 0 } END { print out }' "$root/src/app/window.c" 2>/dev/null || true) || true
+read -r sem_wait sem_signal < <(awk '/^static void submit\(/ { f = 1 } f && /stageMask = / { s = $0; sub(/.*stageMask = VK_PIPELINE_STAGE_2_/, "", s); sub(/_BIT.*/, "", s); out = out " " s } f && /^}/ { f = 0 } END { print out }' "$root/src/app/window/window.c" 2>/dev/null || true) || true
 window_id=$(head -n 1 <<<"$window_configs")
 awk -v sem_wait="${sem_wait:-?}" -v sem_signal="${sem_signal:-?}" "$AWK_LIB"'
     function esc(s) { gsub(/"/, "\\\"", s); return s }

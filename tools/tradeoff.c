@@ -14,7 +14,7 @@
  *   - horizon: the error over the pixels within 2 px of the analytic horizon against the per-pixel march (ultra)
  *     of the same view at --horizon-size (default 480x270): max and mean (tools/tradeoff_horizon.h; issue 26).
  *     --emit-horizon-table FILE measures only that, for every configuration and scene, and writes the table
- *     --max-error also checks (src/app/quality_horizon_table.h): a configuration whose horizon error on a class
+ *     --max-error also checks (src/app/quality/quality_horizon_table.h): a configuration whose horizon error on a class
  *     exceeds the bound is refused there.
  * Writes a CSV (plot it with tools/plot_tradeoff.sh) and optionally the C table that --max-error chooses from.
  *
@@ -23,8 +23,8 @@
  *            [--device N] [--sun-visibility penumbra|lesson-fade] [--horizon-size WxH]
  *            [--emit-horizon-table FILE]
  */
-#include "app/cpu_time.h"
-#include "app/quality.h"
+#include "app/runs/cpu_time.h"
+#include "app/quality/quality.h"
 #include "io/half_float.h"
 #include "reference/metrics.h"
 #include "sky/submit.h"

@@ -9,7 +9,7 @@
  *     surface's composite, the worst case; a brighter surface's composite is dominated by beauty T, whose error
  *     is smaller), max |dT|, max relative S per channel.
  * Converged LUTs and --steps march steps on both paths, so the figures are the method's, not the LUTs'.
- * Writes a CSV and, with --emit-table, the C table --aerial-perspective auto chooses from (src/app/ap_trade_table.h).
+ * Writes a CSV and, with --emit-table, the C table --aerial-perspective auto chooses from (src/app/quality/ap_trade_table.h).
  *
  * --classes (issue 28 item 7): the error on every view class below as well as seed 004's, and no timing (--frames 0
  * keeps the GPU times of the table built in); the table's error is then each method's worst class mean, so that
@@ -18,7 +18,7 @@
  *   tradeoff_aerial [--size WxH] [--error-size WxH] [--frames N] [--steps N] [--csv FILE] [--emit-table FILE]
  *                   [--classes]
  */
-#include "app/ap_trade_table.h"
+#include "app/quality/ap_trade_table.h"
 #include "reference/ref_atmosphere.h"
 #include "sky/composite.h"
 #include "sky/submit.h"

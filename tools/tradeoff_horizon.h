@@ -4,7 +4,7 @@
  * whole frame cannot see a few wrong rows; this can. Header-only, included by tools/tradeoff.c. */
 #ifndef VKSKY_TOOLS_TRADEOFF_HORIZON_H
 #define VKSKY_TOOLS_TRADEOFF_HORIZON_H
-#include "app/quality.h"
+#include "app/quality/quality.h"
 #include "io/half_float.h"
 #include "reference/ref_atmosphere.h"
 #include "sky/submit.h"

@@ -1,9 +1,9 @@
 /* Renderers: a sky_renderer built from a scene and a quality the way the CLI's headless run builds its own
  * (app/headless.c), writing the host's image instead of its own (include/vksky.h). */
 #include "lib/lib_internal.h"
-#include "app/light.h"
-#include "app/options.h"
-#include "app/quality.h"
+#include "app/scene/light.h"
+#include "app/cli/options.h"
+#include "app/quality/quality.h"
 #include <stdlib.h>
 #include <string.h>
 

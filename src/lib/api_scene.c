@@ -1,7 +1,7 @@
 /* Scenes: values made by the CLI's own loader (include/vksky.h). */
 #include "lib/lib_internal.h"
-#include "app/light.h"
-#include "app/options.h"
+#include "app/scene/light.h"
+#include "app/cli/options.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -5,7 +5,7 @@
 #define VKSKY_LIB_INTERNAL_H
 #include <volk.h>
 #include <vksky.h>
-#include "app/options_struct.h"
+#include "app/cli/options_struct.h"
 #include "gpu/context.h"
 #include "sky/frame.h"
 #include "sky/host_frame.h"

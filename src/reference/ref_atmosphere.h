@@ -90,7 +90,7 @@ ref_quality ref_quality_converged(void);
 void ref_sky_radiance(const model_atmosphere *a, double altitude, const double view_dir[3], const double sun_dir[3],
                       ref_quality q, double out_rgb[3]);
 
-/* The graceful stop (app/stop.h): while *flag is non-zero, a table being built (Psi, the sun's transmittance) stops
+/* The graceful stop (app/runs/stop.h): while *flag is non-zero, a table being built (Psi, the sun's transmittance) stops
  * at its next row and none is kept, so radiance computed from then on lacks multiple scattering: the caller, which
  * looks at the same flag, discards it. NULL (the default) turns this off. */
 void ref_set_cancel(const volatile sig_atomic_t *flag);

@@ -202,17 +202,25 @@ static void upload_atmosphere(sky_renderer *r)
     }
 }
 
-void sky_renderer_set_atmosphere(sky_renderer *r, const model_atmosphere *a, double sun_angular_radius_rad)
+/* The medium and the features together: the variant is a function of both, so setting them one at a time would
+ * build the pipelines for a mix of the old and the new scene first. */
+void sky_renderer_set_scene(sky_renderer *r, const model_atmosphere *a, double sun_angular_radius_rad,
+                            const sky_features *f)
 {
     r->medium = *a;
     r->sun_angular_radius = sun_angular_radius_rad;
+    r->features = *f;
     upload_atmosphere(r);
+}
+
+void sky_renderer_set_atmosphere(sky_renderer *r, const model_atmosphere *a, double sun_angular_radius_rad)
+{
+    sky_renderer_set_scene(r, a, sun_angular_radius_rad, &r->features);
 }
 
 void sky_renderer_set_features(sky_renderer *r, const sky_features *f)
 {
-    r->features = *f;
-    upload_atmosphere(r);
+    sky_renderer_set_scene(r, &r->medium, r->sun_angular_radius, f);
 }
 
 bool sky_renderer_luts_dirty(const sky_renderer *r)

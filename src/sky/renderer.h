@@ -67,6 +67,9 @@ void sky_renderer_set_atmosphere(sky_renderer *r, const model_atmosphere *a, dou
 /* Ground albedo, Mie phase model, limb darkening, sun disc, multi-scattering. A change of what the scene needs
  * (species present, multi-scattering, disc, ground, phase model) rebuilds the pipelines for the new variant. */
 void sky_renderer_set_features(sky_renderer *r, const sky_features *f);
+/* Both at once (the variant is built at most once, for the new pair): what a new scene calls. */
+void sky_renderer_set_scene(sky_renderer *r, const model_atmosphere *a, double sun_angular_radius_rad,
+                            const sky_features *f);
 /* The LUTs do not hold the current atmosphere (the next frame recomputes them). */
 bool sky_renderer_luts_dirty(const sky_renderer *r);
 /* New size: rebuilds the HDR target, the bloom mip chain and the tone map's descriptors (waits for the GPU). */

@@ -1,5 +1,5 @@
 /* Submission and readback over a renderer: a recorded frame submitted and waited for (headless, tests), a LUT
- * copied to the host (tests). The window submits its own frames (app/window.c: frames in flight). */
+ * copied to the host (tests). The window submits its own frames (app/window/window.c: frames in flight). */
 #ifndef VKSKY_SKY_SUBMIT_H
 #define VKSKY_SKY_SUBMIT_H
 #include "sky/frame.h"

@@ -7,7 +7,7 @@
  * from the fuzzer could name /dev/stdin or a FIFO; the scene's bytes are fuzz_scene's job. Seed corpus: command
  * lines from the tests and the README (tests/fuzz/cli_corpus, one argument per line). */
 #include "app_fuzz_common.h"
-#include "app/options_composite.h"
+#include "app/cli/options_composite.h"
 
 #ifndef VKSKY_FUZZ_SCENES
 #error "VKSKY_FUZZ_SCENES: the shipped scenes' directory"

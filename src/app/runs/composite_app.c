@@ -1,0 +1,520 @@
+/* The composite driver: read the render (io/exr_read.h), find its layers, place the camera, run the composite
+ * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
+ * stderr and exit status 2, before any output file exists. */
+#include "app/runs/composite_app.h"
+#include "app/scene/render_values.h"
+#include "app/runs/composite_bands.h"
+#include "app/runs/composite_layers.h"
+#include "app/runs/exr_header.h"
+#include "app/runs/startup.h"
+#include "app/runs/stop.h"
+#include "io/exr_layers.h"
+#include "io/exr_read.h"
+#include "io/atomic_file.h"
+#include "io/exr_write.h"
+#include "io/half_float.h"
+#include "io/png_io.h"
+#include "sky/frame.h"
+#include "sky/submit.h"
+#include "sky/view_params.h"
+#include "sky/composite.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+static const char *const AOV_NAMES[VKSKY_AOV_COUNT] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
+
+/* --- The camera ------------------------------------------------------------------------------------------- */
+
+/* Inverse of a 3x3 (row-major); false when singular. */
+static bool invert3(const double m[3][3], double out[3][3])
+{
+    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    if (!(fabs(det) > 1e-300) || !isfinite(det)) return false;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            int a = (j + 1) % 3, b = (j + 2) % 3, c = (i + 1) % 3, d = (i + 2) % 3;
+            out[i][j] = (m[a][c] * m[b][d] - m[a][d] * m[b][c]) / det;
+        }
+    return true;
+}
+
+/* OpenEXR's worldToCamera (row vectors, p_cam = p_world M; the camera looks along -Z, +X right, +Y up): the
+ * camera's position and axes in world coordinates. With worldToNDC (NDC x, y in [-1, 1] across the screen
+ * window) also the vertical field of view. */
+static bool camera_from_matrices(const io_exr_info *info, composite_view *v, double *fov_deg)
+{
+    const float *M = info->world_to_camera;
+    double R[3][3], Ri[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) R[i][j] = M[4 * i + j];
+    if (!invert3(R, Ri)) return false;
+    /* c R + t = 0 -> c = -t R^-1; camera axis k in world: row k of R^-1. */
+    for (int j = 0; j < 3; ++j) {
+        v->camera[j] = -(M[12] * Ri[0][j] + M[13] * Ri[1][j] + M[14] * Ri[2][j]);
+        v->right[j] = Ri[0][j], v->up[j] = Ri[1][j], v->forward[j] = -Ri[2][j];
+    }
+    double *axes[3] = {v->right, v->up, v->forward};
+    for (int k = 0; k < 3; ++k) {
+        double n = sqrt(axes[k][0] * axes[k][0] + axes[k][1] * axes[k][1] + axes[k][2] * axes[k][2]);
+        for (int j = 0; j < 3; ++j) axes[k][j] /= n;
+    }
+    *fov_deg = 0.0;
+    if (info->has_world_to_ndc) {
+        /* The camera-space point (0, 1, -1) lands at NDC y = 1 / tan(fov / 2). */
+        double p[3], h[4] = {0, 0, 0, 0};
+        for (int j = 0; j < 3; ++j) p[j] = v->camera[j] + Ri[1][j] - Ri[2][j];
+        const float *N = info->world_to_ndc;
+        for (int j = 0; j < 4; ++j) h[j] = p[0] * N[j] + p[1] * N[4 + j] + p[2] * N[8 + j] + N[12 + j];
+        double y = h[3] != 0.0 ? fabs(h[1] / h[3]) : 0.0;
+        double fov = y > 0.0 ? 2.0 * atan(1.0 / y) * 180.0 / 3.14159265358979323846 : 0.0;
+        if (fov >= 1.0 && fov <= 170.0) *fov_deg = fov;
+    }
+    return true;
+}
+
+/* --- Running the pass -------------------------------------------------------------------------------------- */
+
+static int frames_from_env(void)
+{
+    const char *env = getenv("VKSKY_FRAMES");
+    return env ? atoi(env) : 1;
+}
+
+/* GPU context, a renderer for the LUTs (1x1: its own images are not used), the atmosphere of the options. */
+static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32_t width, uint32_t height,
+                     bool readback)
+{
+    stop_install();   /* SIGINT/SIGTERM from here on: the output is not renamed into place; exit 130/143 */
+    char why[200];
+    if (!gpu_barrier_set_weaken(getenv("VKSKY_WEAKEN_BARRIER"), why, sizeof why)) {
+        fprintf(stderr, "vksky: VKSKY_WEAKEN_BARRIER: %s\n", why);
+        return 2;
+    }
+    gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
+    int rc = gpu_context_create(ctx, &desc);
+    if (rc != 0) return rc == -2 ? 2 : 1;
+    startup_open_cache(ctx, o);
+    if (o->trace_barriers) gpu_barrier_trace(stdout);
+    gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
+    /* The composite keeps the lesson's scale and disc (docs/units.md): the medium as given, the disc unpowered. */
+    render_scene scene = {.atmosphere = o->atmosphere, .sun_radius_rad = options_sun_radius_rad(o),
+                          .features = options_features(o)};
+    scene.features.sun_disc_power = false;
+    render_quality quality = render_quality_of(o);
+    if (!readback) quality.render_scale = 1.0;
+    sky_renderer_desc rdesc = render_desc(&quality, &scene);
+    rdesc.width = width, rdesc.height = height, rdesc.bloom = readback && o->view.bloom;
+    rdesc.readback = readback, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
+    sky_renderer_create(r, ctx, &rdesc);
+    if (o->trace_passes) gpu_barrier_trace_passes(stdout);
+    return 0;
+}
+
+static int gpu_end(gpu_context *ctx, sky_renderer *r, int status)
+{
+    sky_renderer_destroy(r);
+    startup_close_cache(ctx);
+    gpu_context_destroy(ctx);
+    unsigned messages = gpu_validation_message_count();
+    if (messages) {
+        fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
+        if (status == 0) status = 1;
+    }
+    return stop_status(status);
+}
+
+/* The composite RGBA at the top level (or `top` when given), the AOVs as RGB layers (io/exr_layers.h: half, the
+ * layer.channel names). */
+static int write_layers(const char *path, const sky_composite *c, const float *top, const io_exr_meta *meta, char *err,
+                        size_t err_size)
+{
+    size_t n = (size_t)c->width * c->height;
+    float *rgb = malloc(n * 3 * sizeof(float) * (VKSKY_AOV_COUNT - 1));
+    if (!rgb) {
+        snprintf(err, err_size, "out of memory");
+        return -1;
+    }
+    io_exr_out_layer layers[VKSKY_AOV_COUNT];
+    layers[0] = (io_exr_out_layer){"", 4, top ? top : sky_composite_layer(c, VKSKY_AOV_COMPOSITE)};
+    for (int k = 1; k < VKSKY_AOV_COUNT; ++k) {
+        float *dst = rgb + (size_t)(k - 1) * 3 * n;
+        const float *src = sky_composite_layer(c, k);
+        for (size_t i = 0; i < n; ++i)
+            for (int ch = 0; ch < 3; ++ch) dst[3 * i + ch] = src[4 * i + ch];
+        layers[k] = (io_exr_out_layer){AOV_NAMES[k], 3, dst};
+    }
+    int rc = io_write_exr_layers_meta(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, meta, err,
+                                      err_size);
+    free(rgb);
+    return rc;
+}
+
+static composite_view view_from_options(const options *o)
+{
+    return (composite_view){.km_per_unit = 0.001, .up_axis = 2, .fov_y_deg = o->view.fov_deg,
+                            .sun_azimuth_deg = o->view.sun_azimuth_deg, .sun_elevation_deg = o->view.sun_elevation_deg,
+                            .steps = o->view.steps, .max_steps = o->view.max_steps,
+                            .steps_ramp_km = o->view.steps_ramp_km, .sample_offset = o->view.sample_offset,
+                            .step_distribution = o->view.step_distribution};
+}
+
+/* The options that describe the composite's sky as a plain render (its header's vksky:scene, so that `vksky --scene
+ * OUT.exr` renders the sky of its uncovered pixels): the camera's altitude, and its direction as yaw/pitch in vksky's
+ * local frame (a camera's roll is not a scene value: it is lost), its field of view and the image's size. */
+static options composite_scene(const options *o, const composite_options *co, const composite_view *v,
+                               double altitude_km, int width, int height)
+{
+    options s = *o;
+    if (co->argv_all) s.argc = co->argc_all, s.argv = co->argv_all;
+    s.width = width, s.height = height;
+    s.view.altitude_km = altitude_km;
+    if (v->oriented) {
+        double f[3];
+        composite_world_to_local(v->up_axis, v->forward, f);
+        s.view.pitch_deg = asin(fmax(-1.0, fmin(1.0, f[1]))) * 180.0 / 3.14159265358979323846;
+        s.view.yaw_deg = atan2(f[2], f[0]) * 180.0 / 3.14159265358979323846;
+        s.view.fov_deg = v->fov_y_deg;
+    }
+    return s;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* --bench N with --composite: per-pass GPU medians of N composite frames after warm-up (the LUTs are not in them:
+ * built once by the first frame), one line per pass like the sky's benchmark. */
+static void bench(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames)
+{
+    enum { PASSES = 4 };
+    static const char *const names[PASSES] = {"ap_volume", "composite_upload", "composite", "composite_readback"};
+    double *ms = calloc((size_t)frames * (PASSES + 1), sizeof *ms), read[GPU_TIMER_MAX];
+    if (!ms) return;
+    double *wall = ms + (size_t)frames * PASSES;   /* submit -> fence (lavapipe's timestamps miss compute work) */
+    for (int i = 0; i < 3; ++i) sky_composite_render(r, c, push, 1);   /* warm-up: LUTs, shader compiles, clocks */
+    for (int i = 0; i < frames; ++i) {
+        wall[i] = sky_composite_render(r, c, push, 1);
+        uint32_t count = gpu_timer_read(r->ctx, &r->timer, read);
+        for (uint32_t k = 0; k < count; ++k)
+            for (int p = 0; p < PASSES; ++p)
+                if (!strcmp(r->timer.names[k], names[p])) ms[p * frames + i] = read[k];
+    }
+    for (int p = c->has_volume ? 0 : 1; p < PASSES && r->timer.enabled; ++p) {
+        qsort(ms + p * frames, (size_t)frames, sizeof *ms, compare_double);
+        printf("pass %s gpu_ms %.4f (%ux%u)\n", names[p], ms[p * frames + frames / 2], c->width, c->height);
+    }
+    qsort(wall, (size_t)frames, sizeof *wall, compare_double);
+    printf("composite frame wall_ms %.3f (submit to fence, median of %d; %s)\n", wall[frames / 2], frames,
+           c->has_volume ? "volume" : "march");
+    free(ms);
+}
+
+static bool is_exr(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
+}
+
+/* The froxel volume's shape for --aerial-perspective (volume, or auto when --max-error allows it), or NULL: a
+ * march per pixel. -1 (after one line on stderr): volume asked for without a known camera orientation. */
+static int pick_volume(const options *o, const composite_options *co, bool oriented, ap_volume_desc *desc,
+                       const ap_volume_desc **out)
+{
+    *out = NULL;
+    char why[300] = "";
+    unsigned size[3] = {co->ap_size[0], co->ap_size[1], co->ap_size[2]};
+    double range = co->ap_range_km, distribution = co->ap_distribution;
+    bool want = co->aerial == AERIAL_VOLUME ||
+                (co->aerial == AERIAL_AUTO && composite_auto_volume(co, o->max_error, size, &range, &distribution,
+                                                                    why, sizeof why));
+    if (want && !oriented) {
+        if (co->aerial == AERIAL_VOLUME) {
+            fprintf(stderr, "vksky: --aerial-perspective volume: the froxel volume covers the camera's frustum, whose "
+                            "orientation is unknown (no worldToCamera, no --yaw/--pitch); give it, or use march\n");
+            return -1;
+        }
+        want = false;
+        snprintf(why, sizeof why, "the camera's orientation is unknown: the march");
+    }
+    if (co->aerial == AERIAL_AUTO && o->max_error > 0.0) fprintf(stderr, "vksky: --aerial-perspective auto: %s\n", why);
+    if (!want) return 0;
+    *desc = (ap_volume_desc){size[0], size[1], size[2], (float)range, (float)distribution};
+    *out = desc;
+    return 0;
+}
+
+int composite_run(const options *o, const composite_options *co)
+{
+    char err[600];
+    if (o->output_count != 1 || !is_exr(o->outputs[0])) {
+        fprintf(stderr, "vksky: --composite: needs exactly one --render FILE.exr (the composite and its layers)\n");
+        return 2;
+    }
+    const char *out_path = o->outputs[0];
+    if (io_check_writable(out_path, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --render: %s\n", err);
+        return 2;
+    }
+    /* The files and their layers (app/runs/composite_layers.c: one view layer for all of them). */
+    const char *beauty_path = co->input;
+    io_exr_info bi = {0}, pi = {0}, di = {0};
+    if (io_exr_read_info(beauty_path, &bi, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --composite: %s\n", err);
+        return 2;
+    }
+    int status = 0;
+    const char *extra_flag = co->depth ? "--depth" : "--position", *extra_path = co->depth ? co->depth : co->position;
+    io_exr_info *extra = co->depth ? &di : &pi;
+    if (extra_path && io_exr_read_info(extra_path, extra, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: %s: %s\n", extra_flag, err);
+        io_exr_info_free(&bi);
+        return 2;
+    }
+    composite_inputs inputs;
+    if (composite_pick_inputs(co, &bi, &pi, &di, &inputs) != 0) {
+        status = 2;
+        goto done_info;
+    }
+    if (extra_path && (extra->width != bi.width || extra->height != bi.height)) {
+        fprintf(stderr, "vksky: %s: %s is %dx%d but the beauty %s is %dx%d; they must be the same size\n", extra_flag,
+                extra_path, extra->width, extra->height, beauty_path, bi.width, bi.height);
+        status = 2;
+        goto done_info;
+    }
+    const io_exr_info *pinfo = co->position ? &pi : &bi;
+    const char *position_path = inputs.has_depth ? inputs.depth_path : inputs.position_path;
+    int w = bi.width, h = bi.height;
+    size_t n = (size_t)w * h;
+
+    /* The camera: --camera-position and --yaw/--pitch, else the EXR's worldToCamera (and worldToNDC). */
+    composite_view v = view_from_options(o);
+    v.km_per_unit = co->world_unit_m * 1e-3;
+    v.up_axis = co->up_axis;
+    v.ground_altitude_km = co->ground_altitude_km;
+    const io_exr_info *cam_info = bi.has_world_to_camera ? &bi : pinfo->has_world_to_camera ? pinfo : NULL;
+    double matrix_fov = 0.0;
+    bool from_matrix = cam_info && camera_from_matrices(cam_info, &v, &matrix_fov);
+    if (co->has_camera_position) memcpy(v.camera, co->camera_position, sizeof v.camera);
+    if (!from_matrix && !co->has_camera_position) {
+        fprintf(stderr, "vksky: --composite: %s has no worldToCamera attribute: give --camera-position X,Y,Z (world "
+                        "units) and --yaw/--pitch/--fov for its orientation\n", beauty_path);
+        status = 2;
+        goto done_info;
+    }
+    if (co->has_orientation) {
+        composite_view_orient_yaw_pitch(&v, o->view.yaw_deg, o->view.pitch_deg);
+        if (!co->has_fov && !(from_matrix && matrix_fov > 0.0))
+            fprintf(stderr, "vksky: --composite: no --fov given: the sky pixels assume %g degrees (vertical); give the "
+                            "render's field of view\n", o->view.fov_deg);
+        else if (!co->has_fov)
+            v.fov_y_deg = matrix_fov;
+    } else if (from_matrix && (matrix_fov > 0.0 || co->has_fov)) {
+        v.oriented = true;
+        if (!co->has_fov) v.fov_y_deg = matrix_fov;
+    }
+
+    ap_volume_desc vol_desc;
+    const ap_volume_desc *vol = NULL;
+    if (pick_volume(o, co, v.oriented, &vol_desc, &vol) != 0) {
+        status = 2;
+        goto done_info;
+    }
+    if (inputs.has_depth && !v.oriented) {
+        fprintf(stderr, "vksky: --composite: a depth pass needs the camera's orientation and field of view (no "
+                        "worldToCamera/worldToNDC in %s): give --yaw/--pitch/--fov\n", beauty_path);
+        status = 2;
+        goto done_info;
+    }
+    /* The inputs in bands (app/runs/composite_bands.h), first read only to check and count them: a bad pixel pass
+     * fails before the GPU starts and before any output exists. */
+    int band_rows = composite_band_rows(w, h);
+    band_reader reader;
+    if ((status = band_reader_init(&reader, beauty_path, &inputs, &v, w, h, band_rows)) != 0) goto done_info;
+    composite_fixups fix = {0};
+    size_t geometry = 0, sky = 0;
+    for (int y0 = 0; y0 < h && status == 0; y0 += band_rows) {
+        if ((status = band_reader_read(&reader, y0, &fix)) != 0) break;
+        const composite_band *band = &reader.band;
+        size_t core = (size_t)(band->core_row - band->first_row) * w, end = core + (size_t)band->core_rows * w;
+        for (size_t i = core; i < end; ++i) {
+            const float *p = reader.position + 4 * i;
+            bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+            if (finite && reader.beauty[4 * i + 3] > 0.0f) ++geometry;
+            else ++sky;
+        }
+    }
+    if (status) goto done_reader;
+    if (fix.opaque >= 16 && fix.opaque * 100 >= n) {
+        fprintf(stderr, "vksky: --composite: %s: the film is opaque: %zu pixels (%.0f %%) have alpha 1 and no "
+                        "position (a background, not geometry): render with a transparent film (Blender: Render "
+                        "Properties > Film > Transparent) so that the sky can go behind\n",
+                beauty_path, fix.opaque, 100.0 * (double)fix.opaque / (double)n);
+        status = 2;
+        goto done_reader;
+    }
+    if (geometry == 0) {
+        fprintf(stderr, "vksky: --composite: %s: the %s pass has no finite pixel with alpha > 0: nothing to "
+                        "apply the atmosphere to (is it the world-position pass?)\n", position_path,
+                inputs.has_depth ? "depth" : "position");
+        status = 2;
+        goto done_reader;
+    }
+    CompositePush push;
+    model_atmosphere earth = o->atmosphere;
+    double altitude = composite_push(&v, earth.bottom_radius, (uint32_t)w, (uint32_t)h, &push);
+    if (altitude < 0.0) {
+        fprintf(stderr, "vksky: --composite: the camera (%g, %g, %g world units) is inside the planet (%.4g km below "
+                        "the ground); check --world-up, --world-unit, --ground-altitude\n",
+                v.camera[0], v.camera[1], v.camera[2], -altitude);
+        status = 2;
+        goto done_reader;
+    }
+    if (fix.overflowed)
+        fprintf(stderr, "vksky: --composite: note: %zu positions overflowed the half-float range (beyond 65504 world "
+                        "units) and have no atmosphere: write the Position pass as float (Blender: Output > Float "
+                        "(Full))\n", fix.overflowed);
+    if (fix.repaired || fix.unrepaired)
+        fprintf(stderr, "vksky: --composite: note: %zu edge pixels without a position took their nearest covered "
+                        "neighbour's%s\n", fix.repaired, fix.unrepaired ? "; some found none (composited without "
+                        "atmosphere)" : "");
+    if (!v.oriented && sky > 0)
+        fprintf(stderr, "vksky: --composite: the camera's orientation is unknown (no worldToCamera, no --yaw/--pitch): "
+                        "%zu pixels without geometry keep the beauty\n", sky);
+
+    /* The header: how it was made, and the scene of its sky (`vksky --scene OUT.exr`). */
+    exr_header hdr;
+    options scene = composite_scene(o, co, &v, altitude, w, h);
+    if (exr_header_build(&hdr, &scene, -1) != 0) {
+        fprintf(stderr, "vksky: --composite: out of memory\n");
+        status = 1;
+        goto done_reader;
+    }
+    /* The render's own camera matrices (its world, its units: the position pass's) where it had them. */
+    if (cam_info) {
+        memcpy(hdr.world_to_camera, cam_info->world_to_camera, sizeof hdr.world_to_camera);
+        if (cam_info->has_world_to_ndc) memcpy(hdr.world_to_ndc, cam_info->world_to_ndc, sizeof hdr.world_to_ndc);
+    }
+    if (!v.oriented) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
+
+    gpu_context ctx;
+    sky_renderer r;
+    if ((status = gpu_begin(o, &ctx, &r, 1, 1, false)) != 0) goto done_header;
+    sky_composite c;
+    if (sky_composite_create(&c, &r, (uint32_t)w, (uint32_t)band_rows, vol, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --composite: %s\n", err);
+        status = gpu_end(&ctx, &r, 2);
+        goto done_header;
+    }
+    if (o->bench_frames > 0) {   /* the first band (the whole image up to 2^20 pixels) */
+        composite_fixups ignored = {0};
+        if ((status = band_reader_read(&reader, 0, &ignored)) == 0) {
+            band_reader_upload(&reader, &c);
+            bench(&r, &c, &push, o->bench_frames);
+        }
+    }
+    static const char *const names[VKSKY_AOV_COUNT] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
+    io_exr_band_layer layers[VKSKY_AOV_COUNT];
+    for (int k = 0; k < VKSKY_AOV_COUNT; ++k) layers[k] = (io_exr_band_layer){names[k], k == 0 ? 4 : 3, 4, NULL};
+    io_exr_layers_stream *out = status ? NULL : io_exr_layers_stream_open(out_path, w, h, layers, VKSKY_AOV_COUNT,
+                                                                         &hdr.meta, err, sizeof err);
+    if (!status && !out) {
+        fprintf(stderr, "vksky: --render: %s\n", err);
+        status = 1;
+    }
+    if (out && (status = composite_bands_render(&reader, &r, &c, push, frames_from_env(), out)) == 0 &&
+        io_exr_layers_stream_finish(out, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --render: %s\n", err);
+        status = 1;
+    }
+    sky_composite_destroy(&c, &r);
+    status = gpu_end(&ctx, &r, status);
+done_header:
+    exr_header_free(&hdr);
+done_reader:
+    band_reader_free(&reader);
+done_info:
+    io_exr_info_free(&bi);
+    io_exr_info_free(&pi);
+    io_exr_info_free(&di);
+    return status;
+}
+
+int composite_aovs_run(const options *o, const composite_options *co)
+{
+    char err[600];
+    bool any_exr = false;
+    for (int i = 0; i < o->output_count; ++i) {
+        if (io_check_writable(o->outputs[i], err, sizeof err) != 0) {
+            fprintf(stderr, "vksky: --render: %s\n", err);
+            return 2;
+        }
+        any_exr = any_exr || is_exr(o->outputs[i]);
+    }
+    if (!any_exr || o->bench_frames) {
+        fprintf(stderr, "vksky: --aovs: needs --render FILE.exr (the layers are EXR layers; not with --bench)\n");
+        return 2;
+    }
+    gpu_context ctx;
+    sky_renderer r;
+    int status = gpu_begin(o, &ctx, &r, (uint32_t)o->width, (uint32_t)o->height, true);
+    if (status) return status;
+    /* The sky frame itself, as a plain render. */
+    frame_desc f = {.view = &o->view};
+    sky_renderer_render(&r, &f);
+    /* The layers: the composite pass over a frame with no geometry, the camera the view's (at the world origin,
+     * +Y up, km). */
+    composite_view v = view_from_options(o);
+    v.km_per_unit = 1.0, v.up_axis = 1;
+    v.camera[1] = o->view.altitude_km;
+    composite_view_orient_yaw_pitch(&v, o->view.yaw_deg, o->view.pitch_deg);
+    CompositePush push;
+    composite_push(&v, o->atmosphere.bottom_radius, (uint32_t)o->width, (uint32_t)o->height, &push);
+    push.forward.w = (float)o->view.altitude_km;   /* exactly the sky pass's altitude */
+    /* The volume only with --aerial-perspective volume: there is no geometry to sample it, but the frame is the
+     * composite's with the volume pass in it (barrier tests, docs/synchronization.md). */
+    ap_volume_desc vol = {co->ap_size[0], co->ap_size[1], co->ap_size[2], (float)co->ap_range_km,
+                          (float)co->ap_distribution};
+    sky_composite c;
+    if (sky_composite_create(&c, &r, (uint32_t)o->width, (uint32_t)o->height,
+                             co->aerial == AERIAL_VOLUME ? &vol : NULL, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --aovs: %s\n", err);
+        return gpu_end(&ctx, &r, 2);
+    }
+    size_t n = (size_t)o->width * o->height;
+    float *in = sky_composite_inputs(&c);
+    for (size_t i = 0; i < n; ++i) {
+        float *b = in + 4 * i, *p = in + 4 * (n + i);
+        b[0] = b[1] = b[2] = b[3] = 0.0f;
+        p[0] = p[1] = p[2] = p[3] = NAN;   /* no geometry anywhere */
+    }
+    sky_composite_render(&r, &c, &push, frames_from_env());
+    float *top = malloc(n * 4 * sizeof(float));
+    exr_header hdr;
+    options with_aovs = *o;   /* the command line with --aovs */
+    if (co->argv_all) with_aovs.argc = co->argc_all, with_aovs.argv = co->argv_all;
+    if (exr_header_build(&hdr, &with_aovs, -1) != 0) {
+        free(top);
+        top = NULL;
+    }
+    const uint16_t *half = r.readback_linear.mapped;
+    for (size_t i = 0; top && i < 4 * n; ++i) top[i] = io_half_to_float(half[i]);
+    for (int i = 0; i < o->output_count && status == 0; ++i) {
+        int rc = !top ? -1
+                 : is_exr(o->outputs[i]) ? write_layers(o->outputs[i], &c, top, &hdr.meta, err, sizeof err)
+                                         : io_write_png(o->outputs[i], o->width, o->height, r.readback_display.mapped, 1,
+                                                        err, sizeof err);
+        if (rc != 0) {
+            fprintf(stderr, "vksky: --render: %s\n", top ? err : "out of memory");
+            status = 1;
+        }
+    }
+    if (top) exr_header_free(&hdr);
+    free(top);
+    sky_composite_destroy(&c, &r);
+    return gpu_end(&ctx, &r, status);
+}

@@ -1,0 +1,227 @@
+#include "app/runs/headless.h"
+#include "app/scene/render_values.h"
+#include "app/scene/light.h"
+#include "app/runs/cpu_time.h"
+#include "app/runs/frame_ring.h"
+#include "app/runs/sequence.h"
+#include "app/runs/startup.h"
+#include "app/runs/spectral_render.h"
+#include "app/runs/stop.h"
+#include "app/runs/tiles.h"
+#include "io/encode_settings.h"
+#include "sky/submit.h"
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, compare_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/* Per-pass GPU medians, then the frame: the benchmark's output format (one line per pass). */
+static void bench(const options *o, sky_renderer *r)
+{
+    enum { MAX_PASSES = GPU_TIMER_MAX };
+    int n = o->bench_frames;
+    double *wall = calloc((size_t)n, sizeof *wall), *gpu_total = calloc((size_t)n, sizeof *gpu_total);
+    double *per_pass[MAX_PASSES] = {0};
+    const char *names[MAX_PASSES] = {0};
+    int pass_count = 0;
+    double ms[MAX_PASSES];
+
+    /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. */
+    frame_desc f = {.view = &o->view};
+    for (int i = 0; i < 3 && !stop_requested(); ++i) sky_renderer_render(r, &f);
+
+    /* LUT passes, measured on their own (a frame recomputes them only when the atmosphere changes). */
+    frame_desc with_luts = {.view = &o->view, .force_luts = true};
+    double *lut_ms[2] = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double))};
+    for (int i = 0; i < n && !stop_requested(); ++i) {
+        sky_renderer_render(r, &with_luts);
+        uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
+        for (uint32_t k = 0; k < c; ++k) {
+            if (!strcmp(r->timer.names[k], "transmittance_lut")) lut_ms[0][i] = ms[k];
+            if (!strcmp(r->timer.names[k], "multiscatter_lut")) lut_ms[1][i] = ms[k];
+        }
+    }
+    /* Steady-state frames. The process's CPU time over them too: on a CPU device (lavapipe) that is the frame's
+     * work whatever else the machine runs, where wall and timestamp times grow with the machine's load. */
+    double cpu_start = process_cpu_ms();
+    for (int i = 0; i < n && !stop_requested(); ++i) {
+        wall[i] = sky_renderer_render(r, &f);
+        uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
+        double total = 0;
+        for (uint32_t k = 0; k < c; ++k) {
+            int slot = -1;
+            for (int p = 0; p < pass_count; ++p)
+                if (!strcmp(names[p], r->timer.names[k])) slot = p;
+            if (slot < 0 && pass_count < MAX_PASSES) {
+                slot = pass_count++;
+                names[slot] = r->timer.names[k];
+                per_pass[slot] = calloc((size_t)n, sizeof(double));
+            }
+            if (slot >= 0) per_pass[slot][i] += ms[k];    /* repeated passes (bloom) add up per frame */
+            total += ms[k];
+        }
+        gpu_total[i] = total;
+    }
+    if (stop_requested()) n = 0;   /* the graceful stop: no figures from a cut-short run */
+    double cpu_per_frame = n ? (process_cpu_ms() - cpu_start) / n : 0.0;
+    if (n && r->timer.enabled) {
+        printf("pass transmittance_lut gpu_ms %.4f\n", median(lut_ms[0], n));
+        if (r->variant.multiscatter) printf("pass multiscatter_lut gpu_ms %.4f\n", median(lut_ms[1], n));
+        for (int p = 0; p < pass_count; ++p) printf("pass %s gpu_ms %.4f\n", names[p], median(per_pass[p], n));
+    }
+    if (n) printf("frame gpu_ms %.4f wall_ms %.4f\n", r->timer.enabled ? median(gpu_total, n) : -1.0, median(wall, n));
+    if (n) printf("frame cpu_ms %.4f\n", cpu_per_frame);
+    for (int p = 0; p < pass_count; ++p) free(per_pass[p]);
+    free(lut_ms[0]);
+    free(lut_ms[1]);
+    free(wall);
+    free(gpu_total);
+}
+
+/* VKSKY_FRAMES=N (tests): N frames recorded back to back into one command buffer, the LUTs recomputed in every
+ * frame after the first; the last frame is written. Barriers order work across submissions to one queue just as
+ * within one command buffer, so this is what the queue sees of frames in flight; synchronization validation,
+ * which checks within a command buffer, then also sees each frame's first use of an image after the previous
+ * frame's last (the write-after-read barriers that only matter from the second frame on). */
+static void render_frames(sky_renderer *r, const frame_desc *f)
+{
+    /* --timings: the first frame's files are done when the second frame begins (or the run ends). */
+    startup_outputs_done();
+    startup_frame_begin();
+    const char *env = getenv("VKSKY_FRAMES");
+    int n = env ? atoi(env) : 1;
+    if (n <= 1) {
+        sky_renderer_render(r, f);
+        startup_frame_end(r);
+        return;
+    }
+    VkCommandBuffer cmd = gpu_begin_commands(r->ctx);
+    for (int i = 0; i < n && i < 16; ++i) {
+        frame_desc fi = *f;
+        fi.force_luts = f->force_luts || i > 0;
+        fi.follows_frame = i > 0;   /* the readback copies' write-after-write: a barrier of frame_record's */
+        frame_record(r, cmd, &fi);
+    }
+    gpu_submit_and_wait(r->ctx, cmd);
+    gpu_buffer_invalidate(r->ctx, &r->readback_linear);
+    gpu_buffer_invalidate(r->ctx, &r->readback_display);
+    startup_frame_end(r);
+}
+
+/* --bench with --render and a sequence (issue 27): the frames to disk, timed from the first frame's submit to the
+ * last file (the renderer is warm: bench() ran first). Frames per second to disk, and the process's CPU time per
+ * frame (on a CPU device, lavapipe, that is the work whatever else the machine runs). */
+static int bench_sequence(const options *o, sky_renderer *r, int slots)
+{
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    double cpu_start = process_cpu_ms();
+    int status = sequence_render(o, r, render_frames, slots, NULL);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    double s = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    int frames = o->frame_last - o->frame_first + 1;
+    if (status == 0)
+        printf("sequence frames %d outputs %d wall_s %.3f frames_per_s %.2f cpu_ms_per_frame %.2f readback_slots %d "
+               "threads %d\n", frames, o->output_count, s, frames / s, (process_cpu_ms() - cpu_start) / frames, slots,
+               io_encode_threads());
+    return status;
+}
+
+/* The end of every run: the context goes, any validation message fails the run, and a stop asked for by a signal
+ * gives its exit status (stop.h). */
+static int finish(gpu_context *ctx, int status, bool timings)
+{
+    startup_outputs_done();
+    startup_close_cache(ctx);
+    gpu_context_destroy(ctx);
+    if (timings) startup_report(stderr);
+    unsigned messages = gpu_validation_message_count();
+    if (messages) {
+        fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
+        if (status == 0) status = 1;
+    }
+    return stop_status(status);
+}
+
+static int run_checked(const options *o);
+
+int headless_run(const options *given)
+{
+    stop_install();
+    /* Refuse bad frames and unwritable outputs before any expensive work (exit 2, nothing written): every frame's
+     * options and files, one frame's or a sequence's (whose quality choice may then serve all its frames). A copy of
+     * its own: the check may parse the sequence again under that choice. */
+    options checked;
+    if (options_copy(&checked, given)) return 1;
+    int status = sequence_check(&checked) ? 2 : run_checked(&checked);
+    options_release(&checked);
+    return status;
+}
+
+static int run_checked(const options *o)
+{
+    if (o->output_count > 0 && o->bench_frames == 0 && tiles_wanted(o) && sequence_active(o)) {
+        fprintf(stderr, "vksky: --animate/--frame-count/--frame-range: not with an environment map (--projection) or "
+                        "an image over the band budget; render such frames one run each\n");
+        return 2;
+    }
+    char why[200];
+    if (!gpu_barrier_set_weaken(getenv("VKSKY_WEAKEN_BARRIER"), why, sizeof why)) {
+        fprintf(stderr, "vksky: VKSKY_WEAKEN_BARRIER: %s\n", why);
+        return 2;
+    }
+    gpu_context ctx;
+    gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
+    int rc = gpu_context_create(&ctx, &desc);
+    if (rc != 0) return rc == -2 ? 2 : 1;
+    startup_open_cache(&ctx, o);
+    if (o->trace_barriers) gpu_barrier_trace(stdout);
+    gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
+    /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/runs/tiles.c). */
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
+        return finish(&ctx, tiles_render(o, &ctx), o->timings);
+    /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/runs/tiles.c). */
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
+        return finish(&ctx, tiles_render(o, &ctx), o->timings);
+
+    sky_renderer r;
+    render_scene scene;
+    render_scene_of(o, &scene);
+    render_quality quality = render_quality_of(o);
+    sky_renderer_desc rdesc = render_desc(&quality, &scene);
+    rdesc.width = (uint32_t)o->width, rdesc.height = (uint32_t)o->height, rdesc.bloom = o->view.bloom;
+    rdesc.readback = o->output_count > 0, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
+    sky_renderer_create(&r, &ctx, &rdesc);
+    if (o->trace_passes) gpu_barrier_trace_passes(stdout);
+
+    int status = 0;
+    if (stop_requested()) {
+        /* Stopped while the device and the renderer were made: nothing to render. */
+    } else if (o->bench_frames > 0) {
+        gpu_barrier_trace(NULL);
+        bench(o, &r);
+        if (o->output_count > 0 && sequence_active(o) && !stop_requested())
+            status = bench_sequence(o, &r, getenv("VKSKY_FRAMES") ? 0 : frame_ring_slots_wanted());
+    } else {
+        /* One frame, or the frames of a sequence: pipelined through the readback ring (app/runs/frame_ring.h) unless
+         * the tests' VKSKY_FRAMES loop records frames its own way; --spectral: each frame once per wavelength
+         * group, combined on the host before it is written (the serial loop). */
+        int slots = getenv("VKSKY_FRAMES") || o->spectral ? 0 : frame_ring_slots_wanted();
+        if (o->spectral) spectral_render_begin(o, render_frames);
+        status = sequence_render(o, &r, o->spectral ? spectral_render_frame : render_frames, slots,
+                                 o->trace_barriers ? stdout : NULL);
+    }
+    sky_renderer_destroy(&r);
+    return finish(&ctx, status, o->timings);
+}

@@ -1,0 +1,300 @@
+/* The frames of a sequence (sequence.h). */
+#include "app/runs/sequence.h"
+#include "app/scene/render_values.h"
+#include "app/runs/exr_header.h"
+#include "app/runs/frame_ring.h"
+#include "app/scene/light.h"
+#include "app/cli/options.h"
+#include "app/cli/options_sequence.h"
+#include "app/quality/quality.h"
+#include "app/runs/sequence_resume.h"
+#include "app/runs/stop.h"
+#include "io/atomic_file.h"
+#include "io/exr_write.h"
+#include "io/png_io.h"
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+bool sequence_active(const options *o) { return o->frame_count > 1 || o->animate_count > 0 || o->frame_range_set; }
+
+static int frame_count(const options *o) { return o->frame_count > 0 ? o->frame_count : 1; }
+
+/* Animation a's value at frame i: linear from FROM to TO, an integer flag's rounded. */
+static double animated_value(const options_animation *a, int frame, int count)
+{
+    double t = count > 1 ? (double)frame / (double)(count - 1) : 0.0;
+    double v = (1.0 - t) * a->from + t * a->to;
+    double lo = fmin(a->from, a->to), hi = fmax(a->from, a->to);
+    v = fmin(fmax(v, lo), hi);   /* rounding never steps outside FROM..TO (and so the flag's range) */
+    return a->integer ? (double)llround(v) : v;
+}
+
+int sequence_frame_options(const options *base, int frame, options *out)
+{
+    const char *names[OPTIONS_MAX_ANIMATE];
+    double values[OPTIONS_MAX_ANIMATE];
+    for (int k = 0; k < base->animate_count; ++k) {
+        names[k] = base->animate[k].flag_name;
+        values[k] = animated_value(&base->animate[k], frame, frame_count(base));
+    }
+    return options_frame(base, names, values, base->animate_count, out);
+}
+
+/* A --render value's file for a frame: the pattern filled in, or a value without one %d as it is. */
+static bool frame_path(const char *output, int frame, char *path, size_t size)
+{
+    if (sequence_pattern_kind(output) == 1) return sequence_output_path(output, frame, path, size);
+    return (size_t)snprintf(path, size, "%s", output) < size;
+}
+
+static bool same_luts(const sky_lut_quality *a, const sky_lut_quality *b)
+{
+    return a->transmittance_width == b->transmittance_width && a->transmittance_height == b->transmittance_height &&
+           a->transmittance_steps == b->transmittance_steps && a->multiscatter_size == b->multiscatter_size &&
+           a->multiscatter_steps == b->multiscatter_steps && a->multiscatter_sqrt_dirs == b->multiscatter_sqrt_dirs &&
+           a->lut_f32 == b->lut_f32 && a->skyview_width == b->skyview_width && a->skyview_height == b->skyview_height;
+}
+
+/* A quality chosen by the scene (--quality auto, the default, or --max-error) is chosen once for the whole
+ * sequence: for every scene class its frames pass through (all of them, whatever --frame-range renders, so that a
+ * split sequence equals the whole), and the base options are parsed again under that choice. Frames then differ
+ * only in view, sun and medium values: no preset switch (and no jump in the error) from one frame to the next. */
+static int choose_sequence_quality(options *base)
+{
+    if (base->animate_count == 0 || base->quality_classes == 0) return 0;
+    unsigned classes = 0;
+    for (int i = 0; i < frame_count(base); ++i) {
+        options f;   /* the frame's view does not depend on the quality choice it is parsed under */
+        if (sequence_frame_options(base, i, &f)) return 2;
+        classes |= quality_class_bit(f.view.altitude_km, f.view.sun_elevation_deg);
+    }
+    options_release(base);   /* parsed again: a new unresolved copy */
+    return options_parse_for_classes(base, base->argc, base->argv, classes);
+}
+
+int sequence_check(options *base)
+{
+    if (choose_sequence_quality(base)) return 2;
+    for (int i = base->frame_first; i <= base->frame_last; ++i) {
+        options f;
+        if (sequence_frame_options(base, i, &f)) return 2;
+        if (f.width != base->width || f.height != base->height || f.render_scale != base->render_scale ||
+            f.bloom_mips != base->bloom_mips || f.view.bloom != base->view.bloom ||
+            !same_luts(&f.lut, &base->lut)) {
+            fprintf(stderr, "vksky: --animate: frame %d changes the image or LUT sizes, the bloom chain or the quality "
+                            "preset, which a sequence keeps; expected an animation of view, sun or medium values\n", i);
+            return 2;
+        }
+        for (int k = 0; k < base->output_count; ++k) {
+            char path[PATH_MAX], err[512];
+            if (!frame_path(base->outputs[k], i, path, sizeof path)) {
+                fprintf(stderr, "vksky: --render: '%s' makes a file name longer than %d bytes\n", base->outputs[k],
+                        PATH_MAX - 1);
+                return 2;
+            }
+            if (io_check_writable(path, err, sizeof err) != 0) {
+                fprintf(stderr, "vksky: --render: %s\n", err);
+                return 2;
+            }
+        }
+    }
+    return 0;
+}
+
+static bool is_exr(const char *path)
+{
+    size_t n = strlen(path);
+    return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
+}
+
+/* The frame's files; EXRs with the header that says how they were made (exr_header.h). */
+static int write_outputs(const options *o, const frame_ring_pixels *px, int frame, bool sequence, const char **first_path)
+{
+    static char first[PATH_MAX];
+    char err[512];
+    for (int i = 0; i < o->output_count; ++i) {
+        char path[PATH_MAX];
+        if (!frame_path(o->outputs[i], frame, path, sizeof path)) return 1;   /* checked before */
+        if (i == 0) snprintf(first, sizeof first, "%s", path), *first_path = first;
+        int rc;
+        if (stop_requested()) return 1;   /* the graceful stop: no further output (one being written is dropped) */
+        if (is_exr(path)) {
+            exr_header h;
+            if (exr_header_build(&h, o, sequence ? frame : -1) != 0) {
+                fprintf(stderr, "vksky: %s: out of memory for the EXR header\n", path);
+                return 1;
+            }
+            io_exr_layer layer = {.name = "", .rgba_half = px->linear};
+            if (o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT) {
+                /* Photometric or --exr-type float: output units as floats (app/scene/light.h). */
+                bool store_float = false;
+                float *scaled = light_exr_pixels(o, px->linear, (size_t)o->width * (size_t)o->height,
+                                                 &store_float);
+                rc = scaled ? io_write_exr_rgba_f32(path, o->width, o->height, scaled, store_float, &h.meta, err, sizeof err)
+                            : (snprintf(err, sizeof err, "%s: out of memory for the EXR's pixels", path), 1);
+                free(scaled);
+            } else {
+                rc = io_write_exr_meta(path, o->width, o->height, &layer, 1, &h.meta, err, sizeof err);
+            }
+            exr_header_free(&h);
+        } else {
+            rc = io_write_png(path, o->width, o->height, px->display, 1, err, sizeof err);
+        }
+        if (rc != 0) {
+            if (!stop_requested()) fprintf(stderr, "vksky: %s\n", err);   /* else stop_status (app/runs/stop.h) says why */
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* A frame's progress line (not with --quiet). */
+static void frame_line(const options *base, int i, int done, const char *path, bool luts)
+{
+    if (base->quiet) return;
+    fprintf(stderr, "vksky: frame %d (%d of %d; %d/%d of this job): %s, LUTs %s\n", i, i + 1, frame_count(base), done,
+            base->frame_last - base->frame_first + 1, path, luts ? "computed" : "reused");
+}
+
+static void summary_line(const options *base, int done, int skipped, int lut_computations)
+{
+    if (base->quiet) return;
+    char skips[48] = "";   /* resumed: the frames kept count too */
+    if (base->skip_existing) snprintf(skips, sizeof skips, ", %d skipped (written before)", skipped);
+    fprintf(stderr, "vksky: %d frame%s rendered%s; LUTs computed %d time%s\n", done, done == 1 ? "" : "s", skips,
+            lut_computations, lut_computations == 1 ? "" : "s");
+}
+
+static int sequence_render_serial(const options *base, sky_renderer *r, sequence_render_fn render)
+{
+    bool sequence = sequence_active(base);
+    int count = frame_count(base), done = 0, skipped = 0, lut_computations = 0;
+    int range = base->frame_last - base->frame_first + 1;
+    for (int i = base->frame_first; i <= base->frame_last && !stop_requested(); ++i) {   /* stop: between frames */
+        options f;
+        if (sequence_frame_options(base, i, &f)) return 1;   /* parsed before (sequence_check): not expected */
+        /* --skip-existing: a frame this job wrote before (whole, by the atomic rename) is kept (sequence_resume.h). */
+        if (base->skip_existing && sequence_resume_skip(&f, i, count, done + skipped + 1, range)) {
+            ++skipped;
+            continue;
+        }
+        /* Same values: the renderer keeps its LUTs (their hash is unchanged) and its pipelines. */
+        render_scene scene;
+        render_scene_of(&f, &scene);
+        render_scene_set(r, &scene);
+        bool luts = sky_renderer_luts_dirty(r);
+        lut_computations += luts;
+        frame_desc desc = {.view = &f.view};
+        render(r, &desc);
+        if (light_auto_exposure_wanted(&f)) {
+            /* Auto exposure: the frame's log-average luminance sets the exposure of the same frame, rendered again
+             * (the LUTs are kept: only the sky pass, bloom and tone map run twice). */
+            double log_sum = 0.0, metered = 0.0;
+            light_log_sum(&f, &f.view, r->readback_linear.mapped, f.width, f.height, 0, f.height, &log_sum, &metered);
+            light_expose(&f.view, metered > 0.0 ? exp(log_sum / metered) : 1e-4);
+            render(r, &desc);
+        }
+        const char *path = "";
+        frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
+        if (write_outputs(&f, &px, i, sequence, &path) != 0) return 1;
+        ++done;
+        if (sequence) frame_line(base, i, done + skipped, path, luts);
+    }
+    if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
+    if (sequence) summary_line(base, done, skipped, lut_computations);
+    return 0;
+}
+
+/* The pipelined loop's job for a frame: what the consumer needs to write it. */
+typedef struct frame_job {
+    options f;
+    int frame;
+    bool luts;
+} frame_job;
+
+typedef struct consumer_state {
+    const options *base;
+    int done;      /* frames written by the consumer */
+    int skipped;   /* frames kept (--skip-existing): counted by the producer while the consumer is idle */
+} consumer_state;
+
+/* frame_ring_consume_fn: a frame's files and its line, on the ring's thread, in frame order. */
+static int consume_frame(void *user, const frame_ring_pixels *px, void *job)
+{
+    consumer_state *c = user;
+    const frame_job *j = job;
+    const char *path = "";
+    if (stop_requested() || write_outputs(&j->f, px, j->frame, true, &path) != 0) return 1;
+    ++c->done;
+    frame_line(c->base, j->frame, c->done + c->skipped, path, j->luts);
+    return 0;
+}
+
+/* The pipelined loop (frame_ring.h): frame N+1 renders while frame N is written. Same frames, same files, same
+ * order and lines as the serial loop. */
+static int sequence_render_ring(const options *base, sky_renderer *r, int slots, FILE *trace)
+{
+    consumer_state state = {.base = base};
+    frame_ring ring;
+    if (frame_ring_create(&ring, r, slots, consume_frame, &state, trace)) return 1;
+    int lut_computations = 0, status = 0;
+    render_scene last;
+    bool have_last = false;
+    for (int i = base->frame_first; i <= base->frame_last && !stop_requested() && status == 0; ++i) {
+        frame_job *j = calloc(1, sizeof *j);
+        if (!j || sequence_frame_options(base, i, &j->f)) {
+            free(j);
+            status = 1;
+            break;
+        }
+        /* --skip-existing: the progress lines stay in frame order and the counts settled, so the frames before this
+         * one are written (the consumer idle) before a kept frame's line is printed. Only where the files exist. */
+        if (base->skip_existing && sequence_resume_exists(&j->f, i)) {
+            status = frame_ring_settle(&ring);
+            if (status == 0 && sequence_resume_skip(&j->f, i, frame_count(base), state.done + state.skipped + 1,
+                                                    base->frame_last - base->frame_first + 1)) {
+                ++state.skipped;
+                free(j);
+                continue;
+            }
+            if (status) {
+                free(j);
+                break;
+            }
+        }
+        /* What the renderer is given; a change means a host write of the uniform block (ring.drain first). Compared
+         * bytewise (render_scene_of zeroes the padding: no needless drain). */
+        render_scene in;
+        render_scene_of(&j->f, &in);
+        if (!have_last || memcmp(&in, &last, sizeof in)) {
+            /* The uniform block (and maybe pipelines, LUTs) change: no frame in flight may still read them. */
+            if (have_last) frame_ring_drain(&ring);
+            render_scene_set(r, &in);
+            last = in, have_last = true;
+        }
+        j->frame = i;
+        j->luts = sky_renderer_luts_dirty(r);
+        lut_computations += j->luts;
+        /* The view lives in push constants, recorded into this frame's command buffer: j->f outlives the record. */
+        frame_desc desc = {.view = &j->f.view};
+        status = frame_ring_submit(&ring, &desc, j);
+    }
+    int consumed = frame_ring_finish(&ring);
+    if (status == 0) status = consumed;
+    if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
+    if (status == 0) summary_line(base, state.done, state.skipped, lut_computations);
+    return status;
+}
+
+int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render, int slots, FILE *trace)
+{
+    /* The ring pays off from two frames on; one frame (and the tests' VKSKY_FRAMES loop) keeps the serial path. */
+    /* Auto exposure (a photometric PNG) renders each frame twice, the second from the first's read-back pixels: that
+     * frame-to-frame dependency on the host keeps the serial loop. */
+    if (slots >= 2 && sequence_active(base) && base->frame_last > base->frame_first && !light_auto_exposure_wanted(base))
+        return sequence_render_ring(base, r, slots, trace);
+    return sequence_render_serial(base, r, render);
+}

@@ -1,0 +1,29 @@
+/* --spectral N on the GPU (issue 32 item 4): the renderer run once per group of three wavelengths, each group's
+ * wavelengths packed into the three colour channels of a model_atmosphere (the CPU reference's packing,
+ * reference/spectral.h: same bins, same medium per wavelength, same CIE weights), and the groups' scene-linear images
+ * summed through the bins' exact XYZ weights into linear Rec.709 (docs/spectral.md, "The GPU's --spectral N"). */
+#ifndef VKSKY_APP_SPECTRAL_RENDER_H
+#define VKSKY_APP_SPECTRAL_RENDER_H
+#include "app/cli/options_struct.h"
+#include "app/runs/sequence.h"
+
+#define SPECTRAL_GPU_MAX 48   /* 16 groups: the largest count the GPU path accepts */
+
+/* Bad combinations of --spectral with the GPU's outputs (PNG, the window, environment maps and bands): one line on
+ * stderr naming `flag` (the flag that asked for the wavelengths) and 2; else 0. Call before any GPU work. */
+int spectral_render_check(const options *o, const char *flag);
+
+/* Arm the frame function for o's wavelengths and medium; inner renders (and reads back) one frame. */
+void spectral_render_begin(const options *o, sequence_render_fn inner);
+
+/* A sequence_render_fn: the frame rendered once per wavelength group and combined into r->readback_linear (the
+ * display readback is left as the last group's: the GPU path writes EXR only). The renderer is left holding the
+ * last group's atmosphere; sequence_render sets the frame's own before the next frame. */
+void spectral_render_frame(sky_renderer *r, const frame_desc *f);
+
+/* --max-color-error: the fewest wavelengths (0: RGB) whose measured worst CIEDE2000 against the 48-wavelength spectral
+ * reference is <= max_de on every scene class of the set (quality.h's classes; the table in spectral_render.c, from
+ * tools/color_error's 57 rows). -1 if none is; *measured gets the pick's worst (or the best setting's worst). */
+int spectral_pick(double max_de, unsigned classes, double *measured);
+
+#endif

@@ -1,0 +1,117 @@
+/* The pipeline cache's directory and the --timings report (see app/runs/startup.h). */
+#include "app/runs/startup.h"
+#include "gpu/pipeline_cache.h"
+#include "io/atomic_file.h"
+#include "sky/shaders.h"
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+/* One run's figures: milliseconds of wall time, -1 where not measured. */
+static struct {
+    double process_start;
+    double instance, device, cache_open, cache_close, pipelines;
+    int variant_builds;
+    bool cache_used, instance_reused;
+    double frame_begin, frame_end, frame, gpu_luts, gpu_readback, gpu_total;
+    bool gpu_timed, frame_done, outputs_done;
+    double outputs, commit_before, write;
+} t = {.gpu_luts = -1, .gpu_readback = -1};
+
+void startup_begin(void) { t.process_start = now_ms(); }
+
+void startup_open_cache(gpu_context *ctx, const options *o)
+{
+    t.instance = ctx->instance_ms, t.device = ctx->device_ms, t.instance_reused = ctx->instance_reused;
+    double start = now_ms();
+    char dir[PATH_MAX];
+    const char *xdg = getenv("XDG_CACHE_HOME"), *home = getenv("HOME");
+    /* XDG: a relative $XDG_CACHE_HOME is invalid and ignored. */
+    int n = -1;
+    if (xdg && xdg[0] == '/') n = snprintf(dir, sizeof dir, "%s/vksky", xdg);
+    else if (home && home[0]) n = snprintf(dir, sizeof dir, "%s/.cache/vksky", home);
+    t.cache_used = !o->no_cache && n > 0 && n < (int)sizeof dir;
+    gpu_pipeline_cache_open(ctx, t.cache_used ? dir : NULL, sky_shaders_key());
+    t.cache_open = now_ms() - start;
+}
+
+void startup_close_cache(gpu_context *ctx)
+{
+    double start = now_ms();
+    gpu_pipeline_cache_close(ctx);
+    t.cache_close = now_ms() - start;
+}
+
+void startup_frame_begin(void)
+{
+    if (t.frame_done) return;
+    t.frame_begin = now_ms();
+}
+
+void startup_frame_end(sky_renderer *r)
+{
+    if (t.frame_done) return;
+    t.frame_end = now_ms();
+    t.frame = t.frame_end - t.frame_begin;
+    t.pipelines = r->pipelines_ms, t.variant_builds = r->variant_builds;
+    t.commit_before = io_atomic_commit_ms();
+    double ms[GPU_TIMER_MAX];
+    uint32_t n = r->timer.enabled ? gpu_timer_read(r->ctx, &r->timer, ms) : 0;
+    t.gpu_timed = n > 0;
+    if (t.gpu_timed) t.gpu_luts = t.gpu_readback = 0;
+    for (uint32_t k = 0; k < n; ++k) {
+        const char *name = r->timer.names[k];
+        size_t len = strlen(name);
+        if (len > 4 && !strcmp(name + len - 4, "_lut")) t.gpu_luts += ms[k];
+        if (!strcmp(name, "readback")) t.gpu_readback += ms[k];
+        t.gpu_total += ms[k];
+    }
+    t.frame_done = true;
+}
+
+void startup_outputs_done(void)
+{
+    if (!t.frame_done || t.outputs_done) return;
+    double now = now_ms();
+    t.write = io_atomic_commit_ms() - t.commit_before;
+    t.outputs = now - t.frame_end;
+    t.outputs_done = true;
+}
+
+void startup_report(FILE *out)
+{
+    if (!t.frame_done) {
+        fprintf(out, "vksky: timings (wall ms): instance %.1f, device %.1f; no first image broken down (banded renders "
+                     "and --bench are not)\n", t.instance, t.device);
+        return;
+    }
+    startup_outputs_done();
+    double total = now_ms() - t.process_start;
+    double before = t.frame_begin - t.process_start - t.instance - t.device - t.cache_open - t.pipelines;
+    fprintf(out, "vksky: timings of the first image (wall ms):\n");
+    fprintf(out, "  instance   %8.1f%s\n", t.instance, t.instance_reused ? "  (the device probe's, reused)" : "");
+    fprintf(out, "  device     %8.1f\n", t.device);
+    fprintf(out, "  cache      %8.1f  (pipeline cache %s: read; %.1f ms saving it at the end)\n", t.cache_open,
+            t.cache_used ? "on disk" : "off", t.cache_close);
+    fprintf(out, "  pipelines  %8.1f  (with the renderer's resources; variant built %d time%s)\n", t.pipelines,
+            t.variant_builds, t.variant_builds == 1 ? "" : "s");
+    if (t.gpu_timed)
+        fprintf(out, "  LUTs       %8.2f  (GPU timestamps, inside the frame)\n", t.gpu_luts);
+    else
+        fprintf(out, "  LUTs            -    (no GPU timestamps on this device)\n");
+    fprintf(out, "  frame      %8.1f  (submit to fence: LUTs, passes and readback copy; GPU passes %.2f)\n", t.frame,
+            t.gpu_total);
+    if (t.gpu_timed) fprintf(out, "  readback   %8.2f  (GPU copy to host memory, inside the frame)\n", t.gpu_readback);
+    fprintf(out, "  encode     %8.1f  (pixels to file bytes)\n", t.outputs - t.write);
+    fprintf(out, "  write      %8.1f  (fsync, close, rename)\n", t.write);
+    fprintf(out, "  other      %8.1f  (options, scene, device probe, before the first frame)\n", before);
+    fprintf(out, "  total      %8.1f  (process start to exit)\n", total);
+}

@@ -1,0 +1,26 @@
+/* What a run's start costs and what it keeps between runs (issue 27): the pipeline cache's directory and the
+ * --timings report of where the first image's time went. */
+#ifndef VKSKY_APP_STARTUP_H
+#define VKSKY_APP_STARTUP_H
+#include "app/cli/options_struct.h"
+#include "gpu/context.h"
+
+/* The moment the process began its work (main's first line): the report's total counts from here. */
+void startup_begin(void);
+
+/* The pipeline cache for ctx: $XDG_CACHE_HOME/vksky or ~/.cache/vksky, none with --no-cache (or without either
+ * variable). Pair with startup_close_cache before the context goes. */
+void startup_open_cache(gpu_context *ctx, const options *o);
+void startup_close_cache(gpu_context *ctx);
+
+/* The first image, as the headless driver renders it: call around its frame (the renderer's GPU timer read after),
+ * then once its files are written (before the next frame, or at the end). Later frames are not measured. */
+void startup_frame_begin(void);
+void startup_frame_end(sky_renderer *r);
+void startup_outputs_done(void);
+
+/* --timings: the breakdown on `out` (instance, device, pipelines, LUTs, frame, readback, encode, write), if a
+ * first image was rendered (else the context's two figures); after startup_close_cache (the cache's save is part
+ * of the run's cost). */
+void startup_report(FILE *out);
+#endif

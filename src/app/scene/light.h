@@ -1,0 +1,72 @@
+/* Physical light (issue 32): what a pixel means. In photometric units (the default) the sun is the solar spectrum
+ * at the top of the atmosphere (model/spectrum.h: linear Rec.709 whose Y is its illuminance in lux, 1.33e5 lx) and a
+ * pixel is linear Rec.709 whose Y is luminance in cd/m2; exposure is EV100. In relative units (--units relative)
+ * everything is the lesson's: the sun 20,20,20, exposure in stops. docs/units.md explains both.
+ *
+ * The sun as given (--sun-illuminance, the scene's sun.illuminance / sun.lux / sun.spectrum_scale) is kept in the
+ * lesson's scale, where 20,20,20 is the real sun: photometric units read it as that fraction of the solar spectrum,
+ * channel by channel, so that old scene files keep their meaning (twice the sun stays twice the sun).
+ *
+ * The GPU's HDR images are half floats (largest value 65504): photometric frames are rendered at light_scale cd/m2
+ * (a power of two, exact both ways) chosen so that the disc, the brightest thing in the sky, fits; the EXR writers
+ * divide it out. */
+#ifndef VKSKY_APP_LIGHT_H
+#define VKSKY_APP_LIGHT_H
+#include "app/cli/options_struct.h"
+#include "io/exr_sky_attrs.h"
+#include <stddef.h>
+#include <stdint.h>
+
+#define LIGHT_RELATIVE_SUN 20.0   /* the lesson's sun, which photometric units read as the real one */
+
+/* The sun at the top of the atmosphere in the output's units: lux-weighted Rec.709 (photometric) or as given. */
+void light_sun(const options *o, double out[3]);
+/* The sun's illuminance at the camera (through the atmosphere; 0 when the planet hides it), output units. */
+void light_sun_at_camera(const options *o, double out[3]);
+/* The HDR image's units per output unit: 1 (relative) or a power of two (photometric). */
+double light_scale(const options *o);
+/* The medium the GPU renders: the sun in the HDR image's units. */
+void light_render_atmosphere(const options *o, model_atmosphere *out);
+/* Sets what the renderer needs of the units (the view's exposure law and scale). Call once the options are final. */
+void light_finish(options *o);
+/* --sun-lux / the scene's sun.lux: the sun whose illuminance at the top of the atmosphere is `lux`: the solar
+ * spectrum scaled (in relative units the lesson's white sun, 20 for the real sun's 1.33e5 lx). */
+void light_set_sun_lux(options *o, double lux);
+
+/* Output pixels of an EXR: the renderer's RGBA half pixels in output units (divided by light_scale), as floats
+ * (malloc'd, NULL: out of memory); *store_float: whether the file stores FLOAT (--exr-type, or auto: any value over
+ * half's range). */
+float *light_exr_pixels(const options *o, const uint16_t *rgba_half, size_t pixels, bool *store_float);
+/* Whether an environment map (streamed before its pixels exist) is stored FLOAT: --exr-type, or auto: photometric
+ * with the disc drawn and the sun above the camera's horizon. */
+bool light_stream_float(const options *o);
+/* The EXR attributes that name units: "vksky:units", the sun's ("lx" or "relative"), whiteLuminance. */
+const char *light_units_text(const options *o);
+const char *light_sun_units_text(const options *o);
+/* The sun and unit attributes of every EXR (io/exr_sky_attrs.h): direction, illuminance at the top of the atmosphere
+ * and at the camera in output units, the units' names, whiteLuminance (photometric: 1). envmap/projection untouched. */
+void light_sky_attrs(const options *o, io_exr_sky_attrs *a);
+
+/* A meter for the window (no pixels come back from the GPU there): the CPU reference's sky luminance (output units,
+ * cd/m2 in photometric units; the disc left out) along the view ray of continuous pixel (x, y) of a width x height
+ * view, at a quality fit for an interactive meter (~1e-3 of the converged reference, a few ms); and the log-average
+ * over a 16 x 9 grid of the view's rays (sky rays only with a black ground, as light_log_sum). */
+double light_meter_pixel(const options *o, const sky_view *v, int width, int height, double x, double y);
+double light_meter_log_average(const options *o, const sky_view *v, int width, int height);
+
+/* Auto exposure: the log-average (geometric mean) luminance of a frame, cd/m2 (pixels in HDR units, light_scale
+ * divided out; luminance floored at 1e-4 cd/m2 so a black pixel does not drag the mean to zero), and the EV100
+ * that exposes it at the reflected-light meter's key: EV100 = log2(L_avg S / K), S = 100, K = 12.5.
+ * light_log_sum adds a frame's (or a band's) pixels as a sum of logs and a count, to combine bands: rows y0 ..
+ * y0+rows-1 of a width x height image of view v. With a black ground (albedo 0, the default) only pixels whose ray
+ * misses the planet count: the void below the horizon is no part of the scene a meter would read. */
+void light_log_sum(const options *o, const sky_view *v, const uint16_t *rgba_half, int width, int height, int y0,
+                   int rows, double *log_sum, double *count);
+double light_auto_ev100(double log_average_cd_m2);
+/* Whether a headless frame is exposed automatically: --auto-exposure, or photometric units without a given exposure,
+ * and a PNG among the outputs (an EXR's pixels do not depend on the exposure). */
+bool light_auto_exposure_wanted(const options *o);
+/* The view's exposure from a log-average luminance in the HDR image's units per light_scale (EV100, or in relative
+ * units the stops that give the same multiplier 1 / (1.2 2^EV100)). */
+void light_expose(sky_view *v, double log_average);
+#endif
