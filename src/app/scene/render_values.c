@@ -89,9 +89,9 @@ int values_quality_preset(const char *name, render_quality *out)
     return 0;
 }
 
-int values_quality_pick(double max_error, unsigned classes, render_quality *out, double *measured)
+int values_quality_pick(double max_error, unsigned classes, bool cpu_device, render_quality *out, double *measured)
 {
-    const quality_config *c = quality_pick(max_error, classes, measured);
+    const quality_config *c = quality_pick(max_error, classes, cpu_device, measured);
     if (!c) return 2;
     from_config(c, out);
     return 0;

@@ -71,8 +71,8 @@ int values_load_scene(const char *path_or_name, scene_value *scene, camera_value
                       job_value *job);
 /* A preset by name (low, medium, high, ultra, lesson, cpu). 0 ok; 2 unknown (nothing printed). */
 int values_quality_preset(const char *name, render_quality *out);
-/* --max-error's pick for a set of scene classes (app/quality/quality.h). 0 ok (*measured: its error); 2 none reaches it. */
-int values_quality_pick(double max_error, unsigned classes, render_quality *out, double *measured);
+/* --max-error's pick for a set of scene classes from the table of a CPU or a GPU device (app/quality/quality.h). 0 ok (*measured: its error); 2 none reaches it. */
+int values_quality_pick(double max_error, unsigned classes, bool cpu_device, render_quality *out, double *measured);
 /* A quality's march settings onto a view. */
 void render_quality_to_view(const render_quality *q, sky_view *v);
 
