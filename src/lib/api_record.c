@@ -105,6 +105,23 @@ static gpu_usage_info image_use(vksky_image_use u)
     return (gpu_usage_info){.name = "host", .stage = u.stage, .access = u.access, .layout = u.layout};
 }
 
+/* frame_record under the trap: an internal failure below (gpu_fail) returns an error instead of ending the host's
+ * process; the command buffer is then half-recorded, and the host resets it. No allocation: a setjmp. */
+static vksky_result record_trapped(vksky_renderer *renderer, VkCommandBuffer cmd, const frame_desc *f, bool luts_only)
+{
+    gpu_trap trap;
+    if (setjmp(trap.jump)) {
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: %s (the command buffer is incomplete: reset it)", trap.message);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
+    if (luts_only) frame_record_luts_only(&renderer->r, cmd, f);
+    else frame_record(&renderer->r, cmd, f);
+    gpu_trap_arm(NULL);
+    return VKSKY_SUCCESS;
+}
+
 vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
 {
     if (!renderer || !cmd || !frame) return VKSKY_ERROR_INVALID_ARGUMENT;
@@ -118,8 +135,7 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
         frame_desc f = {.view = &v, .force_luts = frame->force_luts};
-        frame_record_luts_only(&renderer->r, cmd, &f);
-        return VKSKY_SUCCESS;
+        return record_trapped(renderer, cmd, &f, true);
     }
     const vksky_image *img = &frame->color;
     if (!frame->camera || !img->image || !img->view) {
@@ -145,8 +161,7 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
     frame_target target = {.image = img->image, .view = img->view, .extent = img->extent, .host_uses = true,
                            .host_before = image_use(img->before), .host_after = image_use(img->after)};
     frame_desc f = {.view = &v, .force_luts = frame->force_luts, .target = &target};
-    frame_record(&renderer->r, cmd, &f);
-    return VKSKY_SUCCESS;
+    return record_trapped(renderer, cmd, &f, false);
 }
 
 vksky_result vksky_get_luts(const vksky_renderer *renderer, vksky_luts *out)
