@@ -152,7 +152,32 @@ static vksky_result record_scene_linear(vksky_renderer *renderer, VkCommandBuffe
     if (depth) z = (host_image){depth->image, depth->view, depth->format, depth->extent, image_use(depth->before),
                                 image_use(depth->after)};
     host_frame_desc f = {.color = &color, .depth = depth ? &z : NULL, .push = &push, .force_luts = frame->force_luts};
+    gpu_trap trap;   /* as record_trapped: an internal failure returns an error, the host resets the command buffer */
+    if (setjmp(trap.jump)) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: %s (the command buffer is incomplete: reset it)", trap.message);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
     host_frame_record(&renderer->r, &renderer->hf, cmd, &f);
+    gpu_trap_arm(NULL);
+    return VKSKY_SUCCESS;
+}
+
+/* frame_record under the trap: an internal failure below (gpu_fail) returns an error instead of ending the host's
+ * process; the command buffer is then half-recorded, and the host resets it. No allocation: a setjmp. */
+static vksky_result record_trapped(vksky_renderer *renderer, VkCommandBuffer cmd, const frame_desc *f, bool luts_only)
+{
+    gpu_trap trap;
+    if (setjmp(trap.jump)) {
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: %s (the command buffer is incomplete: reset it)", trap.message);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
+    if (luts_only) frame_record_luts_only(&renderer->r, cmd, f);
+    else frame_record(&renderer->r, cmd, f);
+    gpu_trap_arm(NULL);
     return VKSKY_SUCCESS;
 }
 
@@ -169,8 +194,7 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
         frame_desc f = {.view = &v, .force_luts = frame->force_luts};
-        frame_record_luts_only(&renderer->r, cmd, &f);
-        return VKSKY_SUCCESS;
+        return record_trapped(renderer, cmd, &f, true);
     }
     if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) return record_scene_linear(renderer, cmd, frame);
     const vksky_image *img = &frame->color;
@@ -197,8 +221,7 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
     frame_target target = {.image = img->image, .view = img->view, .extent = img->extent, .host_uses = true,
                            .host_before = image_use(img->before), .host_after = image_use(img->after)};
     frame_desc f = {.view = &v, .force_luts = frame->force_luts, .target = &target};
-    frame_record(&renderer->r, cmd, &f);
-    return VKSKY_SUCCESS;
+    return record_trapped(renderer, cmd, &f, false);
 }
 
 vksky_result vksky_get_luts(const vksky_renderer *renderer, vksky_luts *out)

@@ -46,10 +46,11 @@ int main(int argc, char **argv)
     host h;
     host_from_context(&h, c);
     host_create_target(&h, w, hgt, VK_FORMAT_R8G8B8A8_SRGB);
-    VkPhysicalDeviceProperties p;
-    vkGetPhysicalDeviceProperties(h.physical, &p);
-    printf("device: %s (driver %u.%u.%u), %ux%u, quality %s\n", p.deviceName, VK_API_VERSION_MAJOR(p.driverVersion),
-           VK_API_VERSION_MINOR(p.driverVersion), VK_API_VERSION_PATCH(p.driverVersion), w, hgt, quality);
+    VkPhysicalDeviceDriverProperties driver = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceProperties2 p = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, .pNext = &driver};
+    vkGetPhysicalDeviceProperties2(h.physical, &p);
+    printf("device: %s (%s %s), %ux%u, quality %s\n", p.properties.deviceName, driver.driverName, driver.driverInfo, w,
+           hgt, quality);
     vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION, .output = VKSKY_OUTPUT_DISPLAY, .width = w,
                              .height = hgt, .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = quality,
                              .bloom = true};

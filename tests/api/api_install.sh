@@ -33,6 +33,11 @@ ldd "$work/c_static" 2>/dev/null | grep -q libvksky && fail "the static consumer
 cmake -S "$SRC" -B "$work/cm" -DCMAKE_PREFIX_PATH="$P" >"$work/cm.log" 2>&1 && cmake --build "$work/cm" >>"$work/cm.log" 2>&1 \
     || { cat "$work/cm.log" >&2; fail "build with find_package(vksky)"; }
 [ "$("$work/cm/consumer")" = "vksky $version abi 1" ] || fail "find_package consumer printed '$("$work/cm/consumer")'"
+# A shipped scene by name, found beside the installed library (not the source tree): its installed copy is marked
+# with another ground radius, which the consumer must print, from another directory.
+sed -i 's/"ground_radius_km": [0-9.]*/"ground_radius_km": 1234.5/' "$P/share/vksky/scenes/mars.json"
+radius=$(cd "$work" && "$work/c_pc" mars)
+[ "$radius" = 1234500 ] || fail "vksky_scene_load(\"mars\") through the installed library read ground radius '$radius' m, not the installed copy's"
 # A host's shader through the installed GLSL include (its LUT mappings: vksky's own shader files, installed).
 glslangValidator --quiet -V --target-env vulkan1.3 -I"$P/include" -o "$work/luts_host.spv" "$SRC/luts_host.comp" \
     >"$work/glsl.log" 2>&1 || { cat "$work/glsl.log" >&2; fail "luts_host.comp does not compile against include/vksky_luts.glsl"; }

@@ -1,5 +1,11 @@
-/* Shipped scene lookup (scene_find.h). The directories, in order: VKSKY_SCENE_DIR_FROM_BIN relative to the
- * directory of /proc/self/exe (the install tree), then VKSKY_SOURCE_SCENE_DIR (the source tree at build time). */
+/* Shipped scene lookup (scene_find.h). The directories, in order: in libvksky, VKSKY_SCENE_DIR_FROM_LIB relative to
+ * the directory of the shared library itself (an installed library serves a host program anywhere); then
+ * VKSKY_SCENE_DIR_FROM_BIN relative to the directory of /proc/self/exe (the install tree), then
+ * VKSKY_SOURCE_SCENE_DIR (the source tree at build time). */
+#ifdef VKSKY_SCENE_DIR_FROM_LIB
+#define _GNU_SOURCE   /* dladdr: where the library itself was loaded from */
+#include <dlfcn.h>
+#endif
 #include "app/scene/scene_find.h"
 #include <cjson/cJSON.h>
 #include <dirent.h>
@@ -16,7 +22,7 @@
 #ifndef VKSKY_SOURCE_SCENE_DIR
 #define VKSKY_SOURCE_SCENE_DIR "scenes"
 #endif
-#define MAX_DIRS 2
+#define MAX_DIRS 3
 #define MAX_SCENES 64
 #define DESCRIPTION_COLUMNS 76   /* name column + this fit in 100 columns */
 
@@ -30,6 +36,16 @@ static bool is_dir(const char *path)
 static int scene_dirs(char dirs[MAX_DIRS][PATH_MAX])
 {
     int n = 0;
+#ifdef VKSKY_SCENE_DIR_FROM_LIB
+    /* The file this function was loaded from: libvksky.so (a static library's host gets its own program). */
+    Dl_info info;
+    if (dladdr((void *)scene_dirs, &info) && info.dli_fname && strrchr(info.dli_fname, '/')) {
+        const char *slash = strrchr(info.dli_fname, '/');
+        if (snprintf(dirs[n], PATH_MAX, "%.*s/%s", (int)(slash - info.dli_fname), info.dli_fname,
+                     VKSKY_SCENE_DIR_FROM_LIB) < PATH_MAX && is_dir(dirs[n]))
+            ++n;
+    }
+#endif
     char exe[PATH_MAX];
     ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
     if (len > 0) {
