@@ -4,8 +4,10 @@
  * the hazard it prevents (RAW read-after-write, WAR write-after-read, WAW, layout transition). Passes record
  * their own draws/dispatches (luts.c, sky_pass.c, bloom.c, tonemap.c); barriers live only in the frame functions,
  * one per kind of frame, each read top to bottom: frame_record (a view: headless, bands, sequences, the window,
- * readback and capture included), frame_record_lut_readback (a LUT to the host, tests) here, and
- * composite_frame_record (the composite's frame, composite.c). Nothing else in src/ records a barrier. */
+ * readback, capture and a library host's colour image included), frame_record_lut_readback (a LUT to the host,
+ * tests) and frame_record_luts_only (the library's LUT-only frame) here, composite_frame_record (the composite's
+ * frame, composite.c) and host_frame_record (the library's SCENE_LINEAR frame, host_frame.c). Nothing else in src/
+ * records a barrier. */
 #include "sky/frame.h"
 #include "sky/view_params.h"
 
