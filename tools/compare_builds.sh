@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# tools/compare_builds.sh OLD_VKSKY NEW_VKSKY: render the same list of frames with two builds and compare the files
-# byte for byte. A change that must not change behaviour (a refactor, a file split) passes only if every output is
+# tools/compare_builds.sh OLD_VKSKY NEW_VKSKY: render the same list of frames with two builds and compare the files:
+# EXRs by their pixels, bit for bit (OpenImageIO: their headers record the output path and the command line, which
+# differ between two runs), everything else byte for byte. A change that must not change behaviour (a refactor, a file split) passes only if every output is
 # identical: the default frame, each quality preset, each shipped scene, the window's screenshot (under Xvfb, when
 # xvfb-run is present), the CPU reference and the path tracer (images and printed values), and the traces.
 #
@@ -9,8 +10,7 @@
 #
 # NEW_ARGS="--units relative" tools/compare_builds.sh OLD NEW: the new build runs every case with these flags added (a
 # mode that must reproduce the old build's outputs, issue 32). Its EXR headers then differ where they record the
-# command line (and name their units), so EXRs are compared by their pixels, bit for bit (OpenImageIO), and every
-# other output byte for byte as before.
+# command line (and name their units); the comparison is the same.
 #
 # Exit 0: all identical; 1: some output differs (listed); 2: usage.
 set -u
@@ -91,7 +91,7 @@ for f in "$work"/old/* ; do
   g=$work/new/$b
   case $b in
     *.stdout|*.stderr) cmp -s <(grep -v -E 'time|seconds| s$|ms' "$f") <(grep -v -E 'time|seconds| s$|ms' "$g") ;;
-    *.exr) if [ -n "$NEW_ARGS" ]; then same_pixels "$f" "$g"; else cmp -s "$f" "$g"; fi ;;
+    *.exr) same_pixels "$f" "$g" ;;
     *) cmp -s "$f" "$g" ;;
   esac || { echo "DIFFERS: $b"; fail=1; }
 done
