@@ -1,4 +1,5 @@
 #include "gpu/barrier.h"
+#include "gpu/fail.h"   /* an overflowing batch is a bug, reported as every failure below the API is */
 #include <stdlib.h>
 #include <string.h>
 
@@ -320,8 +321,9 @@ void gpu_barrier_add_image(gpu_barrier_batch *b, const char *name, const char *r
                barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, hazard, drop, weakened);
     if (drop) return;
     if (b->image_count == GPU_BATCH_MAX) {
-        fprintf(stderr, "vksky: internal error: barrier batch '%s' is full\n", b->point);
-        exit(1);
+        char text[160];   /* a bug of ours: the CLI prints it and exits 1; the library returns an error */
+        snprintf(text, sizeof text, "internal error: barrier batch '%s' is full", b->point);
+        gpu_fail(VK_ERROR_UNKNOWN, text);
     }
     b->images[b->image_count++] = barrier;
 }
@@ -352,8 +354,9 @@ void gpu_barrier_add_buffer(gpu_barrier_batch *b, const char *name, const char *
                weakened);
     if (drop) return;
     if (b->buffer_count == COUNT(b->buffers)) {
-        fprintf(stderr, "vksky: internal error: barrier batch '%s' has too many buffers\n", b->point);
-        exit(1);
+        char text[160];   /* a bug of ours: the CLI prints it and exits 1; the library returns an error */
+        snprintf(text, sizeof text, "internal error: barrier batch '%s' has too many buffers", b->point);
+        gpu_fail(VK_ERROR_UNKNOWN, text);
     }
     b->buffers[b->buffer_count++] = barrier;
 }
@@ -379,8 +382,9 @@ void gpu_barrier_add_memory(gpu_barrier_batch *b, const char *name, const char *
                weakened);
     if (drop) return;
     if (b->memory_count == COUNT(b->memory)) {
-        fprintf(stderr, "vksky: internal error: barrier batch '%s' has too many global barriers\n", b->point);
-        exit(1);
+        char text[160];   /* a bug of ours: the CLI prints it and exits 1; the library returns an error */
+        snprintf(text, sizeof text, "internal error: barrier batch '%s' has too many global barriers", b->point);
+        gpu_fail(VK_ERROR_UNKNOWN, text);
     }
     b->memory[b->memory_count++] = barrier;
 }

@@ -2,19 +2,10 @@
  * Knows nothing of skies. */
 #ifndef VKSKY_GPU_CONTEXT_H
 #define VKSKY_GPU_CONTEXT_H
+#include "gpu/fail.h"
 #include <volk.h>
-#include <setjmp.h>
 #include <stdbool.h>
 #include <stdio.h>
-
-/* Always-on check: prints file:line, the call and the VkResult name, then exits with status 1 (a runtime
- * failure, not a user error); with a gpu_trap armed on the thread (the library's calls), jumps back to it instead.
- * Swapchain results are handled where they occur, never through this. */
-#define VK_CHECK(call)                                                                                      \
-    do {                                                                                                    \
-        VkResult vk_check_result_ = (call);                                                                 \
-        if (vk_check_result_ != VK_SUCCESS) gpu_fail_vk(__FILE__, __LINE__, #call, vk_check_result_);       \
-    } while (0)
 
 typedef struct gpu_context_desc {
     bool validation;              /* Khronos validation layer + synchronization validation */
@@ -23,17 +14,6 @@ typedef struct gpu_context_desc {
     unsigned instance_extension_count;
     bool want_swapchain;
 } gpu_context_desc;
-
-/* Where a failing Vulkan call goes instead of exit(1): the library arms one around each API call that creates
- * (src/lib), gpu_fail_vk records the failure and jumps back, and the API destroys what was made and returns a result
- * code. Everything the failed call made is reachable from the object being created (handles are written into it
- * as they are made), so nothing leaks. */
-typedef struct gpu_trap {
-    jmp_buf jump;
-    VkResult result;
-    char message[256];        /* "vkCreateImage failed: VK_ERROR_OUT_OF_DEVICE_MEMORY (src/gpu/resources.c:40)" */
-} gpu_trap;
-void gpu_trap_arm(gpu_trap *trap);   /* NULL disarms */
 
 /* A message from src/gpu or src/sky (a context's problem, a validation message): severity 0 info, 1 warning, 2 error,
  * 3 validation. Without one, messages go to stderr as "vksky: TEXT" (the CLI). */
@@ -118,8 +98,4 @@ void gpu_label_end(const gpu_context *ctx, VkCommandBuffer cmd);
 VkCommandBuffer gpu_begin_commands(const gpu_context *ctx);
 void gpu_submit_and_wait(const gpu_context *ctx, VkCommandBuffer cmd);
 
-const char *gpu_result_name(VkResult r);
-_Noreturn void gpu_fail_vk(const char *file, int line, const char *call, VkResult r);
-/* A failure that is no Vulkan call's (no memory type fits): as gpu_fail_vk, with its own text. */
-_Noreturn void gpu_fail(VkResult r, const char *text);
 #endif
