@@ -24,8 +24,10 @@ cd "$work" || exit 1
 
 # 1. The quality choice. Noon: frame 2 of 50:70 over 5 frames is exactly 60.
 NOON=(--width 48 --height 32 --pitch 30)
-VKSKY_QUALITY_TABLE=cpu "$VKSKY" "${NOON[@]}" --sun-elevation 60 --render x.exr --dump-scene >single_cpu.json
-VKSKY_QUALITY_TABLE=gpu "$VKSKY" "${NOON[@]}" --sun-elevation 60 --render x.exr --dump-scene >single_gpu.json
+VKSKY_QUALITY_TABLE=cpu "$VKSKY" "${NOON[@]}" --sun-elevation 60 --render x.exr --dump-scene >single_cpu.json ||
+    fail "--dump-scene with the CPU table: exit $?"
+VKSKY_QUALITY_TABLE=gpu "$VKSKY" "${NOON[@]}" --sun-elevation 60 --render x.exr --dump-scene >single_gpu.json ||
+    fail "--dump-scene with the GPU table: exit $?"
 cmp -s single_cpu.json single_gpu.json && fail "the CPU and GPU tables choose the same configuration for noon: the next check cannot fail"
 for table in cpu gpu own; do
     mkdir "$table"

@@ -104,7 +104,7 @@ static void check_sets(const quality_measurement *table, int count, bool cpu_dev
 }
 
 /* Issue 31: a table measured with other shaders or knobs than this build's fails, unless its rows are marked as
- * estimates (then the note is printed here, and --max-error prints it on stderr). */
+ * estimates (then the note is printed here, and --max-error prints it beside its pick). */
 static void check_key(bool cpu_device, const char *device, bool marked_estimate)
 {
     char key[96];

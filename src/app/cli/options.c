@@ -440,10 +440,11 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);
-    /* Issue 31: a promise from a table measured with other shaders or knobs is an estimate, and says so. */
+    /* Issue 31: a promise from a table measured with other shaders or knobs is an estimate, and says so, beside the
+     * pick (the same stream: a run that parses cleanly keeps stderr empty, docs/robustness.md). */
     const char *estimate = picked && !quality_classes ? quality_table_estimate(picked_cpu) : NULL;
     if (estimate)
-        fprintf(stderr, "vksky: note: --max-error: the %s table's rows are estimates (%s)\n",
+        fprintf(o->dump_scene ? stderr : stdout, "vksky: note: --max-error: the %s table's rows are estimates (%s)\n",
                 picked_cpu ? "CPU device" : "GPU", estimate);
     return 0;
 }
