@@ -25,8 +25,8 @@ if [ -n "$missing" ]; then
 fi
 # Every ctest the index names exists (a row cannot point at a test that is gone).
 for t in $(grep -oE 'ctest `[a-z_0-9]+`(, `[a-z_0-9]+`)*' "$index" | grep -oE '`[a-z_0-9]+`' | tr -d '`' | sort -u); do
-    grep -qE "NAME $t( |\))|foreach\(t .*\b$t\b" "$root/tests/CMakeLists.txt" ||
-        { echo "FAIL: docs/claims.md names ctest '$t', which tests/CMakeLists.txt does not define"; fails=$((fails + 1)); }
+    cat "$root/tests/CMakeLists.txt" "$root"/tests/*/CMakeLists.txt 2>/dev/null | grep -qE "NAME $t( |\))|foreach\(t .*\b$t\b" ||
+        { echo "FAIL: docs/claims.md names ctest '$t', which tests/CMakeLists.txt (or a folder's) does not define"; fails=$((fails + 1)); }
 done
 # The README's "Presets on the new model" table quotes src/app/quality/quality_table.h (the GPU table): each cell must be its
 # row's mean error, as a percentage to two decimals (columns: noon, sunset +2, sun 0, twilight -2, -4, the limb).
