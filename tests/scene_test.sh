@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scene files (--scene, --dump-scene; src/app/scene*.c, scenes/README.md):
+# Scene files (--scene, --dump-scene; src/app/scene/scene*.c, scenes/README.md):
 #  1. every shipped scene (scenes/*.json) renders validation-clean (--validate: any validation message exits 1),
 #     writes its file and prints nothing on stderr; its --dump-scene loads back to the same dump, and the dump
 #     renders the very same image; earth-clear.json is the defaults;

@@ -26,7 +26,7 @@ vec3 hdr_side_value(vec4 a_sum, float a_weight, vec4 b, float target)
 /* Straight-line code, a fixed seven fetches near the horizon: lavapipe runs a branch's body for every pixel whether
  * or not any takes it, so every fetch and loop here costs the whole frame there. */
 /* The rows the taps may read: the image's own, or in a tiled render (one band with a row of its neighbours above and
- * below: app/tiles.c) those inside the whole image, so a band's edge pixels see what they see in one whole image.
+ * below: app/runs/tiles.c) those inside the whole image, so a band's edge pixels see what they see in one whole image.
  * dither: TonemapPush's (yz the frame's offset in the whole image, w the whole height or 0). Render scale 1 there. */
 ivec2 hdr_rows(ivec2 size, vec4 dither)
 {

@@ -1,5 +1,5 @@
 /* Renderers: a sky_renderer built from a scene and a quality the way the CLI's headless run builds its own
- * (app/headless.c), writing the host's image instead of its own (include/vksky.h). */
+ * (app/runs/headless.c), writing the host's image instead of its own (include/vksky.h). */
 #include "lib/lib_internal.h"
 #include "app/scene/light.h"
 #include "app/cli/options.h"
@@ -93,7 +93,7 @@ static vksky_result check_desc(vksky_context *c, const vksky_renderer_desc *d)
 static vksky_result build(vksky_renderer *r)
 {
     const options *o = &r->o;
-    model_atmosphere lit;   /* the sun in the HDR image's units (app/light.h) */
+    model_atmosphere lit;   /* the sun in the HDR image's units (app/scene/light.h) */
     light_render_atmosphere(o, &lit);
     sky_features features = options_features(o);
     /* LUTS_ONLY and SCENE_LINEAR need none of the frame's own images: a 1 x 1 frame the renderer never draws. */
