@@ -25,20 +25,6 @@ static int frame_w = 640, frame_h = 360;
 static int grid_x(int i) { return (int)(((double)i + 0.5) * frame_w / GRID_W); }
 static int grid_y(int j) { return (int)(((double)j + 0.5) * frame_h / GRID_H); }
 
-static sky_view scene_view(const quality_scene *s)
-{
-    sky_view v = sky_view_default();
-    v.altitude_km = s->altitude_km;
-    v.sun_elevation_deg = s->sun_elevation_deg;
-    v.sun_azimuth_deg = 0.0;
-    v.yaw_deg = s->yaw_deg;
-    v.pitch_deg = s->pitch_deg;
-    v.fov_deg = s->fov_deg;
-    v.exposure_ev = s->exposure_ev;
-    v.bloom = false;   /* the promise is the sky's radiance; bloom is an effect on top, off in the tables too */
-    return v;
-}
-
 /* Does the ray from the camera at altitude h along d hit the planet? (d.y is up; written here, not metrics.c's.) */
 static bool hits_ground(double radius, double h, const double d[3])
 {
@@ -120,7 +106,8 @@ static double error_of(gpu_context *ctx, const model_atmosphere *a, const qualit
 {
     for (int i = 0; i < cache_count; ++i)
         if (cache[i].q == q && cache[i].scene == scene) return cache[i].err;
-    sky_view v = scene_view(&quality_scenes[scene]);
+    sky_view v = quality_scene_view(&quality_scenes[scene]);
+    v.bloom = false;   /* the promise is the sky's radiance; bloom is an effect on top, off in the tables too */
     sky_renderer_desc desc = {.width = (uint32_t)frame_w, .height = (uint32_t)frame_h, .bloom = false,
                               .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB};
     desc.lut = sky_lut_quality_default();

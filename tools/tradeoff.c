@@ -59,19 +59,6 @@ static double median(double *v, int n)
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-static sky_view scene_view(const quality_scene *s)
-{
-    sky_view v = sky_view_default();
-    v.altitude_km = s->altitude_km;
-    v.sun_elevation_deg = s->sun_elevation_deg;
-    v.sun_azimuth_deg = 0.0;
-    v.yaw_deg = s->yaw_deg;
-    v.pitch_deg = s->pitch_deg;
-    v.fov_deg = s->fov_deg;
-    v.exposure_ev = s->exposure_ev;
-    return v;
-}
-
 /* The error grid: w x h samples of a full_w x full_h frame, grid point i at pixel floor((i + 1/2) full / n) (the
  * identity when the frame is the grid's own size). */
 typedef struct error_grid { int w, h, full_w, full_h; } error_grid;
@@ -163,7 +150,7 @@ static sky_renderer make_renderer(gpu_context *ctx, const quality_config *q, sky
 static void measure_time(gpu_context *ctx, const quality_config *q, const quality_scene *s, int w, int h, int frames,
                          const model_atmosphere *a, row *out)
 {
-    sky_view v = scene_view(s);
+    sky_view v = quality_scene_view(s);
     sky_renderer r = make_renderer(ctx, q, &v, w, h, false, a);
     frame_desc f = {.view = &v};
     for (int i = 0; i < 3; ++i) sky_renderer_render(&r, &f);    /* warm-up: shader compilation, clocks */
@@ -191,7 +178,7 @@ static void measure_error(gpu_context *ctx, const quality_config *q, const quali
                           const model_atmosphere *a, const float *ref, const unsigned char *mask, row *out)
 {
     int w = g->w, h = g->h;
-    sky_view v = scene_view(s);
+    sky_view v = quality_scene_view(s);
     v.bloom = false;
     sky_renderer r = make_renderer(ctx, q, &v, g->full_w, g->full_h, true, a);
     frame_desc f = {.view = &v};

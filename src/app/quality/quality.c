@@ -318,3 +318,16 @@ const char *quality_table_estimate(bool cpu_device)
 #endif
     return "measured with other shaders or knobs than this build's";
 }
+
+sky_view quality_scene_view(const quality_scene *s)
+{
+    sky_view v = sky_view_default();
+    v.altitude_km = s->altitude_km;
+    v.sun_elevation_deg = s->sun_elevation_deg;
+    v.sun_azimuth_deg = 0.0;
+    v.yaw_deg = s->yaw_deg;
+    v.pitch_deg = s->pitch_deg;
+    v.fov_deg = s->fov_deg;
+    v.exposure_ev = s->exposure_ev;
+    return v;
+}

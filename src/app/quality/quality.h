@@ -49,6 +49,9 @@ typedef struct quality_scene {
  * twilight at -2: indices are the table's scene numbers (quality_table.h), so new scenes go at the end. */
 #define QUALITY_SCENE_COUNT 8
 extern const quality_scene quality_scenes[QUALITY_SCENE_COUNT];
+/* The view a measured scene is rendered with (the default view, its camera, sun elevation and exposure; the sun at
+ * azimuth 0): what tools/tradeoff measured the tables on and ctest promise re-measures. */
+sky_view quality_scene_view(const quality_scene *s);
 /* The scene class a view belongs to (nearest by sun elevation and altitude). */
 int quality_scene_class(double altitude_km, double sun_elevation_deg);
 
