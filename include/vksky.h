@@ -130,6 +130,19 @@ VKSKY_API void vksky_context_get_handles(const vksky_context *context, vksky_con
 /* Validation messages seen by a context vksky created with validation on. */
 VKSKY_API uint32_t vksky_context_validation_message_count(const vksky_context *context);
 
+/* The context's own trace (docs/synchronization.md): while a call on this context records or submits (renderer
+ * creation, set_scene, resize, vksky_record), each line `vksky --trace-barriers` / `--trace-passes` would print
+ * for it goes to `line` (no trailing newline), on the calling thread, and to no other context's trace: two contexts
+ * in one process keep separate traces. VKSKY_TRACE_BARRIERS: pass, commands, barrier and batch lines;
+ * VKSKY_TRACE_PASSES: the pass lines alone. `what` 0 or `line` NULL turns it off. */
+typedef enum vksky_trace_bits {
+    VKSKY_TRACE_BARRIERS = 1u << 0,
+    VKSKY_TRACE_PASSES = 1u << 1
+} vksky_trace_bits;
+typedef void (*vksky_trace_fn)(void *user, const char *line);
+VKSKY_API vksky_result vksky_context_set_trace(vksky_context *context, uint32_t what, vksky_trace_fn line,
+                                               void *user);
+
 /* ---- Scenes: values ------------------------------------------------------------------------------------------ */
 
 /* Earth as in Hillaire 2020 Table 1, the sun at 20 degrees. */

@@ -145,7 +145,9 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
     r->desc.scene = NULL, r->desc.quality = NULL;
     res = renderer_options(context, desc, scene ? &scene->o : &earth->o, &r->o);
     vksky_scene_destroy(earth);
+    const gpu_trace_sink *was = lib_trace_begin(context);   /* the uploads' commands and barriers */
     if (res == VKSKY_SUCCESS) res = build(r);
+    lib_trace_end(was);
     if (res != VKSKY_SUCCESS) {
         free(r);
         return res;
@@ -164,9 +166,19 @@ void vksky_renderer_destroy(vksky_renderer *renderer)
     free(renderer);
 }
 
+static vksky_result set_scene(vksky_renderer *renderer, const vksky_scene *scene);
+
 vksky_result vksky_renderer_set_scene(vksky_renderer *renderer, const vksky_scene *scene)
 {
     if (!renderer || !scene) return VKSKY_ERROR_INVALID_ARGUMENT;
+    const gpu_trace_sink *was = lib_trace_begin(renderer->ctx);
+    vksky_result res = set_scene(renderer, scene);
+    lib_trace_end(was);
+    return res;
+}
+
+static vksky_result set_scene(vksky_renderer *renderer, const vksky_scene *scene)
+{
     /* The scene whole (medium, features, sun, camera altitude); the renderer's quality, size and units stay. */
     const options *was = &renderer->o;
     options o = scene->o;
@@ -216,13 +228,16 @@ vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uin
         return VKSKY_SUCCESS;
     }
     gpu_trap trap;
+    const gpu_trace_sink *was = lib_trace_begin(renderer->ctx);
     if (setjmp(trap.jump)) {
+        lib_trace_end(was);
         lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
         return lib_result_from_vk(trap.result);
     }
     gpu_trap_arm(&trap);
     sky_renderer_resize(&renderer->r, width, height);
     gpu_trap_arm(NULL);
+    lib_trace_end(was);
     renderer->desc.width = width, renderer->desc.height = height;
     renderer->o.width = (int)width, renderer->o.height = (int)height;
     return VKSKY_SUCCESS;
