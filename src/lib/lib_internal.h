@@ -35,6 +35,11 @@ struct vksky_renderer {
  * stay, the CLI's and the drop probe's); returns what lib_trace_end restores. */
 const gpu_trace_sink *lib_trace_begin(const vksky_context *c);
 void lib_trace_end(const gpu_trace_sink *was);
+/* A renderer desc's `next` chain checked (types known, in place, once; the quality config's ranges): the quality
+ * config in *quality, or NULL (api_extensions.c). */
+vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality);
+struct quality_config;
+void lib_quality_from_config(const vksky_quality_config *q, struct quality_config *out);
 /* One message line to the callback (NULL: dropped). */
 void lib_message(vksky_message_fn fn, void *user, vksky_severity severity, const char *format, ...)
     __attribute__((format(printf, 4, 5)));
