@@ -1,6 +1,8 @@
 /* The example host's Vulkan boilerplate (host_vk.h). */
 #include "host_vk.h"
 #include "sky_host_scene.h"
+#include <math.h>
+#include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -488,6 +490,45 @@ int hv_write_exr_half(const char *path, const uint16_t *rgba, int width, int hei
     int r = hv_write_exr(path, f, width, height);
     free(f);
     return r;
+}
+
+/* IEC 61966-2-1: what an SRGB image format does to a shader's output on store. */
+static uint8_t srgb8(float linear)
+{
+    float c = linear <= 0.0f ? 0.0f : linear >= 1.0f ? 1.0f : linear;
+    float e = c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1.0f / 2.4f) - 0.055f;
+    return (uint8_t)lrintf(e * 255.0f);
+}
+
+int hv_write_png_tonemapped(const char *path, const uint16_t *rgba, int width, int height, float exposure)
+{
+    uint8_t *px = malloc(4 * (size_t)width * height);
+    FILE *f = px ? fopen(path, "wb") : NULL;
+    png_structp png = f ? png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL) : NULL;
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!info || setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        if (f) fclose(f);
+        free(px);
+        return -1;
+    }
+    for (size_t i = 0; i < (size_t)width * height; ++i) {
+        for (int c = 0; c < 3; ++c) {
+            float v = hv_half_to_float(rgba[4 * i + c]) * exposure;
+            px[4 * i + c] = srgb8(v / (1.0f + v));
+        }
+        px[4 * i + 3] = 255;
+    }
+    png_init_io(png, f);
+    png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_write_info(png, info);
+    for (int y = 0; y < height; ++y) png_write_row(png, px + 4 * (size_t)y * width);
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    free(px);
+    return fclose(f) == 0 ? 0 : -1;
 }
 
 void hv_copy_to_host(const hv_device *d, VkCommandBuffer cmd, VkImage image, VkExtent2D extent, const hv_buffer *buffer)

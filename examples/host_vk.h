@@ -63,6 +63,9 @@ void hv_submit_wait(const hv_device *d, VkCommandBuffer cmd);
 float hv_half_to_float(uint16_t h);
 /* An uncompressed scanline EXR of float RGBA. 0 on success. */
 int hv_write_exr(const char *path, const float *rgba, int width, int height);
+/* The window's tone map (tonemap.frag: exposure, Reinhard, then the sRGB encoding its swapchain format applies) on
+ * the host's half-float RGBA pixels, written as an 8-bit RGBA PNG (libpng), opaque. 0 on success. */
+int hv_write_png_tonemapped(const char *path, const uint16_t *rgba, int width, int height, float exposure);
 /* The same from half-float RGBA (an RGBA16F image read back). */
 int hv_write_exr_half(const char *path, const uint16_t *rgba, int width, int height);
 /* Records the copy of a colour image (in TRANSFER_SRC_OPTIMAL) into `buffer` and the barrier that makes the copy

@@ -7,6 +7,7 @@
  *
  *   vksky_example_host [--validate] [--frames N]          a window (N frames, then exit; default: until closed)
  *   vksky_example_host [--validate] --offscreen W H OUT.exr   one frame, no window: the scene-linear image
+ *   vksky_example_host [--validate] --offscreen W H OUT.png   the same frame through the window's tone map
  *
  * The boilerplate (device, images, pipelines, swapchain, EXR writer) is in host_vk.c; docs/library.md explains
  * each call below and the contract each image follows. */
@@ -46,12 +47,15 @@ int main(int argc, char **argv)
             width = atoi(argv[i + 1]), height = atoi(argv[i + 2]), out = argv[i + 3], i += 3;
         else {
             fprintf(stderr, "sky_host: unknown or incomplete option '%s' (accepted: --validate, --frames N, "
-                            "--offscreen W H OUT.exr)\n", argv[i]);
+                            "--offscreen W H OUT.exr|OUT.png)\n", argv[i]);
             return 2;
         }
     }
-    if (width < 1 || height < 1 || width > 8192 || height > 8192 || (out && !strstr(out, ".exr"))) {
-        fprintf(stderr, "sky_host: --offscreen W H OUT.exr: W and H in 1..8192, OUT ending in .exr\n");
+    size_t out_len = out ? strlen(out) : 0;
+    bool png = out_len > 4 && !strcmp(out + out_len - 4, ".png");
+    if (width < 1 || height < 1 || width > 8192 || height > 8192 ||
+        (out && !png && !(out_len > 4 && !strcmp(out + out_len - 4, ".exr")))) {
+        fprintf(stderr, "sky_host: --offscreen W H OUT: W and H in 1..8192, OUT ending in .exr or .png\n");
         return 2;
     }
 
@@ -186,7 +190,9 @@ int main(int argc, char **argv)
         hv_window_present(&d, &win, cmd, index);
     }
 
-    int status = out && hv_write_exr_half(out, readback.mapped, width, height) != 0;
+    /* The file: the scene-linear pixels (EXR), or the window's tone map of them at exposure 1 (PNG). */
+    int status = out && (png ? hv_write_png_tonemapped(out, readback.mapped, width, height, 1.0f)
+                             : hv_write_exr_half(out, readback.mapped, width, height)) != 0;
     if (status) fprintf(stderr, "sky_host: cannot write %s\n", out);
     vkDeviceWaitIdle(d.device);
     vksky_renderer_destroy(sky);

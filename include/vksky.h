@@ -36,8 +36,10 @@ extern "C" {
 #endif
 
 /* The ABI this header describes. A host passes it in every *_desc; a library built for another ABI refuses the
- * call with VKSKY_ERROR_ABI_MISMATCH instead of reading a struct of another shape. */
-#define VKSKY_ABI_VERSION 1u
+ * call with VKSKY_ERROR_ABI_MISMATCH instead of reading a struct of another shape.
+ * 2: vksky_renderer_desc and vksky_frame gained `next` (extension chains), vksky_quality_config,
+ *    vksky_renderer_get_timings. */
+#define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
 
@@ -130,6 +132,19 @@ VKSKY_API void vksky_context_get_handles(const vksky_context *context, vksky_con
 /* Validation messages seen by a context vksky created with validation on. */
 VKSKY_API uint32_t vksky_context_validation_message_count(const vksky_context *context);
 
+/* The context's own trace (docs/synchronization.md): while a call on this context records or submits (renderer
+ * creation, set_scene, resize, vksky_record), each line `vksky --trace-barriers` / `--trace-passes` would print
+ * for it goes to `line` (no trailing newline), on the calling thread, and to no other context's trace: two contexts
+ * in one process keep separate traces. VKSKY_TRACE_BARRIERS: pass, commands, barrier and batch lines;
+ * VKSKY_TRACE_PASSES: the pass lines alone. `what` 0 or `line` NULL turns it off. */
+typedef enum vksky_trace_bits {
+    VKSKY_TRACE_BARRIERS = 1u << 0,
+    VKSKY_TRACE_PASSES = 1u << 1
+} vksky_trace_bits;
+typedef void (*vksky_trace_fn)(void *user, const char *line);
+VKSKY_API vksky_result vksky_context_set_trace(vksky_context *context, uint32_t what, vksky_trace_fn line,
+                                               void *user);
+
 /* ---- Scenes: values ------------------------------------------------------------------------------------------ */
 
 /* Earth as in Hillaire 2020 Table 1, the sun at 20 degrees. */
@@ -171,6 +186,7 @@ typedef enum vksky_units {
 
 typedef struct vksky_renderer_desc {
     uint32_t abi_version;          /* VKSKY_ABI_VERSION */
+    const void *next;              /* NULL, or a chain of extension structs (below: vksky_quality_config) */
     vksky_output output;
     uint32_t width, height;        /* the host image's size (ignored for LUTS_ONLY) */
     VkFormat target_format;        /* the host colour image's format */
@@ -185,6 +201,59 @@ typedef struct vksky_renderer_desc {
 
 VKSKY_API vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_desc *desc,
                                              vksky_renderer **out);
+
+/* ---- Extension structs ------------------------------------------------------------------------------------------
+ * As Vulkan's pNext chains: each extension struct begins with its type and a `next` pointer, and is chained from the
+ * `next` of the struct it extends. A type this library does not know, or one chained where it does not belong, is
+ * refused (VKSKY_ERROR_INVALID_ARGUMENT, the message names it) rather than ignored: a host built against a newer
+ * header learns at once that a setting it asked for is not applied. New settings arrive as new types; the layout of
+ * an existing type never changes without a VKSKY_ABI_VERSION bump. */
+typedef enum vksky_structure_type {
+    VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG = 1    /* vksky_quality_config, from vksky_renderer_desc.next */
+} vksky_structure_type;
+typedef struct vksky_chain {   /* the head every extension struct starts with: to walk a chain */
+    vksky_structure_type type;
+    const void *next;
+} vksky_chain;
+
+typedef enum vksky_sky_mode {
+    VKSKY_SKY_MODE_MARCH = 0,      /* a march per pixel */
+    VKSKY_SKY_MODE_SKYVIEW = 1,    /* the sky-view LUT looked up */
+    VKSKY_SKY_MODE_AUTO = 2        /* the LUT inside the atmosphere, the march from space */
+} vksky_sky_mode;
+typedef enum vksky_sky_pass {
+    VKSKY_SKY_PASS_FRAGMENT = 0,   /* a full-screen draw */
+    VKSKY_SKY_PASS_COMPUTE = 1,    /* a compute dispatch */
+    VKSKY_SKY_PASS_AUTO = 2        /* fragment on a CPU device, compute on a GPU */
+} vksky_sky_pass;
+
+/* The quality, knob by knob (the command line's --steps, --sky-mode, ... flags; docs/quality.md): chained from
+ * vksky_renderer_desc.next it replaces desc.quality and desc.max_error. vksky_quality_config_preset fills one from a
+ * preset, for a host to change a knob of. Ranges are the command line's; a value outside is refused. */
+typedef struct vksky_quality_config {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG */
+    const void *next;
+    vksky_sky_mode sky_mode;
+    vksky_sky_pass sky_pass;
+    uint32_t view_steps;           /* 1..4096: view march steps per pixel (the least, with view_max_steps) */
+    uint32_t view_max_steps;       /* 0: view_steps fixed; else view_steps..4096, more steps as the path grows */
+    double step_distribution;      /* 1..4: steps end at t_max (i/N)^P */
+    double sample_offset;          /* 0..1: the sample's place within its step */
+    uint32_t skyview_width, skyview_height;   /* 2..4096 each */
+    uint32_t skyview_steps;        /* 1..1024 */
+    uint32_t transmittance_width, transmittance_height;   /* 2..4096 each */
+    uint32_t transmittance_steps;  /* 1..4096 */
+    uint32_t multiscatter_size;    /* 2..1024 */
+    uint32_t multiscatter_sqrt_dirs;   /* 1..64: the square root of the sphere directions per texel */
+    uint32_t multiscatter_steps;   /* 1..4096 */
+    bool lut_f32;                  /* 32-bit float LUTs (else 16-bit) */
+    double render_scale;           /* 0.1..1: the sky at this fraction of the output size */
+    uint32_t bloom_mips;           /* 1..8 */
+    bool bloom_quarter;            /* the bloom chain from a quarter-size mip 0 (else half) */
+} vksky_quality_config;
+/* A preset's knobs ("low", "medium", "high", "ultra", "lesson", "cpu"; not "auto", which depends on the device and
+ * the view): VKSKY_ERROR_INVALID_ARGUMENT for another name. */
+VKSKY_API vksky_result vksky_quality_config_preset(const char *preset, vksky_quality_config *out);
 /* The host must know no command buffer recorded for it is pending. NULL is ignored. */
 VKSKY_API void vksky_renderer_destroy(vksky_renderer *renderer);
 /* A new scene (copied). The LUTs are rebuilt by the next vksky_record if the medium changed; the pipelines only if
@@ -228,6 +297,7 @@ VKSKY_API void vksky_camera_look(vksky_camera *camera, double yaw_deg, double pi
                                  double aspect, double near_m);
 
 typedef struct vksky_frame {
+    const void *next;              /* NULL (no frame extension is defined yet: any struct chained here is refused) */
     const vksky_camera *camera;
     /* The exposure: EV100 with VKSKY_UNITS_PHOTOMETRIC (DISPLAY: the tone map's; SCENE_LINEAR: none applied), stops
      * with RELATIVE. */
@@ -257,6 +327,18 @@ typedef struct vksky_luts {
     VkAccessFlags2 ready_access;
 } vksky_luts;
 VKSKY_API vksky_result vksky_get_luts(const vksky_renderer *renderer, vksky_luts *out);
+
+/* GPU time per pass of the renderer's last recorded frame (timestamps written into the host's command buffer by
+ * vksky_record). Call it after that command buffer completed (it waits for the results otherwise) and before the
+ * next vksky_record. Fills up to `capacity` entries (names are the passes' as the trace prints them, valid until
+ * the renderer is destroyed) and sets *count to the number of timed passes; a pass that runs several times (the
+ * bloom chain's) has one entry per run. VKSKY_ERROR_UNSUPPORTED: the queue family has no timestamps. */
+typedef struct vksky_pass_timing {
+    const char *name;
+    double gpu_ms;
+} vksky_pass_timing;
+VKSKY_API vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
+                                                  uint32_t *count);
 
 #ifdef __cplusplus
 }

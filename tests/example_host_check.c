@@ -10,11 +10,16 @@
  *      0.3: < 1e-3; the march's steps), S within 6 % (the "high" preset's LUTs and march; test_aerial measures the
  *      pass within 2 % with converged LUTs); and the far pair is hazier than the near: smaller T, larger S, and its
  *      pixel further on the way from its own radiance to the sky behind it (the CLI's pixel there).
- *   example_host_check HOST.exr CLI.exr */
+ *  (c) with HOST.png (the same frame written --offscreen W H OUT.png): each pixel is the window's tone map of the EXR's
+ *      pixel (exposure 1, Reinhard x / (1 + x), then the sRGB transfer function of IEC 61966-2-1, computed here in
+ *      double) within 1 of 255, alpha 255.
+ *   example_host_check HOST.exr CLI.exr [HOST.png] */
 #include "../examples/sky_host_scene.h"
 #include "io/exr_read.h"
+#include "io/png_io.h"
 #include "reference/ref_atmosphere.h"
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -107,10 +112,41 @@ static pair_result measure_pair(const float *host, const float *cli, int w, int 
     return r;
 }
 
+static double srgb_encode(double linear)
+{
+    double c = fmin(fmax(linear, 0.0), 1.0);
+    return c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1.0 / 2.4) - 0.055;
+}
+
+/* (c): the PNG against the tone map of the EXR's pixels. */
+static void check_png(const char *path, const float *host, int w, int h)
+{
+    int pw = 0, ph = 0;
+    uint8_t *px = NULL;
+    char err[256];
+    if (io_read_png(path, &pw, &ph, &px, err, sizeof err) != 0) {
+        CHECK(0, "%s: %s", path, err);
+        return;
+    }
+    CHECK(pw == w && ph == h, "the PNG is %dx%d, the EXR %dx%d", pw, ph, w, h);
+    double worst = 0.0;
+    for (int i = 0; pw == w && ph == h && i < w * h; ++i) {
+        for (int c = 0; c < 3; ++c) {
+            double x = host[4 * i + c], want = 255.0 * srgb_encode(x / (1.0 + x));
+            worst = fmax(worst, fabs(px[4 * i + c] - want));
+            CHECK(fabs(px[4 * i + c] - want) <= 1.0, "PNG pixel %d channel %d: %u, the tone map of the EXR's %g is %.2f",
+                  i, c, px[4 * i + c], x, want);
+        }
+        CHECK(px[4 * i + 3] == 255, "PNG pixel %d: alpha %u", i, px[4 * i + 3]);
+    }
+    printf("png: %dx%d, the tone map of the EXR's pixels within %.2f of 255 (bound 1)\n", pw, ph, worst);
+    free(px);
+}
+
 int main(int argc, char **argv)
 {
-    if (argc != 3) {
-        fprintf(stderr, "usage: example_host_check HOST.exr CLI.exr\n");
+    if (argc != 3 && argc != 4) {
+        fprintf(stderr, "usage: example_host_check HOST.exr CLI.exr [HOST.png]\n");
         return 2;
     }
     int w, h, cw, ch;
@@ -146,6 +182,7 @@ int main(int argc, char **argv)
               "S %.4f vs %.4f)", c, far.T[c], near.T[c], far.S[c], near.S[c]);
     CHECK(far.haze > near.haze, "the far box has moved no further toward the sky's colour (%.3f) than the near one "
           "(%.3f)", far.haze, near.haze);
+    if (argc == 4) check_png(argv[3], host, w, h);
     free(host), free(cli);
     if (failures) fprintf(stderr, "example_host_check: %d failure(s)\n", failures);
     return failures ? 1 : 0;

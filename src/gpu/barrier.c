@@ -1,4 +1,5 @@
 #include "gpu/barrier.h"
+#include <stdarg.h>
 #include "gpu/fail.h"   /* an overflowing batch is a bug, reported as every failure below the API is */
 #include <stdlib.h>
 #include <string.h>
@@ -48,6 +49,9 @@ static const gpu_usage_info usages[GPU_USAGE_COUNT] = {
 
 static FILE *trace_out;
 static FILE *pass_out;   /* --trace-passes */
+/* The sink a context's recording thread has bound (gpu_trace_bind): the library's per-context traces. Thread-local:
+ * two contexts recorded on two threads each see their own. NULL: the process-wide streams above (the CLI). */
+static _Thread_local const gpu_trace_sink *bound;
 static const char *drop_name;
 static unsigned drop_count;
 /* The mask mutation (gpu_barrier_set_weaken): which barrier, which field, the mask it gets instead. */
@@ -126,15 +130,40 @@ gpu_barrier_batch gpu_barrier_batch_begin(const char *point) { return (gpu_barri
 
 void gpu_barrier_trace(FILE *out) { trace_out = out; }
 void gpu_barrier_trace_passes(FILE *out) { pass_out = out; }
-void gpu_barrier_trace_pass(const char *pass)
+const gpu_trace_sink *gpu_trace_bind(const gpu_trace_sink *sink)
 {
-    FILE *out = trace_out ? trace_out : pass_out;
-    if (out) fprintf(out, "pass %s\n", pass);
+    const gpu_trace_sink *was = bound;
+    bound = sink;
+    return was;
 }
-void gpu_barrier_trace_commands(void)
+
+/* Is a line of this kind wanted (a pass line: with either trace on; any other: the barrier trace's)? */
+static bool tracing(bool pass_line)
 {
-    if (trace_out) fprintf(trace_out, "commands\n");
+    if (bound) return bound->line && (bound->barriers || (pass_line && bound->passes));
+    return trace_out || (pass_line && pass_out);
 }
+
+/* One trace line (no newline in `format`) to the bound sink, else to the process-wide stream. */
+static void __attribute__((format(printf, 2, 3))) trace_emit(bool pass_line, const char *format, ...)
+{
+    if (!tracing(pass_line)) return;
+    va_list args;
+    va_start(args, format);
+    if (bound) {
+        char text[1024];   /* a barrier line: four masks of at most 160 characters, names, layouts */
+        vsnprintf(text, sizeof text, format, args);
+        bound->line(bound->user, text);
+    } else {
+        FILE *out = trace_out ? trace_out : pass_out;
+        vfprintf(out, format, args);
+        fputc('\n', out);
+    }
+    va_end(args);
+}
+
+void gpu_barrier_trace_pass(const char *pass) { trace_emit(true, "pass %s", pass); }
+void gpu_barrier_trace_commands(void) { trace_emit(false, "commands"); }
 void gpu_barrier_set_drop(const char *name) { drop_name = (name && *name) ? name : NULL; }
 unsigned gpu_barrier_dropped_count(void) { return drop_count; }
 unsigned gpu_barrier_weakened_count(void) { return weaken_count; }
@@ -295,13 +324,13 @@ static void trace_line(const char *name, const char *point, const char *resource
                        VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stage, VkAccessFlags2 dst_access,
                        const char *hazard, bool was_dropped, const char *weakened)
 {
-    if (!trace_out) return;
+    if (!tracing(false)) return;
     char ss[160], sa[160], ds[160], da[160];
     gpu_stage_string(src_stage, ss, sizeof ss);
     gpu_access_string(src_access, sa, sizeof sa);
     gpu_stage_string(dst_stage, ds, sizeof ds);
     gpu_access_string(dst_access, da, sizeof da);
-    fprintf(trace_out, "barrier %s point=%s resource=%s mips=%s layout=%s->%s src=%s/%s dst=%s/%s hazard=%s%s%s%s\n",
+    trace_emit(false, "barrier %s point=%s resource=%s mips=%s layout=%s->%s src=%s/%s dst=%s/%s hazard=%s%s%s%s",
             name, point, resource, mips, gpu_layout_name(old_layout), gpu_layout_name(new_layout), ss, sa, ds, da,
             hazard, was_dropped ? " DROPPED" : "", weakened ? " WEAKENED=" : "", weakened ? weakened : "");
 }
@@ -402,9 +431,8 @@ void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b)
         .pImageMemoryBarriers = b->images,
     };
     /* One trace line per call: how many barrier calls a frame makes is read from the trace (docs, §2). */
-    if (trace_out)
-        fprintf(trace_out, "batch point=%s images=%u buffers=%u memory=%u\n", b->point, b->image_count,
-                b->buffer_count, b->memory_count);
+    trace_emit(false, "batch point=%s images=%u buffers=%u memory=%u", b->point, b->image_count, b->buffer_count,
+               b->memory_count);
     vkCmdPipelineBarrier2(cmd, &dep);
     b->image_count = b->buffer_count = b->memory_count = 0;
 }

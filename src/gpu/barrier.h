@@ -78,6 +78,16 @@ void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b);
 
 /* Trace / drop controls (process-wide; set once by the app before recording). */
 void gpu_barrier_trace(FILE *out);
+/* A trace owned by a context (the library's vksky_context_set_trace): lines without their newline to `line`;
+ * `barriers` the barrier trace (passes, commands, barriers, batches), `passes` the pass list alone. */
+typedef struct gpu_trace_sink {
+    void (*line)(void *user, const char *text);
+    void *user;
+    bool barriers, passes;
+} gpu_trace_sink;
+/* Sends the calling thread's trace lines to `sink` instead of the process-wide streams (NULL: back to them) while a
+ * context records; returns the sink bound before, for the caller to restore. */
+const gpu_trace_sink *gpu_trace_bind(const gpu_trace_sink *sink);
 /* The pass list alone (--trace-passes): a line "pass <name>" where each pass begins, to `out` (NULL: off). */
 void gpu_barrier_trace_passes(FILE *out);
 /* The one place a pass is traced (called by gpu_label_begin, which every pass and copy of a frame opens): a line

@@ -103,3 +103,21 @@ uint32_t vksky_context_validation_message_count(const vksky_context *context)
 {
     return context ? context->gpu.validation_messages : 0;
 }
+
+vksky_result vksky_context_set_trace(vksky_context *context, uint32_t what, vksky_trace_fn line, void *user)
+{
+    if (!context || (what & ~(uint32_t)(VKSKY_TRACE_BARRIERS | VKSKY_TRACE_PASSES))) return VKSKY_ERROR_INVALID_ARGUMENT;
+    bool on = what && line;
+    context->trace = (gpu_trace_sink){.line = on ? line : NULL, .user = user,
+                                      .barriers = on && (what & VKSKY_TRACE_BARRIERS),
+                                      .passes = on && (what & VKSKY_TRACE_PASSES)};
+    return VKSKY_SUCCESS;
+}
+
+const gpu_trace_sink *lib_trace_begin(const vksky_context *c)
+{
+    /* A context with no trace of its own: the process-wide streams (NULL bound), never another context's sink. */
+    return gpu_trace_bind(c->trace.line ? &c->trace : NULL);
+}
+
+void lib_trace_end(const gpu_trace_sink *was) { gpu_trace_bind(was); }

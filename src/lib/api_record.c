@@ -181,9 +181,25 @@ static vksky_result record_trapped(vksky_renderer *renderer, VkCommandBuffer cmd
     return VKSKY_SUCCESS;
 }
 
+static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame);
+
 vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
 {
     if (!renderer || !cmd || !frame) return VKSKY_ERROR_INVALID_ARGUMENT;
+    const gpu_trace_sink *was = lib_trace_begin(renderer->ctx);   /* the lines go to this context's trace */
+    vksky_result res = record_frame(renderer, cmd, frame);
+    lib_trace_end(was);
+    return res;
+}
+
+static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
+{
+    if (frame->next) {   /* no frame extension is defined in this ABI: refused, not ignored (vksky.h) */
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: frame.next: structure type %d is unknown to this library (no frame extension "
+                    "is defined in ABI %u)", (int)((const vksky_chain *)frame->next)->type, VKSKY_ABI_VERSION);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
     vksky_context *c = renderer->ctx;
     sky_view v = renderer->o.view;
     if (renderer->desc.output == VKSKY_OUTPUT_LUTS_ONLY) {

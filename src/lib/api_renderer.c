@@ -15,7 +15,7 @@ static bool format_is_display(VkFormat f)
 
 /* The scene's options with the renderer's quality, size and units: what `vksky --render` would hold. */
 static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc *d, const options *scene,
-                                     options *o)
+                                     const vksky_quality_config *explicit_quality, options *o)
 {
     *o = *scene;
     o->units = d->units == VKSKY_UNITS_RELATIVE ? OPTIONS_UNITS_RELATIVE : OPTIONS_UNITS_PHOTOMETRIC;
@@ -24,7 +24,11 @@ static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc
     double measured = 0.0;
     unsigned classes = quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
     bool cpu_device = c->gpu.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-    if (d->max_error > 0.0) {
+    quality_config given;
+    if (explicit_quality) {   /* the host's knobs (vksky_quality_config): no preset, no pick */
+        lib_quality_from_config(explicit_quality, &given);
+        q = &given;
+    } else if (d->max_error > 0.0) {
         q = quality_pick(d->max_error, classes, cpu_device, &measured);   /* the running device's table */
         if (!q) {
             lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
@@ -131,6 +135,8 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
     if (out) *out = NULL;
     if (!context || !desc || !out) return VKSKY_ERROR_INVALID_ARGUMENT;
     vksky_result res = check_desc(context, desc);
+    const vksky_quality_config *explicit_quality = NULL;
+    if (res == VKSKY_SUCCESS) res = lib_renderer_chain(context, desc->next, &explicit_quality);
     if (res != VKSKY_SUCCESS) return res;
     vksky_renderer *r = calloc(1, sizeof *r);
     vksky_scene *earth = NULL;
@@ -142,10 +148,12 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
     }
     r->ctx = context;
     r->desc = *desc;
-    r->desc.scene = NULL, r->desc.quality = NULL;
-    res = renderer_options(context, desc, scene ? &scene->o : &earth->o, &r->o);
+    r->desc.scene = NULL, r->desc.quality = NULL, r->desc.next = NULL;
+    res = renderer_options(context, desc, scene ? &scene->o : &earth->o, explicit_quality, &r->o);
     vksky_scene_destroy(earth);
+    const gpu_trace_sink *was = lib_trace_begin(context);   /* the uploads' commands and barriers */
     if (res == VKSKY_SUCCESS) res = build(r);
+    lib_trace_end(was);
     if (res != VKSKY_SUCCESS) {
         free(r);
         return res;
@@ -164,9 +172,19 @@ void vksky_renderer_destroy(vksky_renderer *renderer)
     free(renderer);
 }
 
+static vksky_result set_scene(vksky_renderer *renderer, const vksky_scene *scene);
+
 vksky_result vksky_renderer_set_scene(vksky_renderer *renderer, const vksky_scene *scene)
 {
     if (!renderer || !scene) return VKSKY_ERROR_INVALID_ARGUMENT;
+    const gpu_trace_sink *was = lib_trace_begin(renderer->ctx);
+    vksky_result res = set_scene(renderer, scene);
+    lib_trace_end(was);
+    return res;
+}
+
+static vksky_result set_scene(vksky_renderer *renderer, const vksky_scene *scene)
+{
     /* The scene whole (medium, features, sun, camera altitude); the renderer's quality, size and units stay. */
     const options *was = &renderer->o;
     options o = scene->o;
@@ -216,13 +234,16 @@ vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uin
         return VKSKY_SUCCESS;
     }
     gpu_trap trap;
+    const gpu_trace_sink *was = lib_trace_begin(renderer->ctx);
     if (setjmp(trap.jump)) {
+        lib_trace_end(was);
         lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
         return lib_result_from_vk(trap.result);
     }
     gpu_trap_arm(&trap);
     sky_renderer_resize(&renderer->r, width, height);
     gpu_trap_arm(NULL);
+    lib_trace_end(was);
     renderer->desc.width = width, renderer->desc.height = height;
     renderer->o.width = (int)width, renderer->o.height = (int)height;
     return VKSKY_SUCCESS;

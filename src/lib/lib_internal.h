@@ -6,6 +6,7 @@
 #include <volk.h>
 #include <vksky.h>
 #include "app/cli/options_struct.h"
+#include "gpu/barrier.h"
 #include "gpu/context.h"
 #include "sky/frame.h"
 #include "sky/host_frame.h"
@@ -15,6 +16,7 @@ struct vksky_context {
     vksky_message_fn message;
     void *message_user;
     int renderers;                 /* alive: the context's destroy refuses to pull the device from under them */
+    gpu_trace_sink trace;          /* vksky_context_set_trace: bound while a call on the context records */
 };
 
 struct vksky_scene {
@@ -29,6 +31,15 @@ struct vksky_renderer {
     host_frame hf;                 /* SCENE_LINEAR: the pass over the host's colour and depth (sky/host_frame.h) */
 };
 
+/* The context's trace bound to this thread for the length of a call (no trace of its own: the process-wide streams
+ * stay, the CLI's and the drop probe's); returns what lib_trace_end restores. */
+const gpu_trace_sink *lib_trace_begin(const vksky_context *c);
+void lib_trace_end(const gpu_trace_sink *was);
+/* A renderer desc's `next` chain checked (types known, in place, once; the quality config's ranges): the quality
+ * config in *quality, or NULL (api_extensions.c). */
+vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality);
+struct quality_config;
+void lib_quality_from_config(const vksky_quality_config *q, struct quality_config *out);
 /* One message line to the callback (NULL: dropped). */
 void lib_message(vksky_message_fn fn, void *user, vksky_severity severity, const char *format, ...)
     __attribute__((format(printf, 4, 5)));

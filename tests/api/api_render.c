@@ -5,6 +5,10 @@
  *     last queue of its last graphics+compute family) equals it too; two renderers of different sizes in one
  *     process, each equal to the CLI's PNG of its size; 100 vksky_record calls allocate nothing through the
  *     context's VkAllocationCallbacks.
+ *   quality VKSKY_BIN: a renderer given its quality knob by knob (vksky_quality_config, chained from the desc: "medium"
+ *     with other steps, sky mode and pass, render scale, LUT sizes and bloom mips) equals `vksky --render` with the
+ *     same flags (within 1/255); its per-pass GPU timings come back named, finite and >= 0, the sky pass among them;
+ *     an unknown structure type, a repeated one, a knob out of range and a frame.next are refused.
  *   cycles N: renderer create/destroy N times on one context: the live allocations through the callbacks return
  *     to the same count, and the resident set does not grow.
  * Validation + synchronization validation on throughout; any message fails. */
@@ -59,13 +63,14 @@ static VkAllocationCallbacks counting(counter *c)
 static const double YAW = 30.0, PITCH = 10.0, FOV = 75.0, EV100 = 12.0;
 
 /* `vksky --render` of the test's view at width x height: the reference PNG's pixels (RGBA). */
-static uint8_t *cli_png(const char *vksky, const char *dir, int width, int height, const char *scene)
+static uint8_t *cli_png_with(const char *vksky, const char *dir, int width, int height, const char *scene,
+                             const char *extra)
 {
     char path[512], cmd[1400], err[200];
     snprintf(path, sizeof path, "%s/cli_%dx%d_%s.png", dir, width, height, scene ? scene : "earth");
     snprintf(cmd, sizeof cmd, "%s %s%s --render %s --width %d --height %d --yaw %g --pitch %g --fov %g --exposure %g "
-             "--altitude 0.001 --quality medium --validate", vksky, scene ? "--scene " : "", scene ? scene : "", path,
-             width, height, YAW, PITCH, FOV, EV100);
+             "--altitude 0.001 --quality medium --validate %s", vksky, scene ? "--scene " : "", scene ? scene : "", path,
+             width, height, YAW, PITCH, FOV, EV100, extra);
     if (system(cmd) != 0) {
         fprintf(stderr, "FAIL: %s\n", cmd);
         exit(1);
@@ -77,6 +82,11 @@ static uint8_t *cli_png(const char *vksky, const char *dir, int width, int heigh
         exit(1);
     }
     return rgba;
+}
+
+static uint8_t *cli_png(const char *vksky, const char *dir, int width, int height, const char *scene)
+{
+    return cli_png_with(vksky, dir, width, height, scene, "");
 }
 
 static vksky_renderer *make_renderer_of(vksky_context *c, uint32_t w, uint32_t h, vksky_output output, bool bloom)
@@ -335,11 +345,100 @@ static int luts(void)
     return host_failures ? 1 : 0;
 }
 
+static int quality(const char *vksky)
+{
+    char dir[] = "/tmp/vksky_api_XXXXXX";
+    if (!mkdtemp(dir)) return 1;
+    const uint32_t W = 80, H = 48;
+    uint8_t *cli = cli_png_with(vksky, dir, (int)W, (int)H, NULL,
+                                "--steps 20 --sky-mode march --sky-pass compute --render-scale 0.5 "
+                                "--transmittance-steps 30 --multiscatter-lut 16 --skyview-steps 24 --bloom-mips 3");
+    vksky_own_device_desc od = {.abi_version = VKSKY_ABI_VERSION, .device_index = -1, .validation = true,
+                                .message = api_message};
+    vksky_context *c = NULL;
+    if (vksky_context_create_own(&od, &c) != VKSKY_SUCCESS) return 1;
+    vksky_quality_config q;
+    HOST_CHECK(vksky_quality_config_preset("medium", &q) == VKSKY_SUCCESS, "preset medium");
+    HOST_CHECK(vksky_quality_config_preset("auto", &q) == VKSKY_ERROR_INVALID_ARGUMENT, "auto is not a fixed config");
+    vksky_quality_config_preset("medium", &q);
+    q.view_steps = 20, q.sky_mode = VKSKY_SKY_MODE_MARCH, q.sky_pass = VKSKY_SKY_PASS_COMPUTE, q.render_scale = 0.5;
+    q.transmittance_steps = 30, q.multiscatter_size = 16, q.skyview_steps = 24, q.bloom_mips = 3;
+    vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION, .next = &q, .output = VKSKY_OUTPUT_DISPLAY,
+                             .width = W, .height = H, .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = "ultra",
+                             .bloom = true, .units = VKSKY_UNITS_PHOTOMETRIC};   /* .quality: overridden by q */
+    vksky_renderer *r = NULL;
+    HOST_CHECK(vksky_renderer_create(c, &d, &r) == VKSKY_SUCCESS, "vksky_renderer_create with a quality config");
+    if (!r) return 1;
+    host h;
+    host_from_context(&h, c);
+    host_create_target(&h, W, H, VK_FORMAT_R8G8B8A8_SRGB);
+    api_frame(&h, r);
+    HOST_CHECK(max_difference(h.mapped, cli, W * H, "explicit quality vs CLI flags") <= 1,
+               "the explicit quality's frame differs from the CLI's with the same flags");
+
+    /* Timings of that frame (the host waited for it in api_frame). */
+    vksky_pass_timing t[64];
+    uint32_t n = 0, n2 = 0;
+    vksky_result tr = vksky_renderer_get_timings(r, t, 64, &n);
+    if (tr == VKSKY_ERROR_UNSUPPORTED) printf("timings: the device has no timestamps\n");
+    else {
+        HOST_CHECK(tr == VKSKY_SUCCESS && n > 0 && n <= 64, "vksky_renderer_get_timings: %s, %u passes",
+                   vksky_result_name(tr), n);
+        bool sky = false;
+        for (uint32_t i = 0; i < n && i < 64; ++i) {
+            HOST_CHECK(t[i].name && isfinite(t[i].gpu_ms) && t[i].gpu_ms >= 0.0, "pass %u: %s %g", i,
+                       t[i].name ? t[i].name : "(null)", t[i].gpu_ms);
+            sky |= t[i].name && strstr(t[i].name, "sky") != NULL;
+            printf("timing %s %.4f ms\n", t[i].name, t[i].gpu_ms);
+        }
+        HOST_CHECK(sky, "no sky pass among the %u timed passes", n);
+        HOST_CHECK(vksky_renderer_get_timings(r, t, 1, &n2) == VKSKY_SUCCESS && n2 == n, "capacity 1: count %u", n2);
+    }
+    HOST_CHECK(vksky_renderer_get_timings(r, NULL, 4, &n2) == VKSKY_ERROR_INVALID_ARGUMENT, "NULL out, capacity 4");
+
+    /* Refusals: one message each, no renderer. */
+    unsigned errors = api_messages[VKSKY_SEVERITY_ERROR];
+    vksky_renderer *bad = NULL;
+    vksky_chain unknown = {(vksky_structure_type)99, NULL};
+    d.next = &unknown;
+    HOST_CHECK(vksky_renderer_create(c, &d, &bad) == VKSKY_ERROR_INVALID_ARGUMENT && !bad, "an unknown type");
+    vksky_quality_config q2 = q;
+    q2.next = &q;
+    d.next = &q2;
+    HOST_CHECK(vksky_renderer_create(c, &d, &bad) == VKSKY_ERROR_INVALID_ARGUMENT && !bad, "a type twice");
+    q2 = q, q2.render_scale = 0.05;
+    HOST_CHECK(vksky_renderer_create(c, &d, &bad) == VKSKY_ERROR_INVALID_ARGUMENT && !bad, "render_scale 0.05");
+    q2 = q, q2.view_max_steps = q.view_steps - 1;
+    HOST_CHECK(vksky_renderer_create(c, &d, &bad) == VKSKY_ERROR_INVALID_ARGUMENT && !bad, "max steps < steps");
+    q2 = q, q2.sky_mode = (vksky_sky_mode)7;
+    HOST_CHECK(vksky_renderer_create(c, &d, &bad) == VKSKY_ERROR_INVALID_ARGUMENT && !bad, "sky_mode 7");
+    vksky_camera cam = {.origin_altitude_m = 1.0};
+    vksky_camera_look(&cam, YAW, PITCH, FOV, (double)W / H, 0.1);
+    vksky_frame f = {.next = &unknown, .camera = &cam, .exposure = EV100, .color = host_image(&h, VK_FORMAT_R8G8B8A8_SRGB)};
+    host_begin(&h);
+    HOST_CHECK(vksky_record(r, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "a frame.next");
+    vkEndCommandBuffer(h.cmd);
+    HOST_CHECK(api_messages[VKSKY_SEVERITY_ERROR] == errors + 6, "%u error messages for 6 refusals",
+               api_messages[VKSKY_SEVERITY_ERROR] - errors);
+
+    vksky_renderer_destroy(r);
+    host_destroy_target(&h);
+    HOST_CHECK(vksky_context_validation_message_count(c) == 0, "%u validation messages",
+               vksky_context_validation_message_count(c));
+    vksky_context_destroy(c);
+    free(cli);
+    char rm[600];
+    snprintf(rm, sizeof rm, "rm -rf %s", dir);
+    if (system(rm) != 0) fprintf(stderr, "api_render: could not remove %s\n", dir);
+    return host_failures ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 3 && !strcmp(argv[1], "quality")) return quality(argv[2]);
     if (argc == 2 && !strcmp(argv[1], "luts")) return luts();
     if (argc == 3 && !strcmp(argv[1], "compare")) return compare(argv[2]);
     if (argc == 3 && !strcmp(argv[1], "cycles")) return cycles(atoi(argv[2]));
-    fprintf(stderr, "usage: api_render compare VKSKY_BIN | cycles N\n");
+    fprintf(stderr, "usage: api_render compare VKSKY_BIN | quality VKSKY_BIN | cycles N | luts\n");
     return 2;
 }
