@@ -7,7 +7,9 @@
 #
 # Files go to a scratch directory (removed at the end); one line per measurement on stdout:
 #   case <name> frames <n> wall_s <s> frames_per_s <f> bytes_per_frame <b> [peak_mb <m>]
-# SEQ_FRAMES (default 120) sets the sequences' length; QUICK=1 runs only the headline cases.
+# SEQ_FRAMES (default 120) sets the sequences' length; QUICK=1 runs only the headline cases. PNG cases (issue 27):
+# sequences and a 16384x8192 equirect with the default threads against --threads 1, and build/tests/test_png_parallel
+# bench (encode alone, medians by thread count) when it is found beside VKSKY.
 set -u
 V=${1:?usage: throughput_bench.sh VKSKY [BASELINE_VKSKY] [OUT_DIR]}
 BASE=${2:-}
@@ -61,6 +63,10 @@ VKSKY_READBACK_SLOTS=1 seq_case 720p_exr_serial "$V" 1280 720 exr "$N"
 seq_case 720p_exr_threads1 "$V" 1280 720 exr "$N" --threads 1
 VKSKY_READBACK_SLOTS=1 seq_case 720p_exr_serial_threads1 "$V" 1280 720 exr "$N" --threads 1
 seq_case 720p_png "$V" 1280 720 png "$N"
+seq_case 720p_png_threads1 "$V" 1280 720 png "$N" --threads 1   # libpng on one core (today's bytes)
+[ -n "$BASE" ] && seq_case base_720p_png "$BASE" 1280 720 png 60
+seq_case 1080p_png "$V" 1920 1080 png 60
+seq_case 1080p_png_threads1 "$V" 1920 1080 png 60 --threads 1
 seq_case 320x180_exr "$V" 320 180 exr "$N"
 seq_case 4k_exr "$V" 3840 2160 exr 30
 
@@ -74,6 +80,16 @@ for w in 4096 8192 16384; do
     measure "equirect_$w" 1 "$V" --projection equirect --width "$w" --render "$scratch/o/e.exr" --quiet
 done
 [ -n "$BASE" ] && measure base_equirect_16384 1 "$BASE" --projection equirect --width 16384 --render "$scratch/o/e.exr" --quiet
+# A large PNG: its image data on worker threads (src/io/png_parallel.c) against libpng on one core.
+for t in 0 1; do
+    thr=(); [ "$t" = 1 ] && thr=(--threads 1)
+    measure "equirect_16384_png_threads${t/0/all}" 1 "$V" --projection equirect --width 16384 \
+        --render "$scratch/o/e.png" --quiet "${thr[@]}"
+done
+[ -n "$BASE" ] && measure base_equirect_16384_png 1 "$BASE" --projection equirect --width 16384 --render "$scratch/o/e.png" --quiet
+# PNG encode alone (no render): medians by thread count, when the build's test program is beside the binary.
+pb="$(dirname "$V")/tests/test_png_parallel"
+if [ -x "$pb" ]; then "$pb" bench 1280 720 9; "$pb" bench 3840 2160 5; fi
 for i in 1 2 3; do measure "first_1080p_exr_$i" 1 "$V" --width 1920 --height 1080 --render "$scratch/o/a.exr"; done
 [ -n "$BASE" ] && measure base_first_1080p_exr 1 "$BASE" --width 1920 --height 1080 --render "$scratch/o/a.exr"
 exit 0

@@ -6,7 +6,9 @@
 #include "io/png_io.h"
 
 #include "io/atomic_file.h"
+#include "io/encode_settings.h"
 #include "io/io_error.h"
+#include "io/png_parallel.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -113,12 +115,32 @@ int io_write_png(const char *path, int width, int height, const uint8_t *rgba8, 
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     if (srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(png, info);
-    for (int y = 0; y < height; ++y) {
-        png_write_row(png, (png_const_bytep)(rgba8 + (size_t)y * (size_t)width * 4u));
+    int threads = io_encode_threads();
+    if (io_png_par_wanted(width, height, threads)) {
+        /* The image data deflated on worker threads (png_parallel.h); libpng wrote the header chunks. */
+        png_destroy_write_struct(&png, &info);
+        free(ectx);
+        io_png_par *par = io_png_par_create(fp, width, height, threads);
+        int rc = par ? io_png_par_rows(par, rgba8, height) : -1;
+        if (rc == 0) rc = io_png_par_finish(par);
+        if (rc != 0) {
+            if (!par) io_set_err(err, err_size, "cannot write '%s': out of memory", p);
+            else if (io_png_par_errno(par)) io_set_err(err, err_size, "cannot write '%s': %s", p, strerror(io_png_par_errno(par)));
+            else io_set_err(err, err_size, "cannot write '%s': %s", p, io_png_par_message(par));
+            io_png_par_free(par);
+            fclose(fp);
+            unlink(tmp);
+            return -1;
+        }
+        io_png_par_free(par);
+    } else {
+        for (int y = 0; y < height; ++y) {
+            png_write_row(png, (png_const_bytep)(rgba8 + (size_t)y * (size_t)width * 4u));
+        }
+        png_write_end(png, info);
+        png_destroy_write_struct(&png, &info);
+        free(ectx);
     }
-    png_write_end(png, info);
-    png_destroy_write_struct(&png, &info);
-    free(ectx);
 
     if (fflush(fp) != 0 || ferror(fp)) {
         int e = errno ? errno : EIO;

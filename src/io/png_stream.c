@@ -5,8 +5,10 @@
 #endif
 #include "io/png_stream.h"
 #include "io/atomic_file.h"
+#include "io/encode_settings.h"
 #include "io/exr_stream.h"
 #include "io/io_error.h"
+#include "io/png_parallel.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -23,6 +25,7 @@ struct io_png_stream {
     FILE *fp;
     png_structp png;
     png_infop info;
+    io_png_par *par;   /* the image data on worker threads (png_parallel.h); NULL: libpng's rows */
     int width, height, next_row;
     char msg[256];
     int err_no;
@@ -104,7 +107,23 @@ io_png_stream *io_png_stream_open(const char *path, int width, int height, char 
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB_gAMA_and_cHRM(s->png, s->info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(s->png, s->info);
+    int threads = io_encode_threads();
+    if (io_png_par_wanted(width, height, threads)) {
+        s->par = io_png_par_create(s->fp, width, height, threads);
+        if (!s->par) {
+            snprintf(s->msg, sizeof s->msg, "out of memory creating the writer");
+            return fail(s, err, err_size), NULL;
+        }
+    }
     return s;
+}
+
+/* The parallel writer's failure as the stream's. */
+static int par_fail(io_png_stream *s, char *err, size_t err_size)
+{
+    s->err_no = io_png_par_errno(s->par);
+    snprintf(s->msg, sizeof s->msg, "%s", io_png_par_message(s->par));
+    return fail(s, err, err_size);
 }
 
 int io_png_stream_rows(io_png_stream *s, const uint8_t *rgba8, int rows, char *err, size_t err_size)
@@ -112,6 +131,11 @@ int io_png_stream_rows(io_png_stream *s, const uint8_t *rgba8, int rows, char *e
     if (rows < 0 || rows > s->height - s->next_row) {
         snprintf(s->msg, sizeof s->msg, "%d rows past the image's %d", rows, s->height);
         return fail(s, err, err_size);
+    }
+    if (s->par) {
+        if (io_png_par_rows(s->par, rgba8, rows)) return par_fail(s, err, err_size);
+        s->next_row += rows;
+        return 0;
     }
     if (setjmp(png_jmpbuf(s->png))) return fail(s, err, err_size);
     for (int y = 0; y < rows; ++y) png_write_row(s->png, (png_const_bytep)(rgba8 + (size_t)y * (size_t)s->width * 4u));
@@ -125,8 +149,14 @@ int io_png_stream_finish(io_png_stream *s, char *err, size_t err_size)
         snprintf(s->msg, sizeof s->msg, "%d of %d rows given", s->next_row, s->height);
         return fail(s, err, err_size);
     }
-    if (setjmp(png_jmpbuf(s->png))) return fail(s, err, err_size);
-    png_write_end(s->png, s->info);
+    if (s->par) {
+        if (io_png_par_finish(s->par)) return par_fail(s, err, err_size);
+        io_png_par_free(s->par);
+        s->par = NULL;
+    } else {
+        if (setjmp(png_jmpbuf(s->png))) return fail(s, err, err_size);
+        png_write_end(s->png, s->info);
+    }
     png_destroy_write_struct(&s->png, &s->info);
     if (fflush(s->fp) != 0 || ferror(s->fp)) {
         s->err_no = errno ? errno : EIO;
@@ -148,6 +178,7 @@ int io_png_stream_finish(io_png_stream *s, char *err, size_t err_size)
 void io_png_stream_abort(io_png_stream *s)
 {
     if (!s) return;
+    io_png_par_free(s->par);
     if (s->png) png_destroy_write_struct(&s->png, s->info ? &s->info : NULL);
     if (s->fp) fclose(s->fp);
     if (s->tmp[0]) unlink(s->tmp);
