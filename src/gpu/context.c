@@ -1,5 +1,6 @@
 #include "gpu/context.h"
 #include "gpu/barrier.h"
+#include "gpu/async_queue.h"
 #include <stdarg.h>
 #include <stdatomic.h>
 #ifdef VKSKY_SANITIZE
@@ -377,6 +378,10 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
     vkGetPhysicalDeviceQueueFamilyProperties(ctx->physical, &qn, qprops);
     ctx->timestamps = qprops[ctx->queue_family].timestampValidBits > 0 && ctx->props.limits.timestampPeriod > 0;
     ctx->timestamp_period_ns = ctx->props.limits.timestampPeriod;
+    if (desc->async_compute && gpu_async_choose(ctx, qprops, qn, desc->async_compute == GPU_ASYNC_ONE_QUEUE) != 0) {
+        gpu_context_destroy(ctx);
+        return -2;   /* the option, refused for this device: the user's choice to change */
+    }
 
     VkPhysicalDeviceSwapchainMaintenance1FeaturesEXT fsm1 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SWAPCHAIN_MAINTENANCE_1_FEATURES_EXT};
@@ -405,6 +410,7 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
         .pNext = ctx->present_fences ? &enable_sm1 : NULL,
         .vulkanMemoryModel = f12.vulkanMemoryModel,
         .vulkanMemoryModelDeviceScope = f12.vulkanMemoryModelDeviceScope,
+        .timelineSemaphore = desc->async_compute ? VK_TRUE : VK_FALSE,   /* core 1.2, required by 1.3 */
     };
     ctx->memory_model_device_scope = f12.vulkanMemoryModel && f12.vulkanMemoryModelDeviceScope;
     /* maintenance4: glslang 12 emits LocalSizeId for vulkan1.3 targets. */
@@ -415,19 +421,20 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
         .dynamicRendering = VK_TRUE,
         .maintenance4 = VK_TRUE,
     };
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo qinfo = {
+    float priority[2] = {1.0f, 1.0f};
+    VkDeviceQueueCreateInfo qinfo[2] = {{
         .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
         .queueFamilyIndex = ctx->queue_family,
         .queueCount = 1,
-        .pQueuePriorities = &priority,
-    };
+        .pQueuePriorities = priority,
+    }};
+    uint32_t qinfo_count = desc->async_compute ? gpu_async_queue_infos(ctx, qinfo, priority) : 1;
     const char *dev_ext[2] = {VK_KHR_SWAPCHAIN_EXTENSION_NAME, VK_EXT_SWAPCHAIN_MAINTENANCE_1_EXTENSION_NAME};
     VkDeviceCreateInfo dinfo = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &enable13,
-        .queueCreateInfoCount = 1,
-        .pQueueCreateInfos = &qinfo,
+        .queueCreateInfoCount = qinfo_count,
+        .pQueueCreateInfos = qinfo,
         .enabledExtensionCount = desc->want_swapchain ? (ctx->present_fences ? 2 : 1) : 0,
         .ppEnabledExtensionNames = dev_ext,
     };
@@ -452,6 +459,7 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
     };
     VK_CHECK(vkCreateCommandPool(ctx->device, &pinfo, ctx->allocator, &ctx->command_pool));
     gpu_set_name(ctx, VK_OBJECT_TYPE_COMMAND_POOL, (uint64_t)ctx->command_pool, "main command pool");
+    if (desc->async_compute) gpu_async_open(ctx);
     live_contexts++;
     gpu_context_live_add(1);
     live_device_type = ctx->props.deviceType;
@@ -469,6 +477,7 @@ void gpu_context_destroy(gpu_context *ctx)
     if (ctx->command_pool && live_contexts > 0) live_contexts--, gpu_context_live_add(-1);   /* counted once created */
     if (ctx->device) {
         vkDeviceWaitIdle(ctx->device);
+        gpu_async_close(ctx);
         if (ctx->command_pool) vkDestroyCommandPool(ctx->device, ctx->command_pool, ctx->allocator);
         gpu_allocator_register(ctx->device, NULL);
         vkDestroyDevice(ctx->device, ctx->allocator);
