@@ -12,6 +12,7 @@
 #    rebuild signals compute_done with the next value, each frame waits for exactly that value at the LUT readers'
 #    stages and signals graphics_done, which the next rebuild waits for; the queue line and `qfot none` say why no
 #    ownership transfer is recorded (one family);
+#  - the window (Xvfb): validation clean, the LUTs built on the compute queue, the screenshot equal;
 #  - the compute command buffer is checked by validation like the frame's: transmittance.write_to_sample left out
 #    there is reported (RAW + layout).
 # Usage: async_luts_test.sh path/to/vksky path/to/exr_pixels
@@ -81,5 +82,19 @@ VKSKY_DROP_BARRIER=transmittance.write_to_sample "$VKSKY" --render "$work/drop.p
     2>"$work/drop.err" >/dev/null
 grep -q 'SYNC-HAZARD-READ-AFTER-WRITE' "$work/drop.err" && grep -q 'InvalidImageLayout\|imageLayout-00344' "$work/drop.err" \
     || fail "transmittance.write_to_sample dropped on the compute queue: no RAW + layout reported"
+
+# The window (under Xvfb when there is no DISPLAY; skipped without either): its first frame's LUTs on the compute
+# queue, the frame's submit waiting for them beside the acquire semaphore; validation clean, the screenshot equal to
+# the single-queue window's.
+if [ -n "${DISPLAY:-}" ] || command -v xvfb-run >/dev/null; then
+    run=("$VKSKY"); [ -z "${DISPLAY:-}" ] && run=("$(dirname "$0")/xvfb_run.sh" 640x480x24 "$VKSKY")
+    W=(--frames 3 --width 64 --height 64 --sky-mode march --render-scale 1 --bloom-mips 5 --validate)
+    timeout 120 "${run[@]}" "${W[@]}" --screenshot "$work/w1.png" >"$work/w1.out" 2>&1 || fail "window: single queue failed"
+    timeout 120 "${run[@]}" "${W[@]}" --async-luts --trace-barriers --screenshot "$work/w2.png" >"$work/w2.out" 2>&1 \
+        || fail "window --async-luts failed: $(grep -v '^barrier\|^batch\|^pass' "$work/w2.out" | head -c 400)"
+    grep -q '^validation_messages 0$' "$work/w2.out" || fail "window --async-luts: validation messages"
+    grep -q '^semaphore compute_done.signal queue=compute value=1 ' "$work/w2.out" || fail "window: no LUT build on the compute queue"
+    cmp -s "$work/w1.png" "$work/w2.png" || fail "window --async-luts: the screenshot differs from the single-queue window's"
+fi
 
 [ $fails -eq 0 ] && echo "async_luts: ok" || exit 1
