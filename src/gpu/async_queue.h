@@ -1,18 +1,9 @@
-/* The async compute queue (--async-luts): which queue, its command pool, and the two timeline semaphores that
- * order its submissions against the main queue's. Knows nothing of skies; docs/synchronization.md §10. */
+/* The async compute queue (--async-luts): its command buffers and submissions, ordered against the main queue's by
+ * the context's two timeline semaphores (made by gpu/context.c with the queue, chosen by gpu/queue_choice.c). Knows nothing of skies; docs/synchronization.md §10. */
 #ifndef VKSKY_GPU_ASYNC_QUEUE_H
 #define VKSKY_GPU_ASYNC_QUEUE_H
 #include "gpu/context.h"
 
-/* Picks the compute queue: a family with compute and without graphics (a dedicated compute family: its work may
- * overlap the graphics queue's), else a second queue of the main family, else (one_queue, tests) the main queue
- * itself. Returns 0, or -1 with a message naming what the device lacks. */
-int gpu_async_choose(gpu_context *ctx, const VkQueueFamilyProperties *families, uint32_t count, bool one_queue);
-/* The VkDeviceQueueCreateInfos the choice needs (infos[0] is the main family's); returns how many. */
-uint32_t gpu_async_queue_infos(const gpu_context *ctx, VkDeviceQueueCreateInfo infos[2], const float *priorities);
-/* After vkCreateDevice: the queue, a command pool on its family, the two timelines. Close destroys them. */
-void gpu_async_open(gpu_context *ctx);
-void gpu_async_close(gpu_context *ctx);
 /* A `queues` line in the barrier trace: which family and queue each submission goes to, and whether the LUTs change
  * owner. */
 void gpu_async_trace_queues(const gpu_context *ctx);
