@@ -70,6 +70,8 @@ typedef struct gpu_adopt_desc {
     uint32_t queue_family, queue_index;
     const VkAllocationCallbacks *allocator;
     VkPipelineCache pipeline_cache;
+    bool compute_queue;                       /* the host's compute queue for vksky_record_luts */
+    uint32_t compute_family, compute_index;
     gpu_message_fn message;
     void *message_user;
 } gpu_adopt_desc;
