@@ -19,20 +19,22 @@ done
 soname=$(objdump -p "$P/lib/libvksky.so" | awk '/SONAME/ {print $2}')
 [ "$soname" = libvksky.so.0 ] || fail "SONAME is '$soname', expected libvksky.so.0"
 version=$(sed -n 's/^project(vksky VERSION \([0-9.]*\).*/\1/p' "$(dirname "$0")/../../CMakeLists.txt")
+abi=$(sed -n 's/^#define VKSKY_ABI_VERSION \([0-9]*\)u.*/\1/p' "$(dirname "$0")/../../include/vksky.h")   # the header's
+[ -n "$abi" ] || fail "no VKSKY_ABI_VERSION in include/vksky.h"
 
 export PKG_CONFIG_PATH=$P/lib/pkgconfig LD_LIBRARY_PATH=$P/lib
 [ "$(pkg-config --modversion vksky)" = "$version" ] || fail "pkg-config --modversion vksky: $(pkg-config --modversion vksky)"
 # shellcheck disable=SC2046
 cc -std=c11 -o "$work/c_pc" "$SRC/consumer.c" $(pkg-config --cflags --libs vksky) || fail "build with pkg-config"
-[ "$("$work/c_pc")" = "vksky $version abi 1" ] || fail "pkg-config consumer printed '$("$work/c_pc")'"
+[ "$("$work/c_pc")" = "vksky $version abi $abi" ] || fail "pkg-config consumer printed '$("$work/c_pc")'"
 # shellcheck disable=SC2046
 cc -std=c11 -o "$work/c_static" "$SRC/consumer.c" $(pkg-config --cflags vksky) "$P/lib/libvksky.a" \
     $(pkg-config --static --libs-only-l vksky | sed 's/-lvksky//') || fail "build against libvksky.a"
 ldd "$work/c_static" 2>/dev/null | grep -q libvksky && fail "the static consumer loads libvksky.so"
-[ "$("$work/c_static")" = "vksky $version abi 1" ] || fail "static consumer printed '$("$work/c_static")'"
+[ "$("$work/c_static")" = "vksky $version abi $abi" ] || fail "static consumer printed '$("$work/c_static")'"
 cmake -S "$SRC" -B "$work/cm" -DCMAKE_PREFIX_PATH="$P" >"$work/cm.log" 2>&1 && cmake --build "$work/cm" >>"$work/cm.log" 2>&1 \
     || { cat "$work/cm.log" >&2; fail "build with find_package(vksky)"; }
-[ "$("$work/cm/consumer")" = "vksky $version abi 1" ] || fail "find_package consumer printed '$("$work/cm/consumer")'"
+[ "$("$work/cm/consumer")" = "vksky $version abi $abi" ] || fail "find_package consumer printed '$("$work/cm/consumer")'"
 # A shipped scene by name, found beside the installed library (not the source tree): its installed copy is marked
 # with another ground radius, which the consumer must print, from another directory.
 sed -i 's/"ground_radius_km": [0-9.]*/"ground_radius_km": 1234.5/' "$P/share/vksky/scenes/mars.json"
