@@ -12,7 +12,8 @@
 #     (VKSKY_FRAMES=2), with and without --async-luts: the EXR pixels must be bit-identical; the trace's `queues` and
 #     `qfot` lines say which path ran (release + acquire barriers for another family). The validation layer's
 #     version is printed: synchronization validation before 1.3.250 does not check hazards across submissions, so
-#     there the semaphores are only checked by the pixels and by the core layer's ownership-transfer checks.
+#     there the semaphores are only checked by the pixels and by the core layer's ownership-transfer checks. Then
+#     each release/acquire barrier and semaphore wait left out in turn: what validation reports (a report).
 # (b) Speed: `vksky --bench FRAMES` at 1920x1080 (warm-up, medians), with and without --async-luts, alternated
 #     twice: `frame_luts wall_ms` is a frame that rebuilds its LUTs (as a frame whose atmosphere changes every frame;
 #     the bench's forced-LUT frames), submit to fence; `frame gpu_ms` / `wall_ms` the steady frame (no LUT rebuild);
@@ -54,6 +55,17 @@ ground --ground-albedo 0.3,0.3,0.3 --pitch -20
 LIST
 # The ownership-transfer barriers, once, as traced (another family only).
 grep -m6 -E '^(qfot|barrier [a-z_]+\.(release|acquire)|semaphore)' "$work/a1.trace" | sed 's/^/trace: /'
+
+# What validation reports when one piece of the cross-queue synchronization is left out (VKSKY_DROP_BARRIER; the
+# trace marks it DROPPED): a report, not a check; docs/synchronization.md §10 records it.
+drops="compute_done.wait graphics_done.wait"
+grep -q '^qfot .* release ' "$work/a1.trace" && drops="transmittance.release multiscatter.release transmittance.acquire multiscatter.acquire $drops"
+for d in $drops; do
+    VKSKY_DROP_BARRIER=$d VKSKY_FRAMES=2 "$V" --render "$work/d.exr" "${A[@]}" --async-luts >/dev/null 2>"$work/d.err"
+    rc=$?
+    ids=$(grep -o '\[ [A-Za-z0-9_-]* \]' "$work/d.err" | tr -d '[] ' | sort -u | paste -sd+ -)
+    echo "drop $d exit=$rc reported=${ids:-none} pixels=$("$PIX" same "$work/s1.exr" "$work/d.exr" 2>/dev/null && echo identical || echo different)"
+done
 
 SIZE=${BENCH_SIZE:-1920x1080}   # BENCH_SIZE=WxH: smaller on lavapipe
 B=(--width "${SIZE%x*}" --height "${SIZE#*x}" --bench "$N")
