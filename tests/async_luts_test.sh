@@ -5,8 +5,8 @@
 # other-family path, with its ownership transfer, is tools/async_bench.sh's on a GPU). Every run has --validate
 # (validation + synchronization validation): any message fails it.
 #  - without a second queue, --async-luts is refused: exit 2, one line naming what the device lacks, no file;
-#  - each variant whose LUT set differs (default, sky-view, compute sky pass, no multi-scattering, lit ground, the
-#    compute post chain), two frames each rebuilding the LUTs (VKSKY_FRAMES=2): pixels bit-identical to the
+#  - each variant whose LUT set or first LUT reader differs (default, sky-view, compute sky pass, no
+#    multi-scattering, lit ground), two frames each rebuilding the LUTs (VKSKY_FRAMES=2): pixels bit-identical to the
 #    single-queue frame (EXR by pixels, PNG byte for byte);
 #  - the trace: the LUT passes recorded in their own command buffer before the frame's, which records none; each
 #    rebuild signals compute_done with the next value, each frame waits for exactly that value at the LUT readers'
@@ -74,7 +74,6 @@ skyview --sky-mode skyview
 compute --sky-pass compute
 noms --no-multiscatter
 ground --ground-albedo 0.3,0.3,0.3 --pitch -20
-post_compute --post-pass compute
 LIST
 
 # Validation sees the compute command buffer: a LUT barrier left out there is reported.
