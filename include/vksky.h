@@ -38,7 +38,8 @@ extern "C" {
 /* The ABI this header describes. A host passes it in every *_desc; a library built for another ABI refuses the
  * call with VKSKY_ERROR_ABI_MISMATCH instead of reading a struct of another shape.
  * 2: vksky_renderer_desc and vksky_frame gained `next` (extension chains), vksky_quality_config,
- *    vksky_renderer_get_timings. */
+ *    vksky_renderer_get_timings; the compute queue (vksky_context_desc.compute_queue,
+ *    vksky_record_luts). */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -86,6 +87,10 @@ typedef struct vksky_context_desc {
     VkPipelineCache pipeline_cache;                  /* the host's, or VK_NULL_HANDLE */
     vksky_message_fn message;                        /* NULL: messages are dropped */
     void *message_user;
+    /* ABI 2: the compute queue whose command buffers vksky_record_luts receives (the LUTs on an async compute queue,
+     * docs/library.md). Another family than queue_family: the LUT images change owner (vksky records both halves). */
+    bool compute_queue;
+    uint32_t compute_queue_family, compute_queue_index;
 } vksky_context_desc;
 
 /* What the host must enable on its device for vksky: Vulkan 1.3 core features (synchronization2, dynamicRendering,
@@ -112,6 +117,9 @@ typedef struct vksky_own_device_desc {
     bool swapchain;                                  /* enable VK_KHR_swapchain on the device */
     vksky_message_fn message;
     void *message_user;
+    /* ABI 2: also make a compute queue (a compute-only family, else a second queue of the graphics family; else
+     * VKSKY_ERROR_INVALID_ARGUMENT), for vksky_record_luts; vksky_context_get_handles reports it. */
+    bool compute_queue;
 } vksky_own_device_desc;
 VKSKY_API vksky_result vksky_context_create_own(const vksky_own_device_desc *desc, vksky_context **out);
 
@@ -126,6 +134,8 @@ typedef struct vksky_context_handles {
     VkDevice device;
     VkQueue queue;
     uint32_t queue_family;
+    VkQueue compute_queue;          /* ABI 2: VK_NULL_HANDLE without one */
+    uint32_t compute_queue_family;
 } vksky_context_handles;
 VKSKY_API void vksky_context_get_handles(const vksky_context *context, vksky_context_handles *out);
 
@@ -339,6 +349,17 @@ typedef struct vksky_pass_timing {
 } vksky_pass_timing;
 VKSKY_API vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
                                                   uint32_t *count);
+
+/* ABI 2, the LUTs on an async compute queue (a context with a compute queue): records the LUT passes into
+ * `compute_cmd` (recording, a command buffer of the compute queue's family) when the scene's medium changed since they
+ * were last built, or `force`; *recorded (may be NULL) says whether it did. The next vksky_record then records no LUT
+ * pass (and, with another family, first the acquire of the LUT images this call released). The host submits
+ * compute_cmd signalling a timeline semaphore value v of its own, and the graphics submission holding that
+ * vksky_record waits for >= v at vksky_luts.ready_stage (COMPUTE_SHADER | FRAGMENT_SHADER); the compute submission
+ * holding the next vksky_record_luts must wait for the graphics submissions that sampled the LUTs (their value, at
+ * COMPUTE_SHADER). No allocation, no submission, no wait. docs/library.md, docs/synchronization.md §10. */
+VKSKY_API vksky_result vksky_record_luts(vksky_renderer *renderer, VkCommandBuffer compute_cmd, bool force,
+                                         bool *recorded);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,7 @@
 #include "gpu/barrier.h"
 #include <stdarg.h>
 #include "gpu/fail.h"   /* an overflowing batch is a bug, reported as every failure below the API is */
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -473,4 +474,34 @@ void gpu_barrier_add_image_info(gpu_barrier_batch *b, const char *name, const ch
                barrier.srcAccessMask, barrier.dstStageMask, barrier.dstAccessMask, hazard, drop, weakened);
     if (drop || b->image_count == GPU_BATCH_MAX) return;   /* a full batch: 16 images, the frame uses at most 6 */
     b->images[b->image_count++] = barrier;
+}
+
+/* A queue-family ownership transfer's half (docs/synchronization.md §10): the barrier as add_image_info builds it,
+ * with the two families set, and a `qfot` trace line after it saying which half this is. */
+void gpu_barrier_add_image_qfot(gpu_barrier_batch *b, const char *name, const char *resource, VkImage image,
+                                VkImageSubresourceRange range, gpu_usage_info from, gpu_usage_info to,
+                                uint32_t src_family, uint32_t dst_family, bool release)
+{
+    uint32_t before = b->image_count;
+    gpu_barrier_add_image_info(b, name, resource, image, range, from, to, false);
+    if (b->image_count > before) {
+        b->images[before].srcQueueFamilyIndex = src_family;
+        b->images[before].dstQueueFamilyIndex = dst_family;
+    }
+    if (trace_out)
+        fprintf(trace_out, "qfot %s %s family=%u->%u (%s)\n", name, release ? "release" : "acquire", src_family,
+                dst_family, release ? "recorded on the source queue; its destination stage and access are ignored"
+                                    : "recorded on the destination queue; its source stage and access are NONE");
+}
+
+bool gpu_barrier_drops(const char *name) { return dropped(name); }
+
+void gpu_barrier_trace_note(const char *format, ...)
+{
+    if (!trace_out) return;
+    va_list ap;
+    va_start(ap, format);
+    vfprintf(trace_out, format, ap);
+    va_end(ap);
+    fputc('\n', trace_out);
 }

@@ -76,6 +76,19 @@ void gpu_barrier_add_memory(gpu_barrier_batch *b, const char *name, const char *
  * barrier in it dropped). */
 void gpu_barrier_flush(VkCommandBuffer cmd, gpu_barrier_batch *b);
 
+/* One half of a queue-family ownership transfer (the async LUTs, docs/synchronization.md §10): `release` recorded on
+ * the queue of src_family (its destination stage/access should be NONE: ignored), else the acquire, recorded on the
+ * queue of dst_family (its source stage/access NONE), both with the same layouts and range. Traced as the barrier's
+ * line and a `qfot` line. */
+void gpu_barrier_add_image_qfot(gpu_barrier_batch *b, const char *name, const char *resource, VkImage image,
+                                VkImageSubresourceRange range, gpu_usage_info from, gpu_usage_info to,
+                                uint32_t src_family, uint32_t dst_family, bool release);
+/* True (and counted as a drop) when VKSKY_DROP_BARRIER names `name`: for the synchronization that is not a
+ * barrier (a semaphore wait), so its drop test works the same way. */
+bool gpu_barrier_drops(const char *name);
+/* A free-form line in the barrier trace (semaphores, queue choices); nothing when the trace is off. */
+void gpu_barrier_trace_note(const char *format, ...) __attribute__((format(printf, 1, 2)));
+
 /* Trace / drop controls (process-wide; set once by the app before recording). */
 void gpu_barrier_trace(FILE *out);
 /* A trace owned by a context (the library's vksky_context_set_trace): lines without their newline to `line`;

@@ -1,5 +1,6 @@
 #include "gpu/context.h"
 #include "gpu/barrier.h"
+#include "gpu/queue_choice.h"
 #include <stdarg.h>
 #include <stdatomic.h>
 #ifdef VKSKY_SANITIZE
@@ -348,6 +349,22 @@ int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)
     return gpu_context_create_with(ctx, desc, NULL, NULL, NULL);
 }
 
+/* --async-luts: the compute queue, a command pool on its family, the two timelines (gpu/async_queue.c uses them). */
+static void open_compute_queue(gpu_context *ctx)
+{
+    vkGetDeviceQueue(ctx->device, ctx->compute_family, ctx->compute_index, &ctx->compute_queue);
+    if (ctx->compute_queue != ctx->queue)
+        gpu_set_name(ctx, VK_OBJECT_TYPE_QUEUE, (uint64_t)(uintptr_t)ctx->compute_queue, "async compute queue");
+    VkCommandPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                     .queueFamilyIndex = ctx->compute_family};
+    VK_CHECK(vkCreateCommandPool(ctx->device, &pinfo, ctx->allocator, &ctx->compute_pool));
+    gpu_set_name(ctx, VK_OBJECT_TYPE_COMMAND_POOL, (uint64_t)ctx->compute_pool, "async compute command pool");
+    ctx->compute_done = gpu_timeline_create(ctx->device, ctx->allocator);
+    ctx->graphics_done = gpu_timeline_create(ctx->device, ctx->allocator);
+    gpu_set_name(ctx, VK_OBJECT_TYPE_SEMAPHORE, (uint64_t)ctx->compute_done, "compute_done timeline");
+    gpu_set_name(ctx, VK_OBJECT_TYPE_SEMAPHORE, (uint64_t)ctx->graphics_done, "graphics_done timeline");
+}
+
 int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_message_fn message, void *user,
                             const VkAllocationCallbacks *allocator)
 {
@@ -377,6 +394,15 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
     vkGetPhysicalDeviceQueueFamilyProperties(ctx->physical, &qn, qprops);
     ctx->timestamps = qprops[ctx->queue_family].timestampValidBits > 0 && ctx->props.limits.timestampPeriod > 0;
     ctx->timestamp_period_ns = ctx->props.limits.timestampPeriod;
+    if (desc->async_compute && gpu_queue_choose_compute(qprops, qn, ctx->queue_family,
+                                                         desc->async_compute == GPU_ASYNC_ONE_QUEUE,
+                                                         &ctx->compute_family, &ctx->compute_index) != 0) {
+        gpu_report(ctx, 2, "--async-luts needs a second queue: this device has no compute-only queue family and its "
+                           "one graphics+compute family has %u queue; run without --async-luts",
+                   qprops[ctx->queue_family].queueCount);
+        gpu_context_destroy(ctx);
+        return -2;   /* the option, refused for this device: the user's choice to change */
+    }
 
     VkPhysicalDeviceSwapchainMaintenance1FeaturesEXT fsm1 = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SWAPCHAIN_MAINTENANCE_1_FEATURES_EXT};
@@ -405,6 +431,7 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
         .pNext = ctx->present_fences ? &enable_sm1 : NULL,
         .vulkanMemoryModel = f12.vulkanMemoryModel,
         .vulkanMemoryModelDeviceScope = f12.vulkanMemoryModelDeviceScope,
+        .timelineSemaphore = desc->async_compute ? VK_TRUE : VK_FALSE,   /* core 1.2, required by 1.3 */
     };
     ctx->memory_model_device_scope = f12.vulkanMemoryModel && f12.vulkanMemoryModelDeviceScope;
     /* maintenance4: glslang 12 emits LocalSizeId for vulkan1.3 targets. */
@@ -415,19 +442,22 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
         .dynamicRendering = VK_TRUE,
         .maintenance4 = VK_TRUE,
     };
-    float priority = 1.0f;
-    VkDeviceQueueCreateInfo qinfo = {
+    float priority[2] = {1.0f, 1.0f};
+    VkDeviceQueueCreateInfo qinfo[2] = {{
         .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
         .queueFamilyIndex = ctx->queue_family,
         .queueCount = 1,
-        .pQueuePriorities = &priority,
-    };
+        .pQueuePriorities = priority,
+    }};
+    uint32_t qinfo_count = desc->async_compute ? gpu_queue_infos(ctx->queue_family, ctx->compute_family,
+                                                                 ctx->compute_index, qinfo, priority)
+                                                 : 1;
     const char *dev_ext[2] = {VK_KHR_SWAPCHAIN_EXTENSION_NAME, VK_EXT_SWAPCHAIN_MAINTENANCE_1_EXTENSION_NAME};
     VkDeviceCreateInfo dinfo = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .pNext = &enable13,
-        .queueCreateInfoCount = 1,
-        .pQueueCreateInfos = &qinfo,
+        .queueCreateInfoCount = qinfo_count,
+        .pQueueCreateInfos = qinfo,
         .enabledExtensionCount = desc->want_swapchain ? (ctx->present_fences ? 2 : 1) : 0,
         .ppEnabledExtensionNames = dev_ext,
     };
@@ -452,6 +482,7 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
     };
     VK_CHECK(vkCreateCommandPool(ctx->device, &pinfo, ctx->allocator, &ctx->command_pool));
     gpu_set_name(ctx, VK_OBJECT_TYPE_COMMAND_POOL, (uint64_t)ctx->command_pool, "main command pool");
+    if (desc->async_compute) open_compute_queue(ctx);
     live_contexts++;
     gpu_context_live_add(1);
     live_device_type = ctx->props.deviceType;
@@ -469,6 +500,11 @@ void gpu_context_destroy(gpu_context *ctx)
     if (ctx->command_pool && live_contexts > 0) live_contexts--, gpu_context_live_add(-1);   /* counted once created */
     if (ctx->device) {
         vkDeviceWaitIdle(ctx->device);
+        if (ctx->compute_pool) {   /* --async-luts */
+            vkDestroySemaphore(ctx->device, ctx->compute_done, ctx->allocator);
+            vkDestroySemaphore(ctx->device, ctx->graphics_done, ctx->allocator);
+            vkDestroyCommandPool(ctx->device, ctx->compute_pool, ctx->allocator);
+        }
         if (ctx->command_pool) vkDestroyCommandPool(ctx->device, ctx->command_pool, ctx->allocator);
         gpu_allocator_register(ctx->device, NULL);
         vkDestroyDevice(ctx->device, ctx->allocator);

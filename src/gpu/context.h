@@ -13,7 +13,12 @@ typedef struct gpu_context_desc {
     const char *const *instance_extensions;   /* extra (e.g. from GLFW) */
     unsigned instance_extension_count;
     bool want_swapchain;
+    /* --async-luts: a second queue for compute work (gpu/async_queue.c). GPU_ASYNC_ONE_QUEUE (tests, env
+     * VKSKY_ASYNC_ONE_QUEUE=1) puts the compute submissions on the main queue itself, so a single-queue device
+     * (lavapipe) runs the same command buffers and timeline semaphores. */
+    int async_compute;
 } gpu_context_desc;
+enum { GPU_ASYNC_OFF, GPU_ASYNC_ON, GPU_ASYNC_ONE_QUEUE };
 
 /* A message from src/gpu or src/sky (a context's problem, a validation message): severity 0 info, 1 warning, 2 error,
  * 3 validation. Without one, messages go to stderr as "vksky: TEXT" (the CLI). */
@@ -45,6 +50,13 @@ typedef struct gpu_context {
     gpu_message_fn message;       /* NULL: stderr */
     void *message_user;
     unsigned validation_messages; /* this context's (gpu_validation_message_count: the process's) */
+    /* The async compute queue (gpu/async_queue.c); compute_queue VK_NULL_HANDLE: none. Two timelines: `compute_done`
+     * counts the compute queue's submissions, `graphics_done` the main queue's that wait for or follow them. */
+    VkQueue compute_queue;
+    uint32_t compute_family, compute_index;
+    VkCommandPool compute_pool;
+    VkSemaphore compute_done, graphics_done;
+    uint64_t compute_value, graphics_value;   /* the last value signalled (submitted) on each */
 } gpu_context;
 
 /* The host's device, adopted (libvksky's vksky_context_create): no instance or device is created; vksky's Vulkan
@@ -58,6 +70,8 @@ typedef struct gpu_adopt_desc {
     uint32_t queue_family, queue_index;
     const VkAllocationCallbacks *allocator;
     VkPipelineCache pipeline_cache;
+    bool compute_queue;                       /* the host's compute queue for vksky_record_luts */
+    uint32_t compute_family, compute_index;
     gpu_message_fn message;
     void *message_user;
 } gpu_adopt_desc;

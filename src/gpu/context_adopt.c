@@ -94,6 +94,17 @@ VkResult gpu_context_adopt(gpu_context *ctx, const gpu_adopt_desc *d)
     /* The features the host enabled cannot be read back from a VkDevice: the single-pass bloom's memory model is
      * not assumed (the per-level chain serves), names and labels are not given (the host's debug utils may be off). */
     vkGetDeviceQueue(ctx->device, d->queue_family, d->queue_index, &ctx->queue);
+    if (d->compute_queue) {   /* the host's compute queue (vksky_record_luts): vksky records for it, never submits */
+        if (d->compute_family >= qn || !(qprops[d->compute_family].queueFlags & VK_QUEUE_COMPUTE_BIT) ||
+            d->compute_index >= qprops[d->compute_family].queueCount) {
+            gpu_report(ctx, 2, "compute queue family %u, index %u: not a compute queue of the device",
+                       d->compute_family, d->compute_index);
+            *ctx = (gpu_context){0};
+            return VK_ERROR_INITIALIZATION_FAILED;
+        }
+        ctx->compute_family = d->compute_family, ctx->compute_index = d->compute_index;
+        vkGetDeviceQueue(ctx->device, d->compute_family, d->compute_index, &ctx->compute_queue);
+    }
     gpu_allocator_register(ctx->device, ctx->allocator);
     VkCommandPoolCreateInfo pinfo = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,

@@ -109,11 +109,18 @@ void gpu_buffer_create(const gpu_context *ctx, gpu_buffer *buf, const char *name
                        VkBufferUsageFlags usage)
 {
     *buf = (gpu_buffer){.size = size};
+    /* --async-luts with a compute queue of another family: the LUT passes there and the frame here read the same
+     * host-written buffers (the atmosphere's uniform block); concurrent sharing instead of an ownership transfer per
+     * buffer (docs/synchronization.md §10). */
+    uint32_t families[2] = {ctx->queue_family, ctx->compute_family};
+    bool shared = ctx->compute_queue && ctx->compute_family != ctx->queue_family;
     VkBufferCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
         .size = size,
         .usage = usage,
-        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+        .sharingMode = shared ? VK_SHARING_MODE_CONCURRENT : VK_SHARING_MODE_EXCLUSIVE,
+        .queueFamilyIndexCount = shared ? 2 : 0,
+        .pQueueFamilyIndices = shared ? families : NULL,
     };
     VK_CHECK(vkCreateBuffer(ctx->device, &info, gpu_allocator(ctx->device), &buf->buffer));
     VkMemoryRequirements req;

@@ -31,7 +31,8 @@ vksky_result vksky_context_create(const vksky_context_desc *desc, vksky_context 
         .get_instance_proc_addr = desc->get_instance_proc_addr, .instance = desc->instance,
         .physical = desc->physical_device, .device = desc->device, .queue_family = desc->queue_family,
         .queue_index = desc->queue_index, .allocator = desc->allocator, .pipeline_cache = desc->pipeline_cache,
-        .message = lib_gpu_message, .message_user = c};
+        .message = lib_gpu_message, .message_user = c, .compute_queue = desc->compute_queue,
+        .compute_family = desc->compute_queue_family, .compute_index = desc->compute_queue_index};
     VkResult r = gpu_context_adopt(&c->gpu, &adopt);
     if (r != VK_SUCCESS) {
         free(c);
@@ -57,7 +58,8 @@ vksky_result vksky_context_create_own(const vksky_own_device_desc *desc, vksky_c
     gpu_context_desc gd = {.validation = desc->validation, .device_index = desc->device_index,
                            .instance_extensions = desc->instance_extensions,
                            .instance_extension_count = desc->instance_extension_count,
-                           .want_swapchain = desc->swapchain};
+                           .want_swapchain = desc->swapchain,
+                           .async_compute = desc->compute_queue ? GPU_ASYNC_ON : GPU_ASYNC_OFF};
     gpu_trap trap;
     if (setjmp(trap.jump)) {
         /* A failing Vulkan call after the device was made (its command pool, the messenger). */
@@ -96,7 +98,9 @@ void vksky_context_get_handles(const vksky_context *context, vksky_context_handl
     if (!context) return;
     *out = (vksky_context_handles){.instance = context->gpu.instance, .physical_device = context->gpu.physical,
                                    .device = context->gpu.device, .queue = context->gpu.queue,
-                                   .queue_family = context->gpu.queue_family};
+                                   .queue_family = context->gpu.queue_family,
+                                   .compute_queue = context->gpu.compute_queue,
+                                   .compute_queue_family = context->gpu.compute_family};
 }
 
 uint32_t vksky_context_validation_message_count(const vksky_context *context)

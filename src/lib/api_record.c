@@ -1,6 +1,7 @@
 /* Frames: the host's camera to the sky pass's rays, vksky_record over frame_record, the LUTs for the host's own
  * shaders (include/vksky.h). */
 #include "lib/lib_internal.h"
+#include "gpu/async_queue.h"
 #include <math.h>
 #include <string.h>
 
@@ -182,6 +183,31 @@ static vksky_result record_trapped(vksky_renderer *renderer, VkCommandBuffer cmd
 }
 
 static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame);
+vksky_result vksky_record_luts(vksky_renderer *renderer, VkCommandBuffer compute_cmd, bool force, bool *recorded)
+{
+    if (recorded) *recorded = false;
+    if (!renderer || !compute_cmd) return VKSKY_ERROR_INVALID_ARGUMENT;
+    vksky_context *c = renderer->ctx;
+    if (!c->gpu.compute_queue) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record_luts: the context has no compute queue (vksky_context_desc.compute_queue)");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    if (!force && !sky_renderer_luts_dirty(&renderer->r)) return VKSKY_SUCCESS;
+    gpu_trap trap;
+    if (setjmp(trap.jump)) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record_luts: %s (the command buffer is incomplete: reset it)", trap.message);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
+    /* The LUT passes and their last barriers (the releases to the graphics family when the families differ). */
+    frame_record_luts_compute(&renderer->r, compute_cmd);
+    renderer->r.lut_acquire_pending = gpu_async_other_family(&c->gpu);
+    gpu_trap_arm(NULL);
+    if (recorded) *recorded = true;
+    return VKSKY_SUCCESS;
+}
 
 vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
 {

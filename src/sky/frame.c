@@ -10,6 +10,7 @@
  * records a barrier. */
 #include "sky/frame.h"
 #include "sky/view_params.h"
+#include "gpu/async_queue.h"
 
 /* How each frame image was last used by the previous frame: the first barrier of this frame waits for it (WAR)
  * and discards the contents (old layout UNDEFINED). */
@@ -35,6 +36,35 @@ static void timed_end(sky_renderer *r, VkCommandBuffer cmd, uint32_t slot)
     gpu_label_end(r->ctx, cmd);
 }
 
+/* The LUTs recorded on a compute queue of another family than the graphics queue (--async-luts): no fragment stage
+ * there, and the LUTs change owner at the end (docs/synchronization.md §10). */
+static bool lut_compute_only(const sky_renderer *r)
+{
+    return r->lut_on_compute_queue && gpu_async_other_family(r->ctx);
+}
+
+/* A LUT pass wrote `base`'s LUT; the passes after it sample it: RAW + GENERAL -> SHADER_READ_ONLY (`at`). With the
+ * LUTs on another family's compute queue, the in-queue readers are compute shaders only, and the last LUT (the one
+ * whose barrier goes into `next`) is instead *released* to the graphics family: async_luts.c records the others'
+ * releases and the acquires. */
+static void lut_written(sky_renderer *r, gpu_barrier_batch *at, gpu_barrier_batch *next, const char *base,
+                        const char *resource, VkImage image)
+{
+    char name[64];
+    if (lut_compute_only(r) && at == next) {
+        snprintf(name, sizeof name, "%s.release", base);
+        gpu_usage_info to = *gpu_usage_get(GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED);
+        to.stage = VK_PIPELINE_STAGE_2_NONE, to.access = VK_ACCESS_2_NONE;   /* ignored in a release */
+        gpu_barrier_add_image_qfot(at, name, resource, image, gpu_color_range(0, 1),
+                                   *gpu_usage_get(GPU_USAGE_COMPUTE_STORAGE_WRITE), to, r->ctx->compute_family,
+                                   r->ctx->queue_family, true);
+        return;
+    }
+    snprintf(name, sizeof name, "%s.write_to_sample", base);
+    gpu_barrier_add_image(at, name, resource, image, gpu_color_range(0, 1), GPU_USAGE_COMPUTE_STORAGE_WRITE,
+                          lut_compute_only(r) ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+}
+
 /* The LUT passes. Their last barrier (the last LUT made readable) goes into `next`, the batch of the point that
  * follows them: back-to-back barriers share one vkCmdPipelineBarrier2 (one call per point, §2 of the guide). */
 static void record_luts(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch *next)
@@ -42,11 +72,14 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch 
     sky_luts *l = &r->luts;
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     bool ms = r->variant.multiscatter, ground = r->variant.ground;
+    /* On a compute-only queue (--async-luts, another family) no stage but compute exists: the previous frames'
+     * fragment reads are ordered by the graphics_done wait of the submission instead (async_luts.c). */
+    gpu_usage last_use = lut_compute_only(r) ? GPU_USAGE_COMPUTE_SAMPLED : LUT_LAST_USE;
 
     /* Transmittance LUT: the previous frames' sky passes sampled it (WAR); to GENERAL for imageStore. */
     gpu_barrier_batch b = gpu_barrier_batch_begin("before transmittance_lut");
     gpu_barrier_add_image(&b, "transmittance.to_storage", "transmittance_lut", l->transmittance.image, one,
-                          LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+                          last_use, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
     gpu_barrier_flush(cmd, &b);
     uint32_t t = timed_begin(r, cmd, "transmittance_lut");
     luts_record_transmittance(l, cmd);
@@ -57,12 +90,11 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch 
      * transmittance LUT) and a lit ground, this is the LUTs' last barrier. */
     gpu_barrier_batch *at = next;
     if (ms || ground) b = gpu_barrier_batch_begin(ms ? "before multiscatter_lut" : "before ground_irradiance_lut"), at = &b;
-    gpu_barrier_add_image(at, "transmittance.write_to_sample", "transmittance_lut", l->transmittance.image, one,
-                          GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    lut_written(r, at, next, "transmittance", "transmittance_lut", l->transmittance.image);
     if (ms) {
         /* The multiscatter LUT was sampled by the previous frames (WAR) and becomes the storage target. */
         gpu_barrier_add_image(&b, "multiscatter.to_storage", "multiscatter_lut", l->multiscatter.image, one,
-                              LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+                              last_use, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
         t = timed_begin(r, cmd, "multiscatter_lut");
         luts_record_multiscatter(l, cmd);
@@ -71,21 +103,18 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch 
          * RAW + layout. (The usage covers compute too, so every frame's first barrier has the same source.) */
         at = next;
         if (ground) b = gpu_barrier_batch_begin("before ground_irradiance_lut"), at = &b;
-        gpu_barrier_add_image(at, "multiscatter.write_to_sample", "multiscatter_lut", l->multiscatter.image, one,
-                              GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+        lut_written(r, at, next, "multiscatter", "multiscatter_lut", l->multiscatter.image);
     }
     if (ground) {
         /* The sky's irradiance on the ground (a lit ground only): previous frames sampled it (WAR). */
         gpu_barrier_add_image(&b, "ground_irradiance.to_storage", "ground_irradiance_lut", l->ground_irradiance.image,
-                              one, LUT_LAST_USE, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+                              one, last_use, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
         t = timed_begin(r, cmd, "ground_irradiance_lut");
         luts_record_ground_irradiance(l, cmd);
         timed_end(r, cmd, t);
         /* It wrote the LUT; the sky pass and the sky-view LUT sample it: RAW + layout. */
-        gpu_barrier_add_image(next, "ground_irradiance.write_to_sample", "ground_irradiance_lut",
-                              l->ground_irradiance.image, one, GPU_USAGE_COMPUTE_STORAGE_WRITE,
-                              GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+        lut_written(r, next, next, "ground_irradiance", "ground_irradiance_lut", l->ground_irradiance.image);
     }
 }
 
@@ -161,6 +190,8 @@ static void copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent
 /* The LUTs, when dirty (or forced); their last barrier goes into `next`. */
 static void record_luts_if_dirty(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next)
 {
+    /* LUTs the compute queue of another family released (--async-luts): acquired at this point. */
+    if (r->lut_acquire_pending && !r->lut_on_compute_queue) frame_add_lut_transfers(r, next, false);
     if (force || sky_renderer_luts_dirty(r)) {
         record_luts(r, cmd, next);
         r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
@@ -173,6 +204,18 @@ void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_bar
     gpu_barrier_batch b = gpu_barrier_batch_begin("after the LUTs");
     record_luts_if_dirty(r, cmd, force, next ? next : &b);
     gpu_barrier_flush(cmd, &b);
+}
+
+void frame_record_luts_compute(sky_renderer *r, VkCommandBuffer cmd)
+{
+    r->lut_on_compute_queue = true;
+    r->active_timer = &r->lut_timer;
+    gpu_timer_reset(&r->lut_timer, cmd);
+    gpu_barrier_batch end = gpu_barrier_batch_begin("end of the LUTs (compute queue)");
+    record_luts_if_dirty(r, cmd, true, &end);
+    if (gpu_async_other_family(r->ctx)) frame_add_lut_transfers(r, &end, true);
+    gpu_barrier_flush(cmd, &end);
+    r->lut_on_compute_queue = false;
 }
 
 /* Step 5, readback: the tone map (`writer`) wrote the display and composite images; the copies read them: RAW +

@@ -40,4 +40,9 @@ void frame_record_lut_readback(sky_renderer *r, VkCommandBuffer cmd, const gpu_i
  * readable by compute and fragment shaders (the host's). */
 void frame_record_luts_only(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 
+/* --async-luts (sky/async_luts.c): the LUT passes into the compute queue's command buffer, closed by their last
+ * barriers (write_to_sample, or the releases to the graphics family); the halves of the ownership transfer
+ * (`release` on the compute queue, else the acquires, which the next frame's first point records). */
+void frame_record_luts_compute(sky_renderer *r, VkCommandBuffer cmd);
+void frame_add_lut_transfers(sky_renderer *r, gpu_barrier_batch *b, bool release);
 #endif

@@ -166,6 +166,7 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
     build_variant(r);
     create_sized(r);
     gpu_timer_create(ctx, &r->timer);
+    if (ctx->compute_queue) gpu_timer_create(ctx, &r->lut_timer);
     if (desc->atmosphere || desc->features) upload_atmosphere(r);
     r->pipelines_ms = now_ms() - start;
 }
@@ -177,6 +178,7 @@ void sky_renderer_destroy(sky_renderer *r)
     pass_shared *s = &r->shared;
     vkDeviceWaitIdle(ctx->device);
     gpu_timer_destroy(ctx, &r->timer);
+    gpu_timer_destroy(ctx, &r->lut_timer);
     if (r->size_pool) destroy_sized(r);   /* absent when creation failed before it (the library's trap) */
     vkDestroyDescriptorPool(ctx->device, r->size_pool, gpu_allocator(ctx->device));
     sky_pass_destroy(&r->sky, s);

@@ -57,6 +57,11 @@ typedef struct sky_renderer {
     bool luts_valid;
     int variant_builds;          /* times the variant's pipelines were built (--timings) */
     double pipelines_ms;         /* wall time spent making pipelines and the renderer's resources (--timings) */
+    /* --async-luts (sky/async_luts.c; the context has a compute queue): */
+    bool lut_on_compute_queue;   /* record_luts is filling the compute queue's command buffer */
+    bool lut_acquire_pending;    /* the LUTs were released by the compute queue: the next frame's first point owes
+                                    the acquire barriers (another queue family only) */
+    gpu_timer lut_timer;         /* the LUT passes' timestamps on the compute queue */
 } sky_renderer;
 
 void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_desc *desc);

@@ -12,6 +12,7 @@ static double now_ms(void)
 
 double sky_renderer_render(sky_renderer *r, const frame_desc *f)
 {
+    if (r->ctx->compute_queue) return sky_renderer_render_async(r, f);
     VkCommandBuffer cmd = gpu_begin_commands(r->ctx);
     frame_record(r, cmd, f);
     double t0 = now_ms();

@@ -135,6 +135,10 @@ static inline void host_create_device(host *h, const VkAllocationCallbacks *allo
     VkPhysicalDeviceVulkan13Features f13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
                                             .synchronization2 = req.synchronization2,
                                             .dynamicRendering = req.dynamic_rendering, .maintenance4 = VK_TRUE};
+    /* Timeline semaphores (core 1.2): the host's own, around vksky_record_luts (api_async). */
+    VkPhysicalDeviceVulkan12Features f12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                            .timelineSemaphore = VK_TRUE};
+    f13.pNext = &f12;
     VkDeviceCreateInfo di = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, .pNext = &f13, .queueCreateInfoCount = 1,
                              .pQueueCreateInfos = &qi};
     HOST_VK(vkCreateDevice(h->physical, &di, allocator, &h->device));

@@ -20,7 +20,7 @@ soname=$(objdump -p "$P/lib/libvksky.so" | awk '/SONAME/ {print $2}')
 [ "$soname" = libvksky.so.0 ] || fail "SONAME is '$soname', expected libvksky.so.0"
 version=$(sed -n 's/^project(vksky VERSION \([0-9.]*\).*/\1/p' "$(dirname "$0")/../../CMakeLists.txt")
 # The ABI the source header declares (the installed library must report the same).
-abi=$(sed -n 's/^#define VKSKY_ABI_VERSION \([0-9]*\)u$/\1/p' "$(dirname "$0")/../../include/vksky.h")
+abi=$(sed -n 's/^#define VKSKY_ABI_VERSION \([0-9]*\)u.*/\1/p' "$(dirname "$0")/../../include/vksky.h")   # the header's
 [ -n "$abi" ] || fail "no VKSKY_ABI_VERSION in include/vksky.h"
 
 export PKG_CONFIG_PATH=$P/lib/pkgconfig LD_LIBRARY_PATH=$P/lib

@@ -80,6 +80,7 @@ const flag flags_table[] = {
     {"--bench", ARG_INT, 1, 100000, "N      render N frames after warm-up, print per-pass GPU ms medians"},
     {"--frames", ARG_INT, 1, 100000000, "N     window: quit after N presented frames"},
     {"--screenshot", ARG_STRING, 0, 0, "FILE window: save the last presented frame as PNG before quitting"},
+    {"--async-luts", ARG_NONE, 0, 0, "    the LUT passes on a second queue (a compute-only family, else a second queue of the graphics family; refused if the device has neither), ordered by timeline semaphores (docs/synchronization.md section 10)"},
     {"--validate", ARG_NONE, 0, 0, "      Khronos validation + synchronization validation; any message fails the run (also VKSKY_VALIDATION=1)"},
     {"--trace-barriers", ARG_NONE, 0, 0, "print one line per barrier as the frame is recorded"},
     {"--trace-passes", ARG_NONE, 0, 0, "  list the passes the frame records"},

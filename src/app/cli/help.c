@@ -34,7 +34,7 @@ static const char *const quality_flags[] = {"--quality", "--max-error", "--max-c
                                             "--skyview-lut", "--skyview-steps", "--transmittance-lut",
                                             "--transmittance-steps", "--multiscatter-lut", "--multiscatter-dirs",
                                             "--multiscatter-steps", "--lut-format", "--render-scale", NULL};
-static const char *const diagnostics_flags[] = {"--reference", "--path-trace", "--samples", "--spectral", "--irradiance", "--tilt", "--tilt-azimuth", "--bench", "--frames",
+static const char *const diagnostics_flags[] = {"--reference", "--path-trace", "--samples", "--spectral", "--irradiance", "--tilt", "--tilt-azimuth", "--bench", "--async-luts", "--frames",
                                                 "--screenshot", "--validate", "--trace-barriers", "--trace-passes",
                                                 "--timings", "--no-cache",
                                                 "--list-devices", "--device", "--help", "--version", NULL};

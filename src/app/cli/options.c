@@ -277,6 +277,7 @@ static int apply_value(options *o, const flag *f, const char *value, double x)
         if (!has_extension(value, ".png")) return bad(n, "expected a file name ending in .png");
         o->screenshot = value;
     } else if (!strcmp(n, "--validate")) o->validate = true;
+    else if (!strcmp(n, "--async-luts")) o->async_luts = true;
     else if (!strcmp(n, "--trace-barriers")) o->trace_barriers = true;
     else if (!strcmp(n, "--list-devices")) o->list_devices = true;
     else if (!strcmp(n, "--device")) o->device_index = (int)x;

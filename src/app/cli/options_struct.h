@@ -67,6 +67,7 @@ typedef struct options {
     int frames;                                 /* window: quit after N presented frames (0: run until closed) */
     const char *screenshot;                     /* window: save the last presented image (.png) before quitting */
     bool validate;
+    bool async_luts;                            /* --async-luts: the LUT passes on a compute queue */
     bool list_devices;
     int device_index;                           /* -1: pick */
     bool trace_barriers;

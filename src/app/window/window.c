@@ -28,6 +28,7 @@
 #include "io/atomic_file.h"
 #include "io/png_io.h"
 #include "sky/frame.h"
+#include "sky/submit.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -138,6 +139,13 @@ static void record(app *a, frame_slot *f, uint32_t image, gpu_buffer *capture)
      * bloom and tone map reads, even though frame N was a different vkQueueSubmit2. Frames in flight overlap
      * CPU recording with GPU work; on the GPU they run one after the other. */
     if (a->o->trace_barriers && !a->traced) gpu_barrier_trace(stdout);
+    /* --async-luts: the LUT passes (when stale) go to the compute queue first; submit() makes this frame wait for
+     * them. The slot's fence was waited for, so the frame that waited for its last LUT build is done, and so is that
+     * build. */
+    if (a->ctx.compute_queue) {
+        if (f->luts) vkFreeCommandBuffers(a->ctx.device, a->ctx.compute_pool, 1, &f->luts);
+        f->luts = sky_renderer_submit_luts_async(&a->renderer, false);
+    }
     frame_record(&a->renderer, f->cmd, &(frame_desc){.view = &a->view, .target = &target, .timer = &f->timer});
     if (a->o->trace_barriers && !a->traced) gpu_barrier_trace(NULL), a->traced = true;
     VK_CHECK(vkEndCommandBuffer(f->cmd));
@@ -153,9 +161,16 @@ static void submit(app *a, frame_slot *f, uint32_t image)
                                     .semaphore = a->sc.render_finished[image],
                                     .stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT};
     VkCommandBufferSubmitInfo cmd = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = f->cmd};
-    VkSubmitInfo2 info = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = 1,
-                          .pWaitSemaphoreInfos = &wait, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cmd,
-                          .signalSemaphoreInfoCount = 1, .pSignalSemaphoreInfos = &signal};
+    /* --async-luts: also wait for this frame's LUT build (if any) and count the frame on graphics_done, which the
+     * next LUT build waits for (docs/synchronization.md §10). */
+    VkSemaphoreSubmitInfo waits[2] = {wait}, signals[2] = {signal};
+    uint32_t wait_count = 1, signal_count = 1;
+    if (a->ctx.compute_queue)
+        wait_count += sky_async_frame_semaphores(&a->ctx, f->luts != VK_NULL_HANDLE, &waits[1], &signals[1]),
+            signal_count = 2;
+    VkSubmitInfo2 info = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = wait_count,
+                          .pWaitSemaphoreInfos = waits, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cmd,
+                          .signalSemaphoreInfoCount = signal_count, .pSignalSemaphoreInfos = signals};
     /* Reset only now that a submit follows for sure: a reset fence nobody signals would hang the next wait. */
     VK_CHECK(vkResetFences(a->ctx.device, 1, &f->done));
     VK_CHECK(vkQueueSubmit2(a->ctx.queue, 1, &info, f->done));
@@ -400,6 +415,10 @@ static int open_device(app *a)
     gpu_context_desc desc = {.validation = a->o->validate, .device_index = a->o->device_index,
                              .instance_extensions = ext, .instance_extension_count = ext_count,
                              .want_swapchain = true};
+    /* --async-luts; VKSKY_ASYNC_ONE_QUEUE=1 (tests): on a one-queue device, both submissions on that queue. */
+    const char *one_queue = getenv("VKSKY_ASYNC_ONE_QUEUE");
+    if (a->o->async_luts)
+        desc.async_compute = one_queue && !strcmp(one_queue, "1") ? GPU_ASYNC_ONE_QUEUE : GPU_ASYNC_ON;
     int rc = gpu_context_create(&a->ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
     startup_open_cache(&a->ctx, a->o);

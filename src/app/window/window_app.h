@@ -19,6 +19,7 @@ typedef struct frame_slot {
     VkSemaphore acquired;
     gpu_timer timer;
     bool timer_unread;         /* submitted; its timestamps are not yet read */
+    VkCommandBuffer luts;      /* --async-luts: the LUT passes this slot's frame waited for (compute pool) */
 } frame_slot;
 
 typedef struct stats {

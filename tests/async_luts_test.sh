@@ -1,0 +1,99 @@
+#!/usr/bin/env bash
+# --async-luts (issue 25 item 4, docs/synchronization.md §10): the LUT passes on a compute queue, ordered against
+# the frame by two timeline semaphores. Lavapipe has one queue family with one queue, so the path that runs here is
+# VKSKY_ASYNC_ONE_QUEUE=1: the same command buffers, semaphores and trace, both submissions on the one queue (the
+# other-family path, with its ownership transfer, is tools/async_bench.sh's on a GPU). Every run has --validate
+# (validation + synchronization validation): any message fails it.
+#  - without a second queue, --async-luts is refused: exit 2, one line naming what the device lacks, no file;
+#  - each variant whose LUT set or first LUT reader differs (default, sky-view, compute sky pass, no
+#    multi-scattering, lit ground), two frames each rebuilding the LUTs (VKSKY_FRAMES=2): pixels bit-identical to the
+#    single-queue frame (EXR by pixels, PNG byte for byte);
+#  - the trace: the LUT passes recorded in their own command buffer before the frame's, which records none; each
+#    rebuild signals compute_done with the next value, each frame waits for exactly that value at the LUT readers'
+#    stages and signals graphics_done, which the next rebuild waits for; the queue line and `qfot none` say why no
+#    ownership transfer is recorded (one family);
+#  - the window (Xvfb): validation clean, the LUTs built on the compute queue, the screenshot equal;
+#  - the compute command buffer is checked by validation like the frame's: transmittance.write_to_sample left out
+#    there is reported (RAW + layout).
+# Usage: async_luts_test.sh path/to/vksky path/to/exr_pixels
+set -u
+VKSKY=$(readlink -f "${1:?usage: async_luts_test.sh VKSKY EXR_PIXELS}")
+PIX=$(readlink -f "${2:?}")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+A=(--width 48 --height 32 --quality lesson --units relative --validate)
+
+# Refused where there is no second queue (lavapipe); skipped on a device that has one.
+if "$VKSKY" --list-devices 2>/dev/null | grep -qi llvmpipe; then
+    "$VKSKY" --render "$work/refused.png" "${A[@]}" --async-luts 2>"$work/refused.err"
+    rc=$?
+    [ $rc -eq 2 ] || fail "--async-luts on a one-queue device: exit $rc, expected 2"
+    [ "$(wc -l <"$work/refused.err")" -eq 1 ] && grep -q 'needs a second queue' "$work/refused.err" \
+        || fail "--async-luts refused without one clear line: $(head -c 300 "$work/refused.err")"
+    [ ! -e "$work/refused.png" ] || fail "--async-luts refused but wrote a file"
+fi
+
+export VKSKY_ASYNC_ONE_QUEUE=1
+i=0
+while read -r name extra; do
+    i=$((i + 1))
+    # shellcheck disable=SC2086
+    "$VKSKY" --render "$work/s$i.exr" --render "$work/s$i.png" "${A[@]}" $extra 2>"$work/s$i.err" \
+        || fail "$name: single-queue frame failed: $(head -c 300 "$work/s$i.err")"
+    # shellcheck disable=SC2086
+    VKSKY_FRAMES=2 "$VKSKY" --render "$work/a$i.exr" --render "$work/a$i.png" "${A[@]}" $extra --async-luts \
+        --trace-barriers >"$work/a$i.trace" 2>"$work/a$i.err" || fail "$name: async frames failed: $(head -c 300 "$work/a$i.err")"
+    [ -s "$work/a$i.err" ] && fail "$name: messages with --async-luts: $(head -c 300 "$work/a$i.err")"
+    "$PIX" same "$work/s$i.exr" "$work/a$i.exr" || fail "$name: EXR pixels differ from the single-queue frame"
+    cmp -s "$work/s$i.png" "$work/a$i.png" || fail "$name: PNG differs from the single-queue frame"
+    # The trace, command buffer by command buffer: 1 = LUTs (compute), 2 = frame, 3 = LUTs, 4 = frame.
+    awk -v name="$name" '
+        function bad(m) { print "FAIL: " name ": trace: " m > "/dev/stderr"; failed = 1 }
+        /^commands$/ { ++cb; next }
+        /^pass (transmittance|multiscatter|ground_irradiance)_lut$/ { if (cb % 2 == 0) bad("LUT pass in the frame'"'"'s command buffer " cb); luts[cb]++ }
+        /^pass sky$/ { if (cb % 2 == 1) bad("sky pass in the LUTs'"'"' command buffer") }
+        /^semaphore compute_done.signal / { ++cs; if ($3 != "queue=compute" || $4 != "value=" cs) bad("compute_done.signal: " $0) }
+        /^semaphore compute_done.wait / { ++cw; if ($3 != "queue=graphics" || $4 != "value>=" cs || $5 != "stage=COMPUTE_SHADER|FRAGMENT_SHADER") bad("compute_done.wait: " $0) }
+        /^semaphore graphics_done.signal / { ++gs; if ($3 != "queue=graphics" || $4 != "value=" gs) bad("graphics_done.signal: " $0) }
+        /^semaphore graphics_done.wait / { ++gw; if ($3 != "queue=compute" || $4 != "value>=" gs || $5 != "stage=COMPUTE_SHADER") bad("graphics_done.wait: " $0) }
+        /^queues / { q++; if ($0 !~ /same family/) bad("queues line: " $0) }
+        /^qfot none/ { qn++ }
+        /^qfot .* (release|acquire) / { bad("an ownership transfer on one family: " $0) }
+        END {
+            if (cb != 4) bad(cb " command buffers, expected 4 (LUTs, frame, LUTs, frame)")
+            if (!luts[1] || !luts[3]) bad("no LUT passes in the compute command buffers")
+            if (cs != 2 || cw != 2 || gs != 2 || gw != 1) bad("semaphores: compute_done " cs " signals " cw " waits, graphics_done " gs " signals " gw " waits; expected 2 2 2 1")
+            if (q != 1 || qn != 2) bad("queues line " q ", qfot none lines " qn "; expected 1 and 2")
+            exit failed
+        }' "$work/a$i.trace" || fails=$((fails + 1))
+done <<'LIST'
+default
+skyview --sky-mode skyview
+compute --sky-pass compute
+noms --no-multiscatter
+ground --ground-albedo 0.3,0.3,0.3 --pitch -20
+LIST
+
+# Validation sees the compute command buffer: a LUT barrier left out there is reported.
+VKSKY_DROP_BARRIER=transmittance.write_to_sample "$VKSKY" --render "$work/drop.png" "${A[@]}" --async-luts \
+    2>"$work/drop.err" >/dev/null
+grep -q 'SYNC-HAZARD-READ-AFTER-WRITE' "$work/drop.err" && grep -q 'InvalidImageLayout\|imageLayout-00344' "$work/drop.err" \
+    || fail "transmittance.write_to_sample dropped on the compute queue: no RAW + layout reported"
+
+# The window (under Xvfb when there is no DISPLAY; skipped without either): its first frame's LUTs on the compute
+# queue, the frame's submit waiting for them beside the acquire semaphore; validation clean, the screenshot equal to
+# the single-queue window's.
+if [ -n "${DISPLAY:-}" ] || command -v xvfb-run >/dev/null; then
+    run=("$VKSKY"); [ -z "${DISPLAY:-}" ] && run=("$(dirname "$0")/xvfb_run.sh" 640x480x24 "$VKSKY")
+    W=(--frames 3 --width 64 --height 64 --sky-mode march --render-scale 1 --bloom-mips 5 --validate)
+    timeout 120 "${run[@]}" "${W[@]}" --screenshot "$work/w1.png" >"$work/w1.out" 2>&1 || fail "window: single queue failed"
+    timeout 120 "${run[@]}" "${W[@]}" --async-luts --trace-barriers --screenshot "$work/w2.png" >"$work/w2.out" 2>&1 \
+        || fail "window --async-luts failed: $(grep -v '^barrier\|^batch\|^pass' "$work/w2.out" | head -c 400)"
+    grep -q '^validation_messages 0$' "$work/w2.out" || fail "window --async-luts: validation messages"
+    grep -q '^semaphore compute_done.signal queue=compute value=1 ' "$work/w2.out" || fail "window: no LUT build on the compute queue"
+    cmp -s "$work/w1.png" "$work/w2.png" || fail "window --async-luts: the screenshot differs from the single-queue window's"
+fi
+
+[ $fails -eq 0 ] && echo "async_luts: ok" || exit 1
