@@ -37,7 +37,7 @@ const flag flags_table[] = {
     {"--bloom-downsample", ARG_STRING, 0, 0, "D levels | single-pass: with --post-pass compute, the bloom downsample as one dispatch per level (default: faster on an H100) or all levels in one dispatch (tile counters, the last workgroup continues)"},
     {"--post-pass", ARG_STRING, 0, 0, "K fragment | compute | auto: bloom and the tone map as draws or compute dispatches (one dispatch for the whole bloom downsample); auto: fragment on a CPU device, compute on a GPU (default auto)"},
     {"--max-error", ARG_DOUBLE, 1e-4, 1, "E the cheapest measured configuration whose mean relative luminance error on this kind of scene is <= E"},
-    {"--max-color-error", ARG_DOUBLE, 0.01, 100, "DE the fewest wavelengths (--spectral 0, 4, 8 or 16) whose measured worst CIEDE2000 against the 48-wavelength spectral reference on this kind of scene is <= DE; prints what it picked (.exr outputs when spectral)"},
+    {"--max-color-error", ARG_DOUBLE, 0.01, 100, "DE the fewest wavelengths (--spectral 0, 4, 8, 16, 24 or 32) whose measured worst CIEDE2000 against the 48-wavelength spectral reference on this kind of scene is <= DE; prints what it picked (.exr outputs when spectral)"},
     {"--max-steps", ARG_INT, 1, 4096, "N  variable step count (Hillaire): from --steps up to N as the path grows (default: = --steps)"},
     {"--steps-ramp", ARG_DOUBLE, 0.001, 1e5, "KM path length at which the variable count reaches --max-steps (default 100)"},
     {"--sample-offset", ARG_DOUBLE, 0, 1, "X sample position within a step: 0.5 midpoint (default), 0.3 Hillaire"},

@@ -12,5 +12,6 @@ static const quality_color quality_color_table[] = {
     {8, {0.75, 1.30, 2.56, 6.79, 7.59, 7.04, 2.24, 4.49}},
     {16, {0.13, 0.20, 0.59, 1.48, 1.50, 1.08, 0.83, 1.22}},
     {24, {0.02, 0.03, 0.06, 0.34, 0.43, 0.41, 0.11, 0.22}},
+    {32, {0.02, 0.03, 0.09, 0.23, 0.21, 0.15, 0.12, 0.18}},
 };
 static const int quality_color_table_count = (int)(sizeof quality_color_table / sizeof quality_color_table[0]);
