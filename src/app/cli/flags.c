@@ -58,7 +58,7 @@ const flag flags_table[] = {
     {"--rayleigh-scale", ARG_DOUBLE, 0, 1000, "S Rayleigh density scale (default 1)"},
     {"--mie-scale", ARG_DOUBLE, 0, 1000, "S      Mie (aerosol) density scale (default 1)"},
     {"--ozone-scale", ARG_DOUBLE, 0, 1000, "S    ozone density scale (default 1)"},
-    {"--scene", ARG_STRING, 0, 0, "FILE.json|FILE.exr|NAME  load a scene file, the scene an EXR made by vksky was rendered from, or a shipped scene by name (--list-scenes), first (schema: scenes/README.md); every other flag overrides it"},
+    {"--scene", ARG_STRING, 0, 0, "FILE.json|FILE.exr|NAME  load a scene file, the scene (and units) an EXR made by vksky was rendered from, or a shipped scene by name (--list-scenes), first (schema: scenes/README.md); every other flag overrides it"},
     {"--list-scenes", ARG_NONE, 0, 0, "list the shipped scenes (names for --scene) with a line each, and exit"},
     {"--dump-scene", ARG_NONE, 0, 0, "      print the effective scene (after all overrides) as scene JSON and exit"},
     {"--ground-albedo", ARG_TRIPLE, 0, 1, "R,G,B ground albedo (default 0,0,0)"},
