@@ -48,8 +48,8 @@ SUN=(--sun-elevation 20 --sun-azimuth -60)
 
 # Self-describing (issue 28 item 4): the composite's header has the standard and vksky attributes, and
 # `--scene OUT.exr` renders the sky of its uncovered part (the same check, the sky render made from the header).
-# (The composite is in the lesson's units, as its vksky:units says; a scene read back renders in the default units
-# unless told: docs/units.md.)
+# (The composite is in the lesson's units, as its vksky:units says; --scene restores them from that attribute, and
+# --units relative says so again here: docs/units.md.)
 "$VKSKY" --scene "$work/out/edges.exr" --render "$work/out/sky_scene.exr" --sky-mode march --render-scale 1 \
     --no-bloom --units relative --validate 2>"$work/err" || fail "--scene on the composite: exit $? ($(cat "$work/err"))"
 "$CHECK" "$work/out/edges.exr" "$S/edges.exr" "$work/out/sky_scene.exr" || fail "--scene on the composite: not its sky"

@@ -441,6 +441,16 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);
+    /* Issue 32: --max-error's promise is the luminance; the colour of the RGB renderer it picks for is measured too
+     * (quality_color_table.h), and said beside the pick unless --max-color-error chooses the wavelengths. */
+    if (picked && !quality_classes && o->max_color_error <= 0.0 && !o->spectral) {
+        double de = 0.0;
+        for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
+            if (o->quality_classes & (1u << c)) de = fmax(de, quality_color_error(0, c));
+        fprintf(o->dump_scene ? stderr : stdout, "vksky: note: --max-error bounds the luminance only; RGB's colour on "
+                "the '%s' scene is within CIEDE2000 %.2f of the spectrum's (--max-color-error DE picks wavelengths)\n",
+                picked_scene, de);
+    }
     /* Issue 31: a promise from a table measured with other shaders or knobs is an estimate, and says so, beside the
      * pick (the same stream: a run that parses cleanly keeps stderr empty, docs/robustness.md). */
     const char *estimate = picked && !quality_classes ? quality_table_estimate(picked_cpu) : NULL;

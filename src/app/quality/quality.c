@@ -331,3 +331,20 @@ sky_view quality_scene_view(const quality_scene *s)
     v.exposure_ev = s->exposure_ev;
     return v;
 }
+
+#include "app/quality/quality_color_table.h"
+
+double quality_color_error(int wavelengths, int c)
+{
+    for (int i = 0; i < quality_color_table_count; ++i)
+        if (quality_color_table[i].wavelengths == wavelengths && c >= 0 && c < QUALITY_SCENE_COUNT)
+            return quality_color_table[i].worst_de[c];
+    return INFINITY;
+}
+
+int quality_color_settings(int *out, int max)
+{
+    int n = 0;
+    for (int i = 0; i < quality_color_table_count && n < max; ++i) out[n++] = quality_color_table[i].wavelengths;
+    return n;
+}

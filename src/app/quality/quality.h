@@ -88,4 +88,10 @@ const char *quality_table_estimate(bool cpu_device);
 #define QUALITY_AUTO_FLOOR 0.01
 #define QUALITY_AUTO_SLACK 1.25
 const quality_config *quality_auto(unsigned classes, bool cpu_device, double *measured);
+/* The colour axis (issue 32 item 5; quality_color_table.h): the measured worst CIEDE2000 of colour setting
+ * `wavelengths` (0: RGB, what every preset renders; N: --spectral N) on scene class c against the 48-wavelength
+ * spectral reference; INFINITY for a setting the table lacks. quality_color_settings lists the measured settings,
+ * fewest wavelengths first (count returned, at most `max`). */
+double quality_color_error(int wavelengths, int c);
+int quality_color_settings(int *out, int max);
 #endif

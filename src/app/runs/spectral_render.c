@@ -126,28 +126,19 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
     sky_renderer_set_scene(r, &base, sun_radius, &base_features);
 }
 
-/* The worst CIEDE2000 per scene class (quality_scenes' order: noon, afternoon, sunset, twilight, 10 km, 400 km, sun 0,
- * twilight -2) of each colour setting against the spectral reference at 48 wavelengths, both the converged model
- * (tools/color_error [--test-wavelengths N] on the 57 rows of docs/model_error.md, the rows binned by
- * quality_scene_class; docs/spectral.md "The colour axis"). The wavelength count's colour error alone: the GPU's
- * numerics at a preset add their own (CIEDE2000 p95 0.4 at --quality high on the sunset, docs/spectral.md). */
-static const struct { int wavelengths; double worst_de[QUALITY_SCENE_COUNT]; } color_table[] = {
-    {0, {2.40, 2.37, 11.89, 29.30, 28.56, 34.05, 17.12, 20.11}},
-    {4, {5.36, 5.80, 9.20, 24.20, 19.22, 21.49, 13.93, 16.65}},
-    {8, {0.75, 1.30, 2.56, 6.79, 7.59, 7.04, 2.24, 4.49}},
-    {16, {0.13, 0.20, 0.59, 1.48, 1.50, 1.08, 0.83, 1.22}},
-};
-
+/* The measured colour table lives with the other measured tables (app/quality/quality_color_table.h). */
 int spectral_pick(double max_de, unsigned classes, double *measured)
 {
+    int settings[16], count = quality_color_settings(settings, 16);
     double best = INFINITY;
-    for (size_t k = 0; k < sizeof color_table / sizeof *color_table; ++k) {
+    for (int k = 0; k < count; ++k) {
+        if (settings[k] > SPECTRAL_GPU_MAX) continue;
         double worst = 0.0;
         for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
-            if (classes & (1u << c) && color_table[k].worst_de[c] > worst) worst = color_table[k].worst_de[c];
+            if (classes & (1u << c)) worst = fmax(worst, quality_color_error(settings[k], c));
         if (worst <= max_de) {
             *measured = worst;
-            return color_table[k].wavelengths;
+            return settings[k];
         }
         if (worst < best) best = worst;
     }

@@ -22,8 +22,8 @@ void spectral_render_begin(const options *o, sequence_render_fn inner);
 void spectral_render_frame(sky_renderer *r, const frame_desc *f);
 
 /* --max-color-error: the fewest wavelengths (0: RGB) whose measured worst CIEDE2000 against the 48-wavelength spectral
- * reference is <= max_de on every scene class of the set (quality.h's classes; the table in spectral_render.c, from
- * tools/color_error's 57 rows). -1 if none is; *measured gets the pick's worst (or the best setting's worst). */
+ * reference is <= max_de on every scene class of the set (quality.h's classes; app/quality/quality_color_table.h,
+ * from tools/color_error's 57 rows). -1 if none is; *measured gets the pick's worst (or the best setting's worst). */
 int spectral_pick(double max_de, unsigned classes, double *measured);
 
 #endif

@@ -5,4 +5,5 @@
 #define EXR_HEADER_SCENE "vksky:scene"
 #define EXR_HEADER_COMMAND_LINE "vksky:commandLine"
 #define EXR_HEADER_FRAME "vksky:frame"
+#define EXR_HEADER_UNITS "vksky:units"   /* io/exr_sky_attrs.h writes it; --scene OUT.exr reads it back */
 #endif

@@ -436,6 +436,27 @@ static int read_exr_scene(const char *path, const char *shown, char **text, size
     return 0;
 }
 
+/* The units an EXR made by vksky was rendered in (its "vksky:units", app/scene/light.c's text): --scene OUT.exr
+ * renders in them again (a --units flag still overrides: flags come after the scene). A file without the attribute
+ * keeps the default; one with a value vksky does not write is refused. */
+static int read_exr_units(const char *path, const char *shown, options *o)
+{
+    char err[512], *units = NULL;
+    int rc = io_exr_read_string_attr(path, EXR_HEADER_UNITS, &units, err, sizeof err);
+    if (rc > 0) return 0;
+    if (rc < 0) {
+        fprintf(stderr, "vksky: --scene: %s\n", err);
+        return 2;
+    }
+    if (!strncmp(units, "relative", 8)) o->units = OPTIONS_UNITS_RELATIVE;
+    else if (!strncmp(units, "cd/m2", 5)) o->units = OPTIONS_UNITS_PHOTOMETRIC;
+    else rc = 2;
+    if (rc) fprintf(stderr, "vksky: --scene: '%s': unknown %s '%.40s'; expected 'relative ...' or 'cd/m2 ...'\n",
+                    shown, EXR_HEADER_UNITS, units);
+    free(units);
+    return rc;
+}
+
 static bool blank(char ch)
 {
     return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\n';
@@ -490,6 +511,10 @@ int scene_load(const char *path, options *o)
     char *text = NULL;
     size_t len = 0;
     if (exr_file(path) ? read_exr_scene(path, c.file, &text, &len) : read_all(path, c.file, &text, &len)) return 2;
+    if (exr_file(path) && read_exr_units(path, c.file, o)) {
+        free(text);
+        return 2;
+    }
     int rc = 2;
     cJSON *root = NULL;
     size_t first = 0;
