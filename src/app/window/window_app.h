@@ -55,6 +55,6 @@ typedef struct app {
     long presented;
     bool traced;
     int status;
-    bool auto_exposure;        /* photometric without --exposure: EV100 metered on every title update (app/scene/light.h) */
+    bool auto_exposure;        /* photometric without --exposure: every frame metered on the GPU (sky/meter.h) */
 } app;
 #endif
