@@ -8,7 +8,7 @@
 
 void meter_write_descriptor(const gpu_context *ctx, VkDescriptorSet set, const meter_pass *m)
 {
-    VkDescriptorBufferInfo info = {.buffer = m->buffer.buffer, .offset = 0, .range = VK_WHOLE_SIZE};
+    VkDescriptorBufferInfo info = {.buffer = m->buffer.buffer, .offset = 0, .range = m->buffer.size};
     VkWriteDescriptorSet w = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = set,
                               .dstBinding = VKSKY_BINDING_METER, .descriptorCount = 1,
                               .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &info};
