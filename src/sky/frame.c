@@ -209,8 +209,10 @@ static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_de
 }
 
 /* Step 2b, auto exposure's meter (sky/meter.h, meter.comp; issue 32): the log-average luminance of the HDR image in two
- * dispatches, its result read by this frame's tone map: a reduction feeding a later pass of the same frame. */
-static void record_meter(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f, gpu_usage hdr_write)
+ * dispatches, its result read by this frame's tone map: a reduction feeding a later pass of the same frame. Its last
+ * barriers go into `next`, the batch of the point after the sky pass (bloom's, or the tone map's). */
+static void record_meter(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f, gpu_usage hdr_write,
+                         gpu_barrier_batch *next)
 {
     double scale = f->view->ev100 ? f->view->light_scale : 1.0;
     bool every_pixel = r->variant.ground;   /* a lit ground is part of the scene; the black void below it is not */
@@ -237,12 +239,10 @@ static void record_meter(sky_renderer *r, VkCommandBuffer cmd, const frame_desc 
     timed_end(r, cmd, t);
     /* The average wrote result[slot]; the tone map (compute or fragment) reads it: RAW. The host reads it after the
      * frame's fence (the title's EV100, the run's line): RAW (a fence alone makes nothing visible to the host). */
-    b = gpu_barrier_batch_begin("after meter");
-    gpu_barrier_add_buffer(&b, "meter.result_to_tonemap", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
+    gpu_barrier_add_buffer(next, "meter.result_to_tonemap", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
                            GPU_USAGE_SHADER_STORAGE_READ);
-    gpu_barrier_add_buffer(&b, "meter.result_to_host", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
+    gpu_barrier_add_buffer(next, "meter.result_to_host", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
                            GPU_USAGE_HOST_READ);
-    gpu_barrier_flush(cmd, &b);
 }
 
 /* Steps 3-5 with the compute post chain: the bloom chain in one dispatch (plus the upsamples), the tone map as
@@ -267,7 +267,9 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     /* Without bloom no pass follows before the tone map: these barriers join the tone map's point. */
     gpu_barrier_batch b = gpu_barrier_batch_begin(bloom ? "after sky (compute post)" : "before tonemap (compute)");
     gpu_barrier_batch *first = bloom || compute_tonemap ? &b : next;
-    if (!v->auto_exposure)   /* metered: meter.hdr_to_read made it readable */
+    if (v->auto_exposure)   /* 2b: the meter's hdr.to_read makes it readable; its last barriers join this point */
+        record_meter(r, cmd, f, hdr_write, first);
+    else
         gpu_barrier_add_image(first, "hdr.write_to_compute_sample", "hdr", r->hdr.image, one, hdr_write,
                               compute_tonemap ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
     if (bloom) {
@@ -431,9 +433,8 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     t = timed_begin(r, cmd, "sky");
     sky_pass_record(&r->sky, cmd, kind, mode, &r->hdr, &push);
     timed_end(r, cmd, t);
-    /* 2b. Auto exposure: the meter reads the HDR image, the tone map its result (record_meter). */
+    /* 2b. Auto exposure: the meter reads the HDR image, the tone map its result (record_meter, at step 3's start). */
     r->hdr_metered = v->auto_exposure;
-    if (v->auto_exposure) record_meter(r, cmd, f, hdr_write);
 
     /* 3. Post: the compute chain (bloom in one dispatch + upsamples, tone map fused with the last upsample:
      * record_post_compute, which for its own display image also does steps 4 and 5), or the fragment chain. */
@@ -446,7 +447,9 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
         b = gpu_barrier_batch_begin("after sky");
         /* Without bloom no pass follows before the tone map: these join its point. */
         gpu_barrier_batch *after_sky = bloom ? &b : &before_tonemap;
-        if (!v->auto_exposure)   /* metered: meter.hdr_to_read made it readable */
+        if (v->auto_exposure)   /* 2b: the meter's hdr.to_read makes it readable; its last barriers join this point */
+            record_meter(r, cmd, f, hdr_write, after_sky);
+        else
             gpu_barrier_add_image(after_sky, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
                                   GPU_USAGE_FRAGMENT_SAMPLED, false);
         if (bloom)
