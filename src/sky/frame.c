@@ -267,7 +267,7 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     /* Without bloom no pass follows before the tone map: these barriers join the tone map's point. */
     gpu_barrier_batch b = gpu_barrier_batch_begin(bloom ? "after sky (compute post)" : "before tonemap (compute)");
     gpu_barrier_batch *first = bloom || compute_tonemap ? &b : next;
-    if (v->auto_exposure)   /* 2b: the meter's hdr.to_read makes it readable; its last barriers join this point */
+    if (v->auto_exposure)   /* 2b: meter.hdr_to_read makes it readable; the meter's last barriers join this point */
         record_meter(r, cmd, f, hdr_write, first);
     else
         gpu_barrier_add_image(first, "hdr.write_to_compute_sample", "hdr", r->hdr.image, one, hdr_write,
@@ -447,7 +447,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
         b = gpu_barrier_batch_begin("after sky");
         /* Without bloom no pass follows before the tone map: these join its point. */
         gpu_barrier_batch *after_sky = bloom ? &b : &before_tonemap;
-        if (v->auto_exposure)   /* 2b: the meter's hdr.to_read makes it readable; its last barriers join this point */
+        if (v->auto_exposure)   /* 2b: meter.hdr_to_read makes it readable; the meter's last barriers join this point */
             record_meter(r, cmd, f, hdr_write, after_sky);
         else
             gpu_barrier_add_image(after_sky, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
