@@ -6,7 +6,9 @@
  *           memory and writes (sum, count) into partial[group];
  *   pass 1  one workgroup adds every partial and writes result[slot]: the log-average L in cd/m2, EV100 =
  *           log2(L 100 / 12.5) (the reflected-light meter's key, ISO 2720) and the tone map's multiplier
- *           1 / (scale 1.2 2^EV100) (docs/units.md).
+ *           1 / (scale 1.2 2^EV100) (docs/units.md). With temporal adaptation (the window) the EV100 moves
+ *           only part of the way from the last frame's (`adapted`, written by the previous frame's pass 1 in submission
+ *           order: the spine's meter.to_write and meter.partials_to_average chain after it) toward the metered one.
  * A fixed order of additions (no atomics): the same image gives the same bits every time, so a sequence through the
  * readback ring writes the serial loop's files. With a black ground only sky texels count (HDR alpha, the signed
  * distance to the horizon, >= 0: horizon.glsl), as the CPU meter's light_log_sum does. */
@@ -17,6 +19,7 @@ layout(local_size_x = 16, local_size_y = 16) in;
 layout(set = 0, binding = VKSKY_BINDING_POST_SOURCE) uniform sampler2D hdr;
 layout(std430, set = 0, binding = VKSKY_BINDING_METER) buffer Meter {
     vec4 result[VKSKY_METER_SLOTS];
+    vec4 adapted;              /* x: the last frame's EV100, w: 1 once written (temporal adaptation) */
     vec2 partial[];
 } meter;
 layout(push_constant) uniform Push { MeterPush push; };
@@ -56,5 +59,7 @@ void main()
     /* No pixel counted (all ground): the floor, as the CPU meter. */
     float l = sums[0].y > 0.0 ? exp(sums[0].x / sums[0].y) : push.params.y;
     float ev100 = log2(l * 100.0 / 12.5);
+    if (push.pass.z < 1.0 && meter.adapted.w > 0.5) ev100 = mix(meter.adapted.x, ev100, push.pass.z);
+    meter.adapted = vec4(ev100, 0.0, 0.0, 1.0);
     meter.result[int(push.params.w)] = vec4(l, ev100, 1.0 / (push.params.x * 1.2 * exp2(ev100)), sums[0].y);
 }

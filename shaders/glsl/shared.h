@@ -122,14 +122,17 @@ VKSKY_STRUCT(PostPush) {
 /* The exposure meter (meter.comp, issue 32): the log-average luminance of the HDR image, on the GPU. Pass 0: one
  * workgroup of 16 x 16 threads per VKSKY_METER_TILE^2 texels writes (sum of ln L, count) into partial[group]; pass
  * 1: one workgroup adds the partials and writes result[slot] = (L_avg cd/m2, EV100, the tone map's multiplier,
- * pixels counted). One result slot per frame in flight, so the host reads a finished frame's while the next runs. */
+ * pixels counted), and the adapted EV100 the next frame eases from. One result slot per frame in flight, so the host
+ * reads a finished frame's while the next runs. */
 #define VKSKY_METER_TILE 64
 #define VKSKY_METER_SLOTS 4
 VKSKY_STRUCT(MeterPush) {
     vec4 params;               /* x: the HDR image's units per cd/m2 (light_scale), y: the luminance floor in cd/m2,
                                   z: 1 = every pixel counts (a lit ground), 0 = sky pixels only (HDR alpha >= 0),
                                   w: the result slot */
-    vec4 pass;                 /* x: 0 = tiles, 1 = the average; y: the number of partials (pass 1) */
+    vec4 pass;                 /* x: 0 = tiles, 1 = the average; y: the number of partials (pass 1); z: the fraction
+                                  of the way from the last frame's EV100 to this frame's metered one (temporal
+                                  adaptation, the window: 1 - exp(-dt / tau); 1 or more: none, the metered EV100) */
 } VKSKY_END(MeterPush)
 
 /* Specialization constants: what a scene needs, compiled in; what it does not, compiled out (one pipeline

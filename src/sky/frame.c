@@ -235,7 +235,8 @@ static void record_meter(sky_renderer *r, VkCommandBuffer cmd, const frame_desc 
                            GPU_USAGE_COMPUTE_STORAGE_READ);
     gpu_barrier_flush(cmd, &b);
     t = timed_begin(r, cmd, "meter_average");
-    meter_record_average(&r->meter, cmd, scale, every_pixel, f->meter_slot % VKSKY_METER_SLOTS);
+    meter_record_average(&r->meter, cmd, scale, every_pixel, f->meter_slot % VKSKY_METER_SLOTS,
+                         f->view->auto_exposure_ease);
     timed_end(r, cmd, t);
     /* The average wrote result[slot]; the tone map (compute or fragment) reads it: RAW. The host reads it after the
      * frame's fence (the title's EV100, the run's line): RAW (a fence alone makes nothing visible to the host). */

@@ -22,7 +22,7 @@ void meter_create(meter_pass *m, const pass_shared *s, VkDescriptorPool pool, co
                                 (hdr->extent.height + VKSKY_METER_TILE - 1) / VKSKY_METER_TILE}};
     VkDeviceSize partials = (VkDeviceSize)m->tiles.width * m->tiles.height;
     /* Host-visible (the host reads a slot's result); a few kilobytes, so the GPU's reads over the bus cost nothing. */
-    gpu_buffer_create(ctx, &m->buffer, "exposure meter", VKSKY_METER_SLOTS * 16 + partials * 8,
+    gpu_buffer_create(ctx, &m->buffer, "exposure meter", VKSKY_METER_SLOTS * 16 + 16 + partials * 8,
                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     memset(m->buffer.mapped, 0, (size_t)m->buffer.size);   /* a slot never written reads as no exposure, not garbage */
     const gpu_slot slots[] = {{VKSKY_BINDING_POST_SOURCE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
@@ -61,10 +61,11 @@ void meter_record_tiles(const meter_pass *m, VkCommandBuffer cmd, double scale, 
     dispatch(m, cmd, &push, m->tiles.width, m->tiles.height);
 }
 
-void meter_record_average(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t slot)
+void meter_record_average(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t slot,
+                          double ease)
 {
     MeterPush push = {.params = {(float)scale, (float)METER_FLOOR_CD_M2, all_pixels ? 1.0f : 0.0f, (float)slot},
-                      .pass = {1.0f, (float)(m->tiles.width * m->tiles.height), 0.0f, 0.0f}};
+                      .pass = {1.0f, (float)(m->tiles.width * m->tiles.height), ease > 0.0 ? (float)ease : 1.0f, 0.0f}};
     dispatch(m, cmd, &push, 1, 1);
 }
 

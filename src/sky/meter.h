@@ -15,7 +15,7 @@ typedef struct meter_result {
 } meter_result;
 
 typedef struct meter_pass {
-    gpu_buffer buffer;           /* vec4 result[VKSKY_METER_SLOTS], then vec2 partial[tiles] */
+    gpu_buffer buffer;           /* vec4 result[VKSKY_METER_SLOTS], vec4 adapted, then vec2 partial[tiles] */
     VkExtent2D tiles;            /* pass 0's workgroups: one per VKSKY_METER_TILE^2 texels of the HDR image */
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;
@@ -29,9 +29,12 @@ void meter_destroy(meter_pass *m, const pass_shared *s);
 /* Point a descriptor set's VKSKY_BINDING_METER at the meter's buffer (the tone maps' sets). */
 void meter_write_descriptor(const gpu_context *ctx, VkDescriptorSet set, const meter_pass *m);
 /* Pass 0 (per-tile sums) and pass 1 (the average into result[slot]); the spine puts a barrier between them.
- * scale: the HDR image's units per cd/m2; all_pixels: a lit ground (every texel counts; else sky texels only). */
+ * scale: the HDR image's units per cd/m2; all_pixels: a lit ground (every texel counts; else sky texels only);
+ * ease: temporal adaptation, the fraction of the way from the last frame's EV100 to the metered one (0 or >= 1:
+ * none, the metered EV100). */
 void meter_record_tiles(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels);
-void meter_record_average(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t slot);
+void meter_record_average(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t slot,
+                          double ease);
 /* The result of a slot, once the frame that wrote it is done (its fence waited); invalidates the mapping. */
 meter_result meter_read(const gpu_context *ctx, const meter_pass *m, uint32_t slot);
 #endif

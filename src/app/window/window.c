@@ -140,6 +140,7 @@ static void record(app *a, frame_slot *f, uint32_t image, gpu_buffer *capture)
     if (a->o->trace_barriers && !a->traced) gpu_barrier_trace(stdout);
     /* Auto exposure: the GPU meters this frame and its tone map reads the result (slot: the frame slot's). */
     a->view.auto_exposure = a->auto_exposure;
+    a->view.auto_exposure_ease = a->exposure_ease;
     frame_record(&a->renderer, f->cmd, &(frame_desc){.view = &a->view, .target = &target, .timer = &f->timer,
                                                      .meter_slot = (uint32_t)a->slot});
     if (a->o->trace_barriers && !a->traced) gpu_barrier_trace(NULL), a->traced = true;
@@ -357,6 +358,8 @@ static void run_loop(app *a)
         }
         double now = glfwGetTime(), dt = fmin(1.0, now - a->st.last_frame);
         a->st.last_frame = now;
+        /* Auto exposure eases toward the meter like an eye (docs/units.md): time constant EXPOSURE_TAU_S. */
+        a->exposure_ease = 1.0 - exp(-dt / EXPOSURE_TAU_S);
         window_input_read(a, dt);
         bool last = quitting || (o->frames && a->presented + 1 == o->frames);
         if (last && o->screenshot) {
