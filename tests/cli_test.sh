@@ -81,7 +81,7 @@ VKSKY_VALIDATION=1 "$VKSKY" --render "$work/b.png" --width 64 --height 36 --no-b
 "$VKSKY" --list-devices | grep -q "^0: " || fail "--list-devices lists no device"
 
 # A validation message makes the run fail: drop one barrier (the test hook) and expect exit 1 + the hazard.
-VKSKY_DROP_BARRIER=hdr.write_to_sample "$VKSKY" --render "$work/c.png" --width 64 --height 36 --validate \
+VKSKY_DROP_BARRIER=hdr.write_to_sample "$VKSKY" --render "$work/c.png" --width 64 --height 36 --exposure 14 --validate \
     >/dev/null 2>"$work/err"
 rc=$?
 [ $rc -eq 1 ] || fail "a run with validation messages exited $rc, expected 1"

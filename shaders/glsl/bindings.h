@@ -28,5 +28,7 @@
 #define VKSKY_BINDING_SPD_COUNTERS 9          /* the single pass's tile counters (POST_MIP + BLOOM_MAX_MIPS) */
 #define VKSKY_BINDING_TONEMAP_DISPLAY 3       /* storage: the compute tone map's display image */
 #define VKSKY_BINDING_TONEMAP_COMPOSITE 4     /* storage: the compute tone map's linear composite */
+#define VKSKY_BINDING_METER 10                /* storage buffer: the exposure meter's partials and results (meter.comp;
+                                                 the tone maps read a result) */
 
 #endif

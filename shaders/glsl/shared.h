@@ -106,6 +106,8 @@ VKSKY_STRUCT(TonemapPush) {
                                   yz: the frame's pixel offset in the whole image (a tile's), so the noise is seeded
                                   by the whole image's pixel; w: a tiled render's whole height in pixels (0: the
                                   frame is the whole image), where the upsample's taps stop (hdr_upsample.glsl) */
+    vec4 meter;                /* x: 1 = auto exposure: params.x is multiplied by the GPU meter's exposure (meter.comp,
+                                  the result of slot y); 0: params.x alone */
 } VKSKY_END(TonemapPush)
 
 /* Compute post chain push constants (bloom_spd.comp, bloom_up.comp, tonemap.comp). */
@@ -114,7 +116,24 @@ VKSKY_STRUCT(PostPush) {
     vec4 tonemap;              /* tonemap.comp: TonemapPush's params (exposure, operator, bloom strength, sRGB) */
     vec4 bloom;                /* tonemap.comp: xy 1/size of bloom mip 1, z 1 = add its tent (the fused last upsample) */
     vec4 dither;               /* tonemap.comp: TonemapPush's dither */
+    vec4 meter;                /* tonemap.comp: TonemapPush's meter */
 } VKSKY_END(PostPush)
+
+/* The exposure meter (meter.comp, issue 32): the log-average luminance of the HDR image, on the GPU. Pass 0: one
+ * workgroup of 16 x 16 threads per VKSKY_METER_TILE^2 texels writes (sum of ln L, count) into partial[group]; pass
+ * 1: one workgroup adds the partials and writes result[slot] = (L_avg cd/m2, EV100, the tone map's multiplier,
+ * pixels counted), and the adapted EV100 the next frame eases from. One result slot per frame in flight, so the host
+ * reads a finished frame's while the next runs. */
+#define VKSKY_METER_TILE 64
+#define VKSKY_METER_SLOTS 4
+VKSKY_STRUCT(MeterPush) {
+    vec4 params;               /* x: the HDR image's units per cd/m2 (light_scale), y: the luminance floor in cd/m2,
+                                  z: 1 = every pixel counts (a lit ground), 0 = sky pixels only (HDR alpha >= 0),
+                                  w: the result slot */
+    vec4 pass;                 /* x: 0 = tiles, 1 = the average; y: the number of partials (pass 1); z: the fraction
+                                  of the way from the last frame's EV100 to this frame's metered one (temporal
+                                  adaptation, the window: 1 - exp(-dt / tau); 1 or more: none, the metered EV100) */
+} VKSKY_END(MeterPush)
 
 /* Specialization constants: what a scene needs, compiled in; what it does not, compiled out (one pipeline
  * per variant, no per-pixel branch). The same IDs in every shader that includes atmosphere.glsl. */

@@ -38,6 +38,6 @@ void main()
 #ifdef VKSKY_COMPOSITE
     imageStore(composite, p, vec4(color, 1.0));
 #endif
-    vec3 mapped = tonemap_apply(color, push.tonemap);
+    vec3 mapped = tonemap_apply(color, tonemap_exposed(push.tonemap, push.meter));
     imageStore(display, p, vec4(dither_display(mapped, p, push.dither, push.tonemap.w > 0.5), 1.0));
 }

@@ -24,6 +24,6 @@ void main()
 #ifdef VKSKY_COMPOSITE
     out_linear = vec4(color, 1.0);
 #endif
-    vec3 mapped = tonemap_apply(color, push.params);
+    vec3 mapped = tonemap_apply(color, tonemap_exposed(push.params, push.meter));
     out_display = vec4(dither_display(mapped, ivec2(gl_FragCoord.xy), push.dither, push.params.w > 0.5), 1.0);
 }

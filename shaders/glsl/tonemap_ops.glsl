@@ -18,3 +18,13 @@ vec3 tonemap_apply(vec3 color, vec4 params)
                 : clamp(x, 0.0, 1.0);
     return params.w > 0.5 ? srgb_encode(mapped) : mapped;
 }
+/* Auto exposure (issue 32): the GPU meter's result for this frame (meter.comp wrote it earlier in the same frame;
+ * the spine's meter.result_to_tonemap barrier orders it). meter: TonemapPush's (x 1 = on, y the slot). */
+layout(std430, set = 0, binding = VKSKY_BINDING_METER) readonly buffer MeterResults {
+    vec4 result[VKSKY_METER_SLOTS];
+} meter_results;
+vec4 tonemap_exposed(vec4 params, vec4 meter)
+{
+    if (meter.x > 0.5) params.x *= meter_results.result[int(meter.y)].z;
+    return params;
+}

@@ -46,6 +46,12 @@ static const gpu_usage_info usages[GPU_USAGE_COUNT] = {
                                       VK_IMAGE_LAYOUT_GENERAL},
     [GPU_USAGE_CLEAR_DST] = {"clear_dst", VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                              VK_IMAGE_LAYOUT_GENERAL},
+    /* Storage buffers (the exposure meter's): no layout. */
+    [GPU_USAGE_COMPUTE_STORAGE_READ] = {"compute_storage_read", VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL},
+    [GPU_USAGE_SHADER_STORAGE_READ] = {"shader_storage_read",
+                                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
+                                       VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL},
 };
 
 static FILE *trace_out;

@@ -251,6 +251,44 @@ static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_de
     gpu_barrier_flush(cmd, &b);
 }
 
+/* Step 2b, auto exposure's meter (sky/meter.h, meter.comp; issue 32): the log-average luminance of the HDR image in two
+ * dispatches, its result read by this frame's tone map: a reduction feeding a later pass of the same frame. Its last
+ * barriers go into `next`, the batch of the point after the sky pass (bloom's, or the tone map's). */
+static void record_meter(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f, gpu_usage hdr_write,
+                         gpu_barrier_batch *next)
+{
+    double scale = f->view->ev100 ? f->view->light_scale : 1.0;
+    bool every_pixel = r->variant.ground;   /* a lit ground is part of the scene; the black void below it is not */
+    VkBuffer buf = r->meter.buffer.buffer;
+    /* The sky pass wrote the HDR image; the meter, then bloom and the tone map (compute or fragment), sample it: RAW +
+     * layout (it replaces hdr.write_to_sample / hdr.write_to_compute_sample). The previous frame's average read the
+     * partials and its tone map a result; this frame rewrites them (one buffer for the frames in flight): WAR. */
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before meter");
+    gpu_barrier_add_image(&b, "meter.hdr_to_read", "hdr", r->hdr.image, gpu_color_range(0, 1), hdr_write,
+                          GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    gpu_barrier_add_buffer(&b, "meter.to_write", "meter", buf, GPU_USAGE_SHADER_STORAGE_READ,
+                           GPU_USAGE_COMPUTE_STORAGE_WRITE);
+    gpu_barrier_flush(cmd, &b);
+    uint32_t t = timed_begin(r, cmd, "meter");
+    meter_record_tiles(&r->meter, cmd, scale, every_pixel);
+    timed_end(r, cmd, t);
+    /* The tiles wrote their partial sums; the average reads them: RAW. */
+    b = gpu_barrier_batch_begin("before meter_average");
+    gpu_barrier_add_buffer(&b, "meter.partials_to_average", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
+                           GPU_USAGE_COMPUTE_STORAGE_READ);
+    gpu_barrier_flush(cmd, &b);
+    t = timed_begin(r, cmd, "meter_average");
+    meter_record_average(&r->meter, cmd, scale, every_pixel, f->meter_slot % VKSKY_METER_SLOTS,
+                         f->view->auto_exposure_ease);
+    timed_end(r, cmd, t);
+    /* The average wrote result[slot]; the tone map (compute or fragment) reads it: RAW. The host reads it after the
+     * frame's fence (the title's EV100, the run's line): RAW (a fence alone makes nothing visible to the host). */
+    gpu_barrier_add_buffer(next, "meter.result_to_tonemap", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
+                           GPU_USAGE_SHADER_STORAGE_READ);
+    gpu_barrier_add_buffer(next, "meter.result_to_host", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
+                           GPU_USAGE_HOST_READ);
+}
+
 /* Steps 3-5 with the compute post chain: the bloom chain in one dispatch (plus the upsamples), the tone map as
  * a dispatch fused with the last upsample. Everything the chain touches stays in GENERAL. Returns false when
  * the target needs the fragment tone map (a swapchain image), which the caller then records: its last barrier
@@ -273,8 +311,11 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     /* Without bloom no pass follows before the tone map: these barriers join the tone map's point. */
     gpu_barrier_batch b = gpu_barrier_batch_begin(bloom ? "after sky (compute post)" : "before tonemap (compute)");
     gpu_barrier_batch *first = bloom || compute_tonemap ? &b : next;
-    gpu_barrier_add_image(first, "hdr.write_to_compute_sample", "hdr", r->hdr.image, one, hdr_write,
-                          compute_tonemap ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    if (v->auto_exposure)   /* 2b: meter.hdr_to_read makes it readable; the meter's last barriers join this point */
+        record_meter(r, cmd, f, hdr_write, first);
+    else
+        gpu_barrier_add_image(first, "hdr.write_to_compute_sample", "hdr", r->hdr.image, one, hdr_write,
+                              compute_tonemap ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
     if (bloom) {
         gpu_barrier_add_image(&b, "bloom.to_storage", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
                               CHAIN_LAST_USE_COMPUTE, GPU_USAGE_COMPUTE_STORAGE_RW, true);
@@ -354,6 +395,7 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
 
     TonemapPush tm = sky_view_tonemap_push(v, compute_tonemap ? true : !format_is_srgb(r->desc.display_format));
     if (!bloom) tm.params.z = 0.0f;
+    tm.meter.y = (float)(f->meter_slot % VKSKY_METER_SLOTS);
     if (compute_tonemap) {
         /* The display and composite images were read by the previous frame's readback copies (WAR); the
          * compute tone map rewrites every pixel: UNDEFINED -> GENERAL. */
@@ -418,8 +460,10 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     /* The previous frame's bloom and tone map sampled the HDR image (WAR); its contents are not needed (every
      * pixel is rewritten): UNDEFINED -> COLOR_ATTACHMENT (fragment) or GENERAL (compute). With the sky-view
      * LUT: the LUT pass wrote it, the sky pass samples it (RAW + layout). */
+    /* (A metered frame's meter sampled it too, in a compute shader: hdr_metered.) */
     gpu_barrier_add_image(&b, "hdr.to_sky", "hdr", r->hdr.image, one,
-                          r->post_kind == POST_PASS_COMPUTE ? HDR_LAST_USE_COMPUTE : HDR_LAST_USE, hdr_write, true);
+                          r->post_kind == POST_PASS_COMPUTE || r->hdr_metered ? HDR_LAST_USE_COMPUTE : HDR_LAST_USE,
+                          hdr_write, true);
     if (mode == SKY_MODE_SKYVIEW)
         gpu_barrier_add_image(&b, "skyview.write_to_sample", "skyview_lut", r->luts.skyview.image, one,
                               GPU_USAGE_COMPUTE_STORAGE_WRITE, sky_reads, false);
@@ -433,6 +477,8 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     t = timed_begin(r, cmd, "sky");
     sky_pass_record(&r->sky, cmd, kind, mode, &r->hdr, &push);
     timed_end(r, cmd, t);
+    /* 2b. Auto exposure: the meter reads the HDR image, the tone map its result (record_meter, at step 3's start). */
+    r->hdr_metered = v->auto_exposure;
 
     /* 3. Post: the compute chain (bloom in one dispatch + upsamples, tone map fused with the last upsample:
      * record_post_compute, which for its own display image also does steps 4 and 5), or the fragment chain. */
@@ -445,8 +491,11 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
         b = gpu_barrier_batch_begin("after sky");
         /* Without bloom no pass follows before the tone map: these join its point. */
         gpu_barrier_batch *after_sky = bloom ? &b : &before_tonemap;
-        gpu_barrier_add_image(after_sky, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
-                              GPU_USAGE_FRAGMENT_SAMPLED, false);
+        if (v->auto_exposure)   /* 2b: meter.hdr_to_read makes it readable; the meter's last barriers join this point */
+            record_meter(r, cmd, f, hdr_write, after_sky);
+        else
+            gpu_barrier_add_image(after_sky, "hdr.write_to_sample", "hdr", r->hdr.image, one, hdr_write,
+                                  GPU_USAGE_FRAGMENT_SAMPLED, false);
         if (bloom)
             gpu_barrier_add_image(&b, "bloom.to_attachment", "bloom", r->bloom.mips.image,
                                   gpu_color_range(0, r->bloom.mip_count), BLOOM_LAST_USE,
@@ -483,6 +532,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     gpu_barrier_flush(cmd, &b);
     TonemapPush tm = sky_view_tonemap_push(v, !f->target ? false : !format_is_srgb(r->desc.display_format));
     if (!bloom) tm.params.z = 0.0f;
+    tm.meter.y = (float)(f->meter_slot % VKSKY_METER_SLOTS);
     t = timed_begin(r, cmd, "tonemap");
     tonemap_record(&r->tonemap, cmd, display->extent, display->view,
                    r->desc.readback ? r->composite.view : VK_NULL_HANDLE, &tm);

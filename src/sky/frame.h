@@ -25,6 +25,8 @@ typedef struct frame_desc {
     gpu_timer *timer;            /* NULL: the renderer's timer (one per frame in flight otherwise) */
     bool follows_frame;          /* another frame was recorded before this one into the same command buffer
                                     (VKSKY_FRAMES): its readback copies wrote the buffers this frame's rewrite */
+    uint32_t meter_slot;         /* auto exposure (view->auto_exposure): the meter's result slot this frame writes and
+                                    its tone map reads, one per frame in flight (< VKSKY_METER_SLOTS) */
 } frame_desc;
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 /* A frame's first step alone (the composite frame's too): the LUT passes and their barriers, when the atmosphere

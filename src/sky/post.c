@@ -91,17 +91,20 @@ void post_compute_create(post_compute *p, const pass_shared *s, const gpu_image 
     *p = (post_compute){.tonemap = display != VK_NULL_HANDLE, .composite = composite != VK_NULL_HANDLE,
                         .mip_count = bloom ? bloom->mip_count : 0};
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 24},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 32}};
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 32},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};   /* the tone map's meter */
     VkDescriptorPoolCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 20,
-                                       .poolSizeCount = 2, .pPoolSizes = sizes};
+                                       .poolSizeCount = 3, .pPoolSizes = sizes};
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &info, gpu_allocator(ctx->device), &p->pool));
     if (bloom) create_bloom(p, s, hdr, bloom);
     if (!p->tonemap) return;
     const VkDescriptorType SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, STORAGE = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     const gpu_slot slots[] = {{VKSKY_BINDING_POST_SOURCE, SAMPLED}, {VKSKY_BINDING_POST_MIP, SAMPLED},
                               {VKSKY_BINDING_POST_MIP + 1, SAMPLED}, {VKSKY_BINDING_TONEMAP_DISPLAY, STORAGE},
+                              {VKSKY_BINDING_METER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER},
                               {VKSKY_BINDING_TONEMAP_COMPOSITE, STORAGE}};
-    p->tonemap_set_layout = gpu_set_layout(ctx, slots, p->composite ? 5 : 4, VK_SHADER_STAGE_COMPUTE_BIT, "tonemap (compute) set layout");
+    /* The meter's buffer (auto exposure; renderer.c points it at the meter), the composite last (only with it). */
+    p->tonemap_set_layout = gpu_set_layout(ctx, slots, p->composite ? 6 : 5, VK_SHADER_STAGE_COMPUTE_BIT, "tonemap (compute) set layout");
     p->tonemap_layout = gpu_pipeline_layout(ctx, p->tonemap_set_layout, sizeof(PostPush), VK_SHADER_STAGE_COMPUTE_BIT,
                                             "tonemap (compute) layout");
     p->tonemap_pipeline = compute_pipeline(ctx, p->tonemap_layout,
@@ -184,7 +187,7 @@ void post_record_upsample(const post_compute *p, const bloom_chain *bloom, VkCom
 void post_record_tonemap(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, VkExtent2D extent,
                          const TonemapPush *tm)
 {
-    PostPush push = {.tonemap = tm->params, .dither = tm->dither};
+    PostPush push = {.tonemap = tm->params, .dither = tm->dither, .meter = tm->meter};
     if (p->mip_count > 1) {
         VkExtent2D m1 = gpu_mip_extent(bloom->mips.extent, 1);
         push.bloom = (vksky_vec4){1.0f / (float)m1.width, 1.0f / (float)m1.height, 1.0f, 0.0f};

@@ -49,14 +49,18 @@ static void create_sized(sky_renderer *r)
         gpu_buffer_create(ctx, &r->readback_linear, "readback linear", pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         gpu_buffer_create(ctx, &r->readback_display, "readback display", pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     }
+    /* Before the tone maps: their sets name the meter's buffer (every frame's, read only when the view meters). */
+    meter_create(&r->meter, &r->shared, r->size_pool, &r->hdr);
     if (desc->bloom)
         bloom_create(&r->bloom, &sized, &r->hdr, desc->bloom_mips ? desc->bloom_mips : 5, desc->bloom_quarter ? 1 : 0);
     tonemap_create(&r->tonemap, &sized, r->hdr.view, desc->bloom ? r->bloom.mips.mip_views[0] : r->hdr.view,
                    desc->display_format, desc->readback);
+    meter_write_descriptor(ctx, r->tonemap.set, &r->meter);
     if (r->post_kind == POST_PASS_COMPUTE)
         post_compute_create(&r->post, &r->shared, &r->hdr, desc->bloom ? &r->bloom : NULL,
                             compute_tonemap ? r->display.view : VK_NULL_HANDLE,
                             compute_tonemap && desc->readback ? r->composite.view : VK_NULL_HANDLE);
+    if (r->post_kind == POST_PASS_COMPUTE && r->post.tonemap) meter_write_descriptor(ctx, r->post.tonemap_set, &r->meter);
     if (r->post_kind == POST_PASS_COMPUTE && desc->bloom && desc->bloom_downsample == BLOOM_DOWN_SINGLE_PASS &&
         !r->post.spd_pipeline)
         gpu_report(r->ctx, 1, "--bloom-downsample single-pass needs the device feature vulkanMemoryModelDeviceScope, "
@@ -68,6 +72,7 @@ static void destroy_sized(sky_renderer *r)
     const gpu_context *ctx = r->ctx;
     if (r->post_kind == POST_PASS_COMPUTE) post_compute_destroy(&r->post, &r->shared);
     tonemap_destroy(&r->tonemap, &r->shared);
+    meter_destroy(&r->meter, &r->shared);
     if (r->desc.bloom) bloom_destroy(&r->bloom, &r->shared);
     gpu_buffer_destroy(ctx, &r->readback_linear);
     gpu_buffer_destroy(ctx, &r->readback_display);
@@ -146,9 +151,10 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
     s->ctx = ctx;
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 8},
                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 32},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8}};
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};   /* the meter's, its and the tone map's sets */
     VkDescriptorPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 32,
-                                        .poolSizeCount = 3, .pPoolSizes = sizes};
+                                        .poolSizeCount = 4, .pPoolSizes = sizes};
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &pinfo, gpu_allocator(ctx->device), &s->pool));
     s->linear_clamp = gpu_linear_clamp_sampler(ctx, "linear clamp");
     gpu_buffer_create(ctx, &s->atmosphere_ubo, "atmosphere uniforms", sizeof(AtmosphereParams),

@@ -5,6 +5,7 @@
 #define VKSKY_SKY_RENDERER_H
 #include "gpu/timing.h"
 #include "sky/atmosphere.h"
+#include "sky/meter.h"
 #include "sky/passes.h"
 #include "sky/post.h"
 /* The renderer never reads a view; this include gives the renderer's users (options, quality) the view type. */
@@ -38,6 +39,7 @@ typedef struct sky_renderer {
     bloom_chain bloom;
     tonemap_pass tonemap;
     post_compute post;           /* the compute post chain (post_kind compute) */
+    meter_pass meter;            /* auto exposure's GPU meter (sky/meter.h): its buffer the tone maps read */
     post_pass_kind post_kind;    /* desc.post_pass resolved for the device: fragment or compute */
     sky_renderer_desc desc;
     gpu_image hdr;               /* sky pass output, RGBA16F, render_scale x the output size */
@@ -55,6 +57,7 @@ typedef struct sky_renderer {
     VkSpecializationInfo spec;
     uint64_t lut_hash;           /* of the atmosphere the LUTs hold; 0: never computed */
     bool luts_valid;
+    bool hdr_metered;            /* the last frame recorded metered its HDR image (a compute read: the next hdr.to_sky) */
     int variant_builds;          /* times the variant's pipelines were built (--timings) */
     double pipelines_ms;         /* wall time spent making pipelines and the renderer's resources (--timings) */
     /* --async-luts (sky/async_luts.c; the context has a compute queue): */

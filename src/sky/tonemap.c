@@ -6,9 +6,11 @@ void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view,
 {
     const gpu_context *ctx = s->ctx;
     t->composite = composite;
+    /* The meter's buffer: auto exposure's multiplier (renderer.c points it at the meter). */
     const gpu_slot slots[] = {{VKSKY_BINDING_POST_SOURCE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
-                              {VKSKY_BINDING_POST_MIP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}};
-    t->set_layout = gpu_set_layout(ctx, slots, 2, VK_SHADER_STAGE_FRAGMENT_BIT, "tonemap set layout");
+                              {VKSKY_BINDING_POST_MIP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                              {VKSKY_BINDING_METER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
+    t->set_layout = gpu_set_layout(ctx, slots, 3, VK_SHADER_STAGE_FRAGMENT_BIT, "tonemap set layout");
     t->layout = gpu_pipeline_layout(ctx, t->set_layout, sizeof(TonemapPush), VK_SHADER_STAGE_FRAGMENT_BIT, "tonemap layout");
     const sky_spirv *spv = composite ? &spirv_tonemap_composite : &spirv_tonemap;
     VkShaderModule fs = gpu_shader_module(ctx, spv->code, spv->size, composite ? "tonemap_composite.frag" : "tonemap.frag");

@@ -120,7 +120,10 @@ TonemapPush sky_view_tonemap_push(const sky_view *v, bool encode_srgb_in_shader)
     /* Photometric: a camera's saturation-based exposure, H = L / (1.2 2^EV100) (ISO 12232, K = 12.5 and q = 0.65
      * folded into the 1.2), on HDR values that hold L x light_scale. */
     double multiplier = v->ev100 ? 1.0 / (v->light_scale * 1.2 * exp2(v->exposure_ev)) : exp2(v->exposure_ev);
-    return (TonemapPush){.params = {(float)multiplier, (float)v->tonemap,
+    /* Auto exposure: the multiplier comes from the GPU meter (the frame spine sets the slot, meter.y). */
+    if (v->auto_exposure) multiplier = 1.0;
+    return (TonemapPush){.meter = {v->auto_exposure ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f},
+                         .params = {(float)multiplier, (float)v->tonemap,
                                     v->bloom ? (float)v->bloom_strength : 0.0f, encode_srgb_in_shader ? 1.0f : 0.0f},
                          .dither = {v->no_dither ? 0.0f : 1.0f, (float)v->tile_x, (float)v->tile_y,
                                     (float)v->whole_height}};

@@ -22,6 +22,10 @@ typedef struct sky_view {
     double exposure_ev;                     /* tone map exposure, in stops (ev100: EV100, the camera's) */
     bool ev100;                             /* photometric: exposure_ev is EV100, the HDR holds cd/m2 x light_scale */
     double light_scale;                     /* photometric: the HDR image's units per cd/m2 (a power of two) */
+    bool auto_exposure;                     /* exposure from the GPU meter of the same frame (sky/meter.h; issue 32):
+                                               exposure_ev is then not used */
+    double auto_exposure_ease;              /* temporal adaptation: the fraction of the way from the last frame's EV100
+                                               to the metered one (0: none; the window: 1 - exp(-dt / tau)) */
     int tonemap;                            /* VKSKY_TONEMAP_* */
     bool bloom;
     double bloom_strength, bloom_threshold;

@@ -128,7 +128,11 @@ int frame_ring_submit(frame_ring *ring, const frame_desc *f, void *job)
     /* The frame spine copies into the renderer's readback pair: this slot's for this frame. */
     ring->r->readback_linear = slot->linear, ring->r->readback_display = slot->display;
     slot->cmd = gpu_begin_commands(ctx);
-    frame_record(ring->r, slot->cmd, f);
+    /* Auto exposure: the meter's result slot is the ring slot's, free once the consumer released it (as the
+     * readback buffers). */
+    frame_desc fd = *f;
+    fd.meter_slot = (uint32_t)s;
+    frame_record(ring->r, slot->cmd, &fd);
     VK_CHECK(vkEndCommandBuffer(slot->cmd));
     VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = slot->cmd};
     VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,

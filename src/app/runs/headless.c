@@ -37,12 +37,15 @@ static void bench(const options *o, sky_renderer *r)
     int pass_count = 0;
     double ms[MAX_PASSES];
 
-    /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. */
-    frame_desc f = {.view = &o->view};
+    /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. Auto exposure (--auto-exposure, or a
+     * photometric PNG among the outputs): the frames meter on the GPU, and the meter's passes are timed too. */
+    sky_view view = o->view;
+    view.auto_exposure = o->auto_exposure || light_auto_exposure_wanted(o);
+    frame_desc f = {.view = &view};
     for (int i = 0; i < 3 && !stop_requested(); ++i) sky_renderer_render(r, &f);
 
     /* LUT passes, measured on their own (a frame recomputes them only when the atmosphere changes). */
-    frame_desc with_luts = {.view = &o->view, .force_luts = true};
+    frame_desc with_luts = {.view = &view, .force_luts = true};
     double *lut_ms[2] = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double))};
     /* With --async-luts the LUT passes are timed on the compute queue's own timer. The wall time of these frames
      * (each rebuilds the LUTs, as an animated sun does) is tools/async_bench.sh's figure. */

@@ -187,15 +187,16 @@ static int sequence_render_serial(const options *base, sky_renderer *r, sequence
         render_scene_set(r, &scene);
         bool luts = sky_renderer_luts_dirty(r);
         lut_computations += luts;
+        /* Auto exposure: the GPU meters the frame's HDR image and its tone map reads the result (sky/meter.h): one
+         * render. */
+        f.view.auto_exposure = light_auto_exposure_wanted(&f);
         frame_desc desc = {.view = &f.view};
         render(r, &desc);
-        if (light_auto_exposure_wanted(&f)) {
-            /* Auto exposure: the frame's log-average luminance sets the exposure of the same frame, rendered again
-             * (the LUTs are kept: only the sky pass, bloom and tone map run twice). */
-            double log_sum = 0.0, metered = 0.0;
-            light_log_sum(&f, &f.view, r->readback_linear.mapped, f.width, f.height, 0, f.height, &log_sum, &metered);
-            light_expose(&f.view, metered > 0.0 ? exp(log_sum / metered) : 1e-4);
-            render(r, &desc);
+        if (f.view.auto_exposure && !sequence && !base->quiet) {
+            meter_result m = meter_read(r->ctx, &r->meter, 0);
+            fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered "
+                            "on the GPU)\n", m.ev100, m.log_average, f.view.ev100 ? "cd/m2" : "(relative units)",
+                    m.count);
         }
         const char *path = "";
         frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
@@ -279,6 +280,7 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
         j->luts = sky_renderer_luts_dirty(r);
         lut_computations += j->luts;
         /* The view lives in push constants, recorded into this frame's command buffer: j->f outlives the record. */
+        j->f.view.auto_exposure = light_auto_exposure_wanted(&j->f);   /* metered on the GPU, as the serial loop */
         frame_desc desc = {.view = &j->f.view};
         status = frame_ring_submit(&ring, &desc, j);
     }
@@ -292,9 +294,8 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
 int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render, int slots, FILE *trace)
 {
     /* The ring pays off from two frames on; one frame (and the tests' VKSKY_FRAMES loop) keeps the serial path. */
-    /* Auto exposure (a photometric PNG) renders each frame twice, the second from the first's read-back pixels: that
-     * frame-to-frame dependency on the host keeps the serial loop. */
-    if (slots >= 2 && sequence_active(base) && base->frame_last > base->frame_first && !light_auto_exposure_wanted(base))
+    /* Auto exposure (a photometric PNG) is metered on the GPU inside each frame (sky/meter.h): the ring too. */
+    if (slots >= 2 && sequence_active(base) && base->frame_last > base->frame_first)
         return sequence_render_ring(base, r, slots, trace);
     return sequence_render_serial(base, r, render);
 }

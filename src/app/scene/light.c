@@ -193,22 +193,6 @@ double light_meter_pixel(const options *o, const sky_view *v, int width, int hei
     return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
 }
 
-double light_meter_log_average(const options *o, const sky_view *v, int width, int height)
-{
-    bool black_ground = o->ground_albedo[0] == 0.0 && o->ground_albedo[1] == 0.0 && o->ground_albedo[2] == 0.0;
-    double rb = o->atmosphere.bottom_radius, rc = rb + v->altitude_km;
-    double horizon_mu = -sqrt(fmax(0.0, 1.0 - (rb / rc) * (rb / rc)));
-    double sum = 0.0, count = 0.0;
-    for (int j = 0; j < 9; ++j)
-        for (int i = 0; i < 16; ++i) {
-            double x = (i + 0.5) * width / 16.0, y = (j + 0.5) * height / 9.0;
-            if (black_ground && pixel_hits_ground(o, v, width, height, x, y, horizon_mu)) continue;
-            sum += log(fmax(light_meter_pixel(o, v, width, height, x, y), 1e-4));
-            count += 1.0;
-        }
-    return count > 0.0 ? exp(sum / count) : 1e-4;
-}
-
 double light_auto_ev100(double log_average_cd_m2) { return log2(log_average_cd_m2 * 100.0 / 12.5); }
 
 bool light_auto_exposure_wanted(const options *o)

@@ -47,17 +47,17 @@ const char *light_sun_units_text(const options *o);
  * and at the camera in output units, the units' names, whiteLuminance (photometric: 1). envmap/projection untouched. */
 void light_sky_attrs(const options *o, io_exr_sky_attrs *a);
 
-/* A meter for the window (no pixels come back from the GPU there): the CPU reference's sky luminance (output units,
- * cd/m2 in photometric units; the disc left out) along the view ray of continuous pixel (x, y) of a width x height
- * view, at a quality fit for an interactive meter (~1e-3 of the converged reference, a few ms); and the log-average
- * over a 16 x 9 grid of the view's rays (sky rays only with a black ground, as light_log_sum). */
+/* The window's luminance under the cursor (auto exposure itself is metered on the GPU: sky/meter.h): the CPU
+ * reference's sky luminance (output units, cd/m2 in photometric units; the disc left out) along the view ray of
+ * continuous pixel (x, y) of a width x height view, at a quality fit for an interactive readout (~1e-3 of the
+ * converged reference, a few ms). */
 double light_meter_pixel(const options *o, const sky_view *v, int width, int height, double x, double y);
-double light_meter_log_average(const options *o, const sky_view *v, int width, int height);
 
 /* Auto exposure: the log-average (geometric mean) luminance of a frame, cd/m2 (pixels in HDR units, light_scale
  * divided out; luminance floored at 1e-4 cd/m2 so a black pixel does not drag the mean to zero), and the EV100
  * that exposes it at the reflected-light meter's key: EV100 = log2(L_avg S / K), S = 100, K = 12.5.
- * light_log_sum adds a frame's (or a band's) pixels as a sum of logs and a count, to combine bands: rows y0 ..
+ * light_log_sum (banded renders; a frame is metered on the GPU, sky/meter.h) adds a band's pixels as a sum of logs
+ * and a count, to combine bands: rows y0 ..
  * y0+rows-1 of a width x height image of view v. With a black ground (albedo 0, the default) only pixels whose ray
  * misses the planet count: the void below the horizon is no part of the scene a meter would read. */
 void light_log_sum(const options *o, const sky_view *v, const uint16_t *rgba_half, int width, int height, int y0,

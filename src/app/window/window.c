@@ -146,7 +146,11 @@ static void record(app *a, frame_slot *f, uint32_t image, gpu_buffer *capture)
         if (f->luts) vkFreeCommandBuffers(a->ctx.device, a->ctx.compute_pool, 1, &f->luts);
         f->luts = sky_renderer_submit_luts_async(&a->renderer, false);
     }
-    frame_record(&a->renderer, f->cmd, &(frame_desc){.view = &a->view, .target = &target, .timer = &f->timer});
+    /* Auto exposure: the GPU meters this frame and its tone map reads the result (slot: the frame slot's). */
+    a->view.auto_exposure = a->auto_exposure;
+    a->view.auto_exposure_ease = a->exposure_ease;
+    frame_record(&a->renderer, f->cmd, &(frame_desc){.view = &a->view, .target = &target, .timer = &f->timer,
+                                                     .meter_slot = (uint32_t)a->slot});
     if (a->o->trace_barriers && !a->traced) gpu_barrier_trace(NULL), a->traced = true;
     VK_CHECK(vkEndCommandBuffer(f->cmd));
 }
@@ -202,6 +206,10 @@ static bool draw_frame(app *a, gpu_buffer *capture)
     /* The slot's previous submission is done: its command buffer, semaphore and timestamps are free. */
     VK_CHECK(vkWaitForFences(a->ctx.device, 1, &f->done, VK_TRUE, UINT64_MAX));
     read_timer(a, f);
+    /* Its meter's result (a frame or two late): the EV100 the title shows and the +/- keys step from. A slot never
+     * metered counts no pixels. */
+    meter_result m = meter_read(&a->ctx, &a->renderer.meter, (uint32_t)a->slot);
+    if (a->auto_exposure && m.count > 0.0f) a->view.exposure_ev = a->view.ev100 ? m.ev100 : -log2(1.2) - m.ev100;
     uint32_t image = 0;
     VkResult r = vkAcquireNextImageKHR(a->ctx.device, a->sc.handle, UINT64_MAX, f->acquired, VK_NULL_HANDLE, &image);
     if (r == VK_ERROR_OUT_OF_DATE_KHR) {
@@ -275,10 +283,9 @@ static void update_title(app *a, double now)
     int n = snprintf(title, sizeof title, "vksky | %.1f fps | GPU %.2f ms | sun %.1f\xc2\xb0 | altitude %.*f %s", fps,
                      gpu, a->view.sun_elevation_deg, h < 1.0 ? 1 : 3, h < 1.0 ? h * 1000.0 : h, h < 1.0 ? "m" : "km");
     if (a->view.ev100 && n > 0 && (size_t)n < sizeof title) {
-        /* Photometric units: the exposure as EV100 (auto: metered from the CPU reference over the view) and the
-         * sky's luminance under the cursor (the view's centre while the mouse looks around). */
+        /* Photometric units: the exposure as EV100 (auto: the GPU meter's, read back in draw_frame) and the sky's
+         * luminance under the cursor (the CPU reference; the view's centre while the mouse looks around). */
         int w = (int)a->sc.extent.width, hh = (int)a->sc.extent.height;
-        if (a->auto_exposure) light_expose(&a->view, light_meter_log_average(a->o, &a->view, w, hh));
         double cx = a->in.captured ? 0.5 * w : a->in.cursor_x, cy = a->in.captured ? 0.5 * hh : a->in.cursor_y;
         double cd = light_meter_pixel(a->o, &a->view, w, hh, cx, cy);
         snprintf(title + n, sizeof title - (size_t)n, " | EV100 %.1f%s | %.4g cd/m\xc2\xb2 at the cursor",
@@ -366,6 +373,8 @@ static void run_loop(app *a)
         }
         double now = glfwGetTime(), dt = fmin(1.0, now - a->st.last_frame);
         a->st.last_frame = now;
+        /* Auto exposure eases toward the meter like an eye (docs/units.md): time constant EXPOSURE_TAU_S. */
+        a->exposure_ease = 1.0 - exp(-dt / EXPOSURE_TAU_S);
         window_input_read(a, dt);
         bool last = quitting || (o->frames && a->presented + 1 == o->frames);
         if (last && o->screenshot) {
@@ -456,10 +465,8 @@ static int start_rendering(app *a)
     rdesc.external_display = true, rdesc.display_format = a->sc.format.format;
     sky_renderer_create(&a->renderer, &a->ctx, &rdesc);
     a->view = o->view;
-    /* Photometric units without --exposure: auto exposure, metered now so the first frame is already exposed. */
+    /* Photometric units without --exposure: auto exposure, metered on the GPU in every frame (the first included). */
     a->auto_exposure = o->view.ev100 && (o->auto_exposure || !o->exposure_given);
-    if (a->auto_exposure)
-        light_expose(&a->view, light_meter_log_average(o, &a->view, (int)a->sc.extent.width, (int)a->sc.extent.height));
     camera_init(&a->cam, &o->view, o->atmosphere.bottom_radius);
     camera_to_view(&a->cam, &a->view);
     return 0;

@@ -12,6 +12,7 @@
 #include "app/window/window_input.h"
 
 #define FRAMES_IN_FLIGHT 2
+#define EXPOSURE_TAU_S 0.5   /* auto exposure's time constant in the window: 63 % of a change of light in 0.5 s */
 
 typedef struct frame_slot {
     VkCommandBuffer cmd;
@@ -56,6 +57,7 @@ typedef struct app {
     long presented;
     bool traced;
     int status;
-    bool auto_exposure;        /* photometric without --exposure: EV100 metered on every title update (app/scene/light.h) */
+    bool auto_exposure;        /* photometric without --exposure: every frame metered on the GPU (sky/meter.h) */
+    double exposure_ease;      /* this frame's share of the way to the metered EV100 (temporal adaptation) */
 } app;
 #endif
