@@ -12,49 +12,6 @@ static double now_ms(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
-/* The LUTs of this variant in the order their passes write them; the last one's barrier closes the LUT passes. */
-static int lut_list(const sky_renderer *r, const gpu_image *img[3], const char *base[3])
-{
-    int n = 0;
-    img[n] = &r->luts.transmittance, base[n++] = "transmittance";
-    if (r->variant.multiscatter) img[n] = &r->luts.multiscatter, base[n++] = "multiscatter";
-    if (r->variant.ground) img[n] = &r->luts.ground_irradiance, base[n++] = "ground_irradiance";
-    return n;
-}
-
-/* The ownership transfer's halves (another queue family only). The last LUT leaves its pass in GENERAL and is
- * released with its own GENERAL -> SHADER_READ_ONLY transition (frame.c's lut_written); the others were already made
- * SHADER_READ_ONLY for the compute shaders after them and keep it. Release: source the compute shader stage, no
- * destination (ignored: the acquire is the other queue's). Acquire: the same layouts, families and range; no source
- * (the semaphore wait orders it after the release), the destination the sky's samplers. */
-void frame_add_lut_transfers(sky_renderer *r, gpu_barrier_batch *b, bool release)
-{
-    const gpu_image *img[3];
-    const char *base[3];
-    int n = lut_list(r, img, base);
-    gpu_usage_info none = {"none", VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    gpu_usage_info sampled = *gpu_usage_get(GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED);
-    for (int i = 0; i < n; ++i) {
-        char name[64], resource[64];
-        bool last = i == n - 1;
-        snprintf(resource, sizeof resource, "%s_lut", base[i]);
-        if (release) {
-            if (last) continue;   /* lut_written released it */
-            gpu_usage_info from = *gpu_usage_get(GPU_USAGE_COMPUTE_SAMPLED);
-            snprintf(name, sizeof name, "%s.release", base[i]);
-            gpu_barrier_add_image_qfot(b, name, resource, img[i]->image, gpu_color_range(0, 1), from, none,
-                                       r->ctx->compute_family, r->ctx->queue_family, true);
-        } else {
-            gpu_usage_info from = none;
-            if (last) from.layout = VK_IMAGE_LAYOUT_GENERAL;
-            snprintf(name, sizeof name, "%s.acquire", base[i]);
-            gpu_barrier_add_image_qfot(b, name, resource, img[i]->image, gpu_color_range(0, 1), from, sampled,
-                                       r->ctx->compute_family, r->ctx->queue_family, false);
-        }
-    }
-    if (!release) r->lut_acquire_pending = false;
-}
-
 VkCommandBuffer sky_renderer_submit_luts_async(sky_renderer *r, bool force)
 {
     gpu_context *ctx = r->ctx;

@@ -4,11 +4,12 @@
  * the hazard it prevents (RAW read-after-write, WAR write-after-read, WAW, layout transition). Passes record
  * their own draws/dispatches (luts.c, sky_pass.c, bloom.c, tonemap.c); barriers live only in the frame functions,
  * one per kind of frame, each read top to bottom: frame_record (a view: headless, bands, sequences, the window,
- * readback, capture and a library host's colour image included), frame_record_lut_readback (a LUT to the host,
- * tests) and frame_record_luts_only (the library's LUT-only frame) here, composite_frame_record (the composite's
+ * readback, capture and a library host's colour image included) here; the LUT passes and the frames of LUTs alone
+ * (frame_record_luts, frame_record_lut_readback, frame_record_luts_only, the compute queue's) in frame_luts.c; composite_frame_record (the composite's
  * frame, composite.c) and host_frame_record (the library's SCENE_LINEAR frame, host_frame.c). Nothing else in src/
  * records a barrier. */
 #include "sky/frame.h"
+#include "sky/frame_parts.h"
 #include "sky/view_params.h"
 #include "gpu/async_queue.h"
 
@@ -16,7 +17,6 @@
  * and discards the contents (old layout UNDEFINED). */
 #define HDR_LAST_USE GPU_USAGE_FRAGMENT_SAMPLED            /* bloom downsample 0 and tone map read it */
 #define BLOOM_LAST_USE GPU_USAGE_FRAGMENT_SAMPLED          /* upsample sources and the tone map read the mips */
-#define LUT_LAST_USE GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED    /* the last frame's sky pass (and multiscatter) read them */
 /* With the compute post chain: the single-pass downsampler and the compute tone map sample the HDR image; the
  * mips and tile counters were last touched by compute shaders, or (a swapchain target) mip 0 by the fragment
  * tone map. */
@@ -24,98 +24,16 @@
 #define CHAIN_LAST_USE_COMPUTE GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED
 
 /* A pass: its debug label (gpu_label_begin also prints its `pass` trace line, the one pass trace) and timestamps. */
-static uint32_t timed_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
+uint32_t frame_timed_begin(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
 {
     gpu_label_begin(r->ctx, cmd, pass);
     return gpu_timer_begin(r->active_timer, cmd, pass);
 }
 
-static void timed_end(sky_renderer *r, VkCommandBuffer cmd, uint32_t slot)
+void frame_timed_end(sky_renderer *r, VkCommandBuffer cmd, uint32_t slot)
 {
     gpu_timer_end(r->active_timer, cmd, slot);
     gpu_label_end(r->ctx, cmd);
-}
-
-/* The LUTs recorded on a compute queue of another family than the graphics queue (--async-luts): no fragment stage
- * there, and the LUTs change owner at the end (docs/synchronization.md §10). */
-static bool lut_compute_only(const sky_renderer *r)
-{
-    return r->lut_on_compute_queue && gpu_async_other_family(r->ctx);
-}
-
-/* A LUT pass wrote `base`'s LUT; the passes after it sample it: RAW + GENERAL -> SHADER_READ_ONLY (`at`). With the
- * LUTs on another family's compute queue, the in-queue readers are compute shaders only, and the last LUT (the one
- * whose barrier goes into `next`) is instead *released* to the graphics family: async_luts.c records the others'
- * releases and the acquires. */
-static void lut_written(sky_renderer *r, gpu_barrier_batch *at, gpu_barrier_batch *next, const char *base,
-                        const char *resource, VkImage image)
-{
-    char name[64];
-    if (lut_compute_only(r) && at == next) {
-        snprintf(name, sizeof name, "%s.release", base);
-        gpu_usage_info to = *gpu_usage_get(GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED);
-        to.stage = VK_PIPELINE_STAGE_2_NONE, to.access = VK_ACCESS_2_NONE;   /* ignored in a release */
-        gpu_barrier_add_image_qfot(at, name, resource, image, gpu_color_range(0, 1),
-                                   *gpu_usage_get(GPU_USAGE_COMPUTE_STORAGE_WRITE), to, r->ctx->compute_family,
-                                   r->ctx->queue_family, true);
-        return;
-    }
-    snprintf(name, sizeof name, "%s.write_to_sample", base);
-    gpu_barrier_add_image(at, name, resource, image, gpu_color_range(0, 1), GPU_USAGE_COMPUTE_STORAGE_WRITE,
-                          lut_compute_only(r) ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
-}
-
-/* The LUT passes. Their last barrier (the last LUT made readable) goes into `next`, the batch of the point that
- * follows them: back-to-back barriers share one vkCmdPipelineBarrier2 (one call per point, §2 of the guide). */
-static void record_luts(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch *next)
-{
-    sky_luts *l = &r->luts;
-    VkImageSubresourceRange one = gpu_color_range(0, 1);
-    bool ms = r->variant.multiscatter, ground = r->variant.ground;
-    /* On a compute-only queue (--async-luts, another family) no stage but compute exists: the previous frames'
-     * fragment reads are ordered by the graphics_done wait of the submission instead (async_luts.c). */
-    gpu_usage last_use = lut_compute_only(r) ? GPU_USAGE_COMPUTE_SAMPLED : LUT_LAST_USE;
-
-    /* Transmittance LUT: the previous frames' sky passes sampled it (WAR); to GENERAL for imageStore. */
-    gpu_barrier_batch b = gpu_barrier_batch_begin("before transmittance_lut");
-    gpu_barrier_add_image(&b, "transmittance.to_storage", "transmittance_lut", l->transmittance.image, one,
-                          last_use, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
-    gpu_barrier_flush(cmd, &b);
-    uint32_t t = timed_begin(r, cmd, "transmittance_lut");
-    luts_record_transmittance(l, cmd);
-    timed_end(r, cmd, t);
-
-    /* The transmittance compute shader wrote the LUT; the multiscatter compute shader (and later the sky's
-     * fragment shader) samples it: RAW + GENERAL -> SHADER_READ_ONLY. Without multi-scattering (readers bind the
-     * transmittance LUT) and a lit ground, this is the LUTs' last barrier. */
-    gpu_barrier_batch *at = next;
-    if (ms || ground) b = gpu_barrier_batch_begin(ms ? "before multiscatter_lut" : "before ground_irradiance_lut"), at = &b;
-    lut_written(r, at, next, "transmittance", "transmittance_lut", l->transmittance.image);
-    if (ms) {
-        /* The multiscatter LUT was sampled by the previous frames (WAR) and becomes the storage target. */
-        gpu_barrier_add_image(&b, "multiscatter.to_storage", "multiscatter_lut", l->multiscatter.image, one,
-                              last_use, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
-        gpu_barrier_flush(cmd, &b);
-        t = timed_begin(r, cmd, "multiscatter_lut");
-        luts_record_multiscatter(l, cmd);
-        timed_end(r, cmd, t);
-        /* The multiscatter compute shader wrote its LUT; the sky pass (and the ground-irradiance LUT) sample it:
-         * RAW + layout. (The usage covers compute too, so every frame's first barrier has the same source.) */
-        at = next;
-        if (ground) b = gpu_barrier_batch_begin("before ground_irradiance_lut"), at = &b;
-        lut_written(r, at, next, "multiscatter", "multiscatter_lut", l->multiscatter.image);
-    }
-    if (ground) {
-        /* The sky's irradiance on the ground (a lit ground only): previous frames sampled it (WAR). */
-        gpu_barrier_add_image(&b, "ground_irradiance.to_storage", "ground_irradiance_lut", l->ground_irradiance.image,
-                              one, last_use, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
-        gpu_barrier_flush(cmd, &b);
-        t = timed_begin(r, cmd, "ground_irradiance_lut");
-        luts_record_ground_irradiance(l, cmd);
-        timed_end(r, cmd, t);
-        /* It wrote the LUT; the sky pass and the sky-view LUT sample it: RAW + layout. */
-        lut_written(r, next, next, "ground_irradiance", "ground_irradiance_lut", l->ground_irradiance.image);
-    }
 }
 
 /* One barrier on one mip of the bloom chain, named after its mip (e.g. "bloom.mip2.write_to_sample"). */
@@ -145,9 +63,9 @@ static void record_bloom(sky_renderer *r, VkCommandBuffer cmd, const sky_view *v
     gpu_barrier_batch b = {0}, *at;
     /* Downsample chain: pass i renders mip i from mip i-1 (from the HDR image for i = 0). */
     for (int i = 0; i < n; ++i) {
-        uint32_t t = timed_begin(r, cmd, "bloom_downsample");
+        uint32_t t = frame_timed_begin(r, cmd, "bloom_downsample");
         bloom_record_downsample(bl, cmd, (uint32_t)i, (float)v->bloom_threshold);
-        timed_end(r, cmd, t);
+        frame_timed_end(r, cmd, t);
         /* Downsample i wrote mip i; downsample i+1 (or upsample into mip i-1, for the last) samples it: RAW +
          * layout. One barrier range per mip: the mip being rendered is never the one being sampled. The last
          * one shares its call with the first upsample's barrier. */
@@ -165,9 +83,9 @@ static void record_bloom(sky_renderer *r, VkCommandBuffer cmd, const sky_view *v
          * call as the barrier that made mip i+1 readable. */
         mip_barrier(&b, bl, "to_blend", i, GPU_USAGE_FRAGMENT_SAMPLED, GPU_USAGE_COLOR_ATTACHMENT_BLEND);
         gpu_barrier_flush(cmd, &b);
-        uint32_t t = timed_begin(r, cmd, "bloom_upsample");
+        uint32_t t = frame_timed_begin(r, cmd, "bloom_upsample");
         bloom_record_upsample(bl, cmd, (uint32_t)i);
-        timed_end(r, cmd, t);
+        frame_timed_end(r, cmd, t);
         /* Upsample wrote mip i; the next upsample (or the tone map, for mip 0) samples it: RAW + layout. */
         at = next;
         if (i > 0) b = gpu_barrier_batch_begin("bloom upsample chain"), at = &b;
@@ -180,42 +98,11 @@ static bool format_is_srgb(VkFormat f)
     return f == VK_FORMAT_R8G8B8A8_SRGB || f == VK_FORMAT_B8G8R8A8_SRGB || f == VK_FORMAT_A8B8G8R8_SRGB_PACK32;
 }
 
-static void copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent, VkBuffer buffer)
+void frame_copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent, VkBuffer buffer)
 {
     VkBufferImageCopy region = {.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
                                 .imageExtent = {extent.width, extent.height, 1}};
     vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
-}
-
-/* The LUTs, when dirty (or forced); their last barrier goes into `next`. */
-static void record_luts_if_dirty(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next)
-{
-    /* LUTs the compute queue of another family released (--async-luts): acquired at this point. */
-    if (r->lut_acquire_pending && !r->lut_on_compute_queue) frame_add_lut_transfers(r, next, false);
-    if (force || sky_renderer_luts_dirty(r)) {
-        record_luts(r, cmd, next);
-        r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
-        r->luts_valid = true;
-    }
-}
-
-void frame_record_luts(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next)
-{
-    gpu_barrier_batch b = gpu_barrier_batch_begin("after the LUTs");
-    record_luts_if_dirty(r, cmd, force, next ? next : &b);
-    gpu_barrier_flush(cmd, &b);
-}
-
-void frame_record_luts_compute(sky_renderer *r, VkCommandBuffer cmd)
-{
-    r->lut_on_compute_queue = true;
-    r->active_timer = &r->lut_timer;
-    gpu_timer_reset(&r->lut_timer, cmd);
-    gpu_barrier_batch end = gpu_barrier_batch_begin("end of the LUTs (compute queue)");
-    record_luts_if_dirty(r, cmd, true, &end);
-    if (gpu_async_other_family(r->ctx)) frame_add_lut_transfers(r, &end, true);
-    gpu_barrier_flush(cmd, &end);
-    r->lut_on_compute_queue = false;
 }
 
 /* Step 5, readback: the tone map (`writer`) wrote the display and composite images; the copies read them: RAW +
@@ -239,10 +126,10 @@ static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_de
                                GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
     }
     gpu_barrier_flush(cmd, &b);
-    uint32_t t = timed_begin(r, cmd, "readback");
-    copy_to_buffer(cmd, r->composite.image, r->composite.extent, r->readback_linear.buffer);
-    copy_to_buffer(cmd, r->display.image, r->display.extent, r->readback_display.buffer);
-    timed_end(r, cmd, t);
+    uint32_t t = frame_timed_begin(r, cmd, "readback");
+    frame_copy_to_buffer(cmd, r->composite.image, r->composite.extent, r->readback_linear.buffer);
+    frame_copy_to_buffer(cmd, r->display.image, r->display.extent, r->readback_display.buffer);
+    frame_timed_end(r, cmd, t);
     b = gpu_barrier_batch_begin("after readback");
     gpu_barrier_add_buffer(&b, "readback.linear_to_host", "readback_linear", r->readback_linear.buffer,
                            GPU_USAGE_TRANSFER_DST, GPU_USAGE_HOST_READ);
@@ -269,18 +156,18 @@ static void record_meter(sky_renderer *r, VkCommandBuffer cmd, const frame_desc 
     gpu_barrier_add_buffer(&b, "meter.to_write", "meter", buf, GPU_USAGE_SHADER_STORAGE_READ,
                            GPU_USAGE_COMPUTE_STORAGE_WRITE);
     gpu_barrier_flush(cmd, &b);
-    uint32_t t = timed_begin(r, cmd, "meter");
+    uint32_t t = frame_timed_begin(r, cmd, "meter");
     meter_record_tiles(&r->meter, cmd, scale, every_pixel);
-    timed_end(r, cmd, t);
+    frame_timed_end(r, cmd, t);
     /* The tiles wrote their partial sums; the average reads them: RAW. */
     b = gpu_barrier_batch_begin("before meter_average");
     gpu_barrier_add_buffer(&b, "meter.partials_to_average", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
                            GPU_USAGE_COMPUTE_STORAGE_READ);
     gpu_barrier_flush(cmd, &b);
-    t = timed_begin(r, cmd, "meter_average");
+    t = frame_timed_begin(r, cmd, "meter_average");
     meter_record_average(&r->meter, cmd, scale, every_pixel, f->meter_slot % VKSKY_METER_SLOTS,
                          f->view->auto_exposure_ease);
-    timed_end(r, cmd, t);
+    frame_timed_end(r, cmd, t);
     /* The average wrote result[slot]; the tone map (compute or fragment) reads it: RAW. The host reads it after the
      * frame's fence (the title's EV100, the run's line): RAW (a fence alone makes nothing visible to the host). */
     gpu_barrier_add_buffer(next, "meter.result_to_tonemap", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
@@ -334,9 +221,9 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
         /* One dispatch per level (the fragment chain's structure, compute shaders): level k wrote mip k; level
          * k+1 samples it: RAW. Every mip stays in GENERAL: a global memory barrier. */
         for (uint32_t k = 0; k < bl->mip_count; ++k) {
-            t = timed_begin(r, cmd, "bloom_downsample");
+            t = frame_timed_begin(r, cmd, "bloom_downsample");
             post_record_downsample_level(pc, bl, cmd, k, r->hdr.extent, (float)v->bloom_threshold);
-            timed_end(r, cmd, t);
+            frame_timed_end(r, cmd, t);
             if (k + 1 < bl->mip_count) {
                 b = gpu_barrier_batch_begin("bloom downsample chain (compute)");
                 mip_memory_barrier(&b, "down_to_read", (int)k);
@@ -361,9 +248,9 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
         gpu_barrier_flush(cmd, &b);
         /* One dispatch, every level: inside it workgroups hand tiles on through the counters (bloom_spd.comp;
          * docs/synchronization.md, "Inside the single-pass downsampler"), no barrier of the API's. */
-        t = timed_begin(r, cmd, "bloom_spd");
+        t = frame_timed_begin(r, cmd, "bloom_spd");
         post_record_downsample(pc, cmd, (float)v->bloom_threshold);
-        timed_end(r, cmd, t);
+        frame_timed_end(r, cmd, t);
         /* The single pass wrote every level; the upsamples (and the tone map) read them: a global barrier. */
         b = gpu_barrier_batch_begin("after bloom_spd");
         gpu_barrier_add_memory(&b, "bloom.spd_to_upsample", "bloom", GPU_USAGE_COMPUTE_STORAGE_RW,
@@ -377,9 +264,9 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
          * tone map needs it done: down to mip 0). */
         int last = compute_tonemap ? 1 : 0;
         for (int i = (int)bl->mip_count - 2; i >= last; --i) {
-            t = timed_begin(r, cmd, "bloom_upsample");
+            t = frame_timed_begin(r, cmd, "bloom_upsample");
             post_record_upsample(pc, bl, cmd, (uint32_t)i);
-            timed_end(r, cmd, t);
+            frame_timed_end(r, cmd, t);
             /* Upsample wrote mip i; the next upsample (or the compute tone map) reads it: RAW, a global barrier.
              * (Mip 0, written only for the fragment tone map: bloom.mip0.storage_to_fragment is its barrier.) */
             if (i == 0) continue;
@@ -405,9 +292,9 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
             gpu_barrier_add_image(&b, "composite.to_storage", "composite", r->composite.image, one,
                                   GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
-        t = timed_begin(r, cmd, "tonemap");
+        t = frame_timed_begin(r, cmd, "tonemap");
         post_record_tonemap(pc, bl, cmd, r->display.extent, &tm);
-        timed_end(r, cmd, t);
+        frame_timed_end(r, cmd, t);
         if (r->desc.readback) {
             record_readback(r, cmd, f, GPU_USAGE_COMPUTE_STORAGE_WRITE, "display.storage_to_copy",
                             "composite.storage_to_copy");
@@ -440,7 +327,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     /* 1. LUTs, only when the atmosphere changed: transmittance, then multi-scattering (reads transmittance). The
      * barrier that makes the last LUT readable joins the next point's call (the sky-view LUT's, or the sky's). */
     gpu_barrier_batch b = gpu_barrier_batch_begin(mode == SKY_MODE_SKYVIEW ? "before skyview_lut" : "before sky");
-    record_luts_if_dirty(r, cmd, f->force_luts, &b);
+    frame_record_luts_if_dirty(r, cmd, f->force_luts, &b);
 
     /* 2. Sky. The sky pass runs as a fragment pass (HDR as colour attachment) or a compute dispatch (HDR as
      * storage image); with the sky-view LUT it first renders that LUT for this frame's camera and sun. */
@@ -451,9 +338,9 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                               GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
         SkyPush sv = sky_view_skyview_push(v);
-        t = timed_begin(r, cmd, "skyview_lut");
+        t = frame_timed_begin(r, cmd, "skyview_lut");
         luts_record_skyview(&r->luts, cmd, &sv);
-        timed_end(r, cmd, t);
+        frame_timed_end(r, cmd, t);
         b = gpu_barrier_batch_begin("before sky");
     }
 
@@ -474,9 +361,9 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
      * coverage of sky and ground, below it the tone map's upsample does (shaders/glsl/horizon.glsl). */
     sky_view_set_horizon(&push, v, r->medium.bottom_radius, r->medium.top_radius - r->medium.bottom_radius,
                          r->hdr.extent.width == r->desc.width && r->hdr.extent.height == r->desc.height);
-    t = timed_begin(r, cmd, "sky");
+    t = frame_timed_begin(r, cmd, "sky");
     sky_pass_record(&r->sky, cmd, kind, mode, &r->hdr, &push);
-    timed_end(r, cmd, t);
+    frame_timed_end(r, cmd, t);
     /* 2b. Auto exposure: the meter reads the HDR image, the tone map its result (record_meter, at step 3's start). */
     r->hdr_metered = v->auto_exposure;
 
@@ -533,10 +420,10 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     TonemapPush tm = sky_view_tonemap_push(v, !f->target ? false : !format_is_srgb(r->desc.display_format));
     if (!bloom) tm.params.z = 0.0f;
     tm.meter.y = (float)(f->meter_slot % VKSKY_METER_SLOTS);
-    t = timed_begin(r, cmd, "tonemap");
+    t = frame_timed_begin(r, cmd, "tonemap");
     tonemap_record(&r->tonemap, cmd, display->extent, display->view,
                    r->desc.readback ? r->composite.view : VK_NULL_HANDLE, &tm);
-    timed_end(r, cmd, t);
+    frame_timed_end(r, cmd, t);
 
     /* 5. Readback (headless): record_readback. */
     if (r->desc.readback && !f->target) {
@@ -557,7 +444,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                                   GPU_USAGE_COLOR_ATTACHMENT_WRITE, GPU_USAGE_TRANSFER_SRC, false);
             gpu_barrier_flush(cmd, &c);
             gpu_label_begin(r->ctx, cmd, "capture");
-            copy_to_buffer(cmd, display->image, display->extent, f->target->capture->buffer);
+            frame_copy_to_buffer(cmd, display->image, display->extent, f->target->capture->buffer);
             gpu_label_end(r->ctx, cmd);
             /* The copy wrote the buffer; the host reads it after the fence (RAW). Same call as the present's. */
             gpu_barrier_add_buffer(&b, "capture.to_host", "capture", f->target->capture->buffer,
@@ -574,51 +461,4 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                                   false);
         gpu_barrier_flush(cmd, &b);
     }
-}
-
-/* The LUT readback's frame (tests). The LUT passes wrote the LUT and made it readable by shaders; the copy reads it:
- * RAW + layout to TRANSFER_SRC. Then the image goes back to the sampled layout for later frames (WAR against the
- * copy) and the copy's writes to the host buffer are made visible to the host after the fence (RAW). */
-void frame_record_lut_readback(sky_renderer *r, VkCommandBuffer cmd, const gpu_image *img, const char *name,
-                               VkBuffer buffer)
-{
-    VkImageSubresourceRange one = gpu_color_range(0, 1);
-    gpu_barrier_batch b = gpu_barrier_batch_begin("before lut readback");
-    gpu_barrier_add_image(&b, "lut_readback.to_copy", name, img->image, one, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED,
-                          GPU_USAGE_TRANSFER_SRC, false);
-    gpu_barrier_flush(cmd, &b);
-    gpu_label_begin(r->ctx, cmd, "lut_readback");
-    copy_to_buffer(cmd, img->image, img->extent, buffer);
-    gpu_label_end(r->ctx, cmd);
-    b = gpu_barrier_batch_begin("after lut readback");
-    gpu_barrier_add_image(&b, "lut_readback.to_sample", name, img->image, one, GPU_USAGE_TRANSFER_SRC,
-                          GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
-    gpu_barrier_add_buffer(&b, "lut_readback.to_host", "lut_readback", buffer, GPU_USAGE_TRANSFER_DST,
-                           GPU_USAGE_HOST_READ);
-    gpu_barrier_flush(cmd, &b);
-}
-
-/* The library's LUT-only frame (vksky_record, VKSKY_OUTPUT_LUTS_ONLY): the LUTs when their inputs changed, then the
- * sky-view LUT for this view's camera altitude and sun, left readable by compute and fragment shaders for the
- * host's own passes. */
-void frame_record_luts_only(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
-{
-    VkImageSubresourceRange one = gpu_color_range(0, 1);
-    r->active_timer = f->timer ? f->timer : &r->timer;
-    gpu_timer_reset(r->active_timer, cmd);
-    gpu_barrier_batch b = gpu_barrier_batch_begin("before skyview_lut");
-    record_luts_if_dirty(r, cmd, f->force_luts, &b);
-    /* The host's passes of the previous frame sampled the sky-view LUT (WAR); rewritten whole: UNDEFINED -> GENERAL. */
-    gpu_barrier_add_image(&b, "skyview.to_storage", "skyview_lut", r->luts.skyview.image, one,
-                          GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
-    gpu_barrier_flush(cmd, &b);
-    SkyPush sv = sky_view_skyview_push(f->view);
-    uint32_t t = timed_begin(r, cmd, "skyview_lut");
-    luts_record_skyview(&r->luts, cmd, &sv);
-    timed_end(r, cmd, t);
-    /* The LUT pass wrote it; the host's compute or fragment shaders sample it: RAW + layout. */
-    b = gpu_barrier_batch_begin("after skyview_lut");
-    gpu_barrier_add_image(&b, "skyview.write_to_host", "skyview_lut", r->luts.skyview.image, one,
-                          GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
-    gpu_barrier_flush(cmd, &b);
 }
