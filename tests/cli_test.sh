@@ -76,9 +76,10 @@ file "$work/a.png" | grep -q "65 x 37, 8-bit/color RGBA" || fail "PNG is not 65x
 VKSKY_VALIDATION=1 "$VKSKY" --render "$work/b.png" --width 64 --height 36 --no-bloom --tonemap reinhard --exposure -1 \
     2>"$work/err" || fail "VKSKY_VALIDATION=1 render failed: $(cat "$work/err")"
 
-"$VKSKY" --help | grep -q -- "--sun-elevation" || fail "--help does not list the flags"
-"$VKSKY" --version | grep -q "^vksky [0-9]" || fail "--version"
-"$VKSKY" --list-devices | grep -q "^0: " || fail "--list-devices lists no device"
+# (each output captured first, so a non-zero exit fails too: a pipe would hide it)
+out=$("$VKSKY" --help) && grep -q -- "--sun-elevation" <<<"$out" || fail "--help does not list the flags (exit or output)"
+out=$("$VKSKY" --version) && grep -q "^vksky [0-9]" <<<"$out" || fail "--version"
+out=$("$VKSKY" --list-devices) && grep -q "^0: " <<<"$out" || fail "--list-devices lists no device"
 
 # A validation message makes the run fail: drop one barrier (the test hook) and expect exit 1 + the hazard.
 VKSKY_DROP_BARRIER=hdr.write_to_sample "$VKSKY" --render "$work/c.png" --width 64 --height 36 --exposure 14 --validate \
@@ -109,7 +110,8 @@ done
 # the forced table of the device's kind (VKSKY_QUALITY_TABLE), and the two tables pick differently at noon within 1 %
 # (so the check can see which was read). Whether the pick keeps its promise: ctest promise (measured, not quoted).
 pick() { "$@" --max-error 0.01 --sun-elevation 60 --dump-scene 2>&1 >/dev/null | sed -n "s/.*picked '\([^']*\)'.*/\1/p"; }
-kind=$("$VKSKY" --list-devices | sed -n '1s/.*(\([a-z-]*\), Vulkan.*/\1/p')
+devices=$("$VKSKY" --list-devices) || fail "--list-devices: exit $?"
+kind=$(sed -n '1s/.*(\([a-z-]*\), Vulkan.*/\1/p' <<<"$devices")
 [ "$kind" = cpu ] && want=cpu || want=gpu
 by_cpu=$(VKSKY_QUALITY_TABLE=cpu pick "$VKSKY")
 by_gpu=$(VKSKY_QUALITY_TABLE=gpu pick "$VKSKY")

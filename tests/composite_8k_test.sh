@@ -26,5 +26,7 @@ if command -v oiiotool >/dev/null; then
     info=$(oiiotool --info "$work/out.exr" 2>&1)
     grep -q "7680 x 4320, 19 channel" <<<"$info" || { echo "FAIL: output is not 7680x4320 with 19 channels: $info"; fails=1; }
 fi
-[ $fails -eq 0 ] && echo "composite_8k_test: ok"
-exit $fails
+[ $fails -eq 0 ] || exit 1
+# The size check needs oiiotool: without it the test SKIPs (77), never passes (issue 31).
+command -v oiiotool >/dev/null || { echo "composite_8k_test: SKIP: the size check needs oiiotool (openimageio-tools)"; exit 77; }
+echo "composite_8k_test: ok"

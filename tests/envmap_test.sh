@@ -110,11 +110,14 @@ grep -q 'sun direction 0.000000 0.000000 1.000000' "$work/stderr" ||
     fail "--dump-scene: sun at azimuth 90 on the horizon is not +Z: $(cat "$work/stderr")"
 # The sun reaching the camera: all of it above the atmosphere, none where the planet hides it (1 degree below the
 # horizontal from 1 m: the horizon dips 0.03 degrees).
-"$VKSKY" --projection equirect --width 64 --altitude 200 --sun-elevation 5 --dump-scene 2>&1 >/dev/null |
-    sed -n 's/.*illuminance \(.*\) at the top of the atmosphere, \(.*\) at the camera.*/\1|\2/p' |
+"$VKSKY" --projection equirect --width 64 --altitude 200 --sun-elevation 5 --dump-scene 2>"$work/space.err" >/dev/null ||
+    fail "--dump-scene from space: exit $?"
+sed -n 's/.*illuminance \(.*\) at the top of the atmosphere, \(.*\) at the camera.*/\1|\2/p' "$work/space.err" |
     awk -F'|' '{ ok = $1 == $2 && $1 != "" } END { exit !ok }' ||
     fail "--dump-scene from space: sun at the camera is not the full illuminance"
-"$VKSKY" --projection equirect --width 64 --sun-elevation -1 --dump-scene 2>&1 >/dev/null | grep -q ' 0 0 0 at the camera' ||
+"$VKSKY" --projection equirect --width 64 --sun-elevation -1 --dump-scene 2>"$work/below.err" >/dev/null ||
+    fail "--dump-scene, sun below the horizon: exit $?"
+grep -q ' 0 0 0 at the camera' "$work/below.err" ||
     fail "--dump-scene: a sun below the horizon reaches the camera"
 
 [ $fails -eq 0 ] && echo "envmap_test: ok" || echo "envmap_test: $fails failure(s)"

@@ -54,7 +54,8 @@ echo "scene_fuzz: $accepted accepted (round-tripped), $rejected rejected with on
 [ $accepted -gt 0 ] && [ $rejected -gt 0 ] || fail "the mutants are all accepted or all rejected: the fuzzer is broken"
 # The command line, fuzzed the same way: 1 to 4 flags from --help with hostile values (or none), then
 # --dump-scene (which runs nothing else): exit 0 with a dump that round-trips, or 2 with one line.
-flags=($("$VKSKY" --help | grep -oE '^  --[a-z0-9-]+' | tr -d ' ' | grep -vE '^--(help|version|list-devices|dump-scene)$'))
+help=$("$VKSKY" --help) || { echo "FAIL: --help: exit $?"; exit 1; }
+flags=($(echo "$help" | grep -oE '^  --[a-z0-9-]+' | tr -d ' ' | grep -vE '^--(help|version|list-devices|dump-scene)$'))
 values=(0 -0 1 -1 2 3 10 45 0.5 64 medium skyview 1e309 -1e309 nan inf 1e-320 0x10 1,2,3 1,2 "" " " x 99999999999999999999 16384 16385
         fragment compute auto low ultra f32 aces hg cornette-shanks 1,nan,1 "$work/none/x.exr" "$work/o.exr" --width)
 argv_accepted=0 argv_rejected=0

@@ -51,8 +51,11 @@ for scene in "$SCENES"/*.json; do
         fail "$name: the dump's render records another scene"
 done
 [ $shipped -ge 4 ] || fail "expected at least 4 shipped scenes in $SCENES, found $shipped"
-"$VKSKY" --dump-scene | grep -v '"description"' >"$work/defaults.json"
-"$VKSKY" --scene "$SCENES/earth-clear.json" --dump-scene | grep -v '"description"' >"$work/clear.json"
+# (the dump to a file first: a pipe would hide vksky's exit status)
+"$VKSKY" --dump-scene >"$work/defaults.raw" || fail "--dump-scene: exit $?"
+"$VKSKY" --scene "$SCENES/earth-clear.json" --dump-scene >"$work/clear.raw" || fail "--scene earth-clear --dump-scene: exit $?"
+grep -v '"description"' "$work/defaults.raw" >"$work/defaults.json"
+grep -v '"description"' "$work/clear.raw" >"$work/clear.json"
 cmp -s "$work/defaults.json" "$work/clear.json" ||
     fail "earth-clear.json is not the defaults: $(diff "$work/defaults.json" "$work/clear.json" | head -6)"
 
@@ -148,8 +151,10 @@ EOF
 same_dump() {   # same_dump "what" "args A" "args B": the two dumps are equal but for the description
     local what=$1 a b
     read -r -a a <<<"$2"; read -r -a b <<<"$3"
-    "$VKSKY" "${a[@]}" --dump-scene 2>&1 | grep -v '"description"' >"$work/a.json"
-    "$VKSKY" "${b[@]}" --dump-scene 2>&1 | grep -v '"description"' >"$work/b.json"
+    "$VKSKY" "${a[@]}" --dump-scene >"$work/a.raw" 2>&1 || fail "$what: --dump-scene $2: exit $?"
+    "$VKSKY" "${b[@]}" --dump-scene >"$work/b.raw" 2>&1 || fail "$what: --dump-scene $3: exit $?"
+    grep -v '"description"' "$work/a.raw" >"$work/a.json"
+    grep -v '"description"' "$work/b.raw" >"$work/b.json"
     cmp -s "$work/a.json" "$work/b.json" || fail "$what: $(diff "$work/a.json" "$work/b.json" | head -8)"
 }
 same_dump "a scene's knobs must override its preset" "--scene $work/q.json" "--quality low --steps 100 --lut-format f32"

@@ -20,7 +20,8 @@ trap 'rm -rf "$work"' EXIT
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 cd "$work" || exit 1
-version=$("$VKSKY" --version | awk '{print $2}')
+version=$("$VKSKY" --version) || fail "--version: exit $?"
+version=$(awk '{print $2}' <<<"$version")
 
 # 1. Whole and split. The same command line in three directories (the header records it; --frame-range is left out).
 SEQ=(--width 48 --height 32 --animate sun-elevation=-2:30 --animate yaw=0:50 --frame-count 6 --render 'f_%03d.exr'
@@ -43,7 +44,7 @@ COMMON=(--width 40 --height 30 --fov 70 --pitch 15)
 "$PIX" same g_2.exr single.exr || fail "frame 2 differs from the single render with --sun-elevation 20 --yaw 40"
 "$PIX" same g_1.exr single.exr >/dev/null && fail "frame 1 equals frame 2's single render (the animation did nothing)"
 "$PIX" attr g_2.exr vksky:scene >g_2.json || fail "g_2.exr has no vksky:scene"
-"$VKSKY" "${COMMON[@]}" --sun-elevation 20 --yaw 40 --dump-scene >single.json
+"$VKSKY" "${COMMON[@]}" --sun-elevation 20 --yaw 40 --dump-scene >single.json || fail "--dump-scene of the single render: exit $?"
 cmp -s g_2.json single.json || fail "frame 2's vksky:scene is not the --dump-scene of the single render"
 
 # 3. LUT recomputations.

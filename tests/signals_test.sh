@@ -84,7 +84,7 @@ trap 'rm -rf "$work"' EXIT
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 t_start=$(date +%s)
-"$VKSKY" --help | grep -q "^  130 / 143 stopped by SIGINT" || fail "--help does not document the exit statuses 130 / 143"
+help=$("$VKSKY" --help) && grep -q "^  130 / 143 stopped by SIGINT" <<<"$help" || fail "--help does not document the exit statuses 130 / 143"
 
 # 1. Headless render: SIGINT once the frame is recorded (the pass trace is printed while recording, just before the
 #    submit), so the frame is on the device when the signal lands: 768x768 at "high" takes seconds on a CPU device
@@ -96,7 +96,8 @@ stdbuf -oL "$VKSKY" --validate --trace-passes --quality high --width 768 --heigh
 pid=$!
 wait_for grep -q '^pass ' "$work/r/out" || fail "render: no frame recorded: $(head -c 600 "$work/r/err")"
 handler_installed "$pid" || fail "render: no handler installed while rendering"
-if ! "$VKSKY" --list-devices | grep -q -v "(cpu,"; then   # only CPU devices: the one chosen is a CPU
+devices=$("$VKSKY" --list-devices) || fail "--list-devices: exit $?"
+if ! grep -q -v "(cpu," <<<"$devices"; then   # only CPU devices: the one chosen is a CPU
     stop_and_check "headless render" INT 130 30 "$work/r"
 else
     kill -INT "$pid"; wait "$pid"; rc=$?

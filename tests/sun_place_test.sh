@@ -37,8 +37,9 @@ W=240 H=135
     --render "$work/sun.exr" 2>"$work/err" || fail "render with a date failed: $(cat "$work/err")"
 args=()
 for ((y = 0; y < H; y++)); do for ((x = 0; x < W; x++)); do args+=("$x" "$y"); done; done
-"$PROBE" "$work/sun.exr" "${args[@]}" | awk -v W=$W '{ s = $1 + $2 + $3; if (s > m) { m = s; i = NR - 1 } }
-    END { print i % W, int(i / W) }' >"$work/max"
+"$PROBE" "$work/sun.exr" "${args[@]}" >"$work/probe" || fail "exr_pixels on the render: exit $?"
+awk -v W=$W '{ s = $1 + $2 + $3; if (s > m) { m = s; i = NR - 1 } }
+    END { print i % W, int(i / W) }' "$work/probe" >"$work/max"
 read -r sx sy <"$work/max"
 awk -v sx="$sx" -v sy="$sy" -v W=$W -v H=$H 'BEGIN {
     d = atan2(0, -1) / 180; el = (90 - 50.11162) * d; az = 194.34024 * d; yaw = 180 * d; pitch = 35 * d

@@ -30,7 +30,10 @@ power() {
     local args=() x y
     for ((y = h / 2 - r; y <= h / 2 + r; y++)); do for ((x = w / 2 - r; x <= w / 2 + r; x++)); do
         [ $x -ge 0 ] && [ $y -ge 0 ] && [ $x -lt "$w" ] && [ $y -lt "$h" ] && args+=("$x" "$y"); done; done
-    paste <("$PROBE" "$work/on.exr" "${args[@]}") <("$PROBE" "$work/off.exr" "${args[@]}") |
+    # (to files first: a process substitution's exit status is lost)
+    "$PROBE" "$work/on.exr" "${args[@]}" >"$work/on.px" && "$PROBE" "$work/off.exr" "${args[@]}" >"$work/off.px" ||
+        { fail "exr_pixels $w x $h: exit $?"; echo nan; return; }
+    paste "$work/on.px" "$work/off.px" |
         awk -v t="$texel" '{ s += (0.2126 * ($1 - $4) + 0.7152 * ($2 - $5) + 0.0722 * ($3 - $6)) } END { printf "%.6g\n", s * t * t }'
 }
 for pos in "--yaw 0 --pitch 30" "--yaw 0.21 --pitch 30.13"; do

@@ -7,6 +7,7 @@
 #  - the default is penumbra; a dump with lesson-fade loads back to the same dump.
 # Usage: sunvis_flag_test.sh VKSKY EXR_PROBE
 set -u
+set -o pipefail   # the probes and references pipe into awk (which reads all): their exit status counts
 VKSKY=${1:?usage: sunvis_flag_test.sh path/to/vksky path/to/exr_probe}
 PROBE=${2:?usage: sunvis_flag_test.sh path/to/vksky path/to/exr_probe}
 work=$(mktemp -d)
@@ -33,7 +34,8 @@ rp=$("$VKSKY" --reference "${VIEW[@]}" 2>"$work/err" | green); rf=$("$VKSKY" --r
 awk -v p="$rp" -v f="$rf" 'BEGIN { exit !(p > 0 && f >= 0 && p > 2 * f) }' ||
     fail "reference: penumbra '$rp' is not > 2x lesson-fade '$rf' ($(head -c 300 "$work/err"))"
 
-d=$("$VKSKY" --dump-scene | grep '"sun_visibility"')
+d=$("$VKSKY" --dump-scene) || fail "--dump-scene: exit $?"
+d=$(grep '"sun_visibility"' <<<"$d")
 case "$d" in *'"penumbra"'*) ;; *) fail "default dump: '$d', expected penumbra" ;; esac
 "$VKSKY" --sun-visibility lesson-fade --dump-scene >"$work/d1.json" && "$VKSKY" --scene "$work/d1.json" --dump-scene \
     >"$work/d2.json" && cmp -s "$work/d1.json" "$work/d2.json" && grep -q '"lesson-fade"' "$work/d1.json" ||

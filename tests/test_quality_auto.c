@@ -6,6 +6,7 @@
 #include "app/quality/quality.h"
 #include "app/quality/quality_table.h"
 #include "app/quality/quality_table_cpu.h"
+#include "app/quality/quality_horizon_table.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -122,6 +123,65 @@ static void check_key(bool cpu_device, const char *device, bool marked_estimate)
             recorded, key);
 }
 
+/* --max-error on the horizon bound (issue 26 item 5): on every class the horizon table covers and every budget, the
+ * pick is the cheapest configuration whose frame mean AND horizon-band max (tools/tradeoff_horizon.h's table read
+ * here directly) are within the budget, a configuration without a horizon row on a covered class refused; and at
+ * least one budget on each table must refuse the configuration the frame mean alone would pick (so the refusal is
+ * exercised, not merely allowed). Searched here over the table's rows, not through quality.c's pick_from. */
+static const quality_horizon *horizon_row(const char *config, int scene)
+{
+    for (int i = 0; i < quality_horizon_table_count; ++i)
+        if (quality_horizon_table[i].scene == scene && !strcmp(quality_horizon_table[i].config, config))
+            return &quality_horizon_table[i];
+    return NULL;
+}
+
+static void check_horizon_refusals(const quality_measurement *table, int count, bool cpu_device, const char *device)
+{
+    static const double budgets[] = {0.003, 0.005, 0.01, 0.02, 0.05, 0.1, 0.15, 0.25, 0.5, 0.7};
+    int refused = 0;
+    for (int scene = 0; scene < QUALITY_SCENE_COUNT; ++scene) {
+        bool covered = false;
+        for (int i = 0; i < quality_horizon_table_count; ++i) covered = covered || quality_horizon_table[i].scene == scene;
+        if (!covered || !row_of(table, count, "medium", scene)) continue;
+        for (size_t b = 0; b < sizeof budgets / sizeof budgets[0]; ++b) {
+            double e = budgets[b];
+            const quality_measurement *by_mean = NULL, *by_both = NULL;
+            for (int i = 0; i < count; ++i) {
+                const quality_measurement *m = &table[i];
+                if (m->scene != scene || m->err_mean > e) continue;
+                if (!by_mean || m->gpu_ms < by_mean->gpu_ms) by_mean = m;
+                const quality_horizon *h = horizon_row(m->config, scene);
+                if (h && h->max <= e && (!by_both || m->gpu_ms < by_both->gpu_ms)) by_both = m;
+            }
+            double measured = 0;
+            const quality_config *q = quality_pick(e, 1u << scene, cpu_device, &measured);
+            CHECK((q != NULL) == (by_both != NULL), "%s %s --max-error %g: picked %s, expected %s", device,
+                  quality_scenes[scene].name, e, q ? q->name : "nothing", by_both ? by_both->config : "nothing");
+            if (q && by_both) {
+                const quality_measurement *m = row_of(table, count, q->name, scene);
+                CHECK(m && fabs(m->gpu_ms - by_both->gpu_ms) < 1e-9, "%s %s --max-error %g: picked %s, the cheapest "
+                      "within the mean and the horizon bound is %s", device, quality_scenes[scene].name, e, q->name,
+                      by_both->config);
+                const quality_horizon *h = horizon_row(q->name, scene);
+                CHECK(h && h->max <= e, "%s %s --max-error %g: %s's horizon max %g over the budget", device,
+                      quality_scenes[scene].name, e, q->name, h ? h->max : INFINITY);
+            }
+            /* A refusal on a measured horizon max (not merely a missing row): the bound at work. */
+            const quality_horizon *hm = by_mean ? horizon_row(by_mean->config, scene) : NULL;
+            if (hm && hm->max > e && (!by_both || by_both->gpu_ms > by_mean->gpu_ms)) {
+                ++refused;
+                printf("%s %-13s --max-error %-5g refuses %s on the horizon bound (mean %.4f, horizon max %.4f) -> %s\n",
+                       device, quality_scenes[scene].name, e, by_mean->config, by_mean->err_mean,
+                       horizon_row(by_mean->config, scene) ? horizon_row(by_mean->config, scene)->max : INFINITY,
+                       by_both ? by_both->config : "nothing");
+            }
+        }
+    }
+    CHECK(refused > 0, "%s: no budget refuses a measured configuration on its horizon max: the check is not exercised",
+          device);
+}
+
 int main(void)
 {
 #ifdef QUALITY_TABLE_ESTIMATE
@@ -138,6 +198,8 @@ int main(void)
     check_sets(quality_table_cpu, quality_table_cpu_count, true, "CPU");
     check_table(quality_table, quality_table_count, false, "GPU");
     check_table(quality_table_cpu, quality_table_cpu_count, true, "CPU");
+    check_horizon_refusals(quality_table, quality_table_count, false, "GPU");
+    check_horizon_refusals(quality_table_cpu, quality_table_cpu_count, true, "CPU");
     /* The CPU device's daytime point is --quality cpu, within 1 % on every daytime class. */
     const quality_config *cpu = quality_preset("cpu");
     CHECK(cpu != NULL, "--quality cpu does not resolve");

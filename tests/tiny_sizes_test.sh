@@ -69,7 +69,8 @@ for preset in "${presets[@]}"; do
             # --dump-scene says), rounded to nearest, and the tone map samples it at the output's pixel centres:
             # only where that image has a pixel on the view axis too (both sizes odd) is the centre pixel the
             # axis's radiance (7x3 at 0.5 renders 4x2: its centre blends the ground).
-            scale=$("$VKSKY" --dump-scene --width "$w" --height "$h" "${qflag[@]}" |
+            scale=$("$VKSKY" --dump-scene --width "$w" --height "$h" "${qflag[@]}") || fail "$what: --dump-scene: exit $?"
+            scale=$(echo "$scale" |
                 awk -F: '/"render_scale"/ { gsub(/[ \t,]/, "", $2); print $2 }')
             [ -n "$scale" ] || fail "$what: --dump-scene names no render_scale"
             read -r hw hh < <(awk -v w="$w" -v h="$h" -v s="${scale:-1}" 'BEGIN {
