@@ -87,7 +87,9 @@ grep -q 'SYNC-HAZARD-READ-AFTER-WRITE' "$work/drop.err" && grep -q 'InvalidImage
 # the single-queue window's.
 if [ -n "${DISPLAY:-}" ] || command -v xvfb-run >/dev/null; then
     run=("$VKSKY"); [ -z "${DISPLAY:-}" ] && run=("$(dirname "$0")/xvfb_run.sh" 640x480x24 "$VKSKY")
-    W=(--frames 3 --width 64 --height 64 --sky-mode march --render-scale 1 --bloom-mips 5 --validate)
+    # A fixed exposure: the window's auto exposure eases toward the meter in wall-clock time (τ 0.5 s), so two runs
+    # under load would differ by their frame times, not by where the LUTs were built.
+    W=(--frames 3 --width 64 --height 64 --sky-mode march --render-scale 1 --bloom-mips 5 --exposure 12 --validate)
     timeout 120 "${run[@]}" "${W[@]}" --screenshot "$work/w1.png" >"$work/w1.out" 2>&1 || fail "window: single queue failed"
     timeout 120 "${run[@]}" "${W[@]}" --async-luts --trace-barriers --screenshot "$work/w2.png" >"$work/w2.out" 2>&1 \
         || fail "window --async-luts failed: $(grep -v '^barrier\|^batch\|^pass' "$work/w2.out" | head -c 400)"
