@@ -274,7 +274,9 @@ typedef struct vksky_readback_config {
     const void *next;
 } vksky_readback_config;
 typedef struct vksky_readback {
-    const uint16_t *linear_rgba16f;   /* width x height x 4 halfs, row 0 at the top, scene-linear */
+    const uint16_t *linear_rgba16f;   /* width x height x 4 halfs, row 0 at the top, scene-linear in the HDR image's
+                                         units (VKSKY_UNITS_PHOTOMETRIC: cd/m2 times the scene's light scale, which
+                                         keeps the sun within half floats; the CLI's EXR divides it out) */
     const uint8_t *display_rgba8;     /* width x height x 4 bytes, sRGB-encoded, tone-mapped */
     uint32_t width, height;
 } vksky_readback;
