@@ -38,7 +38,8 @@ extern "C" {
 /* The ABI this header describes. A host passes it in every *_desc; a library built for another ABI refuses the
  * call with VKSKY_ERROR_ABI_MISMATCH instead of reading a struct of another shape.
  * 2: vksky_renderer_desc and vksky_frame gained `next` (extension chains), vksky_quality_config,
- *    vksky_renderer_get_timings. */
+ *    vksky_renderer_get_timings; later within 2 (new types and functions, no existing layout changed):
+ *    vksky_readback_config, vksky_frame_view, vksky_scene_from_args, vksky_renderer_get_readback. */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
