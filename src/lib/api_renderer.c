@@ -273,10 +273,17 @@ vksky_result vksky_renderer_get_readback(vksky_renderer *renderer, vksky_readbac
 {
     if (!renderer || !out || !renderer->readback) return VKSKY_ERROR_INVALID_ARGUMENT;
     sky_renderer *r = &renderer->r;
+    gpu_trap trap;   /* a failing invalidate returns its error instead of ending the host's process */
+    if (setjmp(trap.jump)) {
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
     /* The frame's last barrier made the copies available to HOST_READ; the host waited for the command buffer;
      * on non-coherent memory the invalidate makes them visible. */
     gpu_buffer_invalidate(r->ctx, &r->readback_linear);
     gpu_buffer_invalidate(r->ctx, &r->readback_display);
+    gpu_trap_arm(NULL);
     *out = (vksky_readback){.linear_rgba16f = r->readback_linear.mapped, .display_rgba8 = r->readback_display.mapped,
                             .width = r->desc.width, .height = r->desc.height};
     return VKSKY_SUCCESS;
