@@ -39,7 +39,8 @@ extern "C" {
  * call with VKSKY_ERROR_ABI_MISMATCH instead of reading a struct of another shape.
  * 2: vksky_renderer_desc and vksky_frame gained `next` (extension chains), vksky_quality_config,
  *    vksky_renderer_get_timings; later within 2 (new types and functions, no existing layout changed):
- *    vksky_readback_config, vksky_frame_view, vksky_scene_from_args, vksky_renderer_get_readback. */
+ *    vksky_readback_config, vksky_frame_view, vksky_scene_from_args, vksky_renderer_get_readback,
+ *    vksky_context_set_device_features. */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -101,6 +102,11 @@ typedef struct vksky_device_requirements {
 VKSKY_API void vksky_get_device_requirements(vksky_device_requirements *out);
 
 VKSKY_API vksky_result vksky_context_create(const vksky_context_desc *desc, vksky_context **out);
+/* The optional features the host enabled on its device (a VkDevice cannot be asked): with vulkan_memory_model and
+ * vulkan_memory_model_device_scope both true the single-pass bloom downsample may run (else the per-level chain
+ * does). The required ones must be true. Call before creating renderers; a context vksky made knows its own. */
+VKSKY_API vksky_result vksky_context_set_device_features(vksky_context *context,
+                                                         const vksky_device_requirements *enabled);
 
 /* vksky makes its own instance and device (the command-line tool, the window, tests). */
 typedef struct vksky_own_device_desc {

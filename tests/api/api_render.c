@@ -436,7 +436,8 @@ static int quality(const char *vksky)
 /* The command-line tool's own path through the API (issue 25 item 1; app/runs/headless_api.c): a scene made of a
  * command line (vksky_scene_from_args, quality "scene"), the view as given (vksky_frame_view) and the renderer's own
  * images read back (vksky_readback_config). Against the same frame with rays from camera matrices (vksky_camera_look,
- * an independent construction: within 1/255 as `compare` allows) and the host's own image; the refusals. */
+ * an independent construction: within 1/255 as `compare` allows) and the host's own image; the refusals (and those of
+ * vksky_context_set_device_features, which the CLI calls on the device it adopts). */
 static int cli_view(void)
 {
     const uint32_t W = 48, H = 27;
@@ -512,7 +513,13 @@ static int cli_view(void)
     HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "frame view fov 175");
     HOST_CHECK(vksky_renderer_get_readback(matrices, &px) == VKSKY_ERROR_INVALID_ARGUMENT, "readback of a host image");
     vkEndCommandBuffer(h.cmd);
-    HOST_CHECK(api_messages[VKSKY_SEVERITY_ERROR] == errors + 4, "%u error messages for 4 refusals with messages",
+    vksky_device_requirements enabled;
+    vksky_get_device_requirements(&enabled);
+    HOST_CHECK(vksky_context_set_device_features(c, &enabled) == VKSKY_ERROR_INVALID_ARGUMENT,
+               "device features set after a renderer");
+    enabled.maintenance4 = false;
+    HOST_CHECK(vksky_context_set_device_features(c, &enabled) == VKSKY_ERROR_UNSUPPORTED, "maintenance4 off");
+    HOST_CHECK(api_messages[VKSKY_SEVERITY_ERROR] == errors + 6, "%u error messages for 6 refusals with messages",
                api_messages[VKSKY_SEVERITY_ERROR] - errors);
 
     vksky_renderer_destroy(own);

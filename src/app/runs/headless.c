@@ -203,7 +203,11 @@ static int run_checked(const options *o)
             .abi_version = VKSKY_ABI_VERSION, .get_instance_proc_addr = vkGetInstanceProcAddr,
             .instance = ctx.instance, .physical_device = ctx.physical, .device = ctx.device,
             .queue_family = ctx.queue_family, .queue_index = 0, .pipeline_cache = ctx.pipeline_cache};
-        return finish(&ctx, headless_api_render(o, &device), false);
+        /* What the CLI's device creation enabled: the memory model too where the device has it (single-pass SPD). */
+        vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
+                                             .vulkan_memory_model = ctx.memory_model_device_scope,
+                                             .vulkan_memory_model_device_scope = ctx.memory_model_device_scope};
+        return finish(&ctx, headless_api_render(o, &device, &enabled), false);
     }
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/runs/tiles.c). */

@@ -108,12 +108,16 @@ static int render_and_write(const options *o, host_commands *h, vksky_renderer *
     return sequence_write_frame(o, &pixels, o->frame_first, false);
 }
 
-int headless_api_render(const options *o, const vksky_context_desc *device)
+int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled)
 {
     vksky_context_desc cd = *device;
     cd.message = print_message;
     vksky_context *ctx = NULL;
     if (vksky_context_create(&cd, &ctx) != VKSKY_SUCCESS) return 1;
+    if (vksky_context_set_device_features(ctx, enabled) != VKSKY_SUCCESS) {
+        vksky_context_destroy(ctx);
+        return 1;
+    }
     /* The barrier trace covers the renderer's creation (its uploads); the pass trace starts with the frames. */
     if (o->trace_barriers) vksky_context_set_trace(ctx, VKSKY_TRACE_BARRIERS, print_trace, NULL);
     vksky_scene *scene = NULL;
