@@ -38,8 +38,9 @@ extern "C" {
 /* The ABI this header describes. A host passes it in every *_desc; a library built for another ABI refuses the
  * call with VKSKY_ERROR_ABI_MISMATCH instead of reading a struct of another shape.
  * 2: vksky_renderer_desc and vksky_frame gained `next` (extension chains), vksky_quality_config,
- *    vksky_renderer_get_timings; the compute queue (vksky_context_desc.compute_queue,
- *    vksky_record_luts). */
+ *    vksky_renderer_get_timings; the compute queue (vksky_context_desc.compute_queue, vksky_record_luts);
+ *    vksky_readback_config, vksky_frame_view, vksky_scene_from_args, vksky_renderer_get_readback,
+ *    vksky_context_set_device_features. */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -105,6 +106,11 @@ typedef struct vksky_device_requirements {
 VKSKY_API void vksky_get_device_requirements(vksky_device_requirements *out);
 
 VKSKY_API vksky_result vksky_context_create(const vksky_context_desc *desc, vksky_context **out);
+/* The optional features the host enabled on its device (a VkDevice cannot be asked): with vulkan_memory_model and
+ * vulkan_memory_model_device_scope both true the single-pass bloom downsample may run (else the per-level chain
+ * does). The required ones must be true. Call before creating renderers; a context vksky made knows its own. */
+VKSKY_API vksky_result vksky_context_set_device_features(vksky_context *context,
+                                                         const vksky_device_requirements *enabled);
 
 /* vksky makes its own instance and device (the command-line tool, the window, tests). */
 typedef struct vksky_own_device_desc {
@@ -164,6 +170,12 @@ VKSKY_API vksky_result vksky_scene_create_earth(vksky_scene **out);
  * message callback, if `message` is not NULL, gets the same line the CLI prints). */
 VKSKY_API vksky_result vksky_scene_load(const char *path_or_name, vksky_message_fn message, void *message_user,
                                         vksky_scene **out);
+/* The scene of a command line (`vksky` flags, a --scene file under them, as `vksky --render` would render it): the
+ * medium, the sun, the units, the camera's altitude and view, exposure, tone map, dither, bloom settings and the
+ * quality the flags chose (a renderer created with desc.quality "scene" takes it as it is). argv[0] is the program's
+ * name. A bad flag: VKSKY_ERROR_INVALID_ARGUMENT with the command line's own one-line message to `message`. */
+VKSKY_API vksky_result vksky_scene_from_args(int argc, char *const *argv, vksky_message_fn message,
+                                             void *message_user, vksky_scene **out);
 VKSKY_API vksky_result vksky_scene_copy(const vksky_scene *scene, vksky_scene **out);
 VKSKY_API void vksky_scene_destroy(vksky_scene *scene);
 /* The sun's direction: azimuth from north (the host world's -Z with +Y up) towards east (+X), elevation above the
@@ -201,7 +213,8 @@ typedef struct vksky_renderer_desc {
     uint32_t width, height;        /* the host image's size (ignored for LUTS_ONLY) */
     VkFormat target_format;        /* the host colour image's format */
     /* Quality: a preset by name ("low", "medium", "high", "ultra", "cpu", "auto"; NULL: "auto" for this device), or
-     * with max_error > 0 the cheapest measured configuration whose mean error is within it (`--max-error`). */
+     * with max_error > 0 the cheapest measured configuration whose mean error is within it (`--max-error`);
+     * "scene": the quality a vksky_scene_from_args scene's flags chose, knob by knob. */
     const char *quality;
     double max_error;
     bool bloom;                    /* DISPLAY only */
@@ -219,7 +232,9 @@ VKSKY_API vksky_result vksky_renderer_create(vksky_context *context, const vksky
  * header learns at once that a setting it asked for is not applied. New settings arrive as new types; the layout of
  * an existing type never changes without a VKSKY_ABI_VERSION bump. */
 typedef enum vksky_structure_type {
-    VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG = 1    /* vksky_quality_config, from vksky_renderer_desc.next */
+    VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG = 1,   /* vksky_quality_config, from vksky_renderer_desc.next */
+    VKSKY_STRUCTURE_TYPE_READBACK_CONFIG = 2,  /* vksky_readback_config, from vksky_renderer_desc.next */
+    VKSKY_STRUCTURE_TYPE_FRAME_VIEW = 3        /* vksky_frame_view, from vksky_frame.next */
 } vksky_structure_type;
 typedef struct vksky_chain {   /* the head every extension struct starts with: to walk a chain */
     vksky_structure_type type;
@@ -264,6 +279,26 @@ typedef struct vksky_quality_config {
 /* A preset's knobs ("low", "medium", "high", "ultra", "lesson", "cpu"; not "auto", which depends on the device and
  * the view): VKSKY_ERROR_INVALID_ARGUMENT for another name. */
 VKSKY_API vksky_result vksky_quality_config_preset(const char *preset, vksky_quality_config *out);
+/* DISPLAY into vksky's own images, read back (the command-line tool's `--render`): chained from
+ * vksky_renderer_desc.next (output DISPLAY, target_format R8G8B8A8_SRGB), the renderer keeps its own 8-bit display
+ * image and a scene-linear AOV of it (RGBA16F: the sky and bloom before exposure and tone map, what an EXR stores
+ * and what auto exposure meters), and each vksky_record copies both into host-visible buffers of the renderer's,
+ * left available to HOST_READ (the frame spine's readback step: its barriers traced as the CLI's). frame.color is
+ * then unused (zeroed). vksky_renderer_get_readback gives the pixels once the host waited for the command buffer. */
+typedef struct vksky_readback_config {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_READBACK_CONFIG */
+    const void *next;
+} vksky_readback_config;
+typedef struct vksky_readback {
+    const uint16_t *linear_rgba16f;   /* width x height x 4 halfs, row 0 at the top, scene-linear in the HDR image's
+                                         units (VKSKY_UNITS_PHOTOMETRIC: cd/m2 times the scene's light scale, which
+                                         keeps the sun within half floats; the CLI's EXR divides it out) */
+    const uint8_t *display_rgba8;     /* width x height x 4 bytes, sRGB-encoded, tone-mapped */
+    uint32_t width, height;
+} vksky_readback;
+/* The pixels of the last frame recorded into a command buffer the host has waited for (non-coherent memory is
+ * invalidated here); valid until the next vksky_record. VKSKY_ERROR_INVALID_ARGUMENT without a readback config. */
+VKSKY_API vksky_result vksky_renderer_get_readback(vksky_renderer *renderer, vksky_readback *out);
 /* The host must know no command buffer recorded for it is pending. NULL is ignored. */
 VKSKY_API void vksky_renderer_destroy(vksky_renderer *renderer);
 /* A new scene (copied). The LUTs are rebuilt by the next vksky_record if the medium changed; the pipelines only if
@@ -306,8 +341,20 @@ typedef struct vksky_camera {
 VKSKY_API void vksky_camera_look(vksky_camera *camera, double yaw_deg, double pitch_deg, double vertical_fov_deg,
                                  double aspect, double near_m);
 
+/* The view as the command line gives it (`--yaw`, `--pitch`, `--fov`, a perspective frame), chained from
+ * vksky_frame.next instead of frame.camera's matrices: the rays the command-line tool computes, bit for bit (rays
+ * from matrices match them only to float rounding). The camera's altitude is the scene's (vksky_scene_from_args:
+ * `--altitude`). DISPLAY only. */
+typedef struct vksky_frame_view {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_VIEW */
+    const void *next;
+    double yaw_deg;                /* 0: north; 90: east */
+    double pitch_deg;              /* -90..90 */
+    double fov_deg;                /* the vertical field of view, 1..170 */
+} vksky_frame_view;
+
 typedef struct vksky_frame {
-    const void *next;              /* NULL (no frame extension is defined yet: any struct chained here is refused) */
+    const void *next;              /* NULL, or a chain of frame extension structs (vksky_frame_view) */
     const vksky_camera *camera;
     /* The exposure: EV100 with VKSKY_UNITS_PHOTOMETRIC (DISPLAY: the tone map's; SCENE_LINEAR: none applied), stops
      * with RELATIVE. */

@@ -29,6 +29,7 @@ cases=(
   "fragment|--render FILE.exr ${size[*]} --sky-pass fragment"
   "nobloom|--render FILE.exr ${size[*]} --no-bloom --tonemap reinhard"
   "scale|--render FILE.exr ${size[*]} --render-scale 0.5"
+  "spd|--render FILE.exr --render FILE.png ${size[*]} --post-pass compute --bloom-downsample single-pass"
   "reference|--reference --render FILE.exr --width 24 --height 14 --sun-elevation -2"
   "path_trace|--path-trace --samples 16 --render FILE.exr --width 16 --height 9"
   "reference_print|--reference --sun-elevation 3"

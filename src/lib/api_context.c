@@ -42,6 +42,25 @@ vksky_result vksky_context_create(const vksky_context_desc *desc, vksky_context 
     return VKSKY_SUCCESS;
 }
 
+vksky_result vksky_context_set_device_features(vksky_context *context, const vksky_device_requirements *enabled)
+{
+    if (!context || !enabled) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (!enabled->synchronization2 || !enabled->dynamic_rendering || !enabled->maintenance4) {
+        lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_set_device_features: synchronization2, dynamic_rendering and maintenance4 are "
+                    "required (vksky_get_device_requirements)");
+        return VKSKY_ERROR_UNSUPPORTED;
+    }
+    if (context->renderers > 0) {
+        lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_set_device_features: before the first renderer (its pipelines are chosen by them)");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    /* bloom_spd.comp's coherent device-scope accesses need both (gpu/context.h). */
+    context->gpu.memory_model_device_scope = enabled->vulkan_memory_model && enabled->vulkan_memory_model_device_scope;
+    return VKSKY_SUCCESS;
+}
+
 vksky_result vksky_context_create_own(const vksky_own_device_desc *desc, vksky_context **out)
 {
     if (out) *out = NULL;

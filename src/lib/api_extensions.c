@@ -6,9 +6,10 @@
 
 /* The chain of a renderer desc: each struct's type known and in its place, at most one of each; the quality config
  * (checked against the command line's ranges) in *quality. */
-vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality)
+vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality,
+                                bool *readback)
 {
-    *quality = NULL;
+    *quality = NULL, *readback = false;
     for (int depth = 0; next; ++depth) {
         const vksky_chain *link = next;
         if (depth >= 16) {
@@ -16,14 +17,18 @@ vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const 
                         "vksky_renderer_create: the desc's next chain is over 16 structs long (a loop?)");
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
-        if (link->type != VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG || *quality) {
+        bool twice = (link->type == VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG && *quality) ||
+                     (link->type == VKSKY_STRUCTURE_TYPE_READBACK_CONFIG && *readback);
+        if ((link->type != VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG && link->type != VKSKY_STRUCTURE_TYPE_READBACK_CONFIG) ||
+            twice) {
             lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                         "vksky_renderer_create: next chain: structure type %d %s (accepted here: "
-                        "VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG, once)", (int)link->type,
-                        *quality ? "twice" : "is unknown to this library");
+                        "VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG and VKSKY_STRUCTURE_TYPE_READBACK_CONFIG, each once)",
+                        (int)link->type, twice ? "twice" : "is unknown to this library or not a renderer's");
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
-        *quality = next;
+        if (link->type == VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG) *quality = next;
+        else *readback = true;
         next = link->next;
     }
     const vksky_quality_config *q = *quality;
@@ -51,6 +56,32 @@ vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const 
     if (bad) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                     "vksky_renderer_create: vksky_quality_config: a value out of range; accepted %s", bad);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    return VKSKY_SUCCESS;
+}
+
+vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view)
+{
+    *view = NULL;
+    for (int depth = 0; next; ++depth) {
+        const vksky_chain *link = next;
+        if (depth >= 16 || link->type != VKSKY_STRUCTURE_TYPE_FRAME_VIEW || *view) {
+            lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                        "vksky_record: frame.next: structure type %d %s (accepted here: VKSKY_STRUCTURE_TYPE_FRAME_VIEW, "
+                        "once)", (int)link->type, depth >= 16 ? "past 16 links (a loop?)"
+                                                  : *view ? "twice" : "is unknown to this library or not a frame's");
+            return VKSKY_ERROR_INVALID_ARGUMENT;
+        }
+        *view = next;
+        next = link->next;
+    }
+    const vksky_frame_view *v = *view;
+    if (v && !(v->yaw_deg >= -360.0 && v->yaw_deg <= 360.0 && v->pitch_deg >= -90.0 && v->pitch_deg <= 90.0 &&
+               v->fov_deg >= 1.0 && v->fov_deg <= 170.0)) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: vksky_frame_view: yaw %g, pitch %g, fov %g; accepted yaw -360..360, pitch -90..90, "
+                    "fov 1..170", v->yaw_deg, v->pitch_deg, v->fov_deg);
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
     return VKSKY_SUCCESS;

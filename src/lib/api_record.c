@@ -220,12 +220,9 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
 
 static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
 {
-    if (frame->next) {   /* no frame extension is defined in this ABI: refused, not ignored (vksky.h) */
-        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR,
-                    "vksky_record: frame.next: structure type %d is unknown to this library (no frame extension "
-                    "is defined in ABI %u)", (int)((const vksky_chain *)frame->next)->type, VKSKY_ABI_VERSION);
-        return VKSKY_ERROR_INVALID_ARGUMENT;
-    }
+    const vksky_frame_view *given = NULL;
+    vksky_result chain = lib_frame_chain(renderer->ctx, frame->next, &given);
+    if (chain != VKSKY_SUCCESS) return chain;
     vksky_context *c = renderer->ctx;
     sky_view v = renderer->o.view;
     if (renderer->desc.output == VKSKY_OUTPUT_LUTS_ONLY) {
@@ -238,11 +235,33 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
         frame_desc f = {.view = &v, .force_luts = frame->force_luts};
         return record_trapped(renderer, cmd, &f, true);
     }
-    if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) return record_scene_linear(renderer, cmd, frame);
-    const vksky_image *img = &frame->color;
-    if (!frame->camera || !img->image || !img->view) {
+    if (given && renderer->desc.output != VKSKY_OUTPUT_DISPLAY) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
-                    "vksky_record: DISPLAY needs frame.camera and frame.color's image and view");
+                    "vksky_record: vksky_frame_view is for output DISPLAY only; the others take frame.camera");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) return record_scene_linear(renderer, cmd, frame);
+    if (!isfinite(frame->exposure)) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (given) {
+        /* The view as given: the sky pass computes its rays from yaw, pitch and fov as the command line's do. */
+        v.ray_given = false;
+        v.yaw_deg = given->yaw_deg, v.pitch_deg = given->pitch_deg, v.fov_deg = given->fov_deg;
+    } else if (!frame->camera || !camera_to_view(frame->camera, renderer->o.atmosphere.bottom_radius, &v)) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: DISPLAY needs frame.camera (or a vksky_frame_view), and the camera's matrices must "
+                    "give rays (not singular, a perspective projection)");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    v.exposure_ev = frame->exposure;
+    if (renderer->readback) {
+        /* vksky's own display and composite images, copied to its readback buffers: frame.color is not used. */
+        frame_desc own = {.view = &v, .force_luts = frame->force_luts};
+        return record_trapped(renderer, cmd, &own, false);
+    }
+    const vksky_image *img = &frame->color;
+    if (!img->image || !img->view) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: DISPLAY needs frame.color's image and view");
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
     if (img->extent.width != renderer->desc.width || img->extent.height != renderer->desc.height ||
@@ -253,13 +272,6 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
                     renderer->desc.height, (int)renderer->desc.target_format);
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
-    if (!camera_to_view(frame->camera, renderer->o.atmosphere.bottom_radius, &v)) {
-        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
-                    "vksky_record: the camera's matrices give no rays (a singular or non-perspective projection)");
-        return VKSKY_ERROR_INVALID_ARGUMENT;
-    }
-    if (!isfinite(frame->exposure)) return VKSKY_ERROR_INVALID_ARGUMENT;
-    v.exposure_ev = frame->exposure;
     frame_target target = {.image = img->image, .view = img->view, .extent = img->extent, .host_uses = true,
                            .host_before = image_use(img->before), .host_after = image_use(img->after)};
     frame_desc f = {.view = &v, .force_luts = frame->force_luts, .target = &target};

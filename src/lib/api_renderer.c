@@ -14,9 +14,10 @@ static bool format_is_display(VkFormat f)
 }
 
 /* The scene's options with the renderer's quality, size and units: what `vksky --render` would hold. */
-static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc *d, const options *scene,
+static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc *d, const vksky_scene *from,
                                      const vksky_quality_config *explicit_quality, options *o)
 {
+    const options *scene = &from->o;
     *o = *scene;
     o->units = d->units == VKSKY_UNITS_RELATIVE ? OPTIONS_UNITS_RELATIVE : OPTIONS_UNITS_PHOTOMETRIC;
     light_finish(o);
@@ -25,7 +26,15 @@ static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc
     unsigned classes = quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
     bool cpu_device = c->gpu.props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     quality_config given;
-    if (explicit_quality) {   /* the host's knobs (vksky_quality_config): no preset, no pick */
+    bool scene_quality = !explicit_quality && d->max_error == 0.0 && d->quality && !strcmp(d->quality, "scene");
+    if (scene_quality && !from->from_args) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "quality \"scene\": only for a scene made by vksky_scene_from_args (its flags chose one)");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    if (scene_quality) {
+        /* The command line resolved its quality already (a preset, --max-error's pick, knob flags over them). */
+    } else if (explicit_quality) {   /* the host's knobs (vksky_quality_config): no preset, no pick */
         lib_quality_from_config(explicit_quality, &given);
         q = &given;
     } else if (d->max_error > 0.0) {
@@ -46,7 +55,7 @@ static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
     }
-    quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
+    if (q) quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
     o->width = (int)d->width, o->height = (int)d->height;
     o->view.bloom = d->bloom && d->output == VKSKY_OUTPUT_DISPLAY;
     return VKSKY_SUCCESS;
@@ -102,9 +111,11 @@ static vksky_result build(vksky_renderer *r)
     sky_features features = options_features(o);
     /* LUTS_ONLY and SCENE_LINEAR need none of the frame's own images: a 1 x 1 frame the renderer never draws. */
     bool luts_only = r->desc.output != VKSKY_OUTPUT_DISPLAY;
+    /* With a readback config the frame's own display image and its scene-linear composite are kept and read back
+     * (the command-line tool's headless frame); else the tone map writes the host's image. */
     sky_renderer_desc rdesc = {
         .width = luts_only ? 1 : (uint32_t)o->width, .height = luts_only ? 1 : (uint32_t)o->height,
-        .bloom = o->view.bloom, .readback = false, .external_display = !luts_only,
+        .bloom = o->view.bloom, .readback = r->readback, .external_display = !luts_only && !r->readback,
         .display_format = luts_only ? VK_FORMAT_R8G8B8A8_SRGB : r->desc.target_format,
         .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
         .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample, .bloom_quarter = o->bloom_quarter,
@@ -136,7 +147,15 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
     if (!context || !desc || !out) return VKSKY_ERROR_INVALID_ARGUMENT;
     vksky_result res = check_desc(context, desc);
     const vksky_quality_config *explicit_quality = NULL;
-    if (res == VKSKY_SUCCESS) res = lib_renderer_chain(context, desc->next, &explicit_quality);
+    bool readback = false;
+    if (res == VKSKY_SUCCESS) res = lib_renderer_chain(context, desc->next, &explicit_quality, &readback);
+    if (res == VKSKY_SUCCESS && readback &&
+        (desc->output != VKSKY_OUTPUT_DISPLAY || desc->target_format != VK_FORMAT_R8G8B8A8_SRGB)) {
+        lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_renderer_create: vksky_readback_config: output DISPLAY and target_format "
+                    "R8G8B8A8_SRGB only (the images read back are the renderer's own)");
+        res = VKSKY_ERROR_INVALID_ARGUMENT;
+    }
     if (res != VKSKY_SUCCESS) return res;
     vksky_renderer *r = calloc(1, sizeof *r);
     vksky_scene *earth = NULL;
@@ -147,9 +166,10 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
         return res;
     }
     r->ctx = context;
+    r->readback = readback;
     r->desc = *desc;
     r->desc.scene = NULL, r->desc.quality = NULL, r->desc.next = NULL;
-    res = renderer_options(context, desc, scene ? &scene->o : &earth->o, explicit_quality, &r->o);
+    res = renderer_options(context, desc, scene ? scene : earth, explicit_quality, &r->o);
     vksky_scene_destroy(earth);
     const gpu_trace_sink *was = lib_trace_begin(context);   /* the uploads' commands and barriers */
     if (res == VKSKY_SUCCESS) res = build(r);
@@ -246,5 +266,25 @@ vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uin
     lib_trace_end(was);
     renderer->desc.width = width, renderer->desc.height = height;
     renderer->o.width = (int)width, renderer->o.height = (int)height;
+    return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_renderer_get_readback(vksky_renderer *renderer, vksky_readback *out)
+{
+    if (!renderer || !out || !renderer->readback) return VKSKY_ERROR_INVALID_ARGUMENT;
+    sky_renderer *r = &renderer->r;
+    gpu_trap trap;   /* a failing invalidate returns its error instead of ending the host's process */
+    if (setjmp(trap.jump)) {
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
+    /* The frame's last barrier made the copies available to HOST_READ; the host waited for the command buffer;
+     * on non-coherent memory the invalidate makes them visible. */
+    gpu_buffer_invalidate(r->ctx, &r->readback_linear);
+    gpu_buffer_invalidate(r->ctx, &r->readback_display);
+    gpu_trap_arm(NULL);
+    *out = (vksky_readback){.linear_rgba16f = r->readback_linear.mapped, .display_rgba8 = r->readback_display.mapped,
+                            .width = r->desc.width, .height = r->desc.height};
     return VKSKY_SUCCESS;
 }

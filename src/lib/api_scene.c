@@ -13,13 +13,17 @@
 int lib_options_load(const char *path_or_name, options *o, char *why, size_t why_size)
 {
     char *argv_store[] = {"vksky", "--quality", "low", "--scene", (char *)path_or_name, NULL};
-    int argc = path_or_name ? 5 : 3;
+    return lib_options_parse(path_or_name ? 5 : 3, argv_store, o, why, why_size);
+}
+
+int lib_options_parse(int argc, char *const *argv_store, options *o, char *why, size_t why_size)
+{
     char *captured = NULL;
     size_t captured_size = 0;
     FILE *memory = open_memstream(&captured, &captured_size);
     FILE *saved = stderr;
     if (memory) stderr = memory;
-    int rc = options_parse(o, argc, argv_store);
+    int rc = options_parse(o, argc, (char **)argv_store);
     if (memory) {
         stderr = saved;
         fclose(memory);
@@ -74,6 +78,29 @@ vksky_result vksky_scene_load(const char *path_or_name, vksky_message_fn message
         return strstr(why, "cannot read") || strstr(why, "no scene") || strstr(why, "not found") ? VKSKY_ERROR_IO
                                                                                                  : VKSKY_ERROR_PARSE;
     }
+    *out = s;
+    return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_scene_from_args(int argc, char *const *argv, vksky_message_fn message, void *message_user,
+                                   vksky_scene **out)
+{
+    if (out) *out = NULL;
+    if (argc < 1 || !argv || !out) {
+        lib_message(message, message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_scene_from_args: argc >= 1 and argv (argv[0] the program's name) are required");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    vksky_scene *s = scene_new();
+    if (!s) return VKSKY_ERROR_OUT_OF_MEMORY;
+    char why[512];
+    /* The command line's own parser: the same flags, ranges, scene file and quality resolution as `vksky`. */
+    if (lib_options_parse(argc, argv, &s->o, why, sizeof why) != 0) {
+        lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%s", why);
+        free(s);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    s->from_args = true;
     *out = s;
     return VKSKY_SUCCESS;
 }

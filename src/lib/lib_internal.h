@@ -21,6 +21,7 @@ struct vksky_context {
 
 struct vksky_scene {
     options o;                     /* the scene loader's result on the CLI's defaults: medium, features, sun, units */
+    bool from_args;                /* vksky_scene_from_args: o holds a command line's resolved quality too */
 };
 
 struct vksky_renderer {
@@ -29,6 +30,7 @@ struct vksky_renderer {
     options o;                     /* the scene with the renderer's quality, size and units applied */
     vksky_renderer_desc desc;      /* as given (desc.scene and desc.quality not kept: they are the caller's) */
     host_frame hf;                 /* SCENE_LINEAR: the pass over the host's colour and depth (sky/host_frame.h) */
+    bool readback;                 /* vksky_readback_config: DISPLAY into its own images, copied to its buffers */
 };
 
 /* The context's trace bound to this thread for the length of a call (no trace of its own: the process-wide streams
@@ -37,7 +39,10 @@ const gpu_trace_sink *lib_trace_begin(const vksky_context *c);
 void lib_trace_end(const gpu_trace_sink *was);
 /* A renderer desc's `next` chain checked (types known, in place, once; the quality config's ranges): the quality
  * config in *quality, or NULL (api_extensions.c). */
-vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality);
+vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality,
+                                bool *readback);
+/* A frame's `next` chain checked: the view (vksky_frame_view) in *view, or NULL. */
+vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view);
 struct quality_config;
 void lib_quality_from_config(const vksky_quality_config *q, struct quality_config *out);
 /* One message line to the callback (NULL: dropped). */
@@ -50,4 +55,6 @@ vksky_result lib_result_from_vk(VkResult r);
 /* The CLI's defaults, then (path_or_name non-NULL) a scene file loaded onto them. 0 ok, else the scene loader's
  * line in `why`. */
 int lib_options_load(const char *path_or_name, options *o, char *why, size_t why_size);
+/* A command line (argv[0] the program's) parsed by the CLI's own parser; as lib_options_load. */
+int lib_options_parse(int argc, char *const *argv, options *o, char *why, size_t why_size);
 #endif

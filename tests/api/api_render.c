@@ -433,12 +433,113 @@ static int quality(const char *vksky)
     return host_failures ? 1 : 0;
 }
 
+/* The command-line tool's own path through the API (issue 25 item 1; app/runs/headless_api.c): a scene made of a
+ * command line (vksky_scene_from_args, quality "scene"), the view as given (vksky_frame_view) and the renderer's own
+ * images read back (vksky_readback_config). Against the same frame with rays from camera matrices (vksky_camera_look,
+ * an independent construction: within 1/255 as `compare` allows) and the host's own image; the refusals (and those of
+ * vksky_context_set_device_features, which the CLI calls on the device it adopts). */
+static int cli_view(void)
+{
+    const uint32_t W = 48, H = 27;
+    vksky_own_device_desc od = {.abi_version = VKSKY_ABI_VERSION, .device_index = -1, .validation = true,
+                                .message = api_message};
+    vksky_context *c = NULL;
+    vksky_result res = vksky_context_create_own(&od, &c);
+    HOST_CHECK(res == VKSKY_SUCCESS, "vksky_context_create_own: %s", vksky_result_name(res));
+    if (!c) return 1;
+    host h;
+    host_from_context(&h, c);
+    host_create_target(&h, W, H, VK_FORMAT_R8G8B8A8_SRGB);
+    char *argv[] = {"vksky", "--width", "48", "--height", "27", "--yaw", "30", "--pitch", "10", "--fov", "75",
+                    "--exposure", "12", "--altitude", "0.001", "--quality", "medium"};
+    vksky_scene *scene = NULL;
+    res = vksky_scene_from_args((int)(sizeof argv / sizeof *argv), argv, api_message, NULL, &scene);
+    HOST_CHECK(res == VKSKY_SUCCESS && scene, "vksky_scene_from_args: %s", vksky_result_name(res));
+    if (!scene) return 1;
+    vksky_readback_config rb = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
+    vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION, .next = &rb, .output = VKSKY_OUTPUT_DISPLAY,
+                             .width = W, .height = H, .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = "scene",
+                             .bloom = true, .units = VKSKY_UNITS_PHOTOMETRIC, .scene = scene};
+    vksky_renderer *own = NULL;
+    res = vksky_renderer_create(c, &d, &own);
+    HOST_CHECK(res == VKSKY_SUCCESS && own, "vksky_renderer_create (readback): %s", vksky_result_name(res));
+    if (!own) return 1;
+    vksky_frame_view view = {.type = VKSKY_STRUCTURE_TYPE_FRAME_VIEW, .yaw_deg = YAW, .pitch_deg = PITCH,
+                             .fov_deg = FOV};
+    vksky_frame f = {.next = &view, .exposure = EV100};
+    host_begin(&h);
+    res = vksky_record(own, h.cmd, &f);
+    HOST_CHECK(res == VKSKY_SUCCESS, "vksky_record (frame view): %s", vksky_result_name(res));
+    HOST_VK(vkEndCommandBuffer(h.cmd));
+    VkCommandBufferSubmitInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h.cmd};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &ci};
+    HOST_VK(vkQueueSubmit2(h.queue, 1, &si, h.fence));
+    HOST_VK(vkWaitForFences(h.device, 1, &h.fence, VK_TRUE, UINT64_MAX));
+    HOST_VK(vkResetFences(h.device, 1, &h.fence));
+    vksky_readback px;
+    res = vksky_renderer_get_readback(own, &px);
+    HOST_CHECK(res == VKSKY_SUCCESS && px.width == W && px.height == H && px.display_rgba8 && px.linear_rgba16f,
+               "vksky_renderer_get_readback: %s", vksky_result_name(res));
+    if (res != VKSKY_SUCCESS) return 1;
+    uint8_t *display = malloc(4 * (size_t)W * H);
+    memcpy(display, px.display_rgba8, 4 * (size_t)W * H);
+    /* The scene-linear AOV: finite, non-negative halfs (exponent not all ones, sign clear); a daylight sky at the top
+     * (Rayleigh: blue over red, both lit; positive halfs order as their bits). */
+    int bad = 0;
+    for (size_t i = 0; i < 4 * (size_t)W * H; ++i) bad += (px.linear_rgba16f[i] & 0x7c00) == 0x7c00 || (px.linear_rgba16f[i] & 0x8000);
+    HOST_CHECK(bad == 0, "%d linear halfs not finite or negative", bad);
+    HOST_CHECK(px.linear_rgba16f[2] > px.linear_rgba16f[0] && px.linear_rgba16f[0] > 0, "top-left %#x, %#x, %#x: no "
+               "daylight sky in the linear AOV", px.linear_rgba16f[0], px.linear_rgba16f[1], px.linear_rgba16f[2]);
+
+    /* The same frame from camera matrices into the host's image. */
+    vksky_renderer *matrices = make_renderer(c, W, H);
+    api_frame(&h, matrices);
+    HOST_CHECK(max_difference(display, h.mapped, (size_t)W * H, "frame view vs camera matrices") <= 1,
+               "the view as given differs from the camera matrices' by more than 1/255");
+
+    /* Refusals, one message each. */
+    unsigned errors = api_messages[VKSKY_SEVERITY_ERROR];
+    vksky_scene *bad_scene = NULL;
+    char *bad_argv[] = {"vksky", "--fov", "400"};
+    HOST_CHECK(vksky_scene_from_args(3, bad_argv, api_message, NULL, &bad_scene) == VKSKY_ERROR_INVALID_ARGUMENT &&
+               !bad_scene, "--fov 400 accepted");
+    vksky_renderer *none = NULL;
+    d.scene = NULL;   /* Earth, not a command line: no quality of its own */
+    HOST_CHECK(vksky_renderer_create(c, &d, &none) == VKSKY_ERROR_INVALID_ARGUMENT && !none, "quality scene of Earth");
+    d.scene = scene, d.target_format = VK_FORMAT_R8G8B8A8_UNORM;
+    HOST_CHECK(vksky_renderer_create(c, &d, &none) == VKSKY_ERROR_INVALID_ARGUMENT && !none, "readback into UNORM");
+    view.fov_deg = 175.0;
+    host_begin(&h);
+    HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "frame view fov 175");
+    HOST_CHECK(vksky_renderer_get_readback(matrices, &px) == VKSKY_ERROR_INVALID_ARGUMENT, "readback of a host image");
+    vkEndCommandBuffer(h.cmd);
+    vksky_device_requirements enabled;
+    vksky_get_device_requirements(&enabled);
+    HOST_CHECK(vksky_context_set_device_features(c, &enabled) == VKSKY_ERROR_INVALID_ARGUMENT,
+               "device features set after a renderer");
+    enabled.maintenance4 = false;
+    HOST_CHECK(vksky_context_set_device_features(c, &enabled) == VKSKY_ERROR_UNSUPPORTED, "maintenance4 off");
+    HOST_CHECK(api_messages[VKSKY_SEVERITY_ERROR] == errors + 6, "%u error messages for 6 refusals with messages",
+               api_messages[VKSKY_SEVERITY_ERROR] - errors);
+
+    vksky_renderer_destroy(own);
+    vksky_renderer_destroy(matrices);
+    vksky_scene_destroy(scene);
+    host_destroy_target(&h);
+    HOST_CHECK(vksky_context_validation_message_count(c) == 0, "%u validation messages",
+               vksky_context_validation_message_count(c));
+    vksky_context_destroy(c);
+    free(display);
+    return host_failures ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 2 && !strcmp(argv[1], "cli_view")) return cli_view();
     if (argc == 3 && !strcmp(argv[1], "quality")) return quality(argv[2]);
     if (argc == 2 && !strcmp(argv[1], "luts")) return luts();
     if (argc == 3 && !strcmp(argv[1], "compare")) return compare(argv[2]);
     if (argc == 3 && !strcmp(argv[1], "cycles")) return cycles(atoi(argv[2]));
-    fprintf(stderr, "usage: api_render compare VKSKY_BIN | quality VKSKY_BIN | cycles N | luts\n");
+    fprintf(stderr, "usage: api_render compare VKSKY_BIN | quality VKSKY_BIN | cycles N | luts | cli_view\n");
     return 2;
 }

@@ -3,6 +3,7 @@
 #include "app/scene/light.h"
 #include "app/runs/cpu_time.h"
 #include "app/runs/frame_ring.h"
+#include "app/runs/headless_api.h"
 #include "app/runs/sequence.h"
 #include "app/runs/startup.h"
 #include "app/runs/spectral_render.h"
@@ -176,6 +177,15 @@ static int finish(gpu_context *ctx, int status, bool timings)
 
 static int run_checked(const options *o);
 
+/* The runs that go through the public API as its host (app/runs/headless_api.c; docs/library.md's status): one
+ * perspective frame to files. Sequences, bands and environment maps, --bench, --spectral, --timings (its report reads
+ * the renderer's timers), --skip-existing and the tests' VKSKY_FRAMES loop still call src/sky here. */
+static bool api_host_wanted(const options *o)
+{
+    return o->output_count > 0 && o->bench_frames == 0 && !tiles_wanted(o) && !sequence_active(o) && !o->spectral &&
+           !o->timings && !o->skip_existing && !getenv("VKSKY_FRAMES");
+}
+
 int headless_run(const options *given)
 {
     stop_install();
@@ -211,11 +221,20 @@ static int run_checked(const options *o)
     int rc = gpu_context_create(&ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
     startup_open_cache(&ctx, o);
-    if (o->trace_barriers) gpu_barrier_trace(stdout);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
-    /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/runs/tiles.c). */
-    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
-        return finish(&ctx, tiles_render(o, &ctx), o->timings);
+    if (api_host_wanted(o)) {
+        /* The device (and its pipeline cache) adopted by a vksky context: the frame through include/vksky.h. */
+        vksky_context_desc device = {
+            .abi_version = VKSKY_ABI_VERSION, .get_instance_proc_addr = vkGetInstanceProcAddr,
+            .instance = ctx.instance, .physical_device = ctx.physical, .device = ctx.device,
+            .queue_family = ctx.queue_family, .queue_index = 0, .pipeline_cache = ctx.pipeline_cache};
+        /* What the CLI's device creation enabled: the memory model too where the device has it (single-pass SPD). */
+        vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
+                                             .vulkan_memory_model = ctx.memory_model_device_scope,
+                                             .vulkan_memory_model_device_scope = ctx.memory_model_device_scope};
+        return finish(&ctx, headless_api_render(o, &device, &enabled), false);
+    }
+    if (o->trace_barriers) gpu_barrier_trace(stdout);
     /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/runs/tiles.c). */
     if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
         return finish(&ctx, tiles_render(o, &ctx), o->timings);

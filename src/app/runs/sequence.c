@@ -151,6 +151,12 @@ static int write_outputs(const options *o, const frame_ring_pixels *px, int fram
     return 0;
 }
 
+int sequence_write_frame(const options *o, const frame_ring_pixels *px, int frame, bool sequence)
+{
+    const char *path = "";
+    return write_outputs(o, px, frame, sequence, &path);
+}
+
 /* A frame's progress line (not with --quiet). */
 static void frame_line(const options *base, int i, int done, const char *path, bool luts)
 {

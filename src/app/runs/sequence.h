@@ -25,4 +25,8 @@ typedef void (*sequence_render_fn)(sky_renderer *r, const frame_desc *f);
  * written; the same files, bytes and order); trace: the ring's waits (--trace-barriers; NULL: none). `render` is the
  * serial loop's (the tests' VKSKY_FRAMES). 0 ok, 1 failed. */
 int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render, int slots, FILE *trace);
+/* A frame's files (its --render values, EXRs with their header) from its read-back pixels: 0, or 1 with the line
+ * printed. The single frame of app/runs/headless_api.c writes through it. */
+struct frame_ring_pixels;
+int sequence_write_frame(const options *o, const struct frame_ring_pixels *px, int frame, bool sequence);
 #endif

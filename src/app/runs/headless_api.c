@@ -1,0 +1,152 @@
+/* One headless frame through include/vksky.h (headless_api.h). The order a host follows (docs/library.md): context,
+ * scene, renderer, then per frame: begin its command buffer, vksky_record, end, submit, wait, read. */
+#include "app/runs/headless_api.h"
+#include "app/runs/frame_ring.h"
+#include "app/runs/sequence.h"
+#include "app/runs/stop.h"
+#include "app/scene/light.h"
+#include <math.h>
+#include <stdio.h>
+
+static void print_message(void *user, vksky_severity severity, const char *message)
+{
+    (void)user, (void)severity;
+    fprintf(stderr, "vksky: %s\n", message);
+}
+
+/* --trace-barriers / --trace-passes: the context's trace lines, on stdout as the CLI prints them. */
+static void print_trace(void *user, const char *line)
+{
+    (void)user;
+    fputs(line, stdout);
+    fputc('\n', stdout);
+}
+
+/* The host's own command buffer and fence: one frame at a time, submitted and waited for. */
+typedef struct host_commands {
+    VkDevice device;
+    VkQueue queue;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+    bool trace;                  /* --trace-barriers: a "commands" line where a command buffer begins */
+} host_commands;
+
+static bool commands_create(host_commands *h, const vksky_context *ctx, bool trace)
+{
+    vksky_context_handles k;
+    vksky_context_get_handles(ctx, &k);
+    *h = (host_commands){.device = k.device, .queue = k.queue, .trace = trace};
+    VkCommandPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                     .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                     .queueFamilyIndex = k.queue_family};
+    VkCommandBufferAllocateInfo ainfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                         .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
+    VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    if (vkCreateCommandPool(h->device, &pinfo, NULL, &h->pool) != VK_SUCCESS) return false;
+    ainfo.commandPool = h->pool;
+    return vkAllocateCommandBuffers(h->device, &ainfo, &h->cmd) == VK_SUCCESS &&
+           vkCreateFence(h->device, &finfo, NULL, &h->fence) == VK_SUCCESS;
+}
+
+static void commands_destroy(host_commands *h)
+{
+    if (h->fence) vkDestroyFence(h->device, h->fence, NULL);
+    if (h->pool) vkDestroyCommandPool(h->device, h->pool, NULL);   /* frees its command buffer */
+}
+
+/* One frame: recorded by vksky into the host's command buffer, submitted, waited for. The readback buffers are then
+ * the renderer's to hand out (vksky_renderer_get_readback). */
+static int render_frame(host_commands *h, vksky_renderer *r, const sky_view *view, double exposure)
+{
+    if (h->trace) print_trace(NULL, "commands");   /* the host's command buffer, as the CLI's own trace names one */
+    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
+    /* The view as the command line gave it: the sky pass's own rays from yaw, pitch and fov. */
+    vksky_frame_view given = {.type = VKSKY_STRUCTURE_TYPE_FRAME_VIEW, .yaw_deg = view->yaw_deg,
+                              .pitch_deg = view->pitch_deg, .fov_deg = view->fov_deg};
+    vksky_frame frame = {.next = &given, .exposure = exposure};
+    vksky_result res = vksky_record(r, h->cmd, &frame);
+    if (res != VKSKY_SUCCESS) return 1;   /* the callback printed why */
+    if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
+    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
+    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
+                           .pCommandBufferInfos = &cinfo};
+    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
+    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
+    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
+    if (vr != VK_SUCCESS) {
+        fprintf(stderr, "vksky: the frame's submission failed (VkResult %d)\n", (int)vr);
+        return 1;
+    }
+    return 0;
+}
+
+/* Auto exposure's metering, in one place: the frame's log-average luminance from its scene-linear pixels gives the
+ * exposure the frame is rendered again with (the LUTs are kept: only the sky pass, bloom and tone map run twice). */
+static double headless_meter(const options *o, const sky_view *view, const vksky_readback *px)
+{
+    double log_sum = 0.0, metered = 0.0;
+    light_log_sum(o, view, px->linear_rgba16f, o->width, o->height, 0, o->height, &log_sum, &metered);
+    sky_view exposed = *view;
+    light_expose(&exposed, metered > 0.0 ? exp(log_sum / metered) : 1e-4);
+    return exposed.exposure_ev;
+}
+
+static int render_and_write(const options *o, host_commands *h, vksky_renderer *r)
+{
+    const sky_view *view = &o->view;
+    int status = render_frame(h, r, view, view->exposure_ev);
+    vksky_readback px;
+    if (status == 0 && light_auto_exposure_wanted(o)) {
+        if (vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
+        status = render_frame(h, r, view, headless_meter(o, view, &px));
+    }
+    if (status != 0 || vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
+    frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
+    return sequence_write_frame(o, &pixels, o->frame_first, false);
+}
+
+int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled)
+{
+    vksky_context_desc cd = *device;
+    cd.message = print_message;
+    vksky_context *ctx = NULL;
+    if (vksky_context_create(&cd, &ctx) != VKSKY_SUCCESS) return 1;
+    if (vksky_context_set_device_features(ctx, enabled) != VKSKY_SUCCESS) {
+        vksky_context_destroy(ctx);
+        return 1;
+    }
+    /* The barrier trace covers the renderer's creation (its uploads); the pass trace starts with the frames. */
+    if (o->trace_barriers) vksky_context_set_trace(ctx, VKSKY_TRACE_BARRIERS, print_trace, NULL);
+    vksky_scene *scene = NULL;
+    vksky_renderer *r = NULL;
+    int status = 1;
+    host_commands h = {0};
+    /* The command line's scene, view and quality (flags over a --scene file), parsed again by the API's loader:
+     * the same parser, so the same values. */
+    if (vksky_scene_from_args(o->argc, o->argv, print_message, NULL, &scene) != VKSKY_SUCCESS) goto done;
+    vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
+    vksky_renderer_desc rd = {
+        .abi_version = VKSKY_ABI_VERSION, .next = &readback, .output = VKSKY_OUTPUT_DISPLAY,
+        .width = (uint32_t)o->width, .height = (uint32_t)o->height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
+        .quality = "scene", .bloom = o->view.bloom,
+        .units = o->units == OPTIONS_UNITS_RELATIVE ? VKSKY_UNITS_RELATIVE : VKSKY_UNITS_PHOTOMETRIC, .scene = scene};
+    if (vksky_renderer_create(ctx, &rd, &r) != VKSKY_SUCCESS) goto done;
+    if (o->trace_passes)
+        vksky_context_set_trace(ctx, (o->trace_barriers ? VKSKY_TRACE_BARRIERS : 0u) | VKSKY_TRACE_PASSES,
+                                print_trace, NULL);
+    if (!commands_create(&h, ctx, o->trace_barriers)) {
+        fprintf(stderr, "vksky: cannot make the frame's command buffer and fence\n");
+        goto done;
+    }
+    /* Stopped while the device and the renderer were made: nothing to render (stop_status says why). */
+    status = stop_requested() ? 0 : render_and_write(o, &h, r);
+done:
+    commands_destroy(&h);
+    vksky_renderer_destroy(r);
+    vksky_scene_destroy(scene);
+    vksky_context_destroy(ctx);
+    return status;
+}
