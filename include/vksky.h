@@ -40,7 +40,7 @@ extern "C" {
  * 2: vksky_renderer_desc and vksky_frame gained `next` (extension chains), vksky_quality_config,
  *    vksky_renderer_get_timings; the compute queue (vksky_context_desc.compute_queue, vksky_record_luts);
  *    vksky_readback_config, vksky_frame_view, vksky_scene_from_args, vksky_renderer_get_readback,
- *    vksky_context_set_device_features. */
+ *    vksky_context_set_device_features, vksky_auto_exposure + vksky_renderer_get_exposure. */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -234,7 +234,8 @@ VKSKY_API vksky_result vksky_renderer_create(vksky_context *context, const vksky
 typedef enum vksky_structure_type {
     VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG = 1,   /* vksky_quality_config, from vksky_renderer_desc.next */
     VKSKY_STRUCTURE_TYPE_READBACK_CONFIG = 2,  /* vksky_readback_config, from vksky_renderer_desc.next */
-    VKSKY_STRUCTURE_TYPE_FRAME_VIEW = 3        /* vksky_frame_view, from vksky_frame.next */
+    VKSKY_STRUCTURE_TYPE_FRAME_VIEW = 3,       /* vksky_frame_view, from vksky_frame.next */
+    VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE = 4     /* vksky_auto_exposure, from vksky_frame.next */
 } vksky_structure_type;
 typedef struct vksky_chain {   /* the head every extension struct starts with: to walk a chain */
     vksky_structure_type type;
@@ -353,8 +354,32 @@ typedef struct vksky_frame_view {
     double fov_deg;                /* the vertical field of view, 1..170 */
 } vksky_frame_view;
 
+/* Auto exposure, chained from vksky_frame.next (DISPLAY only; frame.exposure is then ignored): the GPU meters this
+ * frame's scene-linear image (the log-average luminance of the sky's pixels, or of every pixel over a lit ground) and
+ * the same frame's tone map reads the result, EV100 = log2(L 100 / 12.5) (docs/units.md). No CPU round trip. `slot`
+ * (< VKSKY_AUTO_EXPOSURE_SLOTS) is where the result is kept for vksky_renderer_get_exposure: one per frame in flight.
+ * `ease` is temporal adaptation: the fraction of the way from the last metered EV100 to this frame's (0 or >= 1: none,
+ * this frame's metered value). */
+#define VKSKY_AUTO_EXPOSURE_SLOTS 4u
+typedef struct vksky_auto_exposure {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE */
+    const void *next;
+    uint32_t slot;
+    double ease;
+} vksky_auto_exposure;
+
+/* What the meter measured in `slot`, once the command buffer that recorded that frame completed: EV100, the
+ * log-average luminance (cd/m2 in photometric units, the lesson's scale in relative ones) and the pixels counted. */
+typedef struct vksky_exposure {
+    double ev100;
+    double log_average;
+    double pixel_count;
+} vksky_exposure;
+VKSKY_API vksky_result vksky_renderer_get_exposure(const vksky_renderer *renderer, uint32_t slot, vksky_exposure *out);
+
 typedef struct vksky_frame {
-    const void *next;              /* NULL, or a chain of frame extension structs (vksky_frame_view) */
+    const void *next;              /* NULL, or a chain of frame extension structs (vksky_frame_view,
+                                      vksky_auto_exposure) */
     const vksky_camera *camera;
     /* The exposure: EV100 with VKSKY_UNITS_PHOTOMETRIC (DISPLAY: the tone map's; SCENE_LINEAR: none applied), stops
      * with RELATIVE. */

@@ -61,20 +61,32 @@ vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const 
     return VKSKY_SUCCESS;
 }
 
-vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view)
+vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view,
+                             const vksky_auto_exposure **exposure)
 {
-    *view = NULL;
+    *view = NULL, *exposure = NULL;
     for (int depth = 0; next; ++depth) {
         const vksky_chain *link = next;
-        if (depth >= 16 || link->type != VKSKY_STRUCTURE_TYPE_FRAME_VIEW || *view) {
+        bool known = link->type == VKSKY_STRUCTURE_TYPE_FRAME_VIEW || link->type == VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE;
+        bool twice = (link->type == VKSKY_STRUCTURE_TYPE_FRAME_VIEW && *view) ||
+                     (link->type == VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE && *exposure);
+        if (depth >= 16 || !known || twice) {
             lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                         "vksky_record: frame.next: structure type %d %s (accepted here: VKSKY_STRUCTURE_TYPE_FRAME_VIEW, "
-                        "once)", (int)link->type, depth >= 16 ? "past 16 links (a loop?)"
-                                                  : *view ? "twice" : "is unknown to this library or not a frame's");
+                        "VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, each once)", (int)link->type,
+                        depth >= 16 ? "past 16 links (a loop?)" : twice ? "twice" : "is unknown to this library or not a frame's");
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
-        *view = next;
+        if (link->type == VKSKY_STRUCTURE_TYPE_FRAME_VIEW) *view = next;
+        else *exposure = next;
         next = link->next;
+    }
+    const vksky_auto_exposure *e = *exposure;
+    if (e && (e->slot >= VKSKY_AUTO_EXPOSURE_SLOTS || !(e->ease >= 0.0 && e->ease <= 1e6))) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: vksky_auto_exposure: slot %u, ease %g; accepted slot 0..%u, ease 0..1 (or more: none)",
+                    e->slot, e->ease, VKSKY_AUTO_EXPOSURE_SLOTS - 1);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
     }
     const vksky_frame_view *v = *view;
     if (v && !(v->yaw_deg >= -360.0 && v->yaw_deg <= 360.0 && v->pitch_deg >= -90.0 && v->pitch_deg <= 90.0 &&

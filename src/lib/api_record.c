@@ -2,6 +2,9 @@
  * shaders (include/vksky.h). */
 #include "lib/lib_internal.h"
 #include "gpu/async_queue.h"
+#include "sky/meter.h"
+
+_Static_assert(VKSKY_AUTO_EXPOSURE_SLOTS == VKSKY_METER_SLOTS, "the API's exposure slots are the meter's");
 #include <math.h>
 #include <string.h>
 
@@ -221,7 +224,8 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
 static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
 {
     const vksky_frame_view *given = NULL;
-    vksky_result chain = lib_frame_chain(renderer->ctx, frame->next, &given);
+    const vksky_auto_exposure *metered = NULL;
+    vksky_result chain = lib_frame_chain(renderer->ctx, frame->next, &given, &metered);
     if (chain != VKSKY_SUCCESS) return chain;
     vksky_context *c = renderer->ctx;
     sky_view v = renderer->o.view;
@@ -235,13 +239,14 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
         frame_desc f = {.view = &v, .force_luts = frame->force_luts};
         return record_trapped(renderer, cmd, &f, true);
     }
-    if (given && renderer->desc.output != VKSKY_OUTPUT_DISPLAY) {
+    if ((given || metered) && renderer->desc.output != VKSKY_OUTPUT_DISPLAY) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
-                    "vksky_record: vksky_frame_view is for output DISPLAY only; the others take frame.camera");
+                    "vksky_record: vksky_frame_view and vksky_auto_exposure are for output DISPLAY only (the others "
+                    "take frame.camera and leave exposure to the host)");
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
     if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) return record_scene_linear(renderer, cmd, frame);
-    if (!isfinite(frame->exposure)) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (!metered && !isfinite(frame->exposure)) return VKSKY_ERROR_INVALID_ARGUMENT;
     if (given) {
         /* The view as given: the sky pass computes its rays from yaw, pitch and fov as the command line's do. */
         v.ray_given = false;
@@ -252,10 +257,14 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
                     "give rays (not singular, a perspective projection)");
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
-    v.exposure_ev = frame->exposure;
+    v.exposure_ev = metered ? 0.0 : frame->exposure;
+    /* Auto exposure: the spine's meter passes (sky/meter.h) between the sky and the tone map, the result in a slot. */
+    v.auto_exposure = metered != NULL;
+    v.auto_exposure_ease = metered ? metered->ease : 0.0;
+    uint32_t slot = metered ? metered->slot : 0;
     if (renderer->readback) {
         /* vksky's own display and composite images, copied to its readback buffers: frame.color is not used. */
-        frame_desc own = {.view = &v, .force_luts = frame->force_luts};
+        frame_desc own = {.view = &v, .force_luts = frame->force_luts, .meter_slot = slot};
         return record_trapped(renderer, cmd, &own, false);
     }
     const vksky_image *img = &frame->color;
@@ -274,8 +283,17 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
     }
     frame_target target = {.image = img->image, .view = img->view, .extent = img->extent, .host_uses = true,
                            .host_before = image_use(img->before), .host_after = image_use(img->after)};
-    frame_desc f = {.view = &v, .force_luts = frame->force_luts, .target = &target};
+    frame_desc f = {.view = &v, .force_luts = frame->force_luts, .target = &target, .meter_slot = slot};
     return record_trapped(renderer, cmd, &f, false);
+}
+
+vksky_result vksky_renderer_get_exposure(const vksky_renderer *renderer, uint32_t slot, vksky_exposure *out)
+{
+    if (!renderer || !out || slot >= VKSKY_AUTO_EXPOSURE_SLOTS || renderer->desc.output != VKSKY_OUTPUT_DISPLAY)
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    meter_result m = meter_read(&renderer->ctx->gpu, &renderer->r.meter, slot);
+    *out = (vksky_exposure){.ev100 = m.ev100, .log_average = m.log_average, .pixel_count = m.count};
+    return VKSKY_SUCCESS;
 }
 
 vksky_result vksky_get_luts(const vksky_renderer *renderer, vksky_luts *out)

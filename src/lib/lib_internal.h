@@ -42,7 +42,8 @@ void lib_trace_end(const gpu_trace_sink *was);
 vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality,
                                 bool *readback);
 /* A frame's `next` chain checked: the view (vksky_frame_view) in *view, or NULL. */
-vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view);
+vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view,
+                             const vksky_auto_exposure **exposure);
 struct quality_config;
 void lib_quality_from_config(const vksky_quality_config *q, struct quality_config *out);
 /* One message line to the callback (NULL: dropped). */

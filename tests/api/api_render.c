@@ -512,6 +512,16 @@ static int cli_view(void)
     host_begin(&h);
     HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "frame view fov 175");
     HOST_CHECK(vksky_renderer_get_readback(matrices, &px) == VKSKY_ERROR_INVALID_ARGUMENT, "readback of a host image");
+    view.fov_deg = FOV;
+    vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, .slot = VKSKY_AUTO_EXPOSURE_SLOTS};
+    view.next = &metered;
+    HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "auto exposure slot past the last");
+    metered.slot = 0, metered.next = &view;
+    HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "a chain that loops");
+    view.next = NULL;
+    vksky_exposure ev;
+    HOST_CHECK(vksky_renderer_get_exposure(own, VKSKY_AUTO_EXPOSURE_SLOTS, &ev) == VKSKY_ERROR_INVALID_ARGUMENT,
+               "exposure slot past the last");
     vkEndCommandBuffer(h.cmd);
     vksky_device_requirements enabled;
     vksky_get_device_requirements(&enabled);
@@ -519,7 +529,7 @@ static int cli_view(void)
                "device features set after a renderer");
     enabled.maintenance4 = false;
     HOST_CHECK(vksky_context_set_device_features(c, &enabled) == VKSKY_ERROR_UNSUPPORTED, "maintenance4 off");
-    HOST_CHECK(api_messages[VKSKY_SEVERITY_ERROR] == errors + 6, "%u error messages for 6 refusals with messages",
+    HOST_CHECK(api_messages[VKSKY_SEVERITY_ERROR] == errors + 8, "%u error messages for 8 refusals with messages",
                api_messages[VKSKY_SEVERITY_ERROR] - errors);
 
     vksky_renderer_destroy(own);

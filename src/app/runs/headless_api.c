@@ -57,7 +57,7 @@ static void commands_destroy(host_commands *h)
 
 /* One frame: recorded by vksky into the host's command buffer, submitted, waited for. The readback buffers are then
  * the renderer's to hand out (vksky_renderer_get_readback). */
-static int render_frame(host_commands *h, vksky_renderer *r, const sky_view *view, double exposure)
+static int render_frame(host_commands *h, vksky_renderer *r, const sky_view *view, bool auto_exposure)
 {
     if (h->trace) print_trace(NULL, "commands");   /* the host's command buffer, as the CLI's own trace names one */
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
@@ -66,7 +66,10 @@ static int render_frame(host_commands *h, vksky_renderer *r, const sky_view *vie
     /* The view as the command line gave it: the sky pass's own rays from yaw, pitch and fov. */
     vksky_frame_view given = {.type = VKSKY_STRUCTURE_TYPE_FRAME_VIEW, .yaw_deg = view->yaw_deg,
                               .pitch_deg = view->pitch_deg, .fov_deg = view->fov_deg};
-    vksky_frame frame = {.next = &given, .exposure = exposure};
+    /* Auto exposure: the GPU meters the frame and its tone map reads the result (slot 0: one frame at a time). */
+    vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE};
+    if (auto_exposure) given.next = &metered;
+    vksky_frame frame = {.next = &given, .exposure = view->exposure_ev};
     vksky_result res = vksky_record(r, h->cmd, &frame);
     if (res != VKSKY_SUCCESS) return 1;   /* the callback printed why */
     if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
@@ -83,26 +86,24 @@ static int render_frame(host_commands *h, vksky_renderer *r, const sky_view *vie
     return 0;
 }
 
-/* Auto exposure's metering, in one place: the frame's log-average luminance from its scene-linear pixels gives the
- * exposure the frame is rendered again with (the LUTs are kept: only the sky pass, bloom and tone map run twice). */
-static double headless_meter(const options *o, const sky_view *view, const vksky_readback *px)
+/* Auto exposure's figures, as the command line prints them (the GPU metered the frame that was just rendered). */
+static int print_metered(const options *o, const sky_view *view, const vksky_renderer *r)
 {
-    double log_sum = 0.0, metered = 0.0;
-    light_log_sum(o, view, px->linear_rgba16f, o->width, o->height, 0, o->height, &log_sum, &metered);
-    sky_view exposed = *view;
-    light_expose(&exposed, metered > 0.0 ? exp(log_sum / metered) : 1e-4);
-    return exposed.exposure_ev;
+    vksky_exposure e;
+    if (vksky_renderer_get_exposure(r, 0, &e) != VKSKY_SUCCESS) return 1;
+    if (!o->quiet)
+        fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered on "
+                        "the GPU)\n", e.ev100, e.log_average, view->ev100 ? "cd/m2" : "(relative units)", e.pixel_count);
+    return 0;
 }
 
 static int render_and_write(const options *o, host_commands *h, vksky_renderer *r)
 {
     const sky_view *view = &o->view;
-    int status = render_frame(h, r, view, view->exposure_ev);
+    bool auto_exposure = light_auto_exposure_wanted(o);
+    int status = render_frame(h, r, view, auto_exposure);
+    if (status == 0 && auto_exposure) status = print_metered(o, view, r);
     vksky_readback px;
-    if (status == 0 && light_auto_exposure_wanted(o)) {
-        if (vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
-        status = render_frame(h, r, view, headless_meter(o, view, &px));
-    }
     if (status != 0 || vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
     frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
     return sequence_write_frame(o, &pixels, o->frame_first, false);
