@@ -9,6 +9,7 @@
  * frame, composite.c) and host_frame_record (the library's SCENE_LINEAR frame, host_frame.c). Nothing else in src/
  * records a barrier. */
 #include "sky/frame.h"
+#include "sky/lut_cache.h"
 #include "sky/view_params.h"
 
 /* How each frame image was last used by the previous frame: the first barrier of this frame waits for it (WAR)
@@ -162,7 +163,9 @@ static void copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent
 static void record_luts_if_dirty(sky_renderer *r, VkCommandBuffer cmd, bool force, gpu_barrier_batch *next)
 {
     if (force || sky_renderer_luts_dirty(r)) {
-        record_luts(r, cmd, next);
+        /* A warm start: the medium's LUTs from the cache on disk (benchmarks that force them compute them). */
+        if (!force && sky_lut_cache_fetch(r)) frame_record_lut_cache_upload(r, cmd, next);
+        else record_luts(r, cmd, next);
         r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
         r->luts_valid = true;
     }
@@ -527,5 +530,87 @@ void frame_record_luts_only(sky_renderer *r, VkCommandBuffer cmd, const frame_de
     b = gpu_barrier_batch_begin("after skyview_lut");
     gpu_barrier_add_image(&b, "skyview.write_to_host", "skyview_lut", r->luts.skyview.image, one,
                           GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+    gpu_barrier_flush(cmd, &b);
+}
+
+/* --- The LUT cache (sky/lut_cache.h, issue 27): the medium's LUTs uploaded from a file instead of computed, and
+ * read back once after they were computed so that the file can be written. --- */
+
+/* The cached LUTs of this variant, in the cache's byte order, with their trace names. */
+static int lut_cache_images(const sky_renderer *r, const gpu_image *imgs[3], const char *names[3])
+{
+    int n = 0;
+    imgs[n] = &r->luts.transmittance, names[n++] = "transmittance_lut";
+    if (r->variant.multiscatter) imgs[n] = &r->luts.multiscatter, names[n++] = "multiscatter_lut";
+    if (r->variant.ground) imgs[n] = &r->luts.ground_irradiance, names[n++] = "ground_irradiance_lut";
+    return n;
+}
+
+static VkBufferImageCopy lut_cache_region(const gpu_image *img, VkDeviceSize *offset)
+{
+    VkBufferImageCopy region = {.bufferOffset = *offset, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                .imageExtent = {img->extent.width, img->extent.height, 1}};
+    *offset += (VkDeviceSize)img->extent.width * img->extent.height *
+               (img->format == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8);
+    return region;
+}
+
+/* In place of the LUT passes (record_luts_if_dirty): r->lut_staging holds the LUTs as the cache stored them. The
+ * previous frames' shaders sampled the LUTs (WAR); the copies overwrite them whole: UNDEFINED -> TRANSFER_DST.
+ * Then the copies wrote them; the sky pass (and the sky-view LUT) sample them: RAW + layout, into `next` like the
+ * LUT passes' last barrier. The staging buffer's host writes need no barrier: vkQueueSubmit makes host writes
+ * made before it visible to the device. */
+void frame_record_lut_cache_upload(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch *next)
+{
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    const gpu_image *imgs[3];
+    const char *names[3];
+    int n = lut_cache_images(r, imgs, names);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before lut_cache_upload");
+    for (int i = 0; i < n; ++i)
+        gpu_barrier_add_image(&b, "lut_cache.to_transfer_dst", names[i], imgs[i]->image, one, LUT_LAST_USE,
+                              GPU_USAGE_TRANSFER_DST, true);
+    gpu_barrier_flush(cmd, &b);
+    uint32_t t = timed_begin(r, cmd, "lut_cache_upload");
+    VkDeviceSize offset = 0;
+    for (int i = 0; i < n; ++i) {
+        VkBufferImageCopy region = lut_cache_region(imgs[i], &offset);
+        vkCmdCopyBufferToImage(cmd, r->lut_staging.buffer, imgs[i]->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                               &region);
+    }
+    timed_end(r, cmd, t);
+    for (int i = 0; i < n; ++i)
+        gpu_barrier_add_image(next, "lut_cache.upload_to_sample", names[i], imgs[i]->image, one,
+                              GPU_USAGE_TRANSFER_DST, LUT_LAST_USE, false);
+}
+
+/* A frame of its own after the frame that computed the LUTs (sky_renderer_render, on a cache miss): the LUT passes
+ * wrote them and made them readable by shaders; the copies read them: layout to TRANSFER_SRC. Then back to the
+ * sampled layout for later frames (WAR against the copies), and the copies' writes made visible to the host after
+ * the fence (RAW), as the LUT readback of the tests does. */
+void frame_record_lut_cache_readback(sky_renderer *r, VkCommandBuffer cmd, VkBuffer buffer)
+{
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    const gpu_image *imgs[3];
+    const char *names[3];
+    int n = lut_cache_images(r, imgs, names);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before lut_cache_readback");
+    for (int i = 0; i < n; ++i)
+        gpu_barrier_add_image(&b, "lut_cache.to_transfer_src", names[i], imgs[i]->image, one, LUT_LAST_USE,
+                              GPU_USAGE_TRANSFER_SRC, false);
+    gpu_barrier_flush(cmd, &b);
+    gpu_label_begin(r->ctx, cmd, "lut_cache_readback");
+    VkDeviceSize offset = 0;
+    for (int i = 0; i < n; ++i) {
+        VkBufferImageCopy region = lut_cache_region(imgs[i], &offset);
+        vkCmdCopyImageToBuffer(cmd, imgs[i]->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
+    }
+    gpu_label_end(r->ctx, cmd);
+    b = gpu_barrier_batch_begin("after lut_cache_readback");
+    for (int i = 0; i < n; ++i)
+        gpu_barrier_add_image(&b, "lut_cache.readback_to_sample", names[i], imgs[i]->image, one,
+                              GPU_USAGE_TRANSFER_SRC, LUT_LAST_USE, false);
+    gpu_barrier_add_buffer(&b, "lut_cache.readback_to_host", "lut_cache_readback", buffer, GPU_USAGE_TRANSFER_DST,
+                           GPU_USAGE_HOST_READ);
     gpu_barrier_flush(cmd, &b);
 }

@@ -57,6 +57,10 @@ typedef struct sky_renderer {
     bool luts_valid;
     int variant_builds;          /* times the variant's pipelines were built (--timings) */
     double pipelines_ms;         /* wall time spent making pipelines and the renderer's resources (--timings) */
+    /* The LUT cache on disk (sky/lut_cache.h): what happened to the last LUTs made, and the upload's host copy. */
+    enum { SKY_LUT_CACHE_OFF, SKY_LUT_CACHE_HIT, SKY_LUT_CACHE_MISS, SKY_LUT_CACHE_STORED, SKY_LUT_CACHE_UNWRITABLE }
+        lut_cache;
+    gpu_buffer lut_staging;
 } sky_renderer;
 
 void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_desc *desc);

@@ -6,6 +6,9 @@
 
 /* Records a frame, submits it, waits. Returns wall milliseconds from submit to fence. */
 double sky_renderer_render(sky_renderer *r, const frame_desc *f);
+/* After a frame that computed the LUTs on a LUT cache miss (sky/lut_cache.h): read them back and write the cache
+ * file (sky_renderer_render calls it; a host that submits frames itself may). */
+void sky_renderer_store_luts(sky_renderer *r);
 /* Copy a LUT to the host as the GPU stores it (tests): which 0 transmittance, 1 multiscatter; RGBA texels, 16 bytes
  * each for R32G32B32A32_SFLOAT, 8 (half bits) for R16G16B16A16_SFLOAT; texels_out holds 16 bytes x the extent's
  * pixels. Returns the LUT's format (VK_FORMAT_UNDEFINED: no such LUT in this variant, nothing written). */
