@@ -222,7 +222,7 @@ void *gpu_cache_blob_load(const gpu_context *ctx, const char *name, const void *
     if (!file) return NULL;   /* absent: the first run, nothing to say */
     const char *why = gpu_cache_blob_check(file, size, key, key_size, payload_size);
     if (why) {
-        gpu_report(ctx, 1, "%s cache %s: %s; ignored, it will be replaced", name, path, why);
+        gpu_report(ctx, 1, "cache file %s: %s; ignored, it will be replaced", path, why);
         free(file);
         return NULL;
     }
@@ -251,7 +251,7 @@ bool gpu_cache_blob_store(const gpu_context *ctx, const char *name, const void *
     memcpy(buf + 32, &sum, 8);
     int rc = write_atomic(path, buf, BLOB_HEADER, buf + BLOB_HEADER, body);
     if (rc != 0)
-        gpu_report(ctx, 1, "%s cache not saved: %s: %s (the render is unaffected)", name, path, strerror(errno));
+        gpu_report(ctx, 1, "cache file not saved: %s: %s (the render is unaffected)", path, strerror(errno));
     free(buf);
     return rc == 0;
 }
