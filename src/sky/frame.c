@@ -536,36 +536,16 @@ void frame_record_luts_only(sky_renderer *r, VkCommandBuffer cmd, const frame_de
 /* --- The LUT cache (sky/lut_cache.h, issue 27): the medium's LUTs uploaded from a file instead of computed, and
  * read back once after they were computed so that the file can be written. --- */
 
-/* The cached LUTs of this variant, in the cache's byte order, with their trace names. */
-static int lut_cache_images(const sky_renderer *r, const gpu_image *imgs[3], const char *names[3])
-{
-    int n = 0;
-    imgs[n] = &r->luts.transmittance, names[n++] = "transmittance_lut";
-    if (r->variant.multiscatter) imgs[n] = &r->luts.multiscatter, names[n++] = "multiscatter_lut";
-    if (r->variant.ground) imgs[n] = &r->luts.ground_irradiance, names[n++] = "ground_irradiance_lut";
-    return n;
-}
-
-static VkBufferImageCopy lut_cache_region(const gpu_image *img, VkDeviceSize *offset)
-{
-    VkBufferImageCopy region = {.bufferOffset = *offset, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
-                                .imageExtent = {img->extent.width, img->extent.height, 1}};
-    *offset += (VkDeviceSize)img->extent.width * img->extent.height *
-               (img->format == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8);
-    return region;
-}
-
-/* In place of the LUT passes (record_luts_if_dirty): r->lut_staging holds the LUTs as the cache stored them. The
- * previous frames' shaders sampled the LUTs (WAR); the copies overwrite them whole: UNDEFINED -> TRANSFER_DST.
- * Then the copies wrote them; the sky pass (and the sky-view LUT) sample them: RAW + layout, into `next` like the
- * LUT passes' last barrier. The staging buffer's host writes need no barrier: vkQueueSubmit makes host writes
- * made before it visible to the device. */
+/* In place of the LUT passes: the previous frames' shaders sampled the LUTs (WAR); the copies from r->lut_staging
+ * overwrite them whole: UNDEFINED -> TRANSFER_DST. Then the copies wrote them; the sky pass (and the sky-view LUT)
+ * sample them: RAW + layout, into `next` like the LUT passes' last barrier. The staging buffer's host writes need
+ * no barrier: a submission makes the host writes made before it visible to the device. */
 void frame_record_lut_cache_upload(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch *next)
 {
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     const gpu_image *imgs[3];
     const char *names[3];
-    int n = lut_cache_images(r, imgs, names);
+    int n = sky_lut_cache_images(r, imgs, names);
     gpu_barrier_batch b = gpu_barrier_batch_begin("before lut_cache_upload");
     for (int i = 0; i < n; ++i)
         gpu_barrier_add_image(&b, "lut_cache.to_transfer_dst", names[i], imgs[i]->image, one, LUT_LAST_USE,
@@ -574,7 +554,7 @@ void frame_record_lut_cache_upload(sky_renderer *r, VkCommandBuffer cmd, gpu_bar
     uint32_t t = timed_begin(r, cmd, "lut_cache_upload");
     VkDeviceSize offset = 0;
     for (int i = 0; i < n; ++i) {
-        VkBufferImageCopy region = lut_cache_region(imgs[i], &offset);
+        VkBufferImageCopy region = sky_lut_cache_region(imgs[i], &offset);
         vkCmdCopyBufferToImage(cmd, r->lut_staging.buffer, imgs[i]->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
                                &region);
     }
@@ -584,16 +564,15 @@ void frame_record_lut_cache_upload(sky_renderer *r, VkCommandBuffer cmd, gpu_bar
                               GPU_USAGE_TRANSFER_DST, LUT_LAST_USE, false);
 }
 
-/* A frame of its own after the frame that computed the LUTs (sky_renderer_render, on a cache miss): the LUT passes
- * wrote them and made them readable by shaders; the copies read them: layout to TRANSFER_SRC. Then back to the
- * sampled layout for later frames (WAR against the copies), and the copies' writes made visible to the host after
- * the fence (RAW), as the LUT readback of the tests does. */
+/* A frame of its own after the frame that computed the LUTs (a miss): they were made readable by shaders; the copies
+ * read them: layout to TRANSFER_SRC. Then back to sampled for later frames (WAR against the copies), and the copies'
+ * writes made visible to the host after the fence (RAW), as the tests' LUT readback does. */
 void frame_record_lut_cache_readback(sky_renderer *r, VkCommandBuffer cmd, VkBuffer buffer)
 {
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     const gpu_image *imgs[3];
     const char *names[3];
-    int n = lut_cache_images(r, imgs, names);
+    int n = sky_lut_cache_images(r, imgs, names);
     gpu_barrier_batch b = gpu_barrier_batch_begin("before lut_cache_readback");
     for (int i = 0; i < n; ++i)
         gpu_barrier_add_image(&b, "lut_cache.to_transfer_src", names[i], imgs[i]->image, one, LUT_LAST_USE,
@@ -602,7 +581,7 @@ void frame_record_lut_cache_readback(sky_renderer *r, VkCommandBuffer cmd, VkBuf
     gpu_label_begin(r->ctx, cmd, "lut_cache_readback");
     VkDeviceSize offset = 0;
     for (int i = 0; i < n; ++i) {
-        VkBufferImageCopy region = lut_cache_region(imgs[i], &offset);
+        VkBufferImageCopy region = sky_lut_cache_region(imgs[i], &offset);
         vkCmdCopyImageToBuffer(cmd, imgs[i]->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
     }
     gpu_label_end(r->ctx, cmd);

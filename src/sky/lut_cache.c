@@ -16,11 +16,13 @@ typedef struct lut_cache_key {
     uint64_t medium;             /* sky_atmosphere_lut_hash of the uniform block */
 } lut_cache_key;
 
-static const gpu_image *cached_image(const sky_renderer *r, int i)
+int sky_lut_cache_images(const sky_renderer *r, const gpu_image *imgs[3], const char *names[3])
 {
-    const gpu_image *imgs[3] = {&r->luts.transmittance, r->variant.multiscatter ? &r->luts.multiscatter : NULL,
-                                r->variant.ground ? &r->luts.ground_irradiance : NULL};
-    return imgs[i] && imgs[i]->image ? imgs[i] : NULL;
+    int n = 0;
+    imgs[n] = &r->luts.transmittance, names[n++] = "transmittance_lut";
+    if (r->variant.multiscatter) imgs[n] = &r->luts.multiscatter, names[n++] = "multiscatter_lut";
+    if (r->variant.ground) imgs[n] = &r->luts.ground_irradiance, names[n++] = "ground_irradiance_lut";
+    return n;
 }
 
 static size_t image_bytes(const gpu_image *img)
@@ -29,12 +31,21 @@ static size_t image_bytes(const gpu_image *img)
     return (size_t)img->extent.width * img->extent.height * texel;
 }
 
+VkBufferImageCopy sky_lut_cache_region(const gpu_image *img, VkDeviceSize *offset)
+{
+    VkBufferImageCopy region = {.bufferOffset = *offset, .imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
+                                .imageExtent = {img->extent.width, img->extent.height, 1}};
+    *offset += image_bytes(img);
+    return region;
+}
+
 size_t sky_lut_cache_size(const sky_renderer *r)
 {
-    size_t n = 0;
-    for (int i = 0; i < 3; ++i)
-        if (cached_image(r, i)) n += image_bytes(cached_image(r, i));
-    return n;
+    const gpu_image *imgs[3];
+    const char *names[3];
+    size_t bytes = 0;
+    for (int i = 0, n = sky_lut_cache_images(r, imgs, names); i < n; ++i) bytes += image_bytes(imgs[i]);
+    return bytes;
 }
 
 static void make_key(const sky_renderer *r, lut_cache_key *k)
@@ -49,10 +60,10 @@ static void make_key(const sky_renderer *r, lut_cache_key *k)
     int32_t quality[7] = {q->transmittance_width, q->transmittance_height, q->transmittance_steps,
                           q->multiscatter_size, q->multiscatter_steps, q->multiscatter_sqrt_dirs, q->lut_f32};
     memcpy(k->quality, quality, sizeof quality);
-    for (int i = 0; i < 3; ++i) {
-        const gpu_image *img = cached_image(r, i);
-        if (img) k->widths[i] = img->extent.width, k->heights[i] = img->extent.height;
-    }
+    const gpu_image *imgs[3];
+    const char *names[3];
+    for (int i = 0, n = sky_lut_cache_images(r, imgs, names); i < n; ++i)
+        k->widths[i] = imgs[i]->extent.width, k->heights[i] = imgs[i]->extent.height;
     k->variant = r->variant;
     k->medium = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
 }

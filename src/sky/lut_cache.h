@@ -21,4 +21,8 @@ bool sky_lut_cache_fetch(sky_renderer *r);
 size_t sky_lut_cache_size(const sky_renderer *r);
 /* After the frame that computed the LUTs and a readback of them (sky_renderer_store_luts): write the file. */
 void sky_lut_cache_put(sky_renderer *r, const void *payload, size_t size);
+/* The cached LUTs of this variant in the file's order (imgs), with their trace names; returns how many (1-3). */
+int sky_lut_cache_images(const sky_renderer *r, const gpu_image *imgs[3], const char *names[3]);
+/* The copy region of `img` at *offset in the file's payload; advances *offset past it. */
+VkBufferImageCopy sky_lut_cache_region(const gpu_image *img, VkDeviceSize *offset);
 #endif
