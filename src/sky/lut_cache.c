@@ -65,12 +65,16 @@ static void make_key(const sky_renderer *r, lut_cache_key *k)
     for (int i = 0, n = sky_lut_cache_images(r, imgs, names); i < n; ++i)
         k->widths[i] = imgs[i]->extent.width, k->heights[i] = imgs[i]->extent.height;
     k->variant = r->variant;
+    /* The current medium: at a fetch the LUTs are about to be made for it, at a store they hold it (checked there). */
     k->medium = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
 }
 
 bool sky_lut_cache_fetch(sky_renderer *r)
 {
     const gpu_context *ctx = r->ctx;
+    /* One file written per renderer, for its first LUTs (the warm start): a medium animation computes every
+     * frame's LUTs and does not fill the directory with one file per frame. */
+    if (r->lut_cache == SKY_LUT_CACHE_STORED || r->lut_cache == SKY_LUT_CACHE_UNWRITABLE) return false;
     r->lut_cache = SKY_LUT_CACHE_OFF;
     if (!ctx->cache_file) return false;   /* --no-cache, or no cache directory */
     /* VKSKY_LUT_CACHE=0: the test suite's setting (tests/CMakeLists.txt). Its tests count LUT passes and trace

@@ -28,6 +28,8 @@ double sky_renderer_render(sky_renderer *r, const frame_desc *f)
 
 void sky_renderer_store_luts(sky_renderer *r)
 {
+    /* Only LUTs that hold the current medium (the key is made from it). */
+    if (r->lut_cache != SKY_LUT_CACHE_MISS || !r->luts_valid || sky_renderer_luts_dirty(r)) return;
     const gpu_context *ctx = r->ctx;
     size_t size = sky_lut_cache_size(r);
     gpu_buffer buf;
