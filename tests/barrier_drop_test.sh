@@ -18,6 +18,9 @@
 # -WRITE-AFTER-WRITE), "layout" (the core checks' image-layout errors) or other:<message id>; the set must equal
 # the expected one exactly, so a change in what validation sees is noticed.
 set -u
+# No LUT cache (sky/lut_cache.h): a warm cache would upload the LUTs instead of running their passes, and the
+# traced frame would depend on earlier runs. Its own frames are config lut_cache's probe, which turns it on.
+export VKSKY_LUT_CACHE=0
 VKSKY=${1:?usage: barrier_drop_test.sh VKSKY LIST BARRIER|- CONFIG}
 LIST=${2:?}
 NAME=${3:?}

@@ -12,6 +12,7 @@
 set -u
 VKSKY=${1:?usage: pipeline_cache_test.sh VKSKY}
 export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
+export VKSKY_LUT_CACHE=0     # the pipeline cache alone (its directory must hold only its file); ctest lut_cache: the LUTs'
 work=$(mktemp -d)
 trap 'chmod -R u+w "$work" 2>/dev/null; rm -rf "$work"' EXIT
 fails=0

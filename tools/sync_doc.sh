@@ -14,6 +14,9 @@
 # xvfb-run when there is no DISPLAY. Exit 77 (skipped) when a window frame cannot be traced at all.
 # bash, awk, sed, diff, cksum only (no Python on CI); graphviz only to render the PNG.
 set -euo pipefail
+# No LUT cache (sky/lut_cache.h): a warm cache would upload the LUTs instead of running their passes, and the
+# traced frame would depend on earlier runs. Its own frames are config lut_cache's probe, which turns it on.
+export VKSKY_LUT_CACHE=0
 root=$(cd "$(dirname "$0")/.." && pwd)
 vksky=$root/build/vksky
 mode=write

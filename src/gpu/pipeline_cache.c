@@ -14,6 +14,7 @@ static const char MAGIC[8] = {'V', 'K', 'S', 'K', 'Y', 'P', 'C', '1'};
 
 struct gpu_cache_file {
     char path[4096];
+    char dir[4096];          /* where the path is: also the home of gpu_cache_blob_* files */
     size_t loaded_size;      /* of the driver data seeded from the file (0: none) */
     uint64_t loaded_sum;
     char key[KEY_SIZE];
@@ -96,6 +97,7 @@ void gpu_pipeline_cache_open(gpu_context *ctx, const char *dir, const char *buil
         for (unsigned i = 0; i < VK_UUID_SIZE; ++i) snprintf(uuid + 2 * i, 3, "%02x", u[i]);
         int n = snprintf(f->path, sizeof f->path, "%s/pipelines-%s-%08x.bin", dir, uuid, ctx->props.driverVersion);
         strncpy(f->key, build_key ? build_key : "", KEY_SIZE - 1);
+        snprintf(f->dir, sizeof f->dir, "%s", dir);
         size_t size = 0;
         file = n > 0 && n < (int)sizeof f->path ? read_file(f->path, &size) : NULL;
         const char *why = file ? gpu_pipeline_cache_check(file, size, f->key, &ctx->props) : NULL;
@@ -118,14 +120,28 @@ void gpu_pipeline_cache_open(gpu_context *ctx, const char *dir, const char *buil
 /* Temporary file beside the target, then rename: a reader (another vksky starting now) sees the old file or the
  * new one, never half of one. No fsync: a file cut short by a crash fails the size or checksum check next time
  * and is replaced, which is all a cache needs. */
-static int save(const struct gpu_cache_file *f, const unsigned char *data, size_t size, uint64_t sum)
+static int write_atomic(const char *path, const unsigned char *header, size_t header_size, const void *data,
+                        size_t size)
 {
     char dir[4096], tmp[4200];
-    snprintf(dir, sizeof dir, "%s", f->path);
+    snprintf(dir, sizeof dir, "%s", path);
     char *slash = strrchr(dir, '/');
     if (slash) *slash = 0;
     if (slash && make_dirs(dir) != 0) return -1;
-    snprintf(tmp, sizeof tmp, "%s.tmp.%ld", f->path, (long)getpid());
+    snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, (long)getpid());
+    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) return -1;
+    bool ok = write(fd, header, header_size) == (ssize_t)header_size && write(fd, data, size) == (ssize_t)size;
+    ok = close(fd) == 0 && ok;
+    if (ok && rename(tmp, path) == 0) return 0;
+    int e = errno;
+    unlink(tmp);
+    errno = e;
+    return -1;
+}
+
+static int save(const struct gpu_cache_file *f, const unsigned char *data, size_t size, uint64_t sum)
+{
     unsigned char header[HEADER_SIZE] = {0};
     uint32_t version = 1;
     uint64_t size64 = size;
@@ -134,15 +150,7 @@ static int save(const struct gpu_cache_file *f, const unsigned char *data, size_
     memcpy(header + 16, f->key, KEY_SIZE);
     memcpy(header + 48, &size64, 8);
     memcpy(header + 56, &sum, 8);
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-    if (fd < 0) return -1;
-    bool ok = write(fd, header, HEADER_SIZE) == HEADER_SIZE && write(fd, data, size) == (ssize_t)size;
-    ok = close(fd) == 0 && ok;
-    if (ok && rename(tmp, f->path) == 0) return 0;
-    int e = errno;
-    unlink(tmp);
-    errno = e;
-    return -1;
+    return write_atomic(f->path, header, HEADER_SIZE, data, size);
 }
 
 void gpu_pipeline_cache_close(gpu_context *ctx)
@@ -167,4 +175,83 @@ void gpu_pipeline_cache_close(gpu_context *ctx)
     ctx->pipeline_cache = VK_NULL_HANDLE;
     free(f);
     ctx->cache_file = NULL;
+}
+
+/* --- Keyed blobs beside the pipeline cache (the LUT cache, issue 27) ---
+ * <dir>/<name>-<device UUID>-<driver version>-<key hash>.bin: a header of ours (magic, version, the key's and the
+ * payload's sizes, a checksum over key and payload), the caller's key bytes, the payload. Distinct keys get distinct
+ * files (switching between two scenes keeps both); a file under a key's name must still hold that key byte for
+ * byte. */
+enum { BLOB_HEADER = 40 };
+static const char BLOB_MAGIC[8] = {'V', 'K', 'S', 'K', 'Y', 'B', 'C', '1'};
+
+static bool blob_path(const gpu_context *ctx, const char *name, const void *key, size_t key_size, char *path,
+                      size_t cap)
+{
+    const struct gpu_cache_file *f = ctx->cache_file;
+    if (!f || !f->dir[0]) return false;
+    const uint8_t *u = ctx->props.pipelineCacheUUID;
+    char uuid[2 * VK_UUID_SIZE + 1];
+    for (unsigned i = 0; i < VK_UUID_SIZE; ++i) snprintf(uuid + 2 * i, 3, "%02x", u[i]);
+    int n = snprintf(path, cap, "%s/%s-%s-%08x-%016llx.bin", f->dir, name, uuid, ctx->props.driverVersion,
+                     (unsigned long long)fnv1a64(key, key_size));
+    return n > 0 && (size_t)n < cap;
+}
+
+const char *gpu_cache_blob_check(const unsigned char *file, size_t size, const void *key, size_t key_size,
+                                 size_t payload_size)
+{
+    if (size < sizeof BLOB_MAGIC || memcmp(file, BLOB_MAGIC, sizeof BLOB_MAGIC)) return "not a vksky cache file";
+    if (size < BLOB_HEADER) return "truncated";
+    if (read_u32(file + 8) != 1) return "of another version";
+    uint64_t ksize = read_u64(file + 16), psize = read_u64(file + 24);
+    if (ksize > size || psize > size || BLOB_HEADER + ksize + psize != size) return "truncated";
+    if (fnv1a64(file + BLOB_HEADER, size - BLOB_HEADER) != read_u64(file + 32)) return "corrupt (checksum)";
+    if (ksize != key_size || memcmp(file + BLOB_HEADER, key, key_size)) return "made for other inputs (key)";
+    if (psize != payload_size) return "of another size";
+    return NULL;
+}
+
+void *gpu_cache_blob_load(const gpu_context *ctx, const char *name, const void *key, size_t key_size,
+                          size_t payload_size)
+{
+    char path[4400];
+    if (!blob_path(ctx, name, key, key_size, path, sizeof path)) return NULL;
+    size_t size = 0;
+    unsigned char *file = read_file(path, &size);
+    if (!file) return NULL;   /* absent: the first run, nothing to say */
+    const char *why = gpu_cache_blob_check(file, size, key, key_size, payload_size);
+    if (why) {
+        gpu_report(ctx, 1, "cache file %s: %s; ignored, it will be replaced", path, why);
+        free(file);
+        return NULL;
+    }
+    memmove(file, file + BLOB_HEADER + key_size, payload_size);
+    return file;
+}
+
+bool gpu_cache_blob_store(const gpu_context *ctx, const char *name, const void *key, size_t key_size,
+                          const void *payload, size_t payload_size)
+{
+    char path[4400];
+    if (!blob_path(ctx, name, key, key_size, path, sizeof path)) return false;
+    size_t body = key_size + payload_size;
+    unsigned char *buf = malloc(BLOB_HEADER + body);
+    if (!buf) return false;
+    memset(buf, 0, BLOB_HEADER);
+    memcpy(buf, BLOB_MAGIC, sizeof BLOB_MAGIC);
+    uint32_t version = 1;
+    uint64_t ksize = key_size, psize = payload_size;
+    memcpy(buf + 8, &version, 4);
+    memcpy(buf + 16, &ksize, 8);
+    memcpy(buf + 24, &psize, 8);
+    memcpy(buf + BLOB_HEADER, key, key_size);
+    memcpy(buf + BLOB_HEADER + key_size, payload, payload_size);
+    uint64_t sum = fnv1a64(buf + BLOB_HEADER, body);
+    memcpy(buf + 32, &sum, 8);
+    int rc = write_atomic(path, buf, BLOB_HEADER, buf + BLOB_HEADER, body);
+    if (rc != 0)
+        gpu_report(ctx, 1, "cache file not saved: %s: %s (the render is unaffected)", path, strerror(errno));
+    free(buf);
+    return rc == 0;
 }

@@ -22,4 +22,17 @@ void gpu_pipeline_cache_close(gpu_context *ctx);
  * or driver", ...). */
 const char *gpu_pipeline_cache_check(const unsigned char *file, size_t size, const char *build_key,
                                      const VkPhysicalDeviceProperties *props);
+
+/* Keyed blobs in the same directory (the LUT cache): NULL where the context has no cache directory (--no-cache).
+ * load: the payload (malloc'd, payload_size bytes) of the file stored under `key` for this device and driver, or
+ * NULL: absent (silently), or failing the checks (magic, version, sizes, checksum, the key byte for byte, the
+ * payload's size: one note, and the caller recomputes and stores over it). store: written atomically (temporary
+ * file, rename); false and one note when it cannot be. */
+void *gpu_cache_blob_load(const gpu_context *ctx, const char *name, const void *key, size_t key_size,
+                          size_t payload_size);
+bool gpu_cache_blob_store(const gpu_context *ctx, const char *name, const void *key, size_t key_size,
+                          const void *payload, size_t payload_size);
+/* The checks on a blob file's bytes (for tests): NULL if it holds `key` and a payload of payload_size, else why not. */
+const char *gpu_cache_blob_check(const unsigned char *file, size_t size, const void *key, size_t key_size,
+                                 size_t payload_size);
 #endif

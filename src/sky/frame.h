@@ -41,6 +41,11 @@ void frame_record_lut_readback(sky_renderer *r, VkCommandBuffer cmd, const gpu_i
 /* The library's LUT-only frame: the LUTs when stale, the sky-view LUT for f->view; afterwards all of them are
  * readable by compute and fragment shaders (the host's). */
 void frame_record_luts_only(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
+/* The LUT cache (sky/lut_cache.h): the cached LUTs copied from r->lut_staging in place of the LUT passes (their last
+ * barrier into `next`, as frame_record_luts), and a frame of its own that copies them into the host buffer `buffer`
+ * after they were computed, leaving them readable by shaders again. */
+void frame_record_lut_cache_upload(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch *next);
+void frame_record_lut_cache_readback(sky_renderer *r, VkCommandBuffer cmd, VkBuffer buffer);
 
 /* --async-luts (sky/async_luts.c): the LUT passes into the compute queue's command buffer, closed by their last
  * barriers (write_to_sample, or the releases to the graphics family); the halves of the ownership transfer

@@ -5,6 +5,7 @@
 #include "sky/frame.h"
 #include "sky/frame_parts.h"
 #include "sky/view_params.h"
+#include "sky/lut_cache.h"
 #include "gpu/async_queue.h"
 
 /* The previous frames' last use of the LUTs: the sky pass (and the multiscatter LUT) sampled them. */
@@ -98,7 +99,10 @@ void frame_record_luts_if_dirty(sky_renderer *r, VkCommandBuffer cmd, bool force
     /* LUTs the compute queue of another family released (--async-luts): acquired at this point. */
     if (r->lut_acquire_pending && !r->lut_on_compute_queue) frame_add_lut_transfers(r, next, false);
     if (force || sky_renderer_luts_dirty(r)) {
-        record_luts(r, cmd, next);
+        /* A warm start: the medium's LUTs from the cache on disk (benchmarks that force them compute them; the compute
+         * queue of --async-luts computes them, its release barriers being the LUT passes' own). */
+        if (!force && !r->lut_on_compute_queue && sky_lut_cache_fetch(r)) frame_record_lut_cache_upload(r, cmd, next);
+        else record_luts(r, cmd, next);
         r->lut_hash = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
         r->luts_valid = true;
     }
@@ -211,4 +215,65 @@ void frame_add_lut_transfers(sky_renderer *r, gpu_barrier_batch *b, bool release
         }
     }
     if (!release) r->lut_acquire_pending = false;
+}
+
+/* --- The LUT cache (sky/lut_cache.h, issue 27): the medium's LUTs uploaded from a file instead of computed, and
+ * read back once after they were computed so that the file can be written. --- */
+
+/* In place of the LUT passes: the previous frames' shaders sampled the LUTs (WAR); the copies from r->lut_staging
+ * overwrite them whole: UNDEFINED -> TRANSFER_DST. Then the copies wrote them; the sky pass (and the sky-view LUT)
+ * sample them: RAW + layout, into `next` like the LUT passes' last barrier. The staging buffer's host writes need
+ * no barrier: a submission makes the host writes made before it visible to the device. */
+void frame_record_lut_cache_upload(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch *next)
+{
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    const gpu_image *imgs[3];
+    const char *names[3];
+    int n = sky_lut_cache_images(r, imgs, names);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before lut_cache_upload");
+    for (int i = 0; i < n; ++i)
+        gpu_barrier_add_image(&b, "lut_cache.to_transfer_dst", names[i], imgs[i]->image, one, LUT_LAST_USE,
+                              GPU_USAGE_TRANSFER_DST, true);
+    gpu_barrier_flush(cmd, &b);
+    uint32_t t = frame_timed_begin(r, cmd, "lut_cache_upload");
+    VkDeviceSize offset = 0;
+    for (int i = 0; i < n; ++i) {
+        VkBufferImageCopy region = sky_lut_cache_region(imgs[i], &offset);
+        vkCmdCopyBufferToImage(cmd, r->lut_staging.buffer, imgs[i]->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                               &region);
+    }
+    frame_timed_end(r, cmd, t);
+    for (int i = 0; i < n; ++i)
+        gpu_barrier_add_image(next, "lut_cache.upload_to_sample", names[i], imgs[i]->image, one,
+                              GPU_USAGE_TRANSFER_DST, LUT_LAST_USE, false);
+}
+
+/* A frame of its own after the frame that computed the LUTs (a miss): they were made readable by shaders; the copies
+ * read them: layout to TRANSFER_SRC. Then back to sampled for later frames (WAR against the copies), and the copies'
+ * writes made visible to the host after the fence (RAW), as the tests' LUT readback does. */
+void frame_record_lut_cache_readback(sky_renderer *r, VkCommandBuffer cmd, VkBuffer buffer)
+{
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    const gpu_image *imgs[3];
+    const char *names[3];
+    int n = sky_lut_cache_images(r, imgs, names);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before lut_cache_readback");
+    for (int i = 0; i < n; ++i)
+        gpu_barrier_add_image(&b, "lut_cache.to_transfer_src", names[i], imgs[i]->image, one, LUT_LAST_USE,
+                              GPU_USAGE_TRANSFER_SRC, false);
+    gpu_barrier_flush(cmd, &b);
+    gpu_label_begin(r->ctx, cmd, "lut_cache_readback");
+    VkDeviceSize offset = 0;
+    for (int i = 0; i < n; ++i) {
+        VkBufferImageCopy region = sky_lut_cache_region(imgs[i], &offset);
+        vkCmdCopyImageToBuffer(cmd, imgs[i]->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
+    }
+    gpu_label_end(r->ctx, cmd);
+    b = gpu_barrier_batch_begin("after lut_cache_readback");
+    for (int i = 0; i < n; ++i)
+        gpu_barrier_add_image(&b, "lut_cache.readback_to_sample", names[i], imgs[i]->image, one,
+                              GPU_USAGE_TRANSFER_SRC, LUT_LAST_USE, false);
+    gpu_barrier_add_buffer(&b, "lut_cache.readback_to_host", "lut_cache_readback", buffer, GPU_USAGE_TRANSFER_DST,
+                           GPU_USAGE_HOST_READ);
+    gpu_barrier_flush(cmd, &b);
 }

@@ -15,8 +15,10 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
     *l = (sky_luts){0};
     const gpu_context *ctx = s->ctx;
     VkFormat format = q->lut_f32 ? VK_FORMAT_R32G32B32A32_SFLOAT : HDR_FORMAT;
-    /* Written by compute (storage), then sampled by compute and fragment shaders; copied out by tests. */
-    VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    /* Written by compute (storage), then sampled by compute and fragment shaders; copied out by tests and the LUT
+     * cache, copied in by the LUT cache (sky/lut_cache.h). */
+    VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                              VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     gpu_image_create(ctx, &l->transmittance, "transmittance LUT", format, (uint32_t)q->transmittance_width,
                      (uint32_t)q->transmittance_height, 1, usage);
     if (multiscatter)

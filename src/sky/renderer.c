@@ -189,6 +189,7 @@ void sky_renderer_destroy(sky_renderer *r)
     vkDestroyDescriptorPool(ctx->device, r->size_pool, gpu_allocator(ctx->device));
     sky_pass_destroy(&r->sky, s);
     luts_destroy(&r->luts, s);
+    gpu_buffer_destroy(ctx, &r->lut_staging);
     vkDestroyShaderModule(ctx->device, s->fullscreen_vs, gpu_allocator(ctx->device));
     gpu_buffer_destroy(ctx, &s->atmosphere_ubo);
     vkDestroySampler(ctx->device, s->linear_clamp, gpu_allocator(ctx->device));

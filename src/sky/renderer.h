@@ -65,6 +65,10 @@ typedef struct sky_renderer {
     bool lut_acquire_pending;    /* the LUTs were released by the compute queue: the next frame's first point owes
                                     the acquire barriers (another queue family only) */
     gpu_timer lut_timer;         /* the LUT passes' timestamps on the compute queue */
+    /* The LUT cache on disk (sky/lut_cache.h): what happened to the last LUTs made, and the upload's host copy. */
+    enum { SKY_LUT_CACHE_OFF, SKY_LUT_CACHE_HIT, SKY_LUT_CACHE_MISS, SKY_LUT_CACHE_STORED, SKY_LUT_CACHE_UNWRITABLE }
+        lut_cache;
+    gpu_buffer lut_staging;
 } sky_renderer;
 
 void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_desc *desc);

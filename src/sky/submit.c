@@ -1,5 +1,6 @@
 /* Submission and readback over a renderer (see sky/submit.h). */
 #include "sky/submit.h"
+#include "sky/lut_cache.h"
 #include <string.h>
 #include <time.h>
 
@@ -22,7 +23,24 @@ double sky_renderer_render(sky_renderer *r, const frame_desc *f)
         gpu_buffer_invalidate(r->ctx, &r->readback_linear);
         gpu_buffer_invalidate(r->ctx, &r->readback_display);
     }
+    if (r->lut_cache == SKY_LUT_CACHE_MISS) sky_renderer_store_luts(r);
     return wall;
+}
+
+void sky_renderer_store_luts(sky_renderer *r)
+{
+    /* Only LUTs that hold the current medium (the key is made from it). */
+    if (r->lut_cache != SKY_LUT_CACHE_MISS || !r->luts_valid || sky_renderer_luts_dirty(r)) return;
+    const gpu_context *ctx = r->ctx;
+    size_t size = sky_lut_cache_size(r);
+    gpu_buffer buf;
+    gpu_buffer_create(ctx, &buf, "lut cache readback", size, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    VkCommandBuffer cmd = gpu_begin_commands(ctx);
+    frame_record_lut_cache_readback(r, cmd, buf.buffer);
+    gpu_submit_and_wait(ctx, cmd);
+    gpu_buffer_invalidate(ctx, &buf);
+    sky_lut_cache_put(r, buf.mapped, size);
+    gpu_buffer_destroy(ctx, &buf);
 }
 
 VkExtent2D sky_renderer_lut_extent(const sky_renderer *r, int which)

@@ -16,6 +16,9 @@ double sky_renderer_render_async(sky_renderer *r, const frame_desc *f);
 VkCommandBuffer sky_renderer_submit_luts_async(sky_renderer *r, bool force);
 uint32_t sky_async_frame_semaphores(gpu_context *ctx, bool waits_luts, VkSemaphoreSubmitInfo *wait,
                                     VkSemaphoreSubmitInfo *signal);
+/* After a frame that computed the LUTs on a LUT cache miss (sky/lut_cache.h): read them back and write the cache
+ * file (sky_renderer_render calls it; a host that submits frames itself may). */
+void sky_renderer_store_luts(sky_renderer *r);
 /* Copy a LUT to the host as the GPU stores it (tests): which 0 transmittance, 1 multiscatter; RGBA texels, 16 bytes
  * each for R32G32B32A32_SFLOAT, 8 (half bits) for R16G16B16A16_SFLOAT; texels_out holds 16 bytes x the extent's
  * pixels. Returns the LUT's format (VK_FORMAT_UNDEFINED: no such LUT in this variant, nothing written). */

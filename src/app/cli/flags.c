@@ -85,7 +85,7 @@ const flag flags_table[] = {
     {"--trace-barriers", ARG_NONE, 0, 0, "print one line per barrier as the frame is recorded"},
     {"--trace-passes", ARG_NONE, 0, 0, "  list the passes the frame records"},
     {"--timings", ARG_NONE, 0, 0, "       where the first image's time went (instance, device, pipelines, LUTs, frame, readback, encode, write), on stderr"},
-    {"--no-cache", ARG_NONE, 0, 0, "      no pipeline cache on disk (default: $XDG_CACHE_HOME/vksky or ~/.cache/vksky, per device and driver)"},
+    {"--no-cache", ARG_NONE, 0, 0, "      no pipeline or LUT cache on disk (default: $XDG_CACHE_HOME/vksky or ~/.cache/vksky, per device and driver)"},
     {"--list-devices", ARG_NONE, 0, 0, "  list Vulkan devices and exit"},
     {"--device", ARG_INT, 0, 63, "N     use device N of --list-devices (default: discrete > integrated > CPU)"},
     {"--threads", ARG_INT, 1, 1024, "N     threads that compress EXR chunks and PNG image data (default: the cores available); EXRs are the same for every N, PNGs for every N > 1 (N = 1: libpng's own bytes)"},

@@ -19,7 +19,7 @@ static double now_ms(void)
 static struct {
     double process_start;
     double instance, device, cache_open, cache_close, pipelines;
-    int variant_builds;
+    int variant_builds, lut_cache;
     bool cache_used, instance_reused;
     double frame_begin, frame_end, frame, gpu_luts, gpu_readback, gpu_total;
     bool gpu_timed, frame_done, outputs_done;
@@ -61,7 +61,7 @@ void startup_frame_end(sky_renderer *r)
     if (t.frame_done) return;
     t.frame_end = now_ms();
     t.frame = t.frame_end - t.frame_begin;
-    t.pipelines = r->pipelines_ms, t.variant_builds = r->variant_builds;
+    t.pipelines = r->pipelines_ms, t.variant_builds = r->variant_builds, t.lut_cache = (int)r->lut_cache;
     t.commit_before = io_atomic_commit_ms();
     double ms[GPU_TIMER_MAX];
     uint32_t n = r->timer.enabled ? gpu_timer_read(r->ctx, &r->timer, ms) : 0;
@@ -103,6 +103,10 @@ void startup_report(FILE *out)
             t.cache_used ? "on disk" : "off", t.cache_close);
     fprintf(out, "  pipelines  %8.1f  (with the renderer's resources; variant built %d time%s)\n", t.pipelines,
             t.variant_builds, t.variant_builds == 1 ? "" : "s");
+    /* Indexed by the renderer's SKY_LUT_CACHE_* (sky/renderer.h). */
+    static const char *const lut_cache[] = {"off", "hit: uploaded, not computed", "computed", "computed and stored",
+                                            "computed, not stored"};
+    fprintf(out, "  LUT cache  %s\n", lut_cache[t.lut_cache]);
     if (t.gpu_timed)
         fprintf(out, "  LUTs       %8.2f  (GPU timestamps, inside the frame)\n", t.gpu_luts);
     else

@@ -1,0 +1,133 @@
+#!/usr/bin/env bash
+# tests/lut_cache_test.sh VKSKY: the LUT cache on disk (sky/lut_cache.h, issue 27).
+#  1. A first run computes the LUTs and writes $XDG_CACHE_HOME/vksky/luts-<UUID>-<driver>-<key>.bin, read here
+#     independently of vksky: our header (magic, version, sizes, the FNV-1a checksum recomputed), then a payload of
+#     the transmittance LUT (256 x 64 RGBA half floats: every texel finite, RGB in [0, 1], a transmittance, some near 1) and the
+#     multi-scattering LUT. A second run uploads them (--timings: "hit"; --trace-passes: no LUT pass), its frame
+#     is faster than the first's, and its EXR and PNG equal the first's byte for byte.
+#  2. A corrupt, truncated, foreign-key (key byte changed, checksum made good) or alien file: the LUTs computed,
+#     one note at most, the same images, and the file rewritten good (the next run hits).
+#  3. An unwritable cache directory still renders (one "not saved" note); --no-cache neither reads nor writes.
+set -u
+VKSKY=${1:?usage: lut_cache_test.sh VKSKY}
+export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
+unset VKSKY_LUT_CACHE       # the suite turns the LUT cache off (tests/CMakeLists.txt): this test is about it
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+cd "$work" || exit 1
+export HOME="$work/home" XDG_CACHE_HOME="$work/xdg"
+ARGS=(--width 16 --height 16 --multiscatter-dirs 16)
+
+# check FILE: "ok" or why not, from the file's bytes alone.
+check() {
+    python3 - "$1" <<'PY'
+import struct, sys, math
+b = open(sys.argv[1], 'rb').read()
+def fnv(d):
+    h = 0xcbf29ce484222325
+    for c in d: h = ((h ^ c) * 0x100000001b3) & 0xffffffffffffffff
+    return h
+if b[:8] != b'VKSKYBC1': print('magic'); sys.exit()
+ver, = struct.unpack_from('<I', b, 8)
+ks, ps, s = struct.unpack_from('<QQQ', b, 16)
+if ver != 1: print('version'); sys.exit()
+if 40 + ks + ps != len(b): print('size'); sys.exit()
+if fnv(b[40:]) != s: print('checksum'); sys.exit()
+tw, th = 256, 64
+if ps <= tw * th * 8: print('payload too small for a 256x64 RGBA16F transmittance LUT'); sys.exit()
+if (ps - tw * th * 8) % (32 * 32 * 8): print('payload: not a transmittance LUT plus 32x32 RGBA16F parts'); sys.exit()
+t = struct.unpack_from('<%de' % (tw * th * 4), b, 40 + ks)
+rgb = [v for i, v in enumerate(t) if i % 4 != 3]
+if not all(math.isfinite(v) and 0.0 <= v <= 1.0 for v in rgb): print('transmittance outside [0, 1]'); sys.exit()
+if max(rgb) < 0.9: print('no transmittance near 1 (the zenith from the top of the atmosphere)'); sys.exit()
+print('ok')
+PY
+}
+# rekey FILE: change a byte of the key and make the checksum good again (a file under this key's name that holds
+# another key).
+rekey() {
+    python3 - "$1" <<'PY'
+import struct, sys
+p = sys.argv[1]; b = bytearray(open(p, 'rb').read())
+b[40 + 40] ^= 0x01
+h = 0xcbf29ce484222325
+for c in b[40:]: h = ((h ^ c) * 0x100000001b3) & 0xffffffffffffffff
+struct.pack_into('<Q', b, 32, h)
+open(p, 'wb').write(bytes(b))
+PY
+}
+notes() { grep -c 'cache file' "$1"; }
+# render NAME [FLAGS...]: NAME/out.exr and out.png (the same names every time: the EXR header records the command
+# line), --timings and --trace-passes into NAME.err / NAME.out.
+render() {
+    local name=$1; shift
+    mkdir -p "$name" && (cd "$name" && "$VKSKY" "${ARGS[@]}" --render out.exr --render out.png --timings \
+        --trace-passes "$@" >../"$name".out 2>../"$name".err)
+}
+same() { cmp -s cold/out.png "$1/out.png" && cmp -s cold/out.exr "$1/out.exr"; }
+state() { sed -n 's/^  LUT cache  //p' "$1.err"; }
+frame_ms() { awk '$1 == "frame" { print $2 }' "$1.err"; }
+
+# 1. Cold, then warm.
+render cold || fail "first run failed: $(cat cold.err)"
+files=("$XDG_CACHE_HOME"/vksky/luts-*.bin)
+cache=${files[0]}
+[ ${#files[@]} -eq 1 ] && [ -f "$cache" ] || fail "expected one LUT cache file, found: ${files[*]}"
+[ "$(check "$cache")" = ok ] || fail "the LUT cache file does not read back: $(check "$cache")"
+[ "$(state cold)" = "computed and stored" ] || fail "first run: LUT cache '$(state cold)'"
+grep -q '^pass transmittance_lut$' cold.out || fail "first run: no transmittance_lut pass"
+[ "$(notes cold.err)" -eq 0 ] || fail "a first run printed a note: $(cat cold.err)"
+cp "$cache" good.bin
+touch -d '2000-01-01' "$cache"
+render warm || fail "warm run failed: $(cat warm.err)"
+[ "$(state warm)" = "hit: uploaded, not computed" ] || fail "second run: LUT cache '$(state warm)'"
+! grep -Eq '^pass (transmittance|multiscatter|ground_irradiance)_lut$' warm.out ||
+    fail "second run: LUT passes traced: $(grep '_lut$' warm.out)"
+grep -q '^pass lut_cache_upload$' warm.out || fail "second run: no lut_cache_upload pass"
+[ "$(notes warm.err)" -eq 0 ] || fail "a warm run printed a note: $(cat warm.err)"
+[ "$(stat -c %Y "$cache")" = "$(date -d '2000-01-01' +%s)" ] || fail "a warm run rewrote the LUT cache file"
+same warm || fail "the warm run's images differ from the cold run's"
+awk -v c="$(frame_ms cold)" -v w="$(frame_ms warm)" 'BEGIN { exit !(w < c) }' ||
+    fail "the warm frame ($(frame_ms warm) ms) is not faster than the cold one ($(frame_ms cold) ms)"
+echo "frame (submit to fence): cold $(frame_ms cold) ms, warm $(frame_ms warm) ms"
+
+# 2. Bad files: computed, at most one note, the same images, the file rewritten good.
+bad_case() {   # NAME EXPECTED-WORDS (in the note)
+    render "$1" || fail "$1: the render failed: $(cat "$1.err")"
+    [ "$(notes "$1.err")" -eq 1 ] || fail "$1: expected one note, got: $(cat "$1.err")"
+    grep -q "cache file .*luts-.*: .*$2.*; ignored" "$1.err" || fail "$1: the note does not say '$2 ... ignored': $(cat "$1.err")"
+    [ "$(state "$1")" = "computed and stored" ] || fail "$1: LUT cache '$(state "$1")'"
+    same "$1" || fail "$1: the images differ"
+    cmp -s "$cache" good.bin || fail "$1: the file was not rewritten as the good one ($(check "$cache"))"
+}
+cp good.bin "$cache" && printf '\x5a' | dd of="$cache" bs=1 seek=1000 conv=notrunc status=none
+bad_case corrupt "corrupt"
+head -c 5000 good.bin >"$cache"
+bad_case truncated "truncated"
+cp good.bin "$cache" && rekey "$cache"
+[ "$(check "$cache")" = ok ] || fail "rekey broke the file's own checks"
+bad_case foreign "other inputs"
+printf 'P6 1 1 255 xyz' >"$cache"
+bad_case alien "not a vksky cache file"
+render again || fail "run after the bad files failed"
+[ "$(state again)" = "hit: uploaded, not computed" ] || fail "the rewritten file was not hit: '$(state again)'"
+
+# 3. Unwritable directory (a file where the directory should be), --no-cache.
+touch notadir
+XDG_CACHE_HOME="$work/notadir" render ro || fail "unwritable cache dir: the render failed: $(cat ro.err)"
+same ro || fail "unwritable cache dir: the images differ"
+[ "$(grep -c 'cache file not saved' ro.err)" -eq 1 ] && [ "$(state ro)" = "computed, not stored" ] ||
+    fail "unwritable cache dir: expected one 'not saved' note for the LUTs: $(cat ro.err)"
+XDG_CACHE_HOME="$work/fresh" render fresh --no-cache || fail "--no-cache failed"
+[ ! -e "$work/fresh/vksky" ] || fail "--no-cache wrote into the cache directory"
+touch -d '2000-01-01' "$cache"
+render nocache --no-cache || fail "--no-cache with a warm cache failed"
+[ "$(state nocache)" = off ] && grep -q '^pass transmittance_lut$' nocache.out ||
+    fail "--no-cache read the LUT cache: '$(state nocache)'"
+[ "$(stat -c %Y "$cache")" = "$(date -d '2000-01-01' +%s)" ] || fail "--no-cache rewrote the LUT cache file"
+cmp -s cold/out.png nocache/out.png || fail "--no-cache's PNG differs"
+
+[ $fails -eq 0 ] && echo "ok: LUT cache" || echo "$fails failure(s)"
+[ $fails -eq 0 ]
