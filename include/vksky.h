@@ -40,7 +40,8 @@ extern "C" {
  * 2: vksky_renderer_desc and vksky_frame gained `next` (extension chains), vksky_quality_config,
  *    vksky_renderer_get_timings; the compute queue (vksky_context_desc.compute_queue, vksky_record_luts);
  *    vksky_readback_config, vksky_frame_view, vksky_scene_from_args, vksky_renderer_get_readback,
- *    vksky_context_set_device_features, vksky_auto_exposure + vksky_renderer_get_exposure. */
+ *    vksky_context_set_device_features, vksky_auto_exposure + vksky_renderer_get_exposure,
+ *    vksky_context_set_cache_directory + vksky_renderer_store_luts. */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -187,6 +188,12 @@ VKSKY_API double vksky_scene_atmosphere_top_m(const vksky_scene *scene);
 /* The sun's illuminance at the top of the atmosphere in the scene's units (lux with VKSKY_UNITS_PHOTOMETRIC). */
 VKSKY_API double vksky_scene_sun_illuminance(const vksky_scene *scene);
 
+/* The LUT cache (ABI 2): a directory where vksky keeps the LUTs that depend only on the medium (transmittance,
+ * multi-scattering, a lit ground's irradiance), keyed by the medium, the LUT sizes, the build and the device, so that
+ * a renderer of a medium seen before uploads them instead of computing them (docs/performance.md). NULL: none (the
+ * default). Set it before the first renderer. Files are written only by vksky_renderer_store_luts. */
+VKSKY_API vksky_result vksky_context_set_cache_directory(vksky_context *context, const char *directory);
+
 /* ---- Renderers ------------------------------------------------------------------------------------------------ */
 
 typedef enum vksky_output {
@@ -307,6 +314,12 @@ VKSKY_API void vksky_renderer_destroy(vksky_renderer *renderer);
  * recorded for the renderer may be pending. */
 VKSKY_API vksky_result vksky_renderer_set_scene(vksky_renderer *renderer, const vksky_scene *scene);
 VKSKY_API vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uint32_t height);
+
+/* After the host waited for the frame that computed the LUTs on a cache miss (vksky_context_set_cache_directory):
+ * reads them back and writes the cache file. It submits a command buffer of its own to the context's queue and waits
+ * for it (the host must not use that queue on another thread meanwhile). Nothing to do (no directory, a hit, stored
+ * already): VKSKY_SUCCESS at once. */
+VKSKY_API vksky_result vksky_renderer_store_luts(vksky_renderer *renderer);
 
 /* ---- Frames --------------------------------------------------------------------------------------------------- */
 

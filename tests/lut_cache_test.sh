@@ -129,5 +129,21 @@ render nocache --no-cache || fail "--no-cache with a warm cache failed"
 [ "$(stat -c %Y "$cache")" = "$(date -d '2000-01-01' +%s)" ] || fail "--no-cache rewrote the LUT cache file"
 cmp -s cold/out.png nocache/out.png || fail "--no-cache's PNG differs"
 
+# 6. The command line's single frame as a host of include/vksky.h (no --timings: headless_api.c): the library's
+#    vksky_context_set_cache_directory + vksky_renderer_store_luts write the file on a miss and upload it on a hit.
+api() {   # api NAME [FLAGS...]: one PNG through the API path, the pass trace into NAME.out
+    local name=$1; shift
+    mkdir -p "$name" && (cd "$name" && "$VKSKY" "${ARGS[@]}" --render out.png --trace-passes "$@" >../"$name".out \
+        2>../"$name".err)
+}
+export XDG_CACHE_HOME="$work/api"
+api api_cold --validate || fail "API path, cold: $(cat api_cold.err)"
+ls "$XDG_CACHE_HOME"/vksky/luts-*.bin >/dev/null 2>&1 || fail "API path: no LUT cache file written on a miss"
+api api_warm --validate || fail "API path, warm: $(cat api_warm.err)"
+grep -q '^pass transmittance_lut$' api_cold.out || fail "API path, cold: the LUTs were not computed"
+grep -q '^pass lut_cache_upload$' api_warm.out && ! grep -q '^pass transmittance_lut$' api_warm.out ||
+    fail "API path, warm: the LUTs were not uploaded from the cache"
+cmp -s api_cold/out.png api_warm/out.png || fail "API path: the warm PNG differs from the cold one"
+
 [ $fails -eq 0 ] && echo "ok: LUT cache" || echo "$fails failure(s)"
 [ $fails -eq 0 ]

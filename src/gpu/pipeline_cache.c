@@ -177,6 +177,25 @@ void gpu_pipeline_cache_close(gpu_context *ctx)
     ctx->cache_file = NULL;
 }
 
+bool gpu_cache_dir_attach(gpu_context *ctx, const char *dir)
+{
+    free(ctx->cache_file);
+    ctx->cache_file = NULL;
+    if (!dir || !dir[0]) return true;
+    struct gpu_cache_file *f = calloc(1, sizeof *f);
+    if (!f || snprintf(f->dir, sizeof f->dir, "%s", dir) >= (int)sizeof f->dir) {
+        free(f);
+        return false;
+    }
+    ctx->cache_file = f;
+    return true;
+}
+
+const char *gpu_cache_dir(const gpu_context *ctx)
+{
+    return ctx->cache_file && ctx->cache_file->dir[0] ? ctx->cache_file->dir : NULL;
+}
+
 /* --- Keyed blobs beside the pipeline cache (the LUT cache, issue 27) ---
  * <dir>/<name>-<device UUID>-<driver version>-<key hash>.bin: a header of ours (magic, version, the key's and the
  * payload's sizes, a checksum over key and payload), the caller's key bytes, the payload. Distinct keys get distinct

@@ -16,6 +16,11 @@
 void gpu_pipeline_cache_open(gpu_context *ctx, const char *dir, const char *build_key);
 /* Writes the cache back if it holds more than was read, then destroys it. Called by gpu_context_destroy. */
 void gpu_pipeline_cache_close(gpu_context *ctx);
+/* The keyed blobs' home (the LUT cache) for a context with no pipeline cache file of vksky's (an adopted device:
+ * vksky_context_set_cache_directory); NULL detaches it. False: the path is too long. Never saves a pipeline cache. */
+bool gpu_cache_dir_attach(gpu_context *ctx, const char *dir);
+/* The directory of the context's cache files, or NULL (--no-cache, none attached). */
+const char *gpu_cache_dir(const gpu_context *ctx);
 
 /* The checks on a file's bytes, for tests: NULL if `file` may seed the cache of the device `props`, else why not
  * ("truncated", "corrupt (checksum)", "not a vksky pipeline cache", "from another build", "made for another device

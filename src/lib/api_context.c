@@ -1,5 +1,6 @@
 /* Contexts: the host's device adopted, or vksky's own (include/vksky.h). */
 #include "lib/lib_internal.h"
+#include "gpu/pipeline_cache.h"
 #include <stdlib.h>
 
 void vksky_get_device_requirements(vksky_device_requirements *out)
@@ -106,8 +107,21 @@ void vksky_context_destroy(vksky_context *context)
                     "vksky_context_destroy: %d renderer%s still alive; destroy them first (the context is kept)",
                     context->renderers, context->renderers == 1 ? "" : "s");
     if (context->renderers > 0) return;
+    gpu_cache_dir_attach(&context->gpu, NULL);
     gpu_context_destroy(&context->gpu);
     free(context);
+}
+
+vksky_result vksky_context_set_cache_directory(vksky_context *context, const char *directory)
+{
+    if (!context) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (context->renderers > 0 || !gpu_cache_dir_attach(&context->gpu, directory)) {
+        lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_set_cache_directory: %s", context->renderers > 0
+                        ? "after a renderer was created (set it first)" : "the path is too long");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    return VKSKY_SUCCESS;
 }
 
 void vksky_context_get_handles(const vksky_context *context, vksky_context_handles *out)

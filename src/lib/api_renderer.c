@@ -1,6 +1,7 @@
 /* Renderers: a sky_renderer built from a scene and a quality the way the CLI's headless run builds its own
  * (app/runs/headless.c), writing the host's image instead of its own (include/vksky.h). */
 #include "lib/lib_internal.h"
+#include "sky/submit.h"
 #include "app/scene/light.h"
 #include "app/cli/options.h"
 #include "app/quality/quality.h"
@@ -240,6 +241,20 @@ static vksky_result set_scene(vksky_renderer *renderer, const vksky_scene *scene
     }
     gpu_trap_arm(NULL);
     renderer->o = o;
+    return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_renderer_store_luts(vksky_renderer *renderer)
+{
+    if (!renderer) return VKSKY_ERROR_INVALID_ARGUMENT;
+    gpu_trap trap;
+    if (setjmp(trap.jump)) {
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
+        return lib_result_from_vk(trap.result);
+    }
+    gpu_trap_arm(&trap);
+    sky_renderer_store_luts(&renderer->r);   /* only after a miss; the file's own failures are one note */
+    gpu_trap_arm(NULL);
     return VKSKY_SUCCESS;
 }
 

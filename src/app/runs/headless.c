@@ -11,6 +11,7 @@
 #include "app/runs/tiles.h"
 #include "io/encode_settings.h"
 #include "sky/submit.h"
+#include "gpu/pipeline_cache.h"
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -232,7 +233,7 @@ static int run_checked(const options *o)
         vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
                                              .vulkan_memory_model = ctx.memory_model_device_scope,
                                              .vulkan_memory_model_device_scope = ctx.memory_model_device_scope};
-        return finish(&ctx, headless_api_render(o, &device, &enabled), false);
+        return finish(&ctx, headless_api_render(o, &device, &enabled, gpu_cache_dir(&ctx)), false);
     }
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/runs/tiles.c). */

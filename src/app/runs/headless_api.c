@@ -103,19 +103,23 @@ static int render_and_write(const options *o, host_commands *h, vksky_renderer *
     bool auto_exposure = light_auto_exposure_wanted(o);
     int status = render_frame(h, r, view, auto_exposure);
     if (status == 0 && auto_exposure) status = print_metered(o, view, r);
+    /* A LUT cache miss: the LUTs this frame computed, into the cache for the next start (a hit or none: nothing). */
+    if (status == 0 && vksky_renderer_store_luts(r) != VKSKY_SUCCESS) status = 1;
     vksky_readback px;
     if (status != 0 || vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
     frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
     return sequence_write_frame(o, &pixels, o->frame_first, false);
 }
 
-int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled)
+int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled,
+                        const char *cache_dir)
 {
     vksky_context_desc cd = *device;
     cd.message = print_message;
     vksky_context *ctx = NULL;
     if (vksky_context_create(&cd, &ctx) != VKSKY_SUCCESS) return 1;
-    if (vksky_context_set_device_features(ctx, enabled) != VKSKY_SUCCESS) {
+    if (vksky_context_set_device_features(ctx, enabled) != VKSKY_SUCCESS ||
+        vksky_context_set_cache_directory(ctx, cache_dir) != VKSKY_SUCCESS) {
         vksky_context_destroy(ctx);
         return 1;
     }

@@ -11,5 +11,7 @@
 /* The frame of `o` (one frame: no sequence, no bands, no bench) on the device `device` describes (the caller's, which
  * it keeps and destroys after), with the features `enabled` on it. Returns the run's exit status: 0, or 1 for a
  * runtime failure (the line printed). */
-int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled);
+/* cache_dir: the CLI's cache directory (the LUT cache beside its pipeline cache), or NULL (--no-cache). */
+int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled,
+                        const char *cache_dir);
 #endif
