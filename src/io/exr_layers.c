@@ -113,7 +113,8 @@ static void feed_channel(exr_coding_channel_info_t *ci, const io_exr_write_layer
 typedef struct feed_state {
     const io_exr_write_layer *layers;
     int layer_count, width, lines_per_chunk;
-    uint16_t *scratch;
+    uint16_t *scratch;           /* float data converted to half: one part per chunk (scratch_per_chunk halfs) */
+    size_t scratch_per_chunk;    /* 0: no layer needs converting (half, or float stored as float: read in place) */
 } feed_state;
 
 /* io_exr_feed_fn: the chunk's channels (sorted by name in the file) mapped back to (layer, component) by name. */
@@ -124,8 +125,13 @@ static exr_result_t feed_chunk(void *user, exr_encode_pipeline_t *enc, int y, in
         exr_coding_channel_info_t *ci = &enc->channels[ch];
         int l = 0, c = 0;
         if (!find_channel(fs->layers, fs->layer_count, ci->channel_name, &l, &c)) return EXR_ERR_INVALID_ARGUMENT;
-        feed_channel(ci, &fs->layers[l], c, fs->width, y, rows,
-                     fs->scratch + (size_t)ch * (size_t)fs->lines_per_chunk * (size_t)fs->width);
+        /* Each chunk converts into its own part of the scratch (when any is needed), so chunks can be fed while
+         * others are still being compressed on the worker threads. */
+        size_t chunk = fs->scratch_per_chunk ? (size_t)(y / fs->lines_per_chunk) : 0;
+        uint16_t *part = fs->scratch ? fs->scratch + chunk * fs->scratch_per_chunk +
+                                           (size_t)ch * (size_t)fs->lines_per_chunk * (size_t)fs->width
+                                     : NULL;
+        feed_channel(ci, &fs->layers[l], c, fs->width, y, rows, part);
     }
     return EXR_ERR_SUCCESS;
 }
@@ -242,20 +248,24 @@ int io_exr_write_layers_half(const char *path, int width, int height, const io_e
     if (rc != EXR_ERR_SUCCESS) goto fail;
 
     int channel_count = 0;
-    for (int l = 0; l < layer_count; ++l) channel_count += layers[l].channels;
-    scratch = (uint16_t *)malloc((size_t)channel_count * (size_t)lines_per_chunk * (size_t)width * sizeof(uint16_t));
-    if (!scratch) {
+    bool converts = false;   /* a float layer stored as half: converted chunk by chunk into the scratch */
+    for (int l = 0; l < layer_count; ++l) {
+        channel_count += layers[l].channels;
+        converts |= layers[l].f32 && !layers[l].store_float;
+    }
+    /* Half layers and float layers stored as float are read in place; converted ones get a scratch part per chunk
+     * (a half copy of the image), so every chunk compresses on the worker threads (exr_parallel.h) whatever the
+     * pixel type: the photometric default writes float, and one thread would make it the bottleneck. */
+    int chunks = (height + lines_per_chunk - 1) / lines_per_chunk;
+    size_t per_chunk = converts ? (size_t)channel_count * (size_t)lines_per_chunk * (size_t)width : 0;
+    scratch = converts ? (uint16_t *)malloc(per_chunk * (size_t)chunks * sizeof(uint16_t)) : NULL;
+    if (converts && !scratch) {
         rc = EXR_ERR_OUT_OF_MEMORY;
         goto fail;
     }
-    /* Half layers are read in place, so their chunks compress on worker threads (exr_parallel.h); float layers
-     * are converted into the one scratch buffer a chunk at a time, so those are encoded on this thread. */
-    bool any_f32 = false;
-    for (int l = 0; l < layer_count; ++l) any_f32 |= layers[l].f32 != NULL;
-    feed_state fs = {layers, layer_count, width, lines_per_chunk, scratch};
+    feed_state fs = {layers, layer_count, width, lines_per_chunk, scratch, per_chunk};
     stage = "encode";
-    rc = io_exr_encode_chunks(ctxt, part, 0, (height + lines_per_chunk - 1) / lines_per_chunk, lines_per_chunk,
-                              feed_chunk, &fs, any_f32 ? 1 : io_encode_threads());
+    rc = io_exr_encode_chunks(ctxt, part, 0, chunks, lines_per_chunk, feed_chunk, &fs, io_encode_threads());
     if (rc != EXR_ERR_SUCCESS) goto fail;
 
     free(scratch);
