@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tests/host_read_barriers_test.sh VKSKY LUT_PROBE: the five host-read barriers proven without the layer (issue 31).
+# tests/host_read_barriers_test.sh VKSKY LUT_PROBE: the host-read barriers proven without the layer (issue 31).
 #
 # The drop list (tests/barrier_drops.txt) expects "none" for readback.linear_to_host, readback.display_to_host,
 # aovs.to_host, lut_readback.to_host and capture.to_host: the validation layer does not model host reads of mapped
@@ -14,6 +14,10 @@
 #   src access: TRANSFER_WRITE or MEMORY_WRITE
 #   dst stage:  HOST                        (ALL_COMMANDS does not contain the host: it is no command's stage)
 #   dst access: HOST_READ or MEMORY_READ
+# For a compute shader's write the host reads (the meter's result: meter.result_to_host), the source side is the
+# shader's instead: src stage COMPUTE_SHADER or ALL_COMMANDS, src access SHADER_STORAGE_WRITE, SHADER_WRITE or
+# MEMORY_WRITE (the spec's "compute shader writes a buffer, the host reads it"). The LUT cache's readback
+# (lut_cache.readback_to_host, tests/lut_cache_probe beside LUT_PROBE) is a copy like the others.
 # and its place: in the command buffer of the copy that writes the buffer, after it (the copy's pass, or the
 # barrier that makes the copy's source readable, precedes it with no other command buffer between), flushed by a
 # batch of its point. Each run is validated (--validate; any message fails the run).
@@ -43,6 +47,9 @@ run() {
         render) "$VKSKY" "${RENDER[@]}" --render "$work/r.png" >"$out" 2>"$work/err" ;;
         aovs) "$VKSKY" "${RENDER[@]}" --aovs --render "$work/a.exr" >"$out" 2>"$work/err" ;;
         probe) "$PROBE" --validate --trace-barriers >"$out" 2>"$work/err" ;;
+        meter) "$VKSKY" "${RENDER[@]}" --auto-exposure --render "$work/m.png" >"$out" 2>"$work/err" ;;
+        lutprobe) env -u VKSKY_LUT_CACHE XDG_CACHE_HOME="$work/xdg" "$(dirname "$PROBE")/lut_cache_probe" --validate \
+                      --trace-barriers >"$out" 2>"$work/err" ;;
         window) VKSKY_TRACE_CAPTURE=1 "$HERE/xvfb_run.sh" 640x480x24 "$VKSKY" --frames 2 --width 64 --height 64 \
                     --sky-mode march --render-scale 1 --validate --trace-barriers --screenshot "$work/s.png" \
                     >"$out" 2>"$work/err" ;;
@@ -53,9 +60,10 @@ run() {
     return 1
 }
 
-# check NAME BEFORE TRACE: the barrier against the hazard's table and its place; prints why not, exit 1.
+# check NAME BEFORE TRACE [WRITER]: the barrier against the hazard's table (WRITER copy, the default, or compute)
+# and its place; prints why not, exit 1.
 check() {
-    awk -v name="$1" -v before="$2" '
+    awk -v name="$1" -v before="$2" -v writer="${4:-copy}" '
         function has(list, want,   n, a, i) { n = split(list, a, "|"); for (i = 1; i <= n; ++i) if (a[i] == want) return 1; return 0 }
         $1 == "commands" { cmd++; next }
         ($1 == "pass" && $2 == before) || ($1 == "barrier" && $2 == before) { copy_cmd = cmd; seen_copy = 1; next }
@@ -68,8 +76,11 @@ check() {
                 if ($i ~ /^point=/) point = substr($i, 7)
             }
             if ($0 ~ / point=/) { p = $0; sub(/.* point=/, "", p); sub(/ resource=.*/, "", p); point = p }
-            if (!has(ss, "COPY") && !has(ss, "ALL_COMMANDS")) { printf "%s: src stage %s does not contain the copy\n", name, ss; bad++ }
-            if (!has(sa, "TRANSFER_WRITE") && !has(sa, "MEMORY_WRITE")) { printf "%s: src access %s lacks the copy write\n", name, sa; bad++ }
+            wstage = writer == "compute" ? "COMPUTE_SHADER" : "COPY"
+            if (!has(ss, wstage) && !has(ss, "ALL_COMMANDS")) { printf "%s: src stage %s does not contain the %s\n", name, ss, writer; bad++ }
+            if (writer == "compute" && !has(sa, "SHADER_STORAGE_WRITE") && !has(sa, "SHADER_WRITE") && !has(sa, "MEMORY_WRITE")) {
+                printf "%s: src access %s lacks the shader write\n", name, sa; bad++ }
+            if (writer != "compute" && !has(sa, "TRANSFER_WRITE") && !has(sa, "MEMORY_WRITE")) { printf "%s: src access %s lacks the copy write\n", name, sa; bad++ }
             if (!has(ds, "HOST")) { printf "%s: dst stage %s is not HOST\n", name, ds; bad++ }
             if (!has(da, "HOST_READ") && !has(da, "MEMORY_READ")) { printf "%s: dst access %s lacks HOST_READ\n", name, da; bad++ }
             waiting = 1; bcmd = cmd; next
@@ -86,14 +97,15 @@ check() {
 # NAME KIND BEFORE (the line the copy leaves in the trace just before the barrier's batch)
 cases=("readback.linear_to_host render readback" "readback.display_to_host render readback"
        "aovs.to_host aovs composite_readback" "lut_readback.to_host probe lut_readback.to_copy"
-       "capture.to_host window display.write_to_capture")
+       "capture.to_host window display.write_to_capture" "meter.result_to_host meter meter_average compute"
+       "lut_cache.readback_to_host lutprobe lut_cache_readback")
 checked=0
 for c in "${cases[@]}"; do
-    read -r name kind before <<<"$c"
+    read -r name kind before writer <<<"$c"
     [ "$kind" = window ] && [ $window -eq 0 ] && continue
     unset VKSKY_WEAKEN_BARRIER
     if ! run "$kind" "$work/trace"; then fail "$name: the run failed"; continue; fi
-    why=$(check "$name" "$before" "$work/trace") || { fail "$why"; continue; }
+    why=$(check "$name" "$before" "$work/trace" "$writer") || { fail "$why"; continue; }
     echo "ok: $name ($(grep -m1 "^barrier $name " "$work/trace" | grep -o 'src=[^ ]* dst=[^ ]*'))"
     mutants=(dststage=ALL_COMMANDS)   # the first barrier: every field; the others: the host side's stage
     [ $checked -eq 0 ] && mutants=(srcstage=NONE srcaccess=NONE dststage=ALL_COMMANDS dstaccess=NONE)
@@ -101,7 +113,7 @@ for c in "${cases[@]}"; do
         export VKSKY_WEAKEN_BARRIER="$name:$m"
         if ! run "$kind" "$work/mutant"; then fail "$name weakened ($m): the run failed"; continue; fi
         grep -q "^barrier $name .*WEAKENED=" "$work/mutant" || { fail "$name: the mutation $m did not apply"; continue; }
-        check "$name" "$before" "$work/mutant" >/dev/null && fail "$name weakened ($m): the check still passes"
+        check "$name" "$before" "$work/mutant" "$writer" >/dev/null && fail "$name weakened ($m): the check still passes"
     done
     unset VKSKY_WEAKEN_BARRIER
     checked=$((checked + 1))
