@@ -2,13 +2,9 @@
 # tools/gpu_table_remeasure.sh [BUILD] [OUT]: re-measure the GPU quality table (src/app/quality/quality_table.h) on the
 # GPU this runs on, at the frame size the promise is held at, and check the promise with it (issue 31 item 4).
 #
-# Why not swap in docs/perf/h100-issue31/: its two tables bracket the promise test's 640x360 frames and neither
-# holds it. The table's own method (error of 96x54 frames) keeps twilight's row of
-# medium-skyview96-s24-scale0.5-bloomq at 0.498 % (the H100 measured 0.52 % at 640x360: --max-error 0.005 fails as
-# before); the 1920x1080-frame variant fixes twilight (0.504 %: the pick moves to medium) but puts afternoon's
-# medium-skyview96-scale0.5 at 0.976 % (1.50 % with 96x54 frames), which auto and --max-error 0.01 would then pick
-# with no measurement at 640x360 behind it. A table measured at 640x360 frames is the promise's own size: a
-# configuration's error only shrinks on larger frames (its LUT and render scale are fixed).
+# Run on 2026-11-27 (NVIDIA H100, driver 580.159.04): the table in docs/perf/h100-2026-11-27-f is the one shipped, and
+# ctest promise passed with it on the H100 (twilight's --max-error 0.005 pick: medium, 0.31 %). Tables measured on
+# 96x54 or 1920x1080 frames did not hold the promise (docs/perf/h100-issue31/, docs/claims.md).
 #
 # Steps (validation on for the promise's renders, as in ctest): tradeoff at 1920x1080 cost, 640x360 error frames
 # sampled at 96x54; the emitted table (with this build's key) replaces quality_table.h; rebuild; ctest promise,
