@@ -13,7 +13,7 @@
  * daytime target, not inside it like the albedo-0 sky (docs/claims.md). The cause, isolated: the multi-scattering
  * LUT's ground term (Hillaire 2020's) lights the ground by the sun alone, while 13 % of the ground's light (luminance;
  * R 6 %, G 14 %, B 30 %) comes from the sky: the tracer's bounce from the sunlit part alone is +0.154, and the GPU's
- * +0.150 matches it (-2.6 %); the test holds that too (8 % + 3 sigma). ~80 s of CPU on lavapipe. */
+ * +0.150 matches it (-3.4 %); the test holds that too (5 % + 3 sigma). ~80 s of CPU on lavapipe. */
 #include "app/quality/quality.h"
 #include "gpu_test.h"
 #include "reference/path_tracer.h"
@@ -117,9 +117,10 @@ int main(void)
             CHECK(fabs(dg - dp) <= 0.2 * dp + 3.0 * dse, "%s: ground bounce GPU %.4g vs path tracer %.4g", c->name, dg, dp);
             /* Why it is low: the multi-scattering LUT's ground term (Hillaire's) lights the ground by the sun alone,
              * not by the sky (multiscatter_lut.comp; docs/claims.md). The tracer's bounce, channel by channel,
-             * times the ground's direct share is what that term can give: the GPU's bounce must match it within 8 %
-             * (the second bounce's angular model: -2.6 % measured) + 3 standard errors. A lost or doubled ground
-             * term, a missing 1/pi, or the sky's light added to the term without this check's update all fail. */
+             * times the ground's direct share is what that term can give: the GPU's bounce must match it within 5 %
+             * (the second bounce's angular model: -3.4 % measured here, -2.6 % with 4x the paths) + 3 standard errors
+             * (11.6 % in all). A lost or doubled ground term or a missing 1/pi fails it; so does the ground lit by the
+             * sky too (about +13 % by the shares), which must come with this check's update. */
             double dp_sun[3], dse_sun[3];
             for (int k = 0; k < 3; ++k) {
                 dp_sun[k] = (p_rgb[k] - p0_rgb[k]) * direct_share[k];
@@ -128,7 +129,7 @@ int main(void)
             double ds = lum3(dp_sun), ds_se = lum3_se(dse_sun);
             printf("%-28s the tracer's bounce from the sunlit part of the ground: +%.4g +- %.2g (GPU %+.1f %%)\n", c->name,
                    ds, ds_se, 100.0 * (dg / ds - 1.0));
-            CHECK(fabs(dg - ds) <= 0.08 * ds + 3.0 * ds_se,
+            CHECK(fabs(dg - ds) <= 0.05 * ds + 3.0 * ds_se,
                   "%s: ground bounce GPU %.4g vs the tracer's bounce from the sun-lit ground %.4g +- %.2g", c->name, dg,
                   ds, ds_se);
         }
