@@ -111,7 +111,7 @@ for c in "${cases[@]}"; do
     unset VKSKY_WEAKEN_BARRIER
     if ! run "$kind" "$work/trace"; then fail "$name: the run failed"; continue; fi
     why=$(check "$name" "$before" "$work/trace" "$writer") || { fail "$why"; continue; }
-    echo "ok: $name ($(grep -m1 "^barrier $name " "$work/trace" | grep -o 'src=[^ ]* dst=[^ ]*'))"
+    echo "ok: $name @ $kind ($(grep -m1 "^barrier $name " "$work/trace" | grep -o 'src=[^ ]* dst=[^ ]*'))"
     mutants=(dststage=ALL_COMMANDS)   # the first barrier: every field; the others: the host side's stage
     [ $checked -eq 0 ] && mutants=(srcstage=NONE srcaccess=NONE dststage=ALL_COMMANDS dstaccess=NONE)
     for m in "${mutants[@]}"; do
