@@ -7,7 +7,7 @@
 #  - without a second queue, --async-luts is refused: exit 2, one line naming what the device lacks, no file;
 #  - each variant whose LUT set or first LUT reader differs (default, sky-view, compute sky pass, no
 #    multi-scattering, lit ground), two frames each rebuilding the LUTs (VKSKY_FRAMES=2): pixels bit-identical to the
-#    single-queue frame (EXR by pixels, PNG byte for byte);
+#    single-queue frames (EXR by pixels, PNG byte for byte; tests/async_pixels.sh, shared with tools/async_bench.sh);
 #  - the trace: the LUT passes recorded in their own command buffer before the frame's, which records none; each
 #    rebuild signals compute_done with the next value, each frame waits for exactly that value at the LUT readers'
 #    stages and signals graphics_done, which the next rebuild waits for; the queue line and `qfot none` say why no
@@ -36,18 +36,13 @@ if "$VKSKY" --list-devices 2>/dev/null | grep -qi llvmpipe; then
 fi
 
 export VKSKY_ASYNC_ONE_QUEUE=1
+# shellcheck source=tests/async_pixels.sh
+. "$(dirname "$0")/async_pixels.sh"
 i=0
 while read -r name extra; do
     i=$((i + 1))
     # shellcheck disable=SC2086
-    "$VKSKY" --render "$work/s$i.exr" --render "$work/s$i.png" "${A[@]}" $extra 2>"$work/s$i.err" \
-        || fail "$name: single-queue frame failed: $(head -c 300 "$work/s$i.err")"
-    # shellcheck disable=SC2086
-    VKSKY_FRAMES=2 "$VKSKY" --render "$work/a$i.exr" --render "$work/a$i.png" "${A[@]}" $extra --async-luts \
-        --trace-barriers >"$work/a$i.trace" 2>"$work/a$i.err" || fail "$name: async frames failed: $(head -c 300 "$work/a$i.err")"
-    [ -s "$work/a$i.err" ] && fail "$name: messages with --async-luts: $(head -c 300 "$work/a$i.err")"
-    "$PIX" same "$work/s$i.exr" "$work/a$i.exr" || fail "$name: EXR pixels differ from the single-queue frame"
-    cmp -s "$work/s$i.png" "$work/a$i.png" || fail "$name: PNG differs from the single-queue frame"
+    why=$(async_pair "$i" "$name" $extra) || { fail "$why"; continue; }
     # The trace, command buffer by command buffer: 1 = LUTs (compute), 2 = frame, 3 = LUTs, 4 = frame.
     awk -v name="$name" '
         function bad(m) { print "FAIL: " name ": trace: " m > "/dev/stderr"; failed = 1 }
@@ -68,13 +63,7 @@ while read -r name extra; do
             if (q != 1 || qn != 2) bad("queues line " q ", qfot none lines " qn "; expected 1 and 2")
             exit failed
         }' "$work/a$i.trace" || fails=$((fails + 1))
-done <<'LIST'
-default
-skyview --sky-mode skyview
-compute --sky-pass compute
-noms --no-multiscatter
-ground --ground-albedo 0.3,0.3,0.3 --pitch -20
-LIST
+done < <(async_variants)
 
 # Validation sees the compute command buffer: a LUT barrier left out there is reported.
 VKSKY_DROP_BARRIER=transmittance.write_to_sample "$VKSKY" --render "$work/drop.png" "${A[@]}" --async-luts \

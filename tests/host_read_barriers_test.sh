@@ -17,14 +17,15 @@
 # For a compute shader's write the host reads (the meter's result: meter.result_to_host), the source side is the
 # shader's instead: src stage COMPUTE_SHADER or ALL_COMMANDS, src access SHADER_STORAGE_WRITE, SHADER_WRITE or
 # MEMORY_WRITE (the spec's "compute shader writes a buffer, the host reads it"). The LUT cache's readback
-# (lut_cache.readback_to_host, tests/lut_cache_probe beside LUT_PROBE) is a copy like the others.
+# (lut_cache.readback_to_host, tests/lut_cache_probe beside LUT_PROBE) is a copy like the others. The meter's host
+# read is recorded in three configurations of the drop list (meter, meter_post, window_nobloom): each is checked.
 # and its place: in the command buffer of the copy that writes the buffer, after it (the copy's pass, or the
 # barrier that makes the copy's source readable, precedes it with no other command buffer between), flushed by a
 # batch of its point. Each run is validated (--validate; any message fails the run).
 # That the check can fail: the first barrier is weakened field by field (VKSKY_WEAKEN_BARRIER: src stage NONE, src
 # access NONE, dst stage ALL_COMMANDS, dst access NONE; a dst access the HOST stage cannot perform is the layer's
 # own catch, VUID-VkBufferMemoryBarrier2-dstAccessMask-03905), each other one at its dst stage (ALL_COMMANDS), and
-# the check must reject every mutant. 13 validated runs of 16x16 frames (the window's 64x64): ~15 s of CPU.
+# the check must reject every mutant. 21 validated runs of 16x16 frames (the windows' 64x64): ~12 s of CPU.
 # capture.to_host is recorded in the window's screenshot frame (VKSKY_TRACE_CAPTURE=1 traces it): under xvfb;
 # without a display and xvfb-run the test SKIPs (77).
 set -u
@@ -48,11 +49,14 @@ run() {
         aovs) "$VKSKY" "${RENDER[@]}" --aovs --render "$work/a.exr" >"$out" 2>"$work/err" ;;
         probe) "$PROBE" --validate --trace-barriers >"$out" 2>"$work/err" ;;
         meter) "$VKSKY" "${RENDER[@]}" --auto-exposure --render "$work/m.png" >"$out" 2>"$work/err" ;;
+        meter_post) "$VKSKY" "${RENDER[@]}" --auto-exposure --post-pass compute --render "$work/m.png" >"$out" 2>"$work/err" ;;
         lutprobe) env -u VKSKY_LUT_CACHE XDG_CACHE_HOME="$work/xdg" "$(dirname "$PROBE")/lut_cache_probe" --validate \
                       --trace-barriers >"$out" 2>"$work/err" ;;
         window) VKSKY_TRACE_CAPTURE=1 "$HERE/xvfb_run.sh" 640x480x24 "$VKSKY" --frames 2 --width 64 --height 64 \
                     --sky-mode march --render-scale 1 --validate --trace-barriers --screenshot "$work/s.png" \
                     >"$out" 2>"$work/err" ;;
+        window_nobloom) "$HERE/xvfb_run.sh" 640x480x24 "$VKSKY" --frames 2 --width 64 --height 64 --sky-mode march \
+                            --render-scale 1 --bloom-mips 5 --no-bloom --validate --trace-barriers >"$out" 2>"$work/err" ;;
     esac
     rc=$?
     [ $rc -eq 0 ] && ! grep -qi 'validation' "$work/err" && return 0
@@ -98,15 +102,16 @@ check() {
 cases=("readback.linear_to_host render readback" "readback.display_to_host render readback"
        "aovs.to_host aovs composite_readback" "lut_readback.to_host probe lut_readback.to_copy"
        "capture.to_host window display.write_to_capture" "meter.result_to_host meter meter_average compute"
-       "lut_cache.readback_to_host lutprobe lut_cache_readback")
+       "lut_cache.readback_to_host lutprobe lut_cache_readback"
+       "meter.result_to_host meter_post meter_average compute" "meter.result_to_host window_nobloom meter_average compute")
 checked=0
 for c in "${cases[@]}"; do
     read -r name kind before writer <<<"$c"
-    [ "$kind" = window ] && [ $window -eq 0 ] && continue
+    [ "${kind#window}" != "$kind" ] && [ $window -eq 0 ] && continue
     unset VKSKY_WEAKEN_BARRIER
     if ! run "$kind" "$work/trace"; then fail "$name: the run failed"; continue; fi
     why=$(check "$name" "$before" "$work/trace" "$writer") || { fail "$why"; continue; }
-    echo "ok: $name ($(grep -m1 "^barrier $name " "$work/trace" | grep -o 'src=[^ ]* dst=[^ ]*'))"
+    echo "ok: $name @ $kind ($(grep -m1 "^barrier $name " "$work/trace" | grep -o 'src=[^ ]* dst=[^ ]*'))"
     mutants=(dststage=ALL_COMMANDS)   # the first barrier: every field; the others: the host side's stage
     [ $checked -eq 0 ] && mutants=(srcstage=NONE srcaccess=NONE dststage=ALL_COMMANDS dstaccess=NONE)
     for m in "${mutants[@]}"; do

@@ -68,7 +68,22 @@ def main():
     limb = float(np.mean(rel[rho > 0.8])) if np.any(rho > 0.8) else float("nan")
     print("disc: %d interior pixels, worst %.2f %% (rho <= 0.8 when u > 0; the rim's worst %.2f %%), centre %+.2f %%, "
           "rim mean %+.2f %%; L0 %.4g cd/m2 (E %.4g lx)" % (rel.size, 100 * worst, 100 * rim, 100 * centre, 100 * limb, L0, E))
-    ok = rel.size > 500 and worst <= 0.02 and not math.isnan(limb)
+    # The rim is not the law by design (docs/claims.md, issue 31: it stays), but it is bounded: the stretch of 1.5 texels
+    # over R brightens rho in (0.8, 1 - 3 px / R) by at most u (sqrt(1 - (rho R / (R + 1.5 px))^2) - sqrt(1 - rho^2)) /
+    # (1 - u (1 - sqrt(1 - rho^2))), less the centre's deficit; at 106 texels per radius 5.5 % (less 1.1 %), measured 4.7 %.
+    # Held at that closed form's value for this image's texels per radius + 1 point: a wider edge, a limb spread
+    # further, or a lost normalisation fail it.
+    if u > 0.0 and np.any(~held):
+        R_px = r / (math.radians(fov) / h)
+        rr = rho[~held]
+        stretch = np.sqrt(np.clip(1.0 - (rr * R_px / (R_px + 1.5)) ** 2, 0.0, 1.0))
+        law = 1.0 - u * (1.0 - np.sqrt(np.clip(1.0 - rr ** 2, 0.0, 1.0)))
+        rim_bound = float(np.max(u * (stretch - np.sqrt(np.clip(1.0 - rr ** 2, 0.0, 1.0))) / law)) + 0.01
+        print("  rim bound (the stretch over R + 1.5 texels, %.0f texels per radius, + 1 point): %.2f %%" % (R_px, 100 * rim_bound))
+        ok_rim = rim <= rim_bound
+    else:
+        ok_rim = True
+    ok = rel.size > 500 and worst <= 0.02 and not math.isnan(limb) and ok_rim
     return 0 if ok else 1
 
 

@@ -33,26 +33,21 @@ for v in /usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json; do
 done
 
 A=(--width 96 --height 64 --quality lesson --units relative --validate)
+VKSKY=$V
+# shellcheck source=tests/async_pixels.sh
+. "$(dirname "$(readlink -f "$0")")/../tests/async_pixels.sh"
 i=0
 while read -r name extra; do
     i=$((i + 1))
     # shellcheck disable=SC2086
-    VKSKY_FRAMES=2 "$V" --render "$work/s$i.exr" "${A[@]}" $extra 2>"$work/s$i.err" || { echo "FAIL $name: single queue: $(head -c 300 "$work/s$i.err")"; fails=$((fails + 1)); continue; }
-    # shellcheck disable=SC2086
-    VKSKY_FRAMES=2 "$V" --render "$work/a$i.exr" "${A[@]}" $extra --async-luts --trace-barriers >"$work/a$i.trace" 2>"$work/a$i.err"
-    rc=$?
-    if [ $rc -ne 0 ] || [ -s "$work/a$i.err" ]; then
-        echo "FAIL $name: --async-luts: exit $rc: $(head -c 600 "$work/a$i.err")"; fails=$((fails + 1)); continue
-    fi
-    if "$PIX" same "$work/s$i.exr" "$work/a$i.exr"; then same=identical; else same=DIFFERENT; fails=$((fails + 1)); fi
+    why=$(async_pair "$i" "$name" $extra)
+    case $? in
+        0) same=identical ;;
+        2) same=DIFFERENT; echo "$why"; fails=$((fails + 1)) ;;
+        *) echo "FAIL $why"; fails=$((fails + 1)); continue ;;
+    esac
     echo "check $name pixels=$same $(grep -m1 '^queues ' "$work/a$i.trace") releases=$(grep -c '^qfot .* release ' "$work/a$i.trace") acquires=$(grep -c '^qfot .* acquire ' "$work/a$i.trace")"
-done <<'LIST'
-default
-skyview --sky-mode skyview
-compute --sky-pass compute
-noms --no-multiscatter
-ground --ground-albedo 0.3,0.3,0.3 --pitch -20
-LIST
+done < <(async_variants)
 # The ownership-transfer barriers, once, as traced (another family only).
 grep -m6 -E '^(qfot|barrier [a-z_]+\.(release|acquire)|semaphore)' "$work/a1.trace" | sed 's/^/trace: /'
 

@@ -220,20 +220,25 @@ void frame_add_lut_transfers(sky_renderer *r, gpu_barrier_batch *b, bool release
 /* --- The LUT cache (sky/lut_cache.h, issue 27): the medium's LUTs uploaded from a file instead of computed, and
  * read back once after they were computed so that the file can be written. --- */
 
+/* One barrier per cached LUT image, all of one name and one usage change (the cache's copies move them together). */
+static void lut_cache_barriers(gpu_barrier_batch *b, const char *name, const gpu_image *const imgs[3],
+                               const char *const names[3], int n, gpu_usage from, gpu_usage to, bool discard)
+{
+    for (int i = 0; i < n; ++i)
+        gpu_barrier_add_image(b, name, names[i], imgs[i]->image, gpu_color_range(0, 1), from, to, discard);
+}
+
 /* In place of the LUT passes: the previous frames' shaders sampled the LUTs (WAR); the copies from r->lut_staging
  * overwrite them whole: UNDEFINED -> TRANSFER_DST. Then the copies wrote them; the sky pass (and the sky-view LUT)
  * sample them: RAW + layout, into `next` like the LUT passes' last barrier. The staging buffer's host writes need
  * no barrier: a submission makes the host writes made before it visible to the device. */
 void frame_record_lut_cache_upload(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch *next)
 {
-    VkImageSubresourceRange one = gpu_color_range(0, 1);
     const gpu_image *imgs[3];
     const char *names[3];
     int n = sky_lut_cache_images(r, imgs, names);
     gpu_barrier_batch b = gpu_barrier_batch_begin("before lut_cache_upload");
-    for (int i = 0; i < n; ++i)
-        gpu_barrier_add_image(&b, "lut_cache.to_transfer_dst", names[i], imgs[i]->image, one, LUT_LAST_USE,
-                              GPU_USAGE_TRANSFER_DST, true);
+    lut_cache_barriers(&b, "lut_cache.to_transfer_dst", imgs, names, n, LUT_LAST_USE, GPU_USAGE_TRANSFER_DST, true);
     gpu_barrier_flush(cmd, &b);
     uint32_t t = frame_timed_begin(r, cmd, "lut_cache_upload");
     VkDeviceSize offset = 0;
@@ -243,9 +248,7 @@ void frame_record_lut_cache_upload(sky_renderer *r, VkCommandBuffer cmd, gpu_bar
                                &region);
     }
     frame_timed_end(r, cmd, t);
-    for (int i = 0; i < n; ++i)
-        gpu_barrier_add_image(next, "lut_cache.upload_to_sample", names[i], imgs[i]->image, one,
-                              GPU_USAGE_TRANSFER_DST, LUT_LAST_USE, false);
+    lut_cache_barriers(next, "lut_cache.upload_to_sample", imgs, names, n, GPU_USAGE_TRANSFER_DST, LUT_LAST_USE, false);
 }
 
 /* A frame of its own after the frame that computed the LUTs (a miss): they were made readable by shaders; the copies
@@ -253,14 +256,11 @@ void frame_record_lut_cache_upload(sky_renderer *r, VkCommandBuffer cmd, gpu_bar
  * writes made visible to the host after the fence (RAW), as the tests' LUT readback does. */
 void frame_record_lut_cache_readback(sky_renderer *r, VkCommandBuffer cmd, VkBuffer buffer)
 {
-    VkImageSubresourceRange one = gpu_color_range(0, 1);
     const gpu_image *imgs[3];
     const char *names[3];
     int n = sky_lut_cache_images(r, imgs, names);
     gpu_barrier_batch b = gpu_barrier_batch_begin("before lut_cache_readback");
-    for (int i = 0; i < n; ++i)
-        gpu_barrier_add_image(&b, "lut_cache.to_transfer_src", names[i], imgs[i]->image, one, LUT_LAST_USE,
-                              GPU_USAGE_TRANSFER_SRC, false);
+    lut_cache_barriers(&b, "lut_cache.to_transfer_src", imgs, names, n, LUT_LAST_USE, GPU_USAGE_TRANSFER_SRC, false);
     gpu_barrier_flush(cmd, &b);
     gpu_label_begin(r->ctx, cmd, "lut_cache_readback");
     VkDeviceSize offset = 0;
@@ -270,9 +270,8 @@ void frame_record_lut_cache_readback(sky_renderer *r, VkCommandBuffer cmd, VkBuf
     }
     gpu_label_end(r->ctx, cmd);
     b = gpu_barrier_batch_begin("after lut_cache_readback");
-    for (int i = 0; i < n; ++i)
-        gpu_barrier_add_image(&b, "lut_cache.readback_to_sample", names[i], imgs[i]->image, one,
-                              GPU_USAGE_TRANSFER_SRC, LUT_LAST_USE, false);
+    lut_cache_barriers(&b, "lut_cache.readback_to_sample", imgs, names, n, GPU_USAGE_TRANSFER_SRC, LUT_LAST_USE,
+                       false);
     gpu_barrier_add_buffer(&b, "lut_cache.readback_to_host", "lut_cache_readback", buffer, GPU_USAGE_TRANSFER_DST,
                            GPU_USAGE_HOST_READ);
     gpu_barrier_flush(cmd, &b);

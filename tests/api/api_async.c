@@ -9,28 +9,11 @@
  *    VKSKY_ERROR_INVALID_ARGUMENT; the context's handles report the compute queue. */
 #include "api_host.h"
 
+/* The frame's copy read back, its submission waiting for `wait` >= `value` at `stage` (none when VK_NULL_HANDLE). */
 static unsigned char *read_frame(host *h, VkSemaphore wait, uint64_t value, VkPipelineStageFlags2 stage)
 {
     host_copy(h);
-    VkBufferMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-                                      .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-                                      .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                      .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT, .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
-                                      .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                      .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .buffer = h->buffer,
-                                      .size = VK_WHOLE_SIZE};
-    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .bufferMemoryBarrierCount = 1,
-                            .pBufferMemoryBarriers = &to_host};
-    vkCmdPipelineBarrier2(h->cmd, &dep);
-    HOST_VK(vkEndCommandBuffer(h->cmd));
-    VkSemaphoreSubmitInfo w = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = wait, .value = value,
-                               .stageMask = stage};
-    VkCommandBufferSubmitInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = wait ? 1 : 0,
-                        .pWaitSemaphoreInfos = &w, .commandBufferInfoCount = 1, .pCommandBufferInfos = &ci};
-    HOST_VK(vkQueueSubmit2(h->queue, 1, &si, h->fence));
-    HOST_VK(vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX));
-    HOST_VK(vkResetFences(h->device, 1, &h->fence));
+    host_submit_waiting(h, h->buffer, wait, value, stage);
     size_t n = 4ull * h->width * h->height;
     unsigned char *out = malloc(n);
     if (out) memcpy(out, h->mapped, n);

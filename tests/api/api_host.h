@@ -227,25 +227,12 @@ static inline void host_copy(host *h)
     vkCmdCopyImageToBuffer(h->cmd, h->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, h->buffer, 1, &region);
 }
 
+static inline void host_submit(host *h, VkBuffer readback);
+
 static inline void host_end_and_read(host *h)
 {
     host_copy(h);
-    VkBufferMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
-                                      .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
-                                      .srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                      .dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT, .dstAccessMask = VK_ACCESS_2_HOST_READ_BIT,
-                                      .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                      .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED, .buffer = h->buffer,
-                                      .size = VK_WHOLE_SIZE};
-    VkDependencyInfo dep = {.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO, .bufferMemoryBarrierCount = 1,
-                            .pBufferMemoryBarriers = &to_host};
-    vkCmdPipelineBarrier2(h->cmd, &dep);
-    HOST_VK(vkEndCommandBuffer(h->cmd));
-    VkCommandBufferSubmitInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &ci};
-    HOST_VK(vkQueueSubmit2(h->queue, 1, &si, h->fence));
-    HOST_VK(vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX));
-    HOST_VK(vkResetFences(h->device, 1, &h->fence));
+    host_submit(h, h->buffer);
 }
 
 static inline void host_destroy_target(host *h)
@@ -399,8 +386,10 @@ static inline void host_buffer_waw(host *h, VkBuffer buffer)
     vkCmdPipelineBarrier2(h->cmd, &dep);
 }
 
-/* The host's end of the frame: its buffer made visible to its reads after the fence (RAW), submitted, waited. */
-static inline void host_submit(host *h, VkBuffer readback)
+/* The host's end of the frame: its buffer made visible to its reads after the fence (RAW), submitted waiting for
+ * `wait` >= `value` at `stage` (none when VK_NULL_HANDLE), waited. */
+static inline void host_submit_waiting(host *h, VkBuffer readback, VkSemaphore wait, uint64_t value,
+                                       VkPipelineStageFlags2 stage)
 {
     VkBufferMemoryBarrier2 to_host = {.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
                                       .srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT,
@@ -413,12 +402,18 @@ static inline void host_submit(host *h, VkBuffer readback)
                             .pBufferMemoryBarriers = &to_host};
     vkCmdPipelineBarrier2(h->cmd, &dep);
     HOST_VK(vkEndCommandBuffer(h->cmd));
+    VkSemaphoreSubmitInfo w = {.sType = VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, .semaphore = wait, .value = value,
+                               .stageMask = stage};
     VkCommandBufferSubmitInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &ci};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = wait ? 1 : 0,
+                        .pWaitSemaphoreInfos = &w, .commandBufferInfoCount = 1, .pCommandBufferInfos = &ci};
     HOST_VK(vkQueueSubmit2(h->queue, 1, &si, h->fence));
     HOST_VK(vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX));
     HOST_VK(vkResetFences(h->device, 1, &h->fence));
 }
+
+/* The host's end of the frame without a semaphore to wait for. */
+static inline void host_submit(host *h, VkBuffer readback) { host_submit_waiting(h, readback, VK_NULL_HANDLE, 0, 0); }
 
 static inline void host_luts_destroy(host *h, host_luts *l)
 {
