@@ -62,19 +62,25 @@ static bool scaled_rows(const options *o)
     return o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT;
 }
 
-/* A band's EXR rows: as read back, or in output units (the HDR scale divided out) through `band_f32`. */
+/* A band's EXR rows: as read back, or in output units (the HDR scale divided out) through `band_f32` (one band's
+ * floats, made once: a 16384-wide band is 128 MB, whose pages a fresh malloc per band would fault in again). */
 static int write_exr_rows(const options *o, io_exr_stream *s, const uint16_t *half, int rows, float **band_f32,
-                          char *err, size_t err_size)
+                          size_t *band_cap, char *err, size_t err_size)
 {
     if (!scaled_rows(o)) return io_exr_stream_rows(s, half, rows, err, err_size);
     bool unused;
-    free(*band_f32);
-    *band_f32 = light_exr_pixels(o, half, (size_t)rows * (size_t)o->width, &unused);
+    size_t pixels = (size_t)rows * (size_t)o->width;
+    if (pixels > *band_cap) {
+        free(*band_f32);
+        *band_f32 = malloc(pixels * 4 * sizeof(float));
+        *band_cap = *band_f32 ? pixels : 0;
+    }
     if (!*band_f32) {
         snprintf(err, err_size, "out of memory for an EXR band");
         io_exr_stream_abort(s);
         return -1;
     }
+    light_exr_pixels_into(o, half, pixels, *band_f32, &unused);
     return io_exr_stream_rows_f32(s, *band_f32, rows, err, err_size);
 }
 
@@ -125,6 +131,7 @@ typedef struct bands_state {
     progress *prog;
     int stopped_line;   /* a stop ended the line of a terminal's progress */
     float *band_f32;    /* a band in output units (write_exr_rows), reused; only the writing thread touches it */
+    size_t band_cap;    /* its size in pixels */
     int pad;            /* rows rendered above (and below) each band: the tone map's horizon taps (band_pad) */
 } bands_state;
 
@@ -146,7 +153,8 @@ static int write_band(bands_state *st, const frame_ring_pixels *rendered, int y,
     const frame_ring_pixels *px = &own;
     for (int i = 0; i < st->o->output_count; ++i) {
         output *out = &st->outs[i];
-        int rc = out->exr ? write_exr_rows(st->o, out->exr_stream, px->linear, rows, &st->band_f32, err, sizeof err)
+        int rc = out->exr ? write_exr_rows(st->o, out->exr_stream, px->linear, rows, &st->band_f32, &st->band_cap, err,
+                                           sizeof err)
                           : io_png_stream_rows(out->png_stream, px->display, rows, err, sizeof err);
         if (rc != 0) {
             *out = (output){0};   /* the stream aborted itself */
@@ -191,7 +199,8 @@ static int consume_band(void *user, const frame_ring_pixels *px, void *job)
 static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band, int slots)
 {
     frame_ring ring;
-    if (frame_ring_create(&ring, r, slots, consume_band, st, st->o->trace_barriers ? stdout : NULL)) return 1;
+    /* One consumer: a band's rows go into streams that take them in order. */
+    if (frame_ring_create(&ring, r, slots, 1, consume_band, NULL, st, st->o->trace_barriers ? stdout : NULL)) return 1;
     int height = st->o->height, status = 0;
     for (int y = 0; y < height && status == 0 && !stop_requested(); y += band) {
         band_job *j = malloc(sizeof *j);
@@ -275,7 +284,7 @@ int tiles_render(const options *o, gpu_context *ctx)
     snprintf(what, sizeof what, "rendering %s (%dx%d, %d bands)", o->output_count ? o->outputs[0] : "", width, height, bands);
     progress prog;
     progress_begin(&prog, stderr, o->quiet || bands < 2, what, height);
-    bands_state st = {o, outs, &prog, 0, NULL, pad};
+    bands_state st = {o, outs, &prog, 0, NULL, 0, pad};
     if (light_auto_exposure_wanted(o)) view.exposure_ev = tiles_auto_exposure(&st, &r, &view, band, height);
     int status = slots >= 2 ? bands_ring(&st, &r, &view, band, slots) : bands_serial(&st, &r, &view, band);
     char err[512];
