@@ -6,6 +6,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/runs/frame_ring.h"
+#include "app/runs/stage_times.h"
 #include "io/encode_settings.h"
 #include <stdlib.h>
 #include <string.h>
@@ -60,8 +61,10 @@ static void *consumer(void *arg)
             /* GPU -> host: the frame's copies wrote the slot's buffers and its last barrier made them available to
              * HOST_READ; the fence says the GPU got there. Without the wait the host reads the buffer before (or
              * while) the copy writes it: RAW. On non-coherent memory, the invalidate makes the writes visible. */
+            stage_mark t0 = stage_mark_now();
             if (ring_wait(ring, "ring.gpu_done", frame, s, "waiter=consumer on=fence hazard=RAW (copy -> host read)"))
                 VK_CHECK(vkWaitForFences(ring->r->ctx->device, 1, &slot->fence, VK_TRUE, UINT64_MAX));
+            stage_add_since(STAGE_GPU_WAIT, t0);
             gpu_buffer_invalidate(ring->r->ctx, &slot->linear);
             gpu_buffer_invalidate(ring->r->ctx, &slot->display);
             if (ring->delay_ms > 0) {
@@ -150,12 +153,14 @@ int frame_ring_submit(frame_ring *ring, const frame_desc *f, void *job)
     /* Host -> GPU: the consumer reads the slot's buffers of frame `frame - count`; this frame's copies overwrite
      * them (WAR), and re-recording frees the command buffer and resets the fence that frame used. Wait until the
      * consumer released the slot (it waited for that frame's fence first, so the GPU is done with it too). */
+    stage_mark t0 = stage_mark_now();
     pthread_mutex_lock(&ring->lock);
     if (frame >= ring->count &&
         ring_wait(ring, "ring.slot_free", frame, s, "waiter=producer on=consumer hazard=WAR (host read -> copy)"))
         while (!ring->status && frame - ring->consumed >= ring->count) pthread_cond_wait(&ring->changed, &ring->lock);
     int status = ring->status;
     pthread_mutex_unlock(&ring->lock);
+    stage_add_since(STAGE_SLOT_WAIT, t0);
     if (status) {
         free(job);
         return status;
@@ -200,8 +205,11 @@ void frame_ring_drain(frame_ring *ring)
      * may rebuild); the host is about to rewrite it: WAR. Wait for all of them. */
     long frame = ring->submitted;
     if (ring_wait(ring, "ring.drain", frame, (int)(frame % ring->count),
-                  "waiter=producer on=fences hazard=WAR (uniform read -> host write)"))
+                  "waiter=producer on=fences hazard=WAR (uniform read -> host write)")) {
+        stage_mark t0 = stage_mark_now();
         wait_all(ring);
+        stage_add_since(STAGE_SLOT_WAIT, t0);
+    }
 }
 
 int frame_ring_settle(frame_ring *ring)

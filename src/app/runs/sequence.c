@@ -8,6 +8,7 @@
 #include "app/cli/options_sequence.h"
 #include "app/quality/quality.h"
 #include "app/runs/sequence_resume.h"
+#include "app/runs/stage_times.h"
 #include "app/runs/stop.h"
 #include "io/atomic_file.h"
 #include "io/encode_settings.h"
@@ -134,17 +135,25 @@ static int write_outputs(const options *o, const frame_ring_pixels *px, int fram
             if (o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT) {
                 /* Photometric or --exr-type float: output units as floats (app/scene/light.h). */
                 bool store_float = false;
+                stage_mark t0 = stage_mark_now();
                 float *scaled = light_exr_pixels(o, px->linear, (size_t)o->width * (size_t)o->height,
                                                  &store_float);
+                stage_mark t1 = stage_mark_now();
+                stage_add_since(STAGE_CONVERT, t0);
                 rc = scaled ? io_write_exr_rgba_f32(path, o->width, o->height, scaled, store_float, &h.meta, err, sizeof err)
                             : (snprintf(err, sizeof err, "%s: out of memory for the EXR's pixels", path), 1);
+                stage_add_since(STAGE_WRITE, t1);
                 free(scaled);
             } else {
+                stage_mark t0 = stage_mark_now();
                 rc = io_write_exr_meta(path, o->width, o->height, &layer, 1, &h.meta, err, sizeof err);
+                stage_add_since(STAGE_WRITE, t0);
             }
             exr_header_free(&h);
         } else {
+            stage_mark t0 = stage_mark_now();
             rc = io_write_png(path, o->width, o->height, px->display, 1, err, sizeof err);
+            stage_add_since(STAGE_WRITE, t0);
         }
         if (rc != 0) {
             if (!stop_requested()) fprintf(stderr, "vksky: %s\n", err);   /* else stop_status (app/runs/stop.h) says why */
@@ -285,10 +294,12 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
     if (consumers > 1 && threads > 1 && share < 2) share = 2;   /* a PNG's blocks need > 1 (png_parallel.h) */
     consumer_state state = {.base = base, .ring = &ring, .share = share};
     if (frame_ring_create(&ring, r, slots, consumers, consume_frame, retire_frame, &state, trace)) return 1;
+    stage_begin();
     int lut_computations = 0, status = 0;
     render_scene last;
     bool have_last = false;
     for (int i = base->frame_first; i <= base->frame_last && !stop_requested() && status == 0; ++i) {
+        stage_mark produce_start = stage_mark_now();
         frame_job *j = calloc(1, sizeof *j);
         if (!j || sequence_frame_options(base, i, &j->f)) {
             free(j);
@@ -327,9 +338,12 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
         j->f.view.auto_exposure = light_auto_exposure_wanted(&j->f);   /* metered on the GPU, as the serial loop */
         frame_desc desc = {.view = &j->f.view};
         status = frame_ring_submit(&ring, &desc, j);
+        stage_add_since(STAGE_PRODUCE, produce_start);
     }
     int consumed = frame_ring_finish(&ring);
     if (status == 0) status = consumed;
+    if (base->timings && status == 0)
+        stage_report(stderr, "sequence", state.done, "frame", ring.consumers, share ? share : threads);
     if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
     if (status == 0) summary_line(base, state.done, state.skipped, lut_computations);
     return status;
