@@ -41,7 +41,7 @@ exrs() { files "$1" | grep '\.exr$'; }
 [ "$(exrs serial)" = "$(exrs serial4)" ] || fail "serial: EXRs differ between --threads 1 and 4"
 for spec in "k1t4:1:4" "k2t4:2:4" "k3t16:3:16" "k2t16:2:16" "auto16::16" "k3t1:3:1"; do
     IFS=: read -r name k t <<<"$spec"
-    envs=(VKSKY_RING_DELAY_MS=40)
+    envs=(VKSKY_RING_DELAY_MS=60:0)   # odd frames finish first: the order is the gate's and the retire's
     [ -n "$k" ] && envs+=(VKSKY_ENCODE_FRAMES="$k")
     run "$name" "${envs[@]}" -- "${SEQ[@]}" --threads "$t" --timings || fail "$name exited $?"
     grep -qi validation "$work/$name/stderr" && fail "$name: $(grep -m1 -i validation "$work/$name/stderr")"
@@ -56,9 +56,11 @@ done
 sizes=$(cd "$work/serial" && stat -c %s f00.exr f06.exr)
 [ "$(echo "$sizes" | sort -n | head -1)" != "$(echo "$sizes" | sort -n | tail -1)" ] || fail "frames 0 and 6 alike"
 
-# SIGINT with three frames at once (each slowed down): the first frames stay, whole; no gap, no temporary.
+# SIGINT with three frames at once, even frames slowed down (VKSKY_RING_DELAY_MS=EVEN:ODD) so that frame N+1 is
+# encoded before frame N: without the commit gate it would be renamed first, and a stop in between (about half the
+# time) would leave a gap. The first frames stay, whole; no gap, no temporary.
 mkdir -p "$work/s"
-(cd "$work/s" && VKSKY_ENCODE_FRAMES=3 VKSKY_RING_DELAY_MS=150 exec "$VKSKY" --width 64 --height 64 --quality low \
+(cd "$work/s" && VKSKY_ENCODE_FRAMES=3 VKSKY_RING_DELAY_MS=300:0 exec "$VKSKY" --width 64 --height 64 --quality low \
     --frame-count 1000 --animate sun-elevation=0:40 --threads 6 --render "f_%04d.exr" >out 2>err) &
 pid=$!
 for _ in $(seq 600); do

@@ -67,8 +67,9 @@ static void *consumer(void *arg)
             stage_add_since(STAGE_GPU_WAIT, t0);
             gpu_buffer_invalidate(ring->r->ctx, &slot->linear);
             gpu_buffer_invalidate(ring->r->ctx, &slot->display);
-            if (ring->delay_ms > 0) {
-                struct timespec ts = {ring->delay_ms / 1000, (long)(ring->delay_ms % 1000) * 1000000L};
+            int delay = frame % 2 ? ring->delay_odd_ms : ring->delay_ms;
+            if (delay > 0) {
+                struct timespec ts = {delay / 1000, (long)(delay % 1000) * 1000000L};
                 nanosleep(&ts, NULL);
             }
             frame_ring_pixels px = {slot->linear.mapped, slot->display.mapped};
@@ -116,6 +117,9 @@ int frame_ring_create(frame_ring *ring, sky_renderer *r, int slots, int consumer
     ring->drop = drop && *drop ? drop : NULL;
     const char *delay = getenv("VKSKY_RING_DELAY_MS");
     ring->delay_ms = delay ? atoi(delay) : 0;
+    /* "EVEN:ODD": even and odd frames dawdle differently, so frames encoded at once finish out of order. */
+    const char *odd = delay ? strchr(delay, ':') : NULL;
+    ring->delay_odd_ms = odd ? atoi(odd + 1) : ring->delay_ms;
     const gpu_context *ctx = r->ctx;
     for (int s = 0; s < slots; ++s) {
         frame_ring_slot *slot = &ring->slots[s];

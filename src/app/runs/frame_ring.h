@@ -61,6 +61,7 @@ typedef struct frame_ring {
     FILE *trace;                 /* --trace-barriers: one "sync" line per wait */
     const char *drop;            /* VKSKY_DROP_BARRIER: a wait to leave out (tests) */
     int delay_ms;                /* VKSKY_RING_DELAY_MS: the consumer dawdles (widens races for the drop tests) */
+    int delay_odd_ms;            /* ... for odd frames ("EVEN:ODD"; else the same) */
     pthread_t threads[FRAME_RING_MAX_CONSUMERS];
     int consumers, started;      /* consumer threads wanted / running */
     pthread_mutex_t lock;
