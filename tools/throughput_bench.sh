@@ -7,7 +7,9 @@
 #
 # Files go to a scratch directory (removed at the end); one line per measurement on stdout:
 #   case <name> frames <n> wall_s <s> frames_per_s <f> bytes_per_frame <b> [peak_mb <m>]
-# SEQ_FRAMES (default 120) sets the sequences' length; QUICK=1 runs only the headline cases. PNG cases (issue 27):
+# SEQ_FRAMES (default 120) sets the sequences' length; QUICK=1 runs only the headline cases; GOALS=1 only the issue 27
+# goal cases with their stage breakdowns (--timings) and the 720p compression table (about 3 minutes on the H100
+# host; see "Goals" at the end). PNG cases (issue 27):
 # sequences and a 16384x8192 equirect with the default threads against --threads 1, and build/tests/test_png_parallel
 # bench (encode alone, medians by thread count) when it is found beside VKSKY.
 set -u
@@ -18,7 +20,8 @@ trap 'rm -rf "$scratch"' EXIT
 N=${SEQ_FRAMES:-120}
 ANIM=(--animate sun-elevation=-6:30 --quiet)
 
-# measure NAME FRAMES BIN ARGS...: wall time of the whole run (start-up included), files' bytes, peak RSS.
+# measure NAME FRAMES BIN ARGS...: wall time of the whole run (start-up included), files' bytes, peak RSS; with
+# --timings among ARGS, the stage table (app/runs/stage_times.c) follows, each line prefixed "  NAME: stage".
 measure() {
     local name=$1 frames=$2 bin=$3; shift 3
     rm -rf "$scratch/o"; mkdir -p "$scratch/o"
@@ -37,6 +40,7 @@ measure() {
         s = b - a; printf "case %s frames %d wall_s %.3f frames_per_s %.2f bytes_per_frame %d peak_mb %.0f\n",
         n, f, s, f / s, by / f, r / 1024 }'
     grep '^sequence ' "$scratch/stdout" | sed "s/^/  $name: /"
+    grep -E '^vksky: timings of the (sequence|banded)|^  [a-z.(]' "$scratch/stderr" | sed "s/^/  $name: stage /"
 }
 
 seq_case() {   # seq_case NAME BIN W H EXT FRAMES [ARGS...]
@@ -49,6 +53,50 @@ nproc_all=$(nproc)
 echo "host cores $nproc_all"
 "$V" --list-devices | head -3
 "$V" --width 16 --height 16 --render "$scratch/warm.exr" >/dev/null 2>&1   # driver and shader caches warm
+
+# Goals (issue 27, helper 27e): frames encoding at once (the ring's consumer threads: VKSKY_ENCODE_FRAMES, default
+# one per 4 cores, at most 3) against one frame at a time, with where the time goes (--timings: wall and CPU ms per
+# stage, summed over threads); the 720p compression table (size vs time, float EXR); the 16384x8192 map's stages.
+# First a validated check: several frames at once write the serial loop's bytes on this driver.
+if [ "${GOALS:-0}" = 1 ]; then
+    G=${SEQ_FRAMES:-120}
+    mkdir -p "$scratch/c1" "$scratch/c3"
+    CHK=(--width 640 --height 360 --animate sun-elevation=-6:30 --frame-count 12 --quiet --validate)
+    (cd "$scratch/c1" && VKSKY_READBACK_SLOTS=1 "$V" "${CHK[@]}" --threads 1 --render f%02d.exr 2>err)
+    r1=$?
+    (cd "$scratch/c3" && VKSKY_ENCODE_FRAMES=3 "$V" "${CHK[@]}" --render f%02d.exr 2>err)
+    r3=$?
+    same=no
+    [ "$(cd "$scratch/c1" && md5sum f*.exr)" = "$(cd "$scratch/c3" && md5sum f*.exr)" ] && same=yes
+    msgs=$(cat "$scratch/c1/err" "$scratch/c3/err" | grep -ci validation)
+    echo "check encode_frames serial_rc $r1 three_at_once_rc $r3 identical $same validation_lines $msgs"
+    for k in 1 2 3; do
+        VKSKY_ENCODE_FRAMES=$k seq_case "720p_exr_frames$k" "$V" 1280 720 exr "$G" --timings
+    done
+    seq_case 720p_exr_default "$V" 1280 720 exr "$G" --bench 10
+    seq_case 720p_exr_zip4 "$V" 1280 720 exr "$G" --exr-compression zip:4
+    seq_case 720p_exr_relative_half "$V" 1280 720 exr "$G" --units relative
+    for k in 1 3; do
+        VKSKY_ENCODE_FRAMES=$k seq_case "1080p_exr_frames$k" "$V" 1920 1080 exr "$G" --timings
+    done
+    seq_case 1080p_exr_zip4 "$V" 1920 1080 exr "$G" --exr-compression zip:4
+    seq_case 720p_png "$V" 1280 720 png "$G" --timings
+    # --threads 1: every stage on the calling thread, so the CPU column is the frame's whole cost per stage.
+    seq_case 720p_exr_threads1 "$V" 1280 720 exr 24 --threads 1 --timings
+    for c in zip zip:1 zip:4 zips piz pxr24 rle b44 none dwaa; do
+        seq_case "720p_exr_$c" "$V" 1280 720 exr 60 --exr-compression "$c"
+        seq_case "720p_exr_${c}_threads1" "$V" 1280 720 exr 12 --exr-compression "$c" --threads 1 --timings
+    done
+    for w in 4096 8192 16384; do
+        measure "equirect_$w" 1 "$V" --projection equirect --width "$w" --render "$scratch/o/e.exr" --quiet --timings
+    done
+    measure equirect_16384_relative 1 "$V" --projection equirect --width 16384 --render "$scratch/o/e.exr" --quiet \
+        --units relative --timings
+    measure equirect_4096_threads1 1 "$V" --projection equirect --width 4096 --render "$scratch/o/e.exr" --quiet \
+        --threads 1 --timings
+    for i in 1 2 3; do measure "first_1080p_exr_$i" 1 "$V" --width 1920 --height 1080 --render "$scratch/o/a.exr"; done
+    exit 0
+fi
 
 # Headline: 720p and 1080p EXR sequences; the baseline binary beside them when given.
 [ -n "$BASE" ] && seq_case base_720p_exr "$BASE" 1280 720 exr 60

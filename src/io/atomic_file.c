@@ -130,6 +130,12 @@ int io_atomic_open(const char *path, char *tmp, size_t tmp_size, char *err, size
     return fd;
 }
 
+/* A thread's commit gate (io_atomic_set_commit_gate): NULL, or called before each rename on this thread. */
+static _Thread_local io_commit_gate_fn gate_fn;
+static _Thread_local void *gate_user;
+
+void io_atomic_set_commit_gate(io_commit_gate_fn fn, void *user) { gate_fn = fn, gate_user = user; }
+
 /* fsync + close `fd` (if >= 0) and rename tmp -> path. On failure unlinks tmp, sets err and returns -1.
    `fd` is always closed. */
 static int commit(int fd, const char *tmp, const char *path, char *err, size_t err_size)
@@ -155,6 +161,16 @@ static int commit(int fd, const char *tmp, const char *path, char *err, size_t e
             return -1;
         }
     }
+    /* Files written at once (a sequence's frames on several encoders) are renamed in the caller's order: the gate
+     * waits for this file's turn (the fsync above ran in parallel). A stop that came meanwhile drops this one. */
+    if (gate_fn) {
+        gate_fn(gate_user);
+        if (cancel_flag && *cancel_flag) {
+            unlink(tmp);
+            io_set_err(err, err_size, "cannot write '%s': interrupted", path);
+            return -1;
+        }
+    }
     if (rename(tmp, path) != 0) {
         int e = errno;
         unlink(tmp);
@@ -165,9 +181,9 @@ static int commit(int fd, const char *tmp, const char *path, char *err, size_t e
 }
 
 /* Wall time spent committing files so far (--timings: "write" apart from encoding). */
-static double commit_ms;
+static _Atomic long long commit_us;   /* several encoders may commit at once */
 
-double io_atomic_commit_ms(void) { return commit_ms; }
+double io_atomic_commit_ms(void) { return (double)commit_us * 1e-3; }
 
 static double now_ms(void)
 {
@@ -180,7 +196,7 @@ int io_atomic_commit(int fd, const char *tmp, const char *path, char *err, size_
 {
     double start = now_ms();
     int rc = commit(fd, tmp, path, err, err_size);
-    commit_ms += now_ms() - start;
+    commit_us += (long long)((now_ms() - start) * 1e3);
     return rc;
 }
 

@@ -33,6 +33,12 @@ void io_atomic_abort(int fd, const char *tmp);
    is about to rename into place: removes the temp file and fails with "interrupted". NULL (the default): never. */
 void io_atomic_set_cancel(const volatile sig_atomic_t *flag);
 
+/* A commit gate for this thread (NULL: none): io_atomic_commit calls fn(user) after the fsync and before the rename,
+   so that files encoded at once on several threads still appear in one order (a sequence's frames: a stop leaves
+   the first frames, never a gap); a stop that arrives while it waits abandons the file. */
+typedef void (*io_commit_gate_fn)(void *user);
+void io_atomic_set_commit_gate(io_commit_gate_fn fn, void *user);
+
 #ifdef __cplusplus
 }
 #endif

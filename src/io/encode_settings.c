@@ -16,7 +16,18 @@ static io_encode_settings settings = {.threads = 0, .exr_compression = EXR_COMPR
 void io_encode_settings_set(const io_encode_settings *s) { settings = *s; }
 io_encode_settings io_encode_settings_get(void) { return settings; }
 
+/* A thread's own share (io_encode_threads_local): 0, none. */
+static _Thread_local int local_threads;
+
+void io_encode_threads_local(int n) { local_threads = n > 0 ? n : 0; }
+
 int io_encode_threads(void)
+{
+    if (local_threads > 0) return local_threads;
+    return io_encode_threads_all();
+}
+
+int io_encode_threads_all(void)
 {
     if (settings.threads > 0) return settings.threads;
     /* The cores this process may run on (a cpuset or taskset narrows them), not the machine's. */

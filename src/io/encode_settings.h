@@ -12,8 +12,15 @@ typedef struct io_encode_settings {
 
 void io_encode_settings_set(const io_encode_settings *s);
 io_encode_settings io_encode_settings_get(void);
-/* The thread count in effect: settings' threads, or the cores available (sched_getaffinity), at least 1. */
+/* The thread count in effect for the calling thread: its own share (io_encode_threads_local), else
+ * io_encode_threads_all(). */
 int io_encode_threads(void);
+/* The process's: settings' threads, or the cores available (sched_getaffinity), at least 1. */
+int io_encode_threads_all(void);
+/* Several files encoded at once (a sequence's frames, app/runs/frame_ring.h) share the threads: each encoding
+ * thread sets its share here (0: the process's). The bytes do not depend on it: EXR chunks are compressed alone,
+ * and a PNG's blocks depend only on whether threads > 1 (png_parallel.h), which a share keeps. */
+void io_encode_threads_local(int n);
 /* The compression named `name` (zip, zips, piz, rle, none, pxr24, b44, b44a, dwaa, dwab): its exr_compression_t,
  * or -1 for any other name; zip and zips may carry a zlib level, "zip:1" .. "zip:9" (*zip_level; else 0). The
  * inverse, io_exr_compression_name: "?" for an unknown value. */

@@ -111,6 +111,7 @@ char *exr_header_command_line(int argc, char **argv)
             }
             if (!strncmp(argv[i], "--frame-range=", 14) || !strncmp(argv[i], "--threads=", 10)) continue;
             if (!strcmp(argv[i], "--skip-existing")) continue;   /* how a job resumed, not what the frame is */
+            if (!strcmp(argv[i], "--timings")) continue;   /* a report on stderr (issue 27), not the image */
             if (out) out[n] = ' ';
             ++n;
             n += quoted(argv[i], out ? out + n : NULL);

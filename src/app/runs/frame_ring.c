@@ -6,6 +6,8 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/runs/frame_ring.h"
+#include "app/runs/stage_times.h"
+#include "io/encode_settings.h"
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -25,14 +27,29 @@ static bool ring_wait(const frame_ring *ring, const char *name, long frame, int 
     return !(ring->drop && !strcmp(ring->drop, name));
 }
 
+/* Under the lock: frames whose consume returned, in submission order, are retired and their slots released. */
+static void advance(frame_ring *ring)
+{
+    while (ring->consumed < ring->claimed) {
+        frame_ring_slot *slot = &ring->slots[ring->consumed % ring->count];
+        if (slot->released != ring->consumed) break;   /* still being consumed */
+        if (slot->rc && !ring->status) ring->status = slot->rc;
+        if (!ring->status && slot->done_job && ring->retire) ring->retire(ring->user, slot->done_job);
+        free(slot->done_job);
+        slot->done_job = NULL;
+        ++ring->consumed;   /* the slot is free: the producer may record into it again */
+    }
+    pthread_cond_broadcast(&ring->changed);
+}
+
 static void *consumer(void *arg)
 {
     frame_ring *ring = arg;
     pthread_mutex_lock(&ring->lock);
     for (;;) {
-        while (ring->consumed == ring->submitted && !ring->closing) pthread_cond_wait(&ring->changed, &ring->lock);
-        if (ring->consumed == ring->submitted) break;   /* closing, and every frame consumed */
-        long frame = ring->consumed;
+        while (ring->claimed == ring->submitted && !ring->closing) pthread_cond_wait(&ring->changed, &ring->lock);
+        if (ring->claimed == ring->submitted) break;   /* closing, and every frame claimed */
+        long frame = ring->claimed++;
         int s = (int)(frame % ring->count);
         frame_ring_slot *slot = &ring->slots[s];
         void *job = slot->job;
@@ -44,39 +61,69 @@ static void *consumer(void *arg)
             /* GPU -> host: the frame's copies wrote the slot's buffers and its last barrier made them available to
              * HOST_READ; the fence says the GPU got there. Without the wait the host reads the buffer before (or
              * while) the copy writes it: RAW. On non-coherent memory, the invalidate makes the writes visible. */
+            stage_mark t0 = stage_mark_now();
             if (ring_wait(ring, "ring.gpu_done", frame, s, "waiter=consumer on=fence hazard=RAW (copy -> host read)"))
                 VK_CHECK(vkWaitForFences(ring->r->ctx->device, 1, &slot->fence, VK_TRUE, UINT64_MAX));
+            stage_add_since(STAGE_GPU_WAIT, t0);
             gpu_buffer_invalidate(ring->r->ctx, &slot->linear);
             gpu_buffer_invalidate(ring->r->ctx, &slot->display);
-            if (ring->delay_ms > 0) {
-                struct timespec ts = {ring->delay_ms / 1000, (long)(ring->delay_ms % 1000) * 1000000L};
+            int delay = frame % 2 ? ring->delay_odd_ms : ring->delay_ms;
+            if (delay > 0) {
+                struct timespec ts = {delay / 1000, (long)(delay % 1000) * 1000000L};
                 nanosleep(&ts, NULL);
             }
             frame_ring_pixels px = {slot->linear.mapped, slot->display.mapped};
             rc = ring->consume(ring->user, &px, job);
         }
-        free(job);
         pthread_mutex_lock(&ring->lock);
-        if (rc && !ring->status) ring->status = rc;
-        ring->consumed = frame + 1;   /* the slot is free: the producer may record into it again */
-        pthread_cond_broadcast(&ring->changed);
+        slot->rc = rc, slot->released = frame, slot->done_job = job;
+        advance(ring);
     }
     pthread_mutex_unlock(&ring->lock);
     return NULL;
 }
 
-int frame_ring_create(frame_ring *ring, sky_renderer *r, int slots, frame_ring_consume_fn consume, void *user,
-                      FILE *trace)
+int frame_ring_consumers_wanted(long pixels)
 {
-    *ring = (frame_ring){.r = r, .count = slots, .consume = consume, .user = user, .trace = trace,
-                         .own_linear = r->readback_linear, .own_display = r->readback_display};
+    const char *env = getenv("VKSKY_ENCODE_FRAMES");
+    int n = env && *env ? atoi(env) : io_encode_threads_all() / 4;
+    if (!(env && *env)) {
+        /* In flight per frame: a slot (12 bytes a pixel) and the EXR's float copy (16): ~1 GiB in all at most. */
+        long cap = pixels > 0 ? (1L << 30) / (pixels * 28) : 1;
+        if (n > cap) n = (int)cap;
+    }
+    return n < 1 ? 1 : n > FRAME_RING_MAX_CONSUMERS ? FRAME_RING_MAX_CONSUMERS : n;
+}
+
+int frame_ring_wait_turn(frame_ring *ring, long frame)
+{
+    pthread_mutex_lock(&ring->lock);
+    while (!ring->status && ring->consumed < frame) pthread_cond_wait(&ring->changed, &ring->lock);
+    int status = ring->status;
+    pthread_mutex_unlock(&ring->lock);
+    return status;
+}
+
+int frame_ring_create(frame_ring *ring, sky_renderer *r, int slots, int consumers, frame_ring_consume_fn consume,
+                      frame_ring_retire_fn retire, void *user, FILE *trace)
+{
+    if (consumers < 1) consumers = 1;
+    if (consumers > FRAME_RING_MAX_CONSUMERS) consumers = FRAME_RING_MAX_CONSUMERS;
+    if (consumers > slots - 1) consumers = slots - 1 < 1 ? 1 : slots - 1;
+    *ring = (frame_ring){.r = r, .count = slots, .consumers = consumers, .consume = consume, .retire = retire,
+                         .user = user, .trace = trace, .own_linear = r->readback_linear,
+                         .own_display = r->readback_display};
     const char *drop = getenv("VKSKY_DROP_BARRIER");
     ring->drop = drop && *drop ? drop : NULL;
     const char *delay = getenv("VKSKY_RING_DELAY_MS");
     ring->delay_ms = delay ? atoi(delay) : 0;
+    /* "EVEN:ODD": even and odd frames dawdle differently, so frames encoded at once finish out of order. */
+    const char *odd = delay ? strchr(delay, ':') : NULL;
+    ring->delay_odd_ms = odd ? atoi(odd + 1) : ring->delay_ms;
     const gpu_context *ctx = r->ctx;
     for (int s = 0; s < slots; ++s) {
         frame_ring_slot *slot = &ring->slots[s];
+        slot->released = -1;
         /* Slot 0 is the renderer's own pair of buffers; the others are the same sizes. */
         if (s == 0) {
             slot->linear = r->readback_linear, slot->display = r->readback_display;
@@ -92,13 +139,13 @@ int frame_ring_create(frame_ring *ring, sky_renderer *r, int slots, frame_ring_c
     }
     pthread_mutex_init(&ring->lock, NULL);
     pthread_cond_init(&ring->changed, NULL);
-    if (pthread_create(&ring->thread, NULL, consumer, ring) != 0) {
+    for (; ring->started < consumers; ++ring->started)
+        if (pthread_create(&ring->threads[ring->started], NULL, consumer, ring) != 0) break;
+    if (ring->started == 0) {
         fprintf(stderr, "vksky: cannot start the readback thread\n");
-        ring->started = false;
         frame_ring_finish(ring);
         return 1;
     }
-    ring->started = true;
     return 0;
 }
 
@@ -110,12 +157,14 @@ int frame_ring_submit(frame_ring *ring, const frame_desc *f, void *job)
     /* Host -> GPU: the consumer reads the slot's buffers of frame `frame - count`; this frame's copies overwrite
      * them (WAR), and re-recording frees the command buffer and resets the fence that frame used. Wait until the
      * consumer released the slot (it waited for that frame's fence first, so the GPU is done with it too). */
+    stage_mark t0 = stage_mark_now();
     pthread_mutex_lock(&ring->lock);
     if (frame >= ring->count &&
         ring_wait(ring, "ring.slot_free", frame, s, "waiter=producer on=consumer hazard=WAR (host read -> copy)"))
         while (!ring->status && frame - ring->consumed >= ring->count) pthread_cond_wait(&ring->changed, &ring->lock);
     int status = ring->status;
     pthread_mutex_unlock(&ring->lock);
+    stage_add_since(STAGE_SLOT_WAIT, t0);
     if (status) {
         free(job);
         return status;
@@ -160,8 +209,11 @@ void frame_ring_drain(frame_ring *ring)
      * may rebuild); the host is about to rewrite it: WAR. Wait for all of them. */
     long frame = ring->submitted;
     if (ring_wait(ring, "ring.drain", frame, (int)(frame % ring->count),
-                  "waiter=producer on=fences hazard=WAR (uniform read -> host write)"))
+                  "waiter=producer on=fences hazard=WAR (uniform read -> host write)")) {
+        stage_mark t0 = stage_mark_now();
         wait_all(ring);
+        stage_add_since(STAGE_SLOT_WAIT, t0);
+    }
 }
 
 int frame_ring_settle(frame_ring *ring)
@@ -181,7 +233,7 @@ int frame_ring_finish(frame_ring *ring)
         ring->closing = true;
         pthread_cond_broadcast(&ring->changed);
         pthread_mutex_unlock(&ring->lock);
-        pthread_join(ring->thread, NULL);
+        for (int t = 0; t < ring->started; ++t) pthread_join(ring->threads[t], NULL);
     }
     wait_all(ring);   /* frames the consumer skipped after a failure or a stop may still run */
     const gpu_context *ctx = ring->r->ctx;
@@ -190,6 +242,7 @@ int frame_ring_finish(frame_ring *ring)
         if (slot->cmd) vkFreeCommandBuffers(ctx->device, ctx->command_pool, 1, &slot->cmd);
         if (slot->fence) vkDestroyFence(ctx->device, slot->fence, NULL);
         free(slot->job);
+        free(slot->done_job);
         if (s > 0) {
             gpu_buffer_destroy(ctx, &slot->linear);
             gpu_buffer_destroy(ctx, &slot->display);

@@ -8,8 +8,10 @@
 #include "app/cli/options_sequence.h"
 #include "app/quality/quality.h"
 #include "app/runs/sequence_resume.h"
+#include "app/runs/stage_times.h"
 #include "app/runs/stop.h"
 #include "io/atomic_file.h"
+#include "io/encode_settings.h"
 #include "io/exr_write.h"
 #include "io/png_io.h"
 #include <limits.h>
@@ -111,14 +113,16 @@ static bool is_exr(const char *path)
 }
 
 /* The frame's files; EXRs with the header that says how they were made (exr_header.h). */
-static int write_outputs(const options *o, const frame_ring_pixels *px, int frame, bool sequence, const char **first_path)
+/* `first` (PATH_MAX bytes) gets the first output's path (the progress line's). Safe on several threads at once (frames
+ * encoded together, frame_ring.h). */
+static int write_outputs(const options *o, const frame_ring_pixels *px, int frame, bool sequence, char *first)
 {
-    static char first[PATH_MAX];
     char err[512];
+    first[0] = '\0';
     for (int i = 0; i < o->output_count; ++i) {
         char path[PATH_MAX];
         if (!frame_path(o->outputs[i], frame, path, sizeof path)) return 1;   /* checked before */
-        if (i == 0) snprintf(first, sizeof first, "%s", path), *first_path = first;
+        if (i == 0) snprintf(first, PATH_MAX, "%s", path);
         int rc;
         if (stop_requested()) return 1;   /* the graceful stop: no further output (one being written is dropped) */
         if (is_exr(path)) {
@@ -131,17 +135,25 @@ static int write_outputs(const options *o, const frame_ring_pixels *px, int fram
             if (o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT) {
                 /* Photometric or --exr-type float: output units as floats (app/scene/light.h). */
                 bool store_float = false;
+                stage_mark t0 = stage_mark_now();
                 float *scaled = light_exr_pixels(o, px->linear, (size_t)o->width * (size_t)o->height,
                                                  &store_float);
+                stage_mark t1 = stage_mark_now();
+                stage_add_since(STAGE_CONVERT, t0);
                 rc = scaled ? io_write_exr_rgba_f32(path, o->width, o->height, scaled, store_float, &h.meta, err, sizeof err)
                             : (snprintf(err, sizeof err, "%s: out of memory for the EXR's pixels", path), 1);
+                stage_add_since(STAGE_WRITE, t1);
                 free(scaled);
             } else {
+                stage_mark t0 = stage_mark_now();
                 rc = io_write_exr_meta(path, o->width, o->height, &layer, 1, &h.meta, err, sizeof err);
+                stage_add_since(STAGE_WRITE, t0);
             }
             exr_header_free(&h);
         } else {
+            stage_mark t0 = stage_mark_now();
             rc = io_write_png(path, o->width, o->height, px->display, 1, err, sizeof err);
+            stage_add_since(STAGE_WRITE, t0);
         }
         if (rc != 0) {
             if (!stop_requested()) fprintf(stderr, "vksky: %s\n", err);   /* else stop_status (app/runs/stop.h) says why */
@@ -153,8 +165,8 @@ static int write_outputs(const options *o, const frame_ring_pixels *px, int fram
 
 int sequence_write_frame(const options *o, const frame_ring_pixels *px, int frame, bool sequence)
 {
-    const char *path = "";
-    return write_outputs(o, px, frame, sequence, &path);
+    char path[PATH_MAX];
+    return write_outputs(o, px, frame, sequence, path);
 }
 
 /* A frame's progress line (not with --quiet). */
@@ -204,9 +216,9 @@ static int sequence_render_serial(const options *base, sky_renderer *r, sequence
                             "on the GPU)\n", m.ev100, m.log_average, f.view.ev100 ? "cd/m2" : "(relative units)",
                     m.count);
         }
-        const char *path = "";
+        char path[PATH_MAX];
         frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
-        if (write_outputs(&f, &px, i, sequence, &path) != 0) return 1;
+        if (write_outputs(&f, &px, i, sequence, path) != 0) return 1;
         ++done;
         if (sequence) frame_line(base, i, done + skipped, path, luts);
     }
@@ -219,38 +231,75 @@ static int sequence_render_serial(const options *base, sky_renderer *r, sequence
 typedef struct frame_job {
     options f;
     int frame;
+    long seq;              /* its place among the frames submitted to the ring */
     bool luts;
+    char path[PATH_MAX];   /* its first file (the progress line's) */
 } frame_job;
 
 typedef struct consumer_state {
     const options *base;
-    int done;      /* frames written by the consumer */
-    int skipped;   /* frames kept (--skip-existing): counted by the producer while the consumer is idle */
+    frame_ring *ring;
+    int share;     /* encode threads of each frame when several are encoded at once (io_encode_threads_local) */
+    int done;      /* frames written (retired, in order) */
+    int skipped;   /* frames kept (--skip-existing): counted by the producer while the consumers are idle */
 } consumer_state;
 
-/* frame_ring_consume_fn: a frame's files and its line, on the ring's thread, in frame order. */
+typedef struct commit_turn {
+    frame_ring *ring;
+    long seq;
+} commit_turn;
+
+/* io_commit_gate_fn: a frame's files are renamed into place only after every earlier frame's, so frames encoded at
+ * once still appear in order (a stop keeps the first frames, never a gap; --skip-existing resumes after them). */
+static void commit_gate(void *user)
+{
+    const commit_turn *t = user;
+    frame_ring_wait_turn(t->ring, t->seq);
+}
+
+/* frame_ring_consume_fn: a frame's files, on one of the ring's threads (several frames at once with
+ * VKSKY_ENCODE_FRAMES or many cores: frame_ring_consumers_wanted). */
 static int consume_frame(void *user, const frame_ring_pixels *px, void *job)
 {
     consumer_state *c = user;
+    frame_job *j = job;
+    commit_turn turn = {c->ring, j->seq};
+    io_encode_threads_local(c->share);
+    io_atomic_set_commit_gate(c->ring->consumers > 1 ? commit_gate : NULL, &turn);
+    int rc = stop_requested() || write_outputs(&j->f, px, j->frame, true, j->path) != 0;
+    io_atomic_set_commit_gate(NULL, NULL);
+    return rc;
+}
+
+/* frame_ring_retire_fn: the frame's line, in frame order. */
+static void retire_frame(void *user, void *job)
+{
+    consumer_state *c = user;
     const frame_job *j = job;
-    const char *path = "";
-    if (stop_requested() || write_outputs(&j->f, px, j->frame, true, &path) != 0) return 1;
     ++c->done;
-    frame_line(c->base, j->frame, c->done + c->skipped, path, j->luts);
-    return 0;
+    frame_line(c->base, j->frame, c->done + c->skipped, j->path, j->luts);
 }
 
 /* The pipelined loop (frame_ring.h): frame N+1 renders while frame N is written. Same frames, same files, same
  * order and lines as the serial loop. */
 static int sequence_render_ring(const options *base, sky_renderer *r, int slots, FILE *trace)
 {
-    consumer_state state = {.base = base};
     frame_ring ring;
-    if (frame_ring_create(&ring, r, slots, consume_frame, &state, trace)) return 1;
+    /* Several frames encode at once where there are cores to spare (frame_ring_consumers_wanted), each on a share of
+     * the encode threads: what stays serial per frame (its float conversion, header, fsync) then overlaps. */
+    int consumers = frame_ring_consumers_wanted((long)base->width * base->height);
+    if (consumers > 1 && slots < consumers + 1) slots = consumers + 1;
+    int threads = io_encode_threads_all();
+    int share = consumers > 1 ? threads / consumers : 0;
+    if (consumers > 1 && threads > 1 && share < 2) share = 2;   /* a PNG's blocks need > 1 (png_parallel.h) */
+    consumer_state state = {.base = base, .ring = &ring, .share = share};
+    if (frame_ring_create(&ring, r, slots, consumers, consume_frame, retire_frame, &state, trace)) return 1;
+    stage_begin();
     int lut_computations = 0, status = 0;
     render_scene last;
     bool have_last = false;
     for (int i = base->frame_first; i <= base->frame_last && !stop_requested() && status == 0; ++i) {
+        stage_mark produce_start = stage_mark_now();
         frame_job *j = calloc(1, sizeof *j);
         if (!j || sequence_frame_options(base, i, &j->f)) {
             free(j);
@@ -282,16 +331,19 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
             render_scene_set(r, &in);
             last = in, have_last = true;
         }
-        j->frame = i;
+        j->frame = i, j->seq = ring.submitted;
         j->luts = sky_renderer_luts_dirty(r);
         lut_computations += j->luts;
         /* The view lives in push constants, recorded into this frame's command buffer: j->f outlives the record. */
         j->f.view.auto_exposure = light_auto_exposure_wanted(&j->f);   /* metered on the GPU, as the serial loop */
         frame_desc desc = {.view = &j->f.view};
         status = frame_ring_submit(&ring, &desc, j);
+        stage_add_since(STAGE_PRODUCE, produce_start);
     }
     int consumed = frame_ring_finish(&ring);
     if (status == 0) status = consumed;
+    if (base->timings && status == 0)
+        stage_report(stderr, "sequence", state.done, "frame", ring.consumers, share ? share : threads);
     if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
     if (status == 0) summary_line(base, state.done, state.skipped, lut_computations);
     return status;

@@ -8,6 +8,8 @@
 #include "app/runs/frame_ring.h"
 #include "app/scene/light.h"
 #include "app/runs/stop.h"
+#include "app/runs/stage_times.h"
+#include "io/encode_settings.h"
 #include "app/cli/options.h"
 #include "app/cli/options_projection.h"
 #include "app/runs/progress.h"
@@ -62,20 +64,36 @@ static bool scaled_rows(const options *o)
     return o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT;
 }
 
-/* A band's EXR rows: as read back, or in output units (the HDR scale divided out) through `band_f32`. */
+/* A band's EXR rows: as read back, or in output units (the HDR scale divided out) through `band_f32` (one band's
+ * floats, made once: a 16384-wide band is 128 MB, whose pages a fresh malloc per band would fault in again). */
 static int write_exr_rows(const options *o, io_exr_stream *s, const uint16_t *half, int rows, float **band_f32,
-                          char *err, size_t err_size)
+                          size_t *band_cap, char *err, size_t err_size)
 {
-    if (!scaled_rows(o)) return io_exr_stream_rows(s, half, rows, err, err_size);
+    if (!scaled_rows(o)) {
+        stage_mark t0 = stage_mark_now();
+        int rc = io_exr_stream_rows(s, half, rows, err, err_size);
+        stage_add_since(STAGE_WRITE, t0);
+        return rc;
+    }
     bool unused;
-    free(*band_f32);
-    *band_f32 = light_exr_pixels(o, half, (size_t)rows * (size_t)o->width, &unused);
+    size_t pixels = (size_t)rows * (size_t)o->width;
+    if (pixels > *band_cap) {
+        free(*band_f32);
+        *band_f32 = malloc(pixels * 4 * sizeof(float));
+        *band_cap = *band_f32 ? pixels : 0;
+    }
     if (!*band_f32) {
         snprintf(err, err_size, "out of memory for an EXR band");
         io_exr_stream_abort(s);
         return -1;
     }
-    return io_exr_stream_rows_f32(s, *band_f32, rows, err, err_size);
+    stage_mark t0 = stage_mark_now();
+    light_exr_pixels_into(o, half, pixels, *band_f32, &unused);
+    stage_mark t1 = stage_mark_now();
+    stage_add_since(STAGE_CONVERT, t0);
+    int rc = io_exr_stream_rows_f32(s, *band_f32, rows, err, err_size);
+    stage_add_since(STAGE_WRITE, t1);
+    return rc;
 }
 
 static int open_outputs(const options *o, output *outs)
@@ -125,6 +143,7 @@ typedef struct bands_state {
     progress *prog;
     int stopped_line;   /* a stop ended the line of a terminal's progress */
     float *band_f32;    /* a band in output units (write_exr_rows), reused; only the writing thread touches it */
+    size_t band_cap;    /* its size in pixels */
     int pad;            /* rows rendered above (and below) each band: the tone map's horizon taps (band_pad) */
 } bands_state;
 
@@ -146,8 +165,11 @@ static int write_band(bands_state *st, const frame_ring_pixels *rendered, int y,
     const frame_ring_pixels *px = &own;
     for (int i = 0; i < st->o->output_count; ++i) {
         output *out = &st->outs[i];
-        int rc = out->exr ? write_exr_rows(st->o, out->exr_stream, px->linear, rows, &st->band_f32, err, sizeof err)
+        stage_mark t0 = stage_mark_now();
+        int rc = out->exr ? write_exr_rows(st->o, out->exr_stream, px->linear, rows, &st->band_f32, &st->band_cap, err,
+                                           sizeof err)
                           : io_png_stream_rows(out->png_stream, px->display, rows, err, sizeof err);
+        if (!out->exr) stage_add_since(STAGE_WRITE, t0);
         if (rc != 0) {
             *out = (output){0};   /* the stream aborted itself */
             fprintf(stderr, "vksky: %s\n", err);
@@ -191,7 +213,8 @@ static int consume_band(void *user, const frame_ring_pixels *px, void *job)
 static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band, int slots)
 {
     frame_ring ring;
-    if (frame_ring_create(&ring, r, slots, consume_band, st, st->o->trace_barriers ? stdout : NULL)) return 1;
+    /* One consumer: a band's rows go into streams that take them in order. */
+    if (frame_ring_create(&ring, r, slots, 1, consume_band, NULL, st, st->o->trace_barriers ? stdout : NULL)) return 1;
     int height = st->o->height, status = 0;
     for (int y = 0; y < height && status == 0 && !stop_requested(); y += band) {
         band_job *j = malloc(sizeof *j);
@@ -199,11 +222,13 @@ static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band
             status = 1;
             break;
         }
+        stage_mark t0 = stage_mark_now();
         *j = (band_job){y, height - y < band ? height - y : band};
         /* The band's offset is a push constant, recorded into this band's command buffer. */
         view->tile_x = 0, view->tile_y = y - st->pad;
         frame_desc f = {.view = view};
         status = frame_ring_submit(&ring, &f, j);
+        stage_add_since(STAGE_PRODUCE, t0);
     }
     int consumed = frame_ring_finish(&ring);
     if (status == 0) status = consumed;
@@ -275,16 +300,20 @@ int tiles_render(const options *o, gpu_context *ctx)
     snprintf(what, sizeof what, "rendering %s (%dx%d, %d bands)", o->output_count ? o->outputs[0] : "", width, height, bands);
     progress prog;
     progress_begin(&prog, stderr, o->quiet || bands < 2, what, height);
-    bands_state st = {o, outs, &prog, 0, NULL, pad};
+    bands_state st = {o, outs, &prog, 0, NULL, 0, pad};
     if (light_auto_exposure_wanted(o)) view.exposure_ev = tiles_auto_exposure(&st, &r, &view, band, height);
+    stage_begin();
     int status = slots >= 2 ? bands_ring(&st, &r, &view, band, slots) : bands_serial(&st, &r, &view, band);
     char err[512];
+    stage_mark t0 = stage_mark_now();
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         int rc = outs[i].exr ? io_exr_stream_finish(outs[i].exr_stream, err, sizeof err)
                              : io_png_stream_finish(outs[i].png_stream, err, sizeof err);
         outs[i] = (output){0};
         if (rc != 0) fprintf(stderr, "vksky: %s\n", err), status = 1;
     }
+    stage_add_since(STAGE_WRITE, t0);
+    if (o->timings && status == 0) stage_report(stderr, "banded render", bands, "band", 1, io_encode_threads_all());
     if (status == 0) progress_end(&prog);
     free(st.band_f32);
     abort_outputs(o, outs);

@@ -91,16 +91,7 @@ void light_set_sun_lux(options *o, double lux)
 float *light_exr_pixels(const options *o, const uint16_t *rgba_half, size_t pixels, bool *store_float)
 {
     float *out = malloc(pixels * 4 * sizeof(float));
-    if (!out) return NULL;
-    double inv = 1.0 / light_scale(o);
-    bool over = false;
-    for (size_t i = 0; i < pixels * 4; ++i) {
-        double v = io_half_to_float(rgba_half[i]);
-        if (i % 4 != 3) v *= inv;   /* alpha is coverage, not light */
-        over = over || fabs(v) > HALF_MAX;
-        out[i] = (float)v;
-    }
-    *store_float = o->exr_type == OPTIONS_EXR_FLOAT || (o->exr_type == OPTIONS_EXR_AUTO && over);
+    if (out) light_exr_pixels_into(o, rgba_half, pixels, out, store_float);   /* light_pixels.c */
     return out;
 }
 

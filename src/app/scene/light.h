@@ -37,6 +37,8 @@ void light_set_sun_lux(options *o, double lux);
  * (malloc'd, NULL: out of memory); *store_float: whether the file stores FLOAT (--exr-type, or auto: any value over
  * half's range). */
 float *light_exr_pixels(const options *o, const uint16_t *rgba_half, size_t pixels, bool *store_float);
+/* The same into `out` (pixels * 4 floats), on the calling thread's encode threads (io/encode_settings.h). */
+void light_exr_pixels_into(const options *o, const uint16_t *rgba_half, size_t pixels, float *out, bool *store_float);
 /* Whether an environment map (streamed before its pixels exist) is stored FLOAT: --exr-type, or auto: photometric
  * with the disc drawn and the sun above the camera's horizon. */
 bool light_stream_float(const options *o);
