@@ -104,6 +104,8 @@ io_exr_layers_stream *io_exr_layers_stream_open(const char *path, int width, int
     if (rc == EXR_ERR_SUCCESS) stage = "add part", rc = exr_add_part(s->ctxt, "", EXR_STORAGE_SCANLINE, &s->part);
     if (rc == EXR_ERR_SUCCESS)
         stage = "header", rc = exr_initialize_required_attr_simple(s->ctxt, s->part, width, height, EXR_COMPRESSION_ZIP);
+    /* --exr-compression zip:N's zlib level (encode_settings.h; the stream writes ZIP whatever the name). */
+    if (rc == EXR_ERR_SUCCESS) stage = "compression", rc = io_exr_apply_compression_level(s->ctxt, s->part);
     if (rc == EXR_ERR_SUCCESS && meta) stage = "attributes", rc = io_exr_set_meta(s->ctxt, s->part, meta);
     for (int l = 0; l < layer_count && rc == EXR_ERR_SUCCESS; ++l)
         for (int c = 0; c < layers[l].channels && rc == EXR_ERR_SUCCESS; ++c) {
