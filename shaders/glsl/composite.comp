@@ -128,7 +128,7 @@ void main()
     }
     bool needs_sky = inside && oriented && alpha < 1.0;
     /* The tile's rays, when the tile is small enough on the sky and some pixel of it shows sky (uniform over the
-     * workgroup: every invocation reaches both barriers). */
+     * workgroup: every invocation reaches the barrier). */
     bool tiles = fast && oriented && float(TILE) * 2.0 * length(push.up.xyz) * push.up.w <= SKY_TILE_MAX_RAD;
     bool smooth_tile = false;
     ivec2 corner = ivec2(gl_WorkGroupID.xy) * TILE;
