@@ -10,6 +10,8 @@
 
 #include "io/atomic_file.h"
 #include "io/exr_common.h"
+#include "io/exr_parallel.h"
+#include "io/encode_settings.h"
 #include "io/half_float.h"
 #include "io/io_error.h"
 
@@ -29,7 +31,8 @@ struct io_exr_layers_stream {
     int part, width, height, lines_per_chunk, next_row, layer_count, channel_count;
     char (*names)[IO_EXR_MAX_LAYER_NAME + 1];   /* layer names, copied */
     int *channels;                               /* per layer: 3 or 4 */
-    uint16_t *scratch;                           /* one chunk of every channel, as half */
+    uint16_t *scratch;                           /* scratch_chunks chunks of every channel, as half */
+    int scratch_chunks;
 };
 
 static void stream_fail(io_exr_layers_stream *s, const char *stage, exr_result_t rc, char *err, size_t err_size)
@@ -101,6 +104,8 @@ io_exr_layers_stream *io_exr_layers_stream_open(const char *path, int width, int
     if (rc == EXR_ERR_SUCCESS) stage = "add part", rc = exr_add_part(s->ctxt, "", EXR_STORAGE_SCANLINE, &s->part);
     if (rc == EXR_ERR_SUCCESS)
         stage = "header", rc = exr_initialize_required_attr_simple(s->ctxt, s->part, width, height, EXR_COMPRESSION_ZIP);
+    /* --exr-compression zip:N's zlib level (encode_settings.h; the stream writes ZIP whatever the name). */
+    if (rc == EXR_ERR_SUCCESS) stage = "compression", rc = io_exr_apply_compression_level(s->ctxt, s->part);
     if (rc == EXR_ERR_SUCCESS && meta) stage = "attributes", rc = io_exr_set_meta(s->ctxt, s->part, meta);
     for (int l = 0; l < layer_count && rc == EXR_ERR_SUCCESS; ++l)
         for (int c = 0; c < layers[l].channels && rc == EXR_ERR_SUCCESS; ++c) {
@@ -115,6 +120,7 @@ io_exr_layers_stream *io_exr_layers_stream_open(const char *path, int width, int
     if (rc == EXR_ERR_SUCCESS) {
         s->scratch = malloc((size_t)s->channel_count * (size_t)s->lines_per_chunk * (size_t)width * sizeof(uint16_t));
         if (!s->scratch) rc = EXR_ERR_OUT_OF_MEMORY;
+        s->scratch_chunks = 1;
     }
     if (rc != EXR_ERR_SUCCESS) {
         stream_fail(s, stage, rc, err, err_size);
@@ -140,6 +146,40 @@ static bool find_channel(const io_exr_layers_stream *s, const char *name, int *l
     return false;
 }
 
+/* One band's chunks as io_exr_encode_chunks feeds them: chunk (y - first) / lines_per_chunk converts into its own
+ * part of the stream's band scratch, so that chunks compress on the worker threads while later ones are fed. */
+typedef struct band_feed {
+    io_exr_layers_stream *s;
+    const io_exr_band_layer *layers;
+    int first;
+} band_feed;
+
+static exr_result_t feed_band_chunk(void *user, exr_encode_pipeline_t *enc, int y, int rows)
+{
+    const band_feed *f = user;
+    io_exr_layers_stream *s = f->s;
+    size_t per_chunk = (size_t)s->channel_count * (size_t)s->lines_per_chunk * (size_t)s->width;
+    uint16_t *chunk = s->scratch + (size_t)((y - f->first) / s->lines_per_chunk) * per_chunk;
+    for (int ch = 0; ch < enc->channel_count; ++ch) {
+        exr_coding_channel_info_t *ci = &enc->channels[ch];
+        int l = 0, c = 0;
+        if (!find_channel(s, ci->channel_name, &l, &c)) return EXR_ERR_INVALID_ARGUMENT;
+        /* This chunk's rows of the band, converted to half into this channel's part of the chunk's scratch. */
+        const io_exr_band_layer *L = &f->layers[l];
+        int stride = L->stride > L->channels ? L->stride : L->channels;
+        size_t at = (size_t)(y - f->first) * (size_t)s->width * (size_t)stride + (size_t)c;
+        size_t n = (size_t)rows * (size_t)s->width;
+        uint16_t *dst = chunk + (size_t)ch * (size_t)s->lines_per_chunk * (size_t)s->width;
+        for (size_t i = 0; i < n; ++i) dst[i] = io_float_to_half(L->pixels[at + i * (size_t)stride]);
+        ci->encode_from_ptr = (const uint8_t *)dst;
+        ci->user_pixel_stride = (int32_t)sizeof(uint16_t);
+        ci->user_line_stride = s->width * (int32_t)sizeof(uint16_t);
+        ci->user_data_type = EXR_PIXEL_HALF;
+        ci->user_bytes_per_element = (int16_t)sizeof(uint16_t);
+    }
+    return EXR_ERR_SUCCESS;
+}
+
 int io_exr_layers_stream_rows(io_exr_layers_stream *s, const io_exr_band_layer *layers, int rows, char *err,
                               size_t err_size)
 {
@@ -150,48 +190,24 @@ int io_exr_layers_stream_rows(io_exr_layers_stream *s, const io_exr_band_layer *
         io_exr_layers_stream_abort(s);
         return -1;
     }
-    int first = s->next_row;
-    for (int y = first; y < first + rows; y += s->lines_per_chunk) {
-        exr_chunk_info_t cinfo;
-        exr_encode_pipeline_t enc;
-        memset(&cinfo, 0, sizeof cinfo);
-        memset(&enc, 0, sizeof enc);
-        const char *stage = "chunk info";
-        exr_result_t rc = exr_write_scanline_chunk_info(s->ctxt, s->part, y, &cinfo);
-        if (rc == EXR_ERR_SUCCESS) stage = "encode init", rc = exr_encoding_initialize(s->ctxt, s->part, &cinfo, &enc);
-        for (int ch = 0; ch < enc.channel_count && rc == EXR_ERR_SUCCESS; ++ch) {
-            exr_coding_channel_info_t *ci = &enc.channels[ch];
-            int l = 0, c = 0;
-            if (!find_channel(s, ci->channel_name, &l, &c)) {
-                rc = EXR_ERR_INVALID_ARGUMENT;
-                break;
-            }
-            /* This chunk's rows of the band, converted to half into this channel's part of the scratch. */
-            const io_exr_band_layer *L = &layers[l];
-            int stride = L->stride > L->channels ? L->stride : L->channels;
-            size_t at = (size_t)(cinfo.start_y - first) * (size_t)s->width * (size_t)stride + (size_t)c;
-            size_t n = (size_t)cinfo.height * (size_t)s->width;
-            uint16_t *dst = s->scratch + (size_t)ch * (size_t)s->lines_per_chunk * (size_t)s->width;
-            for (size_t i = 0; i < n; ++i) dst[i] = io_float_to_half(L->pixels[at + i * (size_t)stride]);
-            ci->encode_from_ptr = (const uint8_t *)dst;
-            ci->user_pixel_stride = (int32_t)sizeof(uint16_t);
-            ci->user_line_stride = s->width * (int32_t)sizeof(uint16_t);
-            ci->user_data_type = EXR_PIXEL_HALF;
-            ci->user_bytes_per_element = (int16_t)sizeof(uint16_t);
-        }
-        io_exr_compress_wrap wrap = {NULL};
-        if (rc == EXR_ERR_SUCCESS) stage = "encode", rc = exr_encoding_choose_default_routines(s->ctxt, s->part, &enc);
-        if (rc == EXR_ERR_SUCCESS && enc.compress_fn) {
-            wrap.orig = enc.compress_fn;
-            enc.encoding_user_data = &wrap;
-            enc.compress_fn = io_exr_compress_no_expand;
-        }
-        if (rc == EXR_ERR_SUCCESS) rc = exr_encoding_run(s->ctxt, s->part, &enc);
-        exr_encoding_destroy(s->ctxt, &enc);
-        if (rc != EXR_ERR_SUCCESS || s->out.err_no) {
-            stream_fail(s, stage, rc, err, err_size);
+    /* The band's chunks compress on the worker threads (exr_parallel.h, --threads; the same bytes for any count):
+     * a scratch part per chunk of the largest band so far. */
+    int chunks = (rows + s->lines_per_chunk - 1) / s->lines_per_chunk;
+    if (chunks > s->scratch_chunks) {
+        size_t per_chunk = (size_t)s->channel_count * (size_t)s->lines_per_chunk * (size_t)s->width;
+        uint16_t *grown = realloc(s->scratch, per_chunk * (size_t)chunks * sizeof(uint16_t));
+        if (!grown) {
+            stream_fail(s, "band scratch", EXR_ERR_OUT_OF_MEMORY, err, err_size);
             return -1;
         }
+        s->scratch = grown, s->scratch_chunks = chunks;
+    }
+    band_feed f = {s, layers, s->next_row};
+    exr_result_t rc = io_exr_encode_chunks(s->ctxt, s->part, s->next_row, chunks, s->lines_per_chunk, feed_band_chunk,
+                                           &f, io_encode_threads());
+    if (rc != EXR_ERR_SUCCESS || s->out.err_no) {
+        stream_fail(s, "encode", rc, err, err_size);
+        return -1;
     }
     s->next_row += rows;
     return 0;

@@ -147,6 +147,12 @@ double composite_push(const composite_view *v, double bottom_radius_km, uint32_t
     return altitude;
 }
 
+void composite_push_fast(const composite_view *v, CompositePush *push)
+{
+    /* With a fixed count (min = max) the march ignores march.w: its sign is free to carry the flag. */
+    if (v->max_steps == 0) push->march.w = -(float)COMPOSITE_POINT_RAMP_KM;
+}
+
 /* --- The pass ------------------------------------------------------------------------------------------- */
 
 int sky_composite_create(sky_composite *c, sky_renderer *r, uint32_t width, uint32_t height,

@@ -38,6 +38,14 @@ void composite_world_to_local(int up_axis, const double w[3], double out[3]);
 double composite_push(const composite_view *v, double bottom_radius_km, uint32_t width, uint32_t height,
                       CompositePush *out);
 
+/* The composite's fast defaults (composite.comp, docs/aerial_perspective.md "Cost"): when the march count is fixed by
+ * default (no --max-steps: v->max_steps 0), a segment camera -> surface marches a count growing with its length (4
+ * steps at 0 km to v->steps at COMPOSITE_POINT_RAMP_KM) and the sky is interpolated across 8x8 tiles where that is
+ * exact to 5e-4; flagged by push->march.w < 0 (its ramp). Otherwise the push is left as it is: every pixel marches
+ * the given count along its own ray. */
+#define COMPOSITE_POINT_RAMP_KM 40.0
+void composite_push_fast(const composite_view *v, CompositePush *push);
+
 typedef struct sky_composite {
     uint32_t width, height;
     gpu_image input;                /* RGBA32F, width x 2 height: beauty rows, then position rows */

@@ -367,6 +367,7 @@ int composite_run(const options *o, const composite_options *co)
     CompositePush push;
     model_atmosphere earth = o->atmosphere;
     double altitude = composite_push(&v, earth.bottom_radius, (uint32_t)w, (uint32_t)h, &push);
+    composite_push_fast(&v, &push);   /* segments' steps by length, the sky by tiles (docs/aerial_perspective.md) */
     if (altitude < 0.0) {
         fprintf(stderr, "vksky: --composite: the camera (%g, %g, %g world units) is inside the planet (%.4g km below "
                         "the ground); check --world-up, --world-unit, --ground-altitude\n",
