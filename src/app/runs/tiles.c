@@ -13,6 +13,7 @@
 #include "app/runs/progress.h"
 #include "io/exr_stream.h"
 #include "io/png_stream.h"
+#include "sky/meter.h"
 #include "sky/projection.h"
 #include "sky/submit.h"
 #include <math.h>
@@ -210,21 +211,29 @@ static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band
     return status || stop_requested() ? 1 : 0;
 }
 
-/* Auto exposure of a banded image: the log-average over every band (a first pass that writes nothing). */
+/* Auto exposure of a banded image, metered on the GPU (sky/meter.h): a first pass over the bands that writes nothing,
+ * each band's frame metering only its own rows (not the rows it shares with its neighbours); the host adds the bands'
+ * sums of logs (count ln L per band), so the log-average is the whole image's, as one frame's meter would count it. */
 static double tiles_auto_exposure(const bands_state *st, sky_renderer *r, sky_view *view, int band, int height)
 {
-    const options *o = st->o;
+    sky_view v = *view;
+    v.auto_exposure = true, v.auto_exposure_ease = 0.0;
     double log_sum = 0.0, count = 0.0;
     for (int y = 0; y < height && !stop_requested(); y += band) {
-        view->tile_x = 0, view->tile_y = y - st->pad;
-        frame_desc f = {.view = view};
-        sky_renderer_render(r, &f);
+        v.tile_x = 0, v.tile_y = y - st->pad;
         int rows = height - y < band ? height - y : band;
-        frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
-        light_log_sum(o, view, band_rows(st, &px).linear, o->width, height, y, rows, &log_sum, &count);
+        frame_desc f = {.view = &v, .meter_first_row = (uint32_t)st->pad, .meter_rows = (uint32_t)rows};
+        sky_renderer_render(r, &f);
+        meter_result m = meter_read(r->ctx, &r->meter, 0);
+        if (m.count > 0.0f) log_sum += (double)m.count * log((double)m.log_average), count += m.count;
     }
-    sky_view v = *view;
+    v = *view;
     light_expose(&v, count > 0.0 ? exp(log_sum / count) : 1e-4);
+    if (!st->o->quiet)
+        fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered on "
+                        "the GPU in %d band%s)\n", light_auto_ev100(count > 0.0 ? exp(log_sum / count) : 1e-4),
+                count > 0.0 ? exp(log_sum / count) : 1e-4, v.ev100 ? "cd/m2" : "(relative units)", count,
+                (height + band - 1) / band, band < height ? "s" : "");
     return v.exposure_ev;
 }
 
