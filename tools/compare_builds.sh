@@ -41,6 +41,10 @@ for s in "$ROOT"/scenes/*.json; do
   cases+=("dump_$n|--scene $s --dump-scene")
 done
 cases+=("trace|--render FILE.exr ${size[*]} --trace-barriers --trace-passes")
+# Environment maps (rendered in bands, app/runs/tiles.c): each projection, EXR and PNG at a given exposure, traced.
+for p in equirect:64 cubemap:16 fisheye:48; do
+  cases+=("map_${p%%:*}|--render FILE.exr --render FILE.png --projection ${p%%:*} --width ${p##*:} --exposure 13 --trace-barriers --trace-passes")
+done
 
 fail=0
 NEW_ARGS=${NEW_ARGS:-}
@@ -56,6 +60,13 @@ for c in "${cases[@]}"; do
   name=${c%%|*} args=${c#*|}
   run_case "$OLD" old "$name" "$args"
   run_case "$NEW" new "$name" "$args"
+done
+
+# Banded renders: a perspective image and an equirect map over a small band budget (VKSKY_TILE_PIXELS), traced.
+for tag in old new; do
+  bin=$OLD; [ $tag = new ] && bin=$NEW
+  VKSKY_TILE_PIXELS=1600 run_case "$bin" $tag bands_perspective "--render FILE.exr --render FILE.png ${size[*]} --exposure 13 --trace-barriers --trace-passes"
+  VKSKY_TILE_PIXELS=1024 run_case "$bin" $tag bands_equirect "--render FILE.exr --render FILE.png --projection equirect --width 64 --exposure 13 --trace-barriers"
 done
 
 # The window: a few frames and a screenshot (skipped without Xvfb).
