@@ -41,7 +41,7 @@ extern "C" {
  *    vksky_renderer_get_timings; the compute queue (vksky_context_desc.compute_queue, vksky_record_luts);
  *    vksky_readback_config, vksky_frame_view, vksky_scene_from_args, vksky_renderer_get_readback,
  *    vksky_context_set_device_features, vksky_auto_exposure + vksky_renderer_get_exposure,
- *    vksky_context_set_cache_directory + vksky_renderer_store_luts. */
+ *    vksky_context_set_cache_directory + vksky_renderer_store_luts; vksky_frame_band (projections, bands). */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -242,7 +242,8 @@ typedef enum vksky_structure_type {
     VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG = 1,   /* vksky_quality_config, from vksky_renderer_desc.next */
     VKSKY_STRUCTURE_TYPE_READBACK_CONFIG = 2,  /* vksky_readback_config, from vksky_renderer_desc.next */
     VKSKY_STRUCTURE_TYPE_FRAME_VIEW = 3,       /* vksky_frame_view, from vksky_frame.next */
-    VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE = 4     /* vksky_auto_exposure, from vksky_frame.next */
+    VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE = 4,    /* vksky_auto_exposure, from vksky_frame.next */
+    VKSKY_STRUCTURE_TYPE_FRAME_BAND = 5        /* vksky_frame_band, from vksky_frame.next */
 } vksky_structure_type;
 typedef struct vksky_chain {   /* the head every extension struct starts with: to walk a chain */
     vksky_structure_type type;
@@ -390,9 +391,39 @@ typedef struct vksky_exposure {
 } vksky_exposure;
 VKSKY_API vksky_result vksky_renderer_get_exposure(const vksky_renderer *renderer, uint32_t slot, vksky_exposure *out);
 
+/* The projection of an image (the command line's --projection; the names differ from the shaders' VKSKY_PROJECTION_*,
+ * which are the same numbers). */
+typedef enum vksky_projection {
+    VKSKY_PROJECTION_TYPE_PERSPECTIVE = 0,   /* the view's (vksky_frame_view) */
+    VKSKY_PROJECTION_TYPE_EQUIRECT = 1, /* latitude-longitude, W x W/2 */
+    VKSKY_PROJECTION_TYPE_CUBE = 2,     /* six faces of W x W stacked vertically (+X, -X, +Y, -Y, +Z, -Z: OpenEXR's) */
+    VKSKY_PROJECTION_TYPE_FISHEYE = 3   /* the upper hemisphere, equidistant, zenith at the centre, north up, east left, W x W */
+} vksky_projection;
+
+/* A band of a larger image, or an environment map, chained from vksky_frame.next (DISPLAY with a readback config;
+ * the command line's banded renders): the frame is rows first_row .. first_row + height - 1 of a whole image of
+ * whole_height rows (the renderer's width and height are the band's; whole_width must be the renderer's width), in
+ * `projection`, so each pixel gets the direction it has in the whole image and the bands put together equal one
+ * frame of the whole image. first_row may be negative and a band may reach below the image: such rows are drawn only
+ * as the tone map's neighbours (the horizon taps) and the host drops them; the tone map clamps its taps to the whole
+ * image. A perspective band takes its view from a vksky_frame_view (required); the other projections are fixed to
+ * the world (no view, no camera). The renderer must draw at full size (render_scale 1: a band's rows are its own).
+ * With vksky_auto_exposure, the meter counts only the frame's rows meter_first_row .. meter_first_row + meter_rows - 1
+ * (the band's own: no row counted twice across bands; meter_rows 0: every row) and vksky_renderer_get_exposure gives
+ * that band's log-average and pixel count: the whole image's log-average is exp(sum of count ln(log_average) / sum of
+ * count) over its bands, which is the one-frame meter's (docs/library.md). */
+typedef struct vksky_frame_band {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_BAND */
+    const void *next;
+    vksky_projection projection;
+    uint32_t whole_width, whole_height;   /* the whole image: whole_width = the renderer's width; 1..1048576 rows */
+    int32_t first_row;             /* the whole image's row of the frame's row 0 (-height .. whole_height) */
+    uint32_t meter_first_row, meter_rows;   /* within the frame's rows */
+} vksky_frame_band;
+
 typedef struct vksky_frame {
     const void *next;              /* NULL, or a chain of frame extension structs (vksky_frame_view,
-                                      vksky_auto_exposure) */
+                                      vksky_auto_exposure, vksky_frame_band) */
     const vksky_camera *camera;
     /* The exposure: EV100 with VKSKY_UNITS_PHOTOMETRIC (DISPLAY: the tone map's; SCENE_LINEAR: none applied), stops
      * with RELATIVE. */

@@ -120,7 +120,7 @@ fi
 # No private side door (issue 25 item 1): the command-line tool's run paths that are hosts of include/vksky.h include
 # no src/sky header and no src/lib header; they reach the renderer only through the public API. One line per
 # converted path (docs/library.md, "The command-line tool as a host").
-api_hosts=(app/runs/headless_api.c app/runs/headless_api.h)   # `--render`: one perspective frame
+api_hosts=(app/runs/headless_api.c app/runs/headless_api.h)   # `--render`: one perspective frame, or a map in one band
 for f in "${api_hosts[@]}"; do
   [ -f "$f" ] || { echo "layering: $f: listed as an API host but missing"; fail=1; continue; }
   door=$(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"(sky|lib)/' "$f")

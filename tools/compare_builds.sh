@@ -3,7 +3,7 @@
 # EXRs by their pixels, bit for bit (OpenImageIO: their headers record the output path and the command line, which
 # differ between two runs), everything else byte for byte. A change that must not change behaviour (a refactor, a file split) passes only if every output is
 # identical: the default frame, each quality preset, each shipped scene, the window's screenshot (under Xvfb, when
-# xvfb-run is present), the CPU reference and the path tracer (images and printed values), and the traces.
+# xvfb-run is present; it adapts its exposure over wall-clock time, so two runs of one build may differ), the CPU reference and the path tracer (images and printed values), and the traces.
 #
 #   cmake -S . -B build-old ... (at the old commit); cmake -S . -B build ... (now)
 #   tools/compare_builds.sh build-old/vksky build/vksky
@@ -41,6 +41,10 @@ for s in "$ROOT"/scenes/*.json; do
   cases+=("dump_$n|--scene $s --dump-scene")
 done
 cases+=("trace|--render FILE.exr ${size[*]} --trace-barriers --trace-passes")
+# Environment maps (rendered in bands, app/runs/tiles.c): each projection, EXR and PNG at a given exposure, traced.
+for p in equirect:64 cubemap:16 fisheye:48; do
+  cases+=("map_${p%%:*}|--render FILE.exr --render FILE.png --projection ${p%%:*} --width ${p##*:} --exposure 13 --trace-barriers --trace-passes")
+done
 
 fail=0
 NEW_ARGS=${NEW_ARGS:-}
@@ -56,6 +60,16 @@ for c in "${cases[@]}"; do
   name=${c%%|*} args=${c#*|}
   run_case "$OLD" old "$name" "$args"
   run_case "$NEW" new "$name" "$args"
+done
+
+# Banded renders: a perspective image and an equirect map over a small band budget (VKSKY_TILE_PIXELS), quiet (the
+# progress line names the output's path); pipelined through the readback ring, and traced in the serial loop (the
+# ring's consumer prints its waits on its own thread: their place among the producer's lines varies run to run).
+for tag in old new; do
+  bin=$OLD; [ $tag = new ] && bin=$NEW
+  VKSKY_TILE_PIXELS=1600 run_case "$bin" $tag bands_perspective "--render FILE.exr --render FILE.png ${size[*]} --exposure 13 --quiet"
+  VKSKY_TILE_PIXELS=1024 run_case "$bin" $tag bands_equirect "--render FILE.exr --render FILE.png --projection equirect --width 64 --exposure 13 --quiet"
+  VKSKY_TILE_PIXELS=1600 VKSKY_READBACK_SLOTS=1 run_case "$bin" $tag bands_trace "--render FILE.png ${size[*]} --exposure 13 --quiet --trace-barriers --trace-passes"
 done
 
 # The window: a few frames and a screenshot (skipped without Xvfb).

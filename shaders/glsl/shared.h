@@ -129,10 +129,12 @@ VKSKY_STRUCT(PostPush) {
 VKSKY_STRUCT(MeterPush) {
     vec4 params;               /* x: the HDR image's units per cd/m2 (light_scale), y: the luminance floor in cd/m2,
                                   z: 1 = every pixel counts (a lit ground), 0 = sky pixels only (HDR alpha >= 0),
-                                  w: the result slot */
-    vec4 pass;                 /* x: 0 = tiles, 1 = the average; y: the number of partials (pass 1); z: the fraction
-                                  of the way from the last frame's EV100 to this frame's metered one (temporal
-                                  adaptation, the window: 1 - exp(-dt / tau); 1 or more: none, the metered EV100) */
+                                  w: the result slot (pass 1); pass 0: 1 = a fisheye, only texels inside its circle */
+    vec4 pass;                 /* x: 0 = tiles, 1 = the average; y: the number of partials (pass 1), the first row
+                                  counted (pass 0); z: the fraction of the way from the last frame's EV100 to this
+                                  frame's metered one (temporal adaptation, the window: 1 - exp(-dt / tau); 1 or more:
+                                  none, the metered EV100; pass 0: a fisheye band's first row in the whole image); w: one past the last row counted (pass 0: a band's own rows,
+                                  vksky_frame_band; a whole frame counts every row) */
 } VKSKY_END(MeterPush)
 
 /* Specialization constants: what a scene needs, compiled in; what it does not, compiled out (one pipeline

@@ -5,6 +5,9 @@
 #include "sky/meter.h"
 
 _Static_assert(VKSKY_AUTO_EXPOSURE_SLOTS == VKSKY_METER_SLOTS, "the API's exposure slots are the meter's");
+_Static_assert(VKSKY_PROJECTION_TYPE_EQUIRECT == VKSKY_PROJECTION_EQUIRECT && VKSKY_PROJECTION_TYPE_CUBE ==
+               VKSKY_PROJECTION_CUBEMAP && VKSKY_PROJECTION_TYPE_FISHEYE == VKSKY_PROJECTION_FISHEYE &&
+               VKSKY_PROJECTION_TYPE_PERSPECTIVE == VKSKY_PROJECTION_PERSPECTIVE, "the API's projections are the shaders'");
 #include <math.h>
 #include <string.h>
 
@@ -221,11 +224,41 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
     return res;
 }
 
+/* A band of a whole image in a projection (vksky_frame_band): its ranges against the renderer, then the view's tile
+ * offset and whole size, as the command line's banded renders set them (so the bands equal one whole frame). */
+static vksky_result apply_band(const vksky_renderer *renderer, const vksky_frame_band *b, bool view_given, sky_view *v)
+{
+    const vksky_context *c = renderer->ctx;
+    uint32_t w = renderer->desc.width, h = renderer->desc.height;
+    const char *bad = NULL;
+    if ((unsigned)b->projection > VKSKY_PROJECTION_TYPE_FISHEYE) bad = "projection: PERSPECTIVE, EQUIRECT, CUBE or FISHEYE";
+    else if (b->whole_width != w) bad = "whole_width: the renderer's width (a band spans the whole image's columns)";
+    else if (b->whole_height < 1 || b->whole_height > (1u << 20)) bad = "whole_height: 1..1048576";
+    else if (b->first_row < -(int64_t)h || b->first_row > (int64_t)b->whole_height)
+        bad = "first_row: -height..whole_height (the renderer's height)";
+    else if ((uint64_t)b->meter_first_row + b->meter_rows > h) bad = "meter_first_row + meter_rows: within the frame's rows";
+    else if (b->projection == VKSKY_PROJECTION_TYPE_PERSPECTIVE && !view_given)
+        bad = "a perspective band: with a vksky_frame_view (the view the command line gives)";
+    else if (renderer->o.render_scale != 1.0) bad = "a renderer of render_scale 1 (a band's rows are its own)";
+    if (bad) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: vksky_frame_band: projection %d, whole %ux%u, first_row %d, meter rows %u+%u on a "
+                    "%ux%u renderer; accepted %s", (int)b->projection, b->whole_width, b->whole_height, b->first_row,
+                    b->meter_first_row, b->meter_rows, w, h, bad);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    v->projection = (int)b->projection;
+    v->tile_x = 0, v->tile_y = b->first_row;
+    v->whole_width = (int)b->whole_width, v->whole_height = (int)b->whole_height;
+    return VKSKY_SUCCESS;
+}
+
 static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
 {
     const vksky_frame_view *given = NULL;
     const vksky_auto_exposure *metered = NULL;
-    vksky_result chain = lib_frame_chain(renderer->ctx, frame->next, &given, &metered);
+    const vksky_frame_band *band = NULL;
+    vksky_result chain = lib_frame_chain(renderer->ctx, frame->next, &given, &metered, &band);
     if (chain != VKSKY_SUCCESS) return chain;
     vksky_context *c = renderer->ctx;
     sky_view v = renderer->o.view;
@@ -239,18 +272,28 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
         frame_desc f = {.view = &v, .force_luts = frame->force_luts};
         return record_trapped(renderer, cmd, &f, true);
     }
-    if ((given || metered) && renderer->desc.output != VKSKY_OUTPUT_DISPLAY) {
+    if ((given || metered || band) && renderer->desc.output != VKSKY_OUTPUT_DISPLAY) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
-                    "vksky_record: vksky_frame_view and vksky_auto_exposure are for output DISPLAY only (the others "
-                    "take frame.camera and leave exposure to the host)");
+                    "vksky_record: vksky_frame_view, vksky_auto_exposure and vksky_frame_band are for output DISPLAY "
+                    "only (the others take frame.camera and leave exposure to the host)");
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
     if (renderer->desc.output == VKSKY_OUTPUT_SCENE_LINEAR) return record_scene_linear(renderer, cmd, frame);
     if (!metered && !isfinite(frame->exposure)) return VKSKY_ERROR_INVALID_ARGUMENT;
+    /* The frame's projection: a perspective of the whole image unless a band says otherwise. */
+    v.projection = VKSKY_PROJECTION_TYPE_PERSPECTIVE;
+    v.tile_x = v.tile_y = v.whole_width = v.whole_height = 0;
+    if (band) {
+        vksky_result res = apply_band(renderer, band, given != NULL, &v);
+        if (res != VKSKY_SUCCESS) return res;
+    }
+    bool world_fixed = band && band->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE;   /* a map: no camera */
     if (given) {
         /* The view as given: the sky pass computes its rays from yaw, pitch and fov as the command line's do. */
         v.ray_given = false;
         v.yaw_deg = given->yaw_deg, v.pitch_deg = given->pitch_deg, v.fov_deg = given->fov_deg;
+    } else if (world_fixed) {
+        v.ray_given = false;   /* the projection gives every pixel its direction */
     } else if (!frame->camera || !camera_to_view(frame->camera, renderer->o.atmosphere.bottom_radius, &v)) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                     "vksky_record: DISPLAY needs frame.camera (or a vksky_frame_view), and the camera's matrices must "
@@ -264,7 +307,8 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
     uint32_t slot = metered ? metered->slot : 0;
     if (renderer->readback) {
         /* vksky's own display and composite images, copied to its readback buffers: frame.color is not used. */
-        frame_desc own = {.view = &v, .force_luts = frame->force_luts, .meter_slot = slot};
+        frame_desc own = {.view = &v, .force_luts = frame->force_luts, .meter_slot = slot,
+                          .meter_first_row = band ? band->meter_first_row : 0, .meter_rows = band ? band->meter_rows : 0};
         return record_trapped(renderer, cmd, &own, false);
     }
     const vksky_image *img = &frame->color;
@@ -283,7 +327,8 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
     }
     frame_target target = {.image = img->image, .view = img->view, .extent = img->extent, .host_uses = true,
                            .host_before = image_use(img->before), .host_after = image_use(img->after)};
-    frame_desc f = {.view = &v, .force_luts = frame->force_luts, .target = &target, .meter_slot = slot};
+    frame_desc f = {.view = &v, .force_luts = frame->force_luts, .target = &target, .meter_slot = slot,
+                    .meter_first_row = band ? band->meter_first_row : 0, .meter_rows = band ? band->meter_rows : 0};
     return record_trapped(renderer, cmd, &f, false);
 }
 

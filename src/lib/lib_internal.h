@@ -41,9 +41,10 @@ void lib_trace_end(const gpu_trace_sink *was);
  * config in *quality, or NULL (api_extensions.c). */
 vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality,
                                 bool *readback);
-/* A frame's `next` chain checked: the view (vksky_frame_view) in *view, or NULL. */
+/* A frame's `next` chain checked (types known, in place, once): the view (vksky_frame_view), the auto exposure and
+ * the band (vksky_frame_band: its ranges are the renderer's, checked by vksky_record), each or NULL. */
 vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view,
-                             const vksky_auto_exposure **exposure);
+                             const vksky_auto_exposure **exposure, const vksky_frame_band **band);
 struct quality_config;
 void lib_quality_from_config(const vksky_quality_config *q, struct quality_config *out);
 /* One message line to the callback (NULL: dropped). */

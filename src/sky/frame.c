@@ -157,7 +157,8 @@ static void record_meter(sky_renderer *r, VkCommandBuffer cmd, const frame_desc 
                            GPU_USAGE_COMPUTE_STORAGE_WRITE);
     gpu_barrier_flush(cmd, &b);
     uint32_t t = frame_timed_begin(r, cmd, "meter");
-    meter_record_tiles(&r->meter, cmd, scale, every_pixel);
+    meter_record_tiles(&r->meter, cmd, scale, every_pixel, f->meter_first_row, f->meter_rows,
+                       f->view->projection == VKSKY_PROJECTION_FISHEYE, f->view->tile_y);
     frame_timed_end(r, cmd, t);
     /* The tiles wrote their partial sums; the average reads them: RAW. */
     b = gpu_barrier_batch_begin("before meter_average");

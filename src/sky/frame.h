@@ -27,6 +27,8 @@ typedef struct frame_desc {
                                     (VKSKY_FRAMES): its readback copies wrote the buffers this frame's rewrite */
     uint32_t meter_slot;         /* auto exposure (view->auto_exposure): the meter's result slot this frame writes and
                                     its tone map reads, one per frame in flight (< VKSKY_METER_SLOTS) */
+    uint32_t meter_first_row, meter_rows;   /* the HDR rows the meter counts (a band's own, without the rows it
+                                               shares with its neighbours); meter_rows 0: every row */
 } frame_desc;
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 /* A frame's first step alone (the composite frame's too): the LUT passes and their barriers, when the atmosphere

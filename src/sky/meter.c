@@ -4,7 +4,7 @@
 #include "meter_comp.h"
 #include <string.h>
 
-#define METER_FLOOR_CD_M2 1e-4   /* docs/units.md: a black pixel does not drag the mean to zero (as light_log_sum) */
+#define METER_FLOOR_CD_M2 1e-4   /* docs/units.md: a black pixel does not drag the mean to zero  */
 
 void meter_write_descriptor(const gpu_context *ctx, VkDescriptorSet set, const meter_pass *m)
 {
@@ -55,9 +55,13 @@ static void dispatch(const meter_pass *m, VkCommandBuffer cmd, const MeterPush *
     vkCmdDispatch(cmd, x, y, 1);
 }
 
-void meter_record_tiles(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels)
+void meter_record_tiles(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t first_row,
+                        uint32_t rows, bool fisheye, int whole_row0)
 {
-    MeterPush push = {.params = {(float)scale, (float)METER_FLOOR_CD_M2, all_pixels ? 1.0f : 0.0f, 0.0f}};
+    /* Rows first_row .. first_row + rows - 1 count (0 rows: all of them); row indices are exact in a float. */
+    uint32_t end = rows ? first_row + rows : m->tiles.height * VKSKY_METER_TILE;
+    MeterPush push = {.params = {(float)scale, (float)METER_FLOOR_CD_M2, all_pixels ? 1.0f : 0.0f, fisheye ? 1.0f : 0.0f},
+                      .pass = {0.0f, rows ? (float)first_row : 0.0f, fisheye ? (float)whole_row0 : 0.0f, (float)end}};
     dispatch(m, cmd, &push, m->tiles.width, m->tiles.height);
 }
 

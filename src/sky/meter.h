@@ -28,11 +28,14 @@ void meter_create(meter_pass *m, const pass_shared *s, VkDescriptorPool pool, co
 void meter_destroy(meter_pass *m, const pass_shared *s);
 /* Point a descriptor set's VKSKY_BINDING_METER at the meter's buffer (the tone maps' sets). */
 void meter_write_descriptor(const gpu_context *ctx, VkDescriptorSet set, const meter_pass *m);
-/* Pass 0 (per-tile sums) and pass 1 (the average into result[slot]); the spine puts a barrier between them.
+/* Pass 0 (per-tile sums of rows first_row .. first_row + rows - 1 of the HDR image: a band's own rows; rows 0: every
+ * row; a fisheye's texels outside its circle never: whole_row0 is the whole image's row of the HDR image's row 0) and
+ * pass 1 (the average into result[slot]); the spine puts a barrier between them.
  * scale: the HDR image's units per cd/m2; all_pixels: a lit ground (every texel counts; else sky texels only);
  * ease: temporal adaptation, the fraction of the way from the last frame's EV100 to the metered one (0 or >= 1:
  * none, the metered EV100). */
-void meter_record_tiles(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels);
+void meter_record_tiles(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t first_row,
+                        uint32_t rows, bool fisheye, int whole_row0);
 void meter_record_average(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t slot,
                           double ease);
 /* The result of a slot, once the frame that wrote it is done (its fence waited); invalidates the mapping. */

@@ -519,6 +519,20 @@ static int cli_view(void)
     metered.slot = 0, metered.next = &view;
     HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "a chain that loops");
     view.next = NULL;
+    /* vksky_frame_band (issue 25): twice, out of range, a perspective band without a view, chained from a desc. */
+    vksky_frame_band band = {.type = VKSKY_STRUCTURE_TYPE_FRAME_BAND, .projection = VKSKY_PROJECTION_TYPE_EQUIRECT,
+                             .whole_width = W, .whole_height = W / 2};
+    vksky_frame_band band2 = band;
+    band.next = &band2;
+    f.next = &band;
+    HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "a band twice");
+    band.next = NULL, band.whole_width = W + 1;
+    HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "a band wider than the renderer");
+    band.whole_width = W, band.meter_first_row = 1, band.meter_rows = H;
+    HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "meter rows past the frame's");
+    band.meter_first_row = band.meter_rows = 0, band.projection = VKSKY_PROJECTION_TYPE_PERSPECTIVE;
+    HOST_CHECK(vksky_record(own, h.cmd, &f) == VKSKY_ERROR_INVALID_ARGUMENT, "a perspective band without a view");
+    f.next = &view;
     vksky_exposure ev;
     HOST_CHECK(vksky_renderer_get_exposure(own, VKSKY_AUTO_EXPOSURE_SLOTS, &ev) == VKSKY_ERROR_INVALID_ARGUMENT,
                "exposure slot past the last");
@@ -529,7 +543,9 @@ static int cli_view(void)
                "device features set after a renderer");
     enabled.maintenance4 = false;
     HOST_CHECK(vksky_context_set_device_features(c, &enabled) == VKSKY_ERROR_UNSUPPORTED, "maintenance4 off");
-    HOST_CHECK(api_messages[VKSKY_SEVERITY_ERROR] == errors + 8, "%u error messages for 8 refusals with messages",
+    d.target_format = VK_FORMAT_R8G8B8A8_SRGB, rb.next = &band;   /* a frame's struct in a renderer's chain */
+    HOST_CHECK(vksky_renderer_create(c, &d, &none) == VKSKY_ERROR_INVALID_ARGUMENT && !none, "a band in a desc");
+    HOST_CHECK(api_messages[VKSKY_SEVERITY_ERROR] == errors + 13, "%u error messages for 13 refusals with messages",
                api_messages[VKSKY_SEVERITY_ERROR] - errors);
 
     vksky_renderer_destroy(own);

@@ -183,7 +183,7 @@ static int run_checked(const options *o);
  * the renderer's timers), --skip-existing and the tests' VKSKY_FRAMES loop still call src/sky here. */
 static bool api_host_wanted(const options *o)
 {
-    return o->output_count > 0 && o->bench_frames == 0 && !tiles_wanted(o) && !sequence_active(o) && !o->spectral &&
+    return o->output_count > 0 && o->bench_frames == 0 && !tiles_in_bands(o) && !sequence_active(o) && !o->spectral &&
            !o->timings && !o->skip_existing && !getenv("VKSKY_FRAMES");
 }
 

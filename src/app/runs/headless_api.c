@@ -1,12 +1,15 @@
-/* One headless frame through include/vksky.h (headless_api.h). The order a host follows (docs/library.md): context,
+/* One headless frame through include/vksky.h (headless_api.h): a perspective frame, or an environment map in one band. The order a host follows (docs/library.md): context,
  * scene, renderer, then per frame: begin its command buffer, vksky_record, end, submit, wait, read. */
 #include "app/runs/headless_api.h"
 #include "app/runs/frame_ring.h"
 #include "app/runs/sequence.h"
+#include "app/runs/tiles_out.h"
 #include "app/runs/stop.h"
 #include "app/scene/light.h"
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 static void print_message(void *user, vksky_severity severity, const char *message)
 {
@@ -57,8 +60,9 @@ static void commands_destroy(host_commands *h)
 
 /* One frame: recorded by vksky into the host's command buffer, submitted, waited for. The readback buffers are then
  * the renderer's to hand out (vksky_renderer_get_readback). */
-static int render_frame(host_commands *h, vksky_renderer *r, const sky_view *view, bool auto_exposure)
+static int render_frame(host_commands *h, vksky_renderer *r, const options *o, bool auto_exposure)
 {
+    const sky_view *view = &o->view;
     if (h->trace) print_trace(NULL, "commands");   /* the host's command buffer, as the CLI's own trace names one */
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
@@ -69,7 +73,12 @@ static int render_frame(host_commands *h, vksky_renderer *r, const sky_view *vie
     /* Auto exposure: the GPU meters the frame and its tone map reads the result (slot 0: one frame at a time). */
     vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE};
     if (auto_exposure) given.next = &metered;
-    vksky_frame frame = {.next = &given, .exposure = view->exposure_ev};
+    /* An environment map (one band: the whole image): the projection gives each pixel its direction. */
+    vksky_frame_band map = {.type = VKSKY_STRUCTURE_TYPE_FRAME_BAND, .next = auto_exposure ? &metered : NULL,
+                            .projection = (vksky_projection)view->projection, .whole_width = (uint32_t)o->width,
+                            .whole_height = (uint32_t)o->height};
+    bool is_map = view->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE;
+    vksky_frame frame = {.next = is_map ? (const void *)&map : &given, .exposure = view->exposure_ev};
     vksky_result res = vksky_record(r, h->cmd, &frame);
     if (res != VKSKY_SUCCESS) return 1;   /* the callback printed why */
     if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
@@ -93,20 +102,45 @@ static int print_metered(const options *o, const sky_view *view, const vksky_ren
     if (vksky_renderer_get_exposure(r, 0, &e) != VKSKY_SUCCESS) return 1;
     if (!o->quiet)
         fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered on "
-                        "the GPU)\n", e.ev100, e.log_average, view->ev100 ? "cd/m2" : "(relative units)", e.pixel_count);
+                        "the GPU%s)\n", e.ev100, e.log_average, view->ev100 ? "cd/m2" : "(relative units)", e.pixel_count,
+                view->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE ? " in 1 band" : "");
     return 0;
+}
+
+/* An environment map's files (app/runs/tiles_out.h: the envmap attributes, streamed as the banded maps are). */
+static int write_map(const options *o, const vksky_readback *px)
+{
+    output outs[OPTIONS_MAX_OUTPUTS] = {0};
+    float *rows_f32 = NULL;
+    size_t rows_cap = 0;
+    char err[512];
+    int status = open_outputs(o, outs);
+    for (int i = 0; i < o->output_count && status == 0; ++i) {
+        int rc = outs[i].exr ? write_exr_rows(o, outs[i].exr_stream, px->linear_rgba16f, o->height, &rows_f32,
+                                              &rows_cap, err, sizeof err)
+                             : io_png_stream_rows(outs[i].png_stream, px->display_rgba8, o->height, err, sizeof err);
+        if (rc == 0) rc = outs[i].exr ? io_exr_stream_finish(outs[i].exr_stream, err, sizeof err)
+                                      : io_png_stream_finish(outs[i].png_stream, err, sizeof err);
+        outs[i] = (output){0};   /* finished, or aborted by the stream itself */
+        if (rc != 0) fprintf(stderr, "vksky: %s\n", err), status = 1;
+    }
+    free(rows_f32);
+    abort_outputs(o, outs);
+    return status;
 }
 
 static int render_and_write(const options *o, host_commands *h, vksky_renderer *r)
 {
     const sky_view *view = &o->view;
     bool auto_exposure = light_auto_exposure_wanted(o);
-    int status = render_frame(h, r, view, auto_exposure);
+    int status = render_frame(h, r, o, auto_exposure);
     if (status == 0 && auto_exposure) status = print_metered(o, view, r);
     /* A LUT cache miss: the LUTs this frame computed, into the cache for the next start (a hit or none: nothing). */
     if (status == 0 && vksky_renderer_store_luts(r) != VKSKY_SUCCESS) status = 1;
     vksky_readback px;
     if (status != 0 || vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
+    /* A map stopped (Ctrl-C, TERM) while it rendered: no file, as a banded render stops (stop_status says so). */
+    if (view->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE) return stop_requested() ? 1 : write_map(o, &px);
     frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
     return sequence_write_frame(o, &pixels, o->frame_first, false);
 }
@@ -131,7 +165,20 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     host_commands h = {0};
     /* The command line's scene, view and quality (flags over a --scene file), parsed again by the API's loader:
      * the same parser, so the same values. */
-    if (vksky_scene_from_args(o->argc, o->argv, print_message, NULL, &scene) != VKSKY_SUCCESS) goto done;
+    /* A map is drawn at full size (a band's rows are its own, as tiles.c draws them): the command line, at scale 1. */
+    bool is_map = o->view.projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE;
+    char **argv = malloc(((size_t)o->argc + 2) * sizeof *argv);
+    if (!argv) goto done;
+    int argc = o->argc;
+    memcpy(argv, o->argv, (size_t)argc * sizeof *argv);
+    if (is_map) {
+        tiles_note_render_scale(o);
+        argv[argc++] = "--render-scale=1";
+    }
+    argv[argc] = NULL;
+    vksky_result made = vksky_scene_from_args(argc, argv, print_message, NULL, &scene);
+    free(argv);
+    if (made != VKSKY_SUCCESS) goto done;
     vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
     vksky_renderer_desc rd = {
         .abi_version = VKSKY_ABI_VERSION, .next = &readback, .output = VKSKY_OUTPUT_DISPLAY,

@@ -1,4 +1,5 @@
-/* `vksky --render` of one perspective frame as a host of the public API (include/vksky.h; issue 25 item 1, "no
+/* `vksky --render` of one perspective frame, or of an environment map that fits one band (vksky_frame_band), as a host
+ * of the public API (include/vksky.h; issue 25 item 1, "no
  * private side door"): the command-line tool adopts its own device into a vksky context, builds a renderer from a
  * scene value made of its command line, records each frame into a command buffer of its own, submits and waits, and
  * writes the pixels the renderer read back. No src/sky header is included here (tests/layering_test.sh checks). */
@@ -8,7 +9,7 @@
 #include <vksky.h>
 #include "app/cli/options_struct.h"
 
-/* The frame of `o` (one frame: no sequence, no bands, no bench) on the device `device` describes (the caller's, which
+/* The frame of `o` (one frame: no sequence, no more than one band, no bench) on the device `device` describes (the caller's, which
  * it keeps and destroys after), with the features `enabled` on it. Returns the run's exit status: 0, or 1 for a
  * runtime failure (the line printed). */
 /* cache_dir: the CLI's cache directory (the LUT cache beside its pipeline cache), or NULL (--no-cache). */

@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/runs/tiles.h"
+#include "app/runs/tiles_out.h"
 #include "app/scene/render_values.h"
 #include "app/runs/exr_header.h"
 #include "app/runs/frame_ring.h"
@@ -15,6 +16,7 @@
 #include "app/runs/progress.h"
 #include "io/exr_stream.h"
 #include "io/png_stream.h"
+#include "sky/meter.h"
 #include "sky/projection.h"
 #include "sky/submit.h"
 #include <math.h>
@@ -46,94 +48,9 @@ bool tiles_wanted(const options *o)
     return o->view.projection != SKY_PROJECTION_PERSPECTIVE || (long)o->width * o->height > tiles_budget();
 }
 
-typedef struct output {
-    bool exr;
-    io_exr_stream *exr_stream;
-    io_png_stream *png_stream;
-} output;
-
-static bool is_exr(const char *path)
+bool tiles_in_bands(const options *o)
 {
-    size_t n = strlen(path);
-    return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
-}
-
-/* Photometric (or --exr-type float): the EXR gets output units as floats (app/scene/light.h), else the half rows as read. */
-static bool scaled_rows(const options *o)
-{
-    return o->units != OPTIONS_UNITS_RELATIVE || o->exr_type == OPTIONS_EXR_FLOAT;
-}
-
-/* A band's EXR rows: as read back, or in output units (the HDR scale divided out) through `band_f32` (one band's
- * floats, made once: a 16384-wide band is 128 MB, whose pages a fresh malloc per band would fault in again). */
-static int write_exr_rows(const options *o, io_exr_stream *s, const uint16_t *half, int rows, float **band_f32,
-                          size_t *band_cap, char *err, size_t err_size)
-{
-    if (!scaled_rows(o)) {
-        stage_mark t0 = stage_mark_now();
-        int rc = io_exr_stream_rows(s, half, rows, err, err_size);
-        stage_add_since(STAGE_WRITE, t0);
-        return rc;
-    }
-    bool unused;
-    size_t pixels = (size_t)rows * (size_t)o->width;
-    if (pixels > *band_cap) {
-        free(*band_f32);
-        *band_f32 = malloc(pixels * 4 * sizeof(float));
-        *band_cap = *band_f32 ? pixels : 0;
-    }
-    if (!*band_f32) {
-        snprintf(err, err_size, "out of memory for an EXR band");
-        io_exr_stream_abort(s);
-        return -1;
-    }
-    stage_mark t0 = stage_mark_now();
-    light_exr_pixels_into(o, half, pixels, *band_f32, &unused);
-    stage_mark t1 = stage_mark_now();
-    stage_add_since(STAGE_CONVERT, t0);
-    int rc = io_exr_stream_rows_f32(s, *band_f32, rows, err, err_size);
-    stage_add_since(STAGE_WRITE, t1);
-    return rc;
-}
-
-static int open_outputs(const options *o, output *outs)
-{
-    char err[512];
-    int p = o->view.projection;
-    io_exr_sky_attrs attrs = {
-        .envmap = p == SKY_PROJECTION_EQUIRECT ? IO_ENVMAP_LATLONG : p == SKY_PROJECTION_CUBEMAP ? IO_ENVMAP_CUBE : IO_ENVMAP_NONE,
-        .projection = options_projection_name(p)};
-    light_sky_attrs(o, &attrs);   /* the sun (direction, illuminance, at the camera) and the units */
-    bool scaled = scaled_rows(o), store_float = light_stream_float(o);
-    /* Issue 28: the header every EXR of vksky carries; a map's camera matrices would describe no camera. */
-    exr_header hdr;
-    bool has_hdr = exr_header_build(&hdr, o, -1) == 0;
-    if (has_hdr && p != SKY_PROJECTION_PERSPECTIVE) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
-    attrs.meta = has_hdr ? &hdr.meta : NULL;
-    for (int i = 0; i < o->output_count; ++i) {
-        outs[i].exr = is_exr(o->outputs[i]);
-        if (outs[i].exr)
-            outs[i].exr_stream = scaled ? io_exr_stream_open_f32(o->outputs[i], o->width, o->height, &attrs,
-                                                                 store_float, err, sizeof err)
-                                        : io_exr_stream_open(o->outputs[i], o->width, o->height, &attrs, err, sizeof err);
-        else outs[i].png_stream = io_png_stream_open(o->outputs[i], o->width, o->height, err, sizeof err);
-        if (!outs[i].exr_stream && !outs[i].png_stream) {
-            fprintf(stderr, "vksky: %s\n", err);
-            if (has_hdr) exr_header_free(&hdr);
-            return 1;
-        }
-    }
-    if (has_hdr) exr_header_free(&hdr);   /* written with each header at open */
-    return 0;
-}
-
-static void abort_outputs(const options *o, output *outs)
-{
-    for (int i = 0; i < o->output_count; ++i) {
-        io_exr_stream_abort(outs[i].exr_stream);
-        io_png_stream_abort(outs[i].png_stream);
-        outs[i] = (output){0};
-    }
+    return tiles_wanted(o) && tiles_band_rows(o->width, o->height, tiles_budget()) < o->height;
 }
 
 /* What writing a band needs: the outputs and the progress line. */
@@ -235,21 +152,29 @@ static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band
     return status || stop_requested() ? 1 : 0;
 }
 
-/* Auto exposure of a banded image: the log-average over every band (a first pass that writes nothing). */
+/* Auto exposure of a banded image, metered on the GPU (sky/meter.h): a first pass over the bands that writes nothing,
+ * each band's frame metering only its own rows (not the rows it shares with its neighbours); the host adds the bands'
+ * sums of logs (count ln L per band), so the log-average is the whole image's, as one frame's meter would count it. */
 static double tiles_auto_exposure(const bands_state *st, sky_renderer *r, sky_view *view, int band, int height)
 {
-    const options *o = st->o;
+    sky_view v = *view;
+    v.auto_exposure = true, v.auto_exposure_ease = 0.0;
     double log_sum = 0.0, count = 0.0;
     for (int y = 0; y < height && !stop_requested(); y += band) {
-        view->tile_x = 0, view->tile_y = y - st->pad;
-        frame_desc f = {.view = view};
-        sky_renderer_render(r, &f);
+        v.tile_x = 0, v.tile_y = y - st->pad;
         int rows = height - y < band ? height - y : band;
-        frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
-        light_log_sum(o, view, band_rows(st, &px).linear, o->width, height, y, rows, &log_sum, &count);
+        frame_desc f = {.view = &v, .meter_first_row = (uint32_t)st->pad, .meter_rows = (uint32_t)rows};
+        sky_renderer_render(r, &f);
+        meter_result m = meter_read(r->ctx, &r->meter, 0);
+        if (m.count > 0.0f) log_sum += (double)m.count * log((double)m.log_average), count += m.count;
     }
-    sky_view v = *view;
+    v = *view;
     light_expose(&v, count > 0.0 ? exp(log_sum / count) : 1e-4);
+    if (!st->o->quiet)
+        fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered on "
+                        "the GPU in %d band%s)\n", light_auto_ev100(count > 0.0 ? exp(log_sum / count) : 1e-4),
+                count > 0.0 ? exp(log_sum / count) : 1e-4, v.ev100 ? "cd/m2" : "(relative units)", count,
+                (height + band - 1) / band, band < height ? "s" : "");
     return v.exposure_ev;
 }
 
@@ -267,12 +192,7 @@ int tiles_render(const options *o, gpu_context *ctx)
                         "pixels); render at most %ld pixels for bloom\n", bands, budget, budget);
         view.bloom = false;
     }
-    bool scale_given = false;   /* a note for the user's --render-scale, not for a preset's (--quality auto's) */
-    for (int i = 1; i < o->argc; ++i)
-        if (!strncmp(o->argv[i], "--render-scale", 14) && (o->argv[i][14] == '\0' || o->argv[i][14] == '='))
-            scale_given = true;
-    if (o->render_scale != 1.0 && scale_given && !o->quiet)
-        fprintf(stderr, "vksky: note: --render-scale %g ignored: banded renders are rendered at full size\n", o->render_scale);
+    tiles_note_render_scale(o);
     view.whole_width = width, view.whole_height = height;
     /* Pipelined (app/runs/frame_ring.h): band k+1 renders while band k is written. The bands keep their height (a
      * cube or perspective band's pixels depend on it by up to an fp16 ulp, and the files must equal the serial

@@ -13,6 +13,8 @@ long tiles_budget(void);
 int tiles_band_rows(int width, int height, long budget);
 /* Whether this render goes through the band renderer: an environment-map projection, or more pixels than a band. */
 bool tiles_wanted(const options *o);
+/* Whether it takes more than one band (else one frame of the whole image: through the API, app/runs/headless_api.c). */
+bool tiles_in_bands(const options *o);
 /* Renders every band and streams each output; 0, or 1 (runtime failure, message printed, no partial file), or
  * 1 when SIGINT/SIGTERM stopped it (between bands; the partial files removed; the caller's stop_status exits
  * 130 / 143). */

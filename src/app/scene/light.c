@@ -129,42 +129,6 @@ void light_sky_attrs(const options *o, io_exr_sky_attrs *a)
     a->white_luminance = o->units == OPTIONS_UNITS_PHOTOMETRIC ? 1.0f : 0.0f;
 }
 
-/* Whether the view ray of pixel centre (x, y) hits the planet (perspective: the view's ray matrix; maps: their
- * projection). */
-static bool pixel_hits_ground(const options *o, const sky_view *v, int width, int height, double x, double y,
-                              double horizon_mu)
-{
-    double d[3];
-    if (v->projection == SKY_PROJECTION_PERSPECTIVE) {
-        double f[3], r[3], u[3];
-        sky_view_basis(v, f, r, u);
-        double ty = tan(0.5 * v->fov_deg * 3.14159265358979323846 / 180.0), tx = ty * width / height;
-        double nx = 2.0 * x / width - 1.0, ny = 1.0 - 2.0 * y / height;
-        for (int i = 0; i < 3; ++i) d[i] = f[i] + nx * tx * r[i] + ny * ty * u[i];
-    } else if (!projection_dir((sky_projection)v->projection, width, height, x, y, d)) {
-        return true;   /* outside the fisheye's circle: no direction, black */
-    }
-    (void)o;
-    return d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < horizon_mu;
-}
-
-void light_log_sum(const options *o, const sky_view *v, const uint16_t *rgba_half, int width, int height, int y0,
-                   int rows, double *log_sum, double *count)
-{
-    bool black_ground = o->ground_albedo[0] == 0.0 && o->ground_albedo[1] == 0.0 && o->ground_albedo[2] == 0.0;
-    double rb = o->atmosphere.bottom_radius, rc = rb + v->altitude_km;
-    double horizon_mu = -sqrt(fmax(0.0, 1.0 - (rb / rc) * (rb / rc)));
-    for (int j = 0; j < rows; ++j)
-        for (int i = 0; i < width; ++i) {
-            if (black_ground && pixel_hits_ground(o, v, width, height, i + 0.5, y0 + j + 0.5, horizon_mu)) continue;
-            const uint16_t *p = rgba_half + 4 * ((size_t)j * (size_t)width + (size_t)i);
-            double y = (0.2126 * io_half_to_float(p[0]) + 0.7152 * io_half_to_float(p[1]) +
-                        0.0722 * io_half_to_float(p[2])) / v->light_scale;
-            *log_sum += log(fmax(y, 1e-4));
-            *count += 1.0;
-        }
-}
-
 static ref_quality meter_quality(void)
 {
     return (ref_quality){.view_steps = 64, .sun_steps = 32, .ms_sqrt_dirs = 16, .ms_steps = 16};

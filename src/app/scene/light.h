@@ -55,15 +55,10 @@ void light_sky_attrs(const options *o, io_exr_sky_attrs *a);
  * converged reference, a few ms). */
 double light_meter_pixel(const options *o, const sky_view *v, int width, int height, double x, double y);
 
-/* Auto exposure: the log-average (geometric mean) luminance of a frame, cd/m2 (pixels in HDR units, light_scale
- * divided out; luminance floored at 1e-4 cd/m2 so a black pixel does not drag the mean to zero), and the EV100
- * that exposes it at the reflected-light meter's key: EV100 = log2(L_avg S / K), S = 100, K = 12.5.
- * light_log_sum (banded renders; a frame is metered on the GPU, sky/meter.h) adds a band's pixels as a sum of logs
- * and a count, to combine bands: rows y0 ..
- * y0+rows-1 of a width x height image of view v. With a black ground (albedo 0, the default) only pixels whose ray
- * misses the planet count: the void below the horizon is no part of the scene a meter would read. */
-void light_log_sum(const options *o, const sky_view *v, const uint16_t *rgba_half, int width, int height, int y0,
-                   int rows, double *log_sum, double *count);
+/* Auto exposure (metered on the GPU: sky/meter.h; docs/units.md): the log-average (geometric mean) luminance of a
+ * frame in cd/m2 (luminance floored at 1e-4 cd/m2 so a black pixel does not drag the mean to zero; with a black
+ * ground only the sky's pixels count) and the EV100 that exposes it at the reflected-light meter's key:
+ * EV100 = log2(L_avg S / K), S = 100, K = 12.5. */
 double light_auto_ev100(double log_average_cd_m2);
 /* Whether a headless frame is exposed automatically: --auto-exposure, or photometric units without a given exposure,
  * and a PNG among the outputs (an EXR's pixels do not depend on the exposure). */
