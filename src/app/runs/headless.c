@@ -5,6 +5,7 @@
 #include "app/runs/frame_ring.h"
 #include "app/runs/headless_api.h"
 #include "app/runs/sequence.h"
+#include "app/runs/sequence_host.h"
 #include "app/runs/startup.h"
 #include "app/runs/spectral_render.h"
 #include "app/runs/stop.h"
@@ -183,8 +184,9 @@ static int run_checked(const options *o);
  * the renderer's timers), --skip-existing and the tests' VKSKY_FRAMES loop still call src/sky here. */
 static bool api_host_wanted(const options *o)
 {
-    return o->output_count > 0 && o->bench_frames == 0 && !tiles_wanted(o) && !sequence_active(o) && !o->spectral &&
-           !o->timings && !o->skip_existing && !getenv("VKSKY_FRAMES");
+    return o->output_count > 0 && o->bench_frames == 0 && !tiles_wanted(o) && !o->spectral &&
+           ((!sequence_active(o) && !o->skip_existing) || sequence_host_wanted(o)) &&
+           !o->timings && !getenv("VKSKY_FRAMES");
 }
 
 int headless_run(const options *given)

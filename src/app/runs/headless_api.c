@@ -1,8 +1,8 @@
 /* One headless frame through include/vksky.h (headless_api.h). The order a host follows (docs/library.md): context,
  * scene, renderer, then per frame: begin its command buffer, vksky_record, end, submit, wait, read. */
 #include "app/runs/headless_api.h"
-#include "app/runs/frame_ring.h"
-#include "app/runs/sequence.h"
+#include "app/runs/sequence_frames.h"
+#include "app/runs/sequence_host.h"
 #include "app/runs/stop.h"
 #include "app/scene/light.h"
 #include <math.h>
@@ -147,7 +147,12 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
         goto done;
     }
     /* Stopped while the device and the renderer were made: nothing to render (stop_status says why). */
-    status = stop_requested() ? 0 : render_and_write(o, &h, r);
+    /* A sequence (or --skip-existing): the frames through the host's readback ring or one at a time
+     * (app/runs/sequence_host.c); else the one frame. */
+    if (stop_requested()) status = 0;
+    else if (sequence_active(o) || o->skip_existing)
+        status = sequence_host_render(o, ctx, scene, r, o->trace_barriers ? stdout : NULL);
+    else status = render_and_write(o, &h, r);
 done:
     commands_destroy(&h);
     vksky_renderer_destroy(r);

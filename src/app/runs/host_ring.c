@@ -1,0 +1,209 @@
+/* The host's readback ring (host_ring.h). The producer is the caller's thread: it records (vksky_record) and submits.
+ * The consumer is one thread of ours: it waits for each frame's fence, reads the slot (vksky_renderer_get_readback_slot,
+ * the one call the API lets run beside the recording of other slots) and hands the pixels on. */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+#include "app/runs/host_ring.h"
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+int host_ring_slots_wanted(void)
+{
+    const char *env = getenv("VKSKY_READBACK_SLOTS");
+    int n = env && *env ? atoi(env) : 2;
+    if (n < 2) return 0;
+    return n > HOST_RING_MAX_SLOTS ? HOST_RING_MAX_SLOTS : n;
+}
+
+int host_record(vksky_renderer *r, VkCommandBuffer cmd, const host_view *v, uint32_t slot)
+{
+    /* The view as the command line gave it: the sky pass's own rays from yaw, pitch and fov. */
+    vksky_frame_view given = {.type = VKSKY_STRUCTURE_TYPE_FRAME_VIEW, .yaw_deg = v->yaw_deg,
+                              .pitch_deg = v->pitch_deg, .fov_deg = v->fov_deg};
+    /* The slot's pair of readback buffers; auto exposure's result beside it (one per frame in flight). */
+    vksky_readback_target target = {.type = VKSKY_STRUCTURE_TYPE_READBACK_TARGET, .next = &given, .slot = slot};
+    vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, .next = &target, .slot = slot};
+    vksky_frame frame = {.next = v->auto_exposure ? (const void *)&metered : (const void *)&target,
+                         .exposure = v->exposure};
+    return vksky_record(r, cmd, &frame) == VKSKY_SUCCESS ? 0 : 1;
+}
+
+/* A wait of the ring: traced, and skipped when it is the one VKSKY_DROP_BARRIER names. Returns whether to wait. */
+static bool ring_wait(const host_ring *ring, const char *name, long frame, int slot, const char *what)
+{
+    if (ring->trace) fprintf(ring->trace, "sync %s frame=%ld slot=%d %s\n", name, frame, slot, what);
+    return !(ring->drop && !strcmp(ring->drop, name));
+}
+
+static void *consumer(void *arg)
+{
+    host_ring *ring = arg;
+    pthread_mutex_lock(&ring->lock);
+    for (;;) {
+        while (ring->consumed == ring->submitted && !ring->closing) pthread_cond_wait(&ring->changed, &ring->lock);
+        if (ring->consumed == ring->submitted) break;   /* closing, and every frame consumed */
+        long frame = ring->consumed;
+        int s = (int)(frame % ring->count);
+        host_ring_slot *slot = &ring->slots[s];
+        void *job = slot->job;
+        slot->job = NULL;
+        bool stopped = ring->status != 0;
+        pthread_mutex_unlock(&ring->lock);
+        int rc = 0;
+        if (!stopped && job) {
+            /* GPU -> host: the frame's copies wrote the slot's buffers and its last barrier made them available to
+             * HOST_READ; the fence says the GPU got there. Without the wait the host reads the buffer before (or
+             * while) the copy writes it: RAW. get_readback_slot invalidates non-coherent memory. */
+            if (ring_wait(ring, "ring.gpu_done", frame, s, "waiter=consumer on=fence hazard=RAW (copy -> host read)") &&
+                vkWaitForFences(ring->device, 1, &slot->fence, VK_TRUE, UINT64_MAX) != VK_SUCCESS)
+                rc = 1;
+            vksky_readback px;
+            if (rc == 0 && vksky_renderer_get_readback_slot(ring->r, (uint32_t)s, &px) != VKSKY_SUCCESS) rc = 1;
+            if (rc == 0 && ring->delay_ms > 0) {
+                struct timespec ts = {ring->delay_ms / 1000, (long)(ring->delay_ms % 1000) * 1000000L};
+                nanosleep(&ts, NULL);
+            }
+            if (rc == 0) {
+                frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
+                rc = ring->consume(ring->user, &pixels, job);
+            } else {
+                fprintf(stderr, "vksky: the readback ring could not read frame %ld\n", frame);
+            }
+        }
+        free(job);
+        pthread_mutex_lock(&ring->lock);
+        if (rc && !ring->status) ring->status = rc;
+        ring->consumed = frame + 1;   /* the slot is free: the producer may record into it again */
+        pthread_cond_broadcast(&ring->changed);
+    }
+    pthread_mutex_unlock(&ring->lock);
+    return NULL;
+}
+
+int host_ring_create(host_ring *ring, vksky_context *ctx, vksky_renderer *r, int slots, host_ring_consume_fn consume,
+                     void *user, FILE *trace)
+{
+    vksky_context_handles k;
+    vksky_context_get_handles(ctx, &k);
+    *ring = (host_ring){.r = r, .device = k.device, .queue = k.queue, .count = slots, .consume = consume,
+                        .user = user, .trace = trace};
+    const char *drop = getenv("VKSKY_DROP_BARRIER");
+    ring->drop = drop && *drop ? drop : NULL;
+    const char *delay = getenv("VKSKY_RING_DELAY_MS");
+    ring->delay_ms = delay ? atoi(delay) : 0;
+    pthread_mutex_init(&ring->lock, NULL);
+    pthread_cond_init(&ring->changed, NULL);
+    VkCommandPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                     .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                     .queueFamilyIndex = k.queue_family};
+    bool ok = vksky_renderer_set_readback_slots(r, (uint32_t)slots) == VKSKY_SUCCESS &&
+              vkCreateCommandPool(ring->device, &pinfo, NULL, &ring->pool) == VK_SUCCESS;
+    for (int s = 0; ok && s < slots; ++s) {
+        VkCommandBufferAllocateInfo ainfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                             .commandPool = ring->pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                             .commandBufferCount = 1};
+        VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        ok = vkAllocateCommandBuffers(ring->device, &ainfo, &ring->slots[s].cmd) == VK_SUCCESS &&
+             vkCreateFence(ring->device, &finfo, NULL, &ring->slots[s].fence) == VK_SUCCESS;
+    }
+    if (ok) ok = pthread_create(&ring->thread, NULL, consumer, ring) == 0;
+    if (!ok) {
+        fprintf(stderr, "vksky: cannot make the readback ring (its slots, command buffers, fences or thread)\n");
+        host_ring_finish(ring);
+        return 1;
+    }
+    ring->started = true;
+    return 0;
+}
+
+int host_ring_submit(host_ring *ring, const host_view *v, void *job)
+{
+    long frame = ring->submitted;
+    int s = (int)(frame % ring->count);
+    host_ring_slot *slot = &ring->slots[s];
+    /* Host -> GPU: the consumer reads the slot's pixels of frame `frame - count`; this frame's copies overwrite them
+     * (WAR), and re-recording resets the command buffer and the fence that frame used. Wait until the consumer
+     * released the slot (it waited for that frame's fence first, so the GPU is done with it too). */
+    pthread_mutex_lock(&ring->lock);
+    if (frame >= ring->count &&
+        ring_wait(ring, "ring.slot_free", frame, s, "waiter=producer on=consumer hazard=WAR (host read -> copy)"))
+        while (!ring->status && frame - ring->consumed >= ring->count) pthread_cond_wait(&ring->changed, &ring->lock);
+    int status = ring->status;
+    pthread_mutex_unlock(&ring->lock);
+    if (status) {
+        free(job);
+        return status;
+    }
+    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = slot->cmd};
+    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
+                           .pCommandBufferInfos = &cinfo};
+    if (ring->trace) fputs("commands\n", ring->trace);   /* the host's command buffer, as the CLI's trace names one */
+    bool ok = (!slot->recorded || vkResetFences(ring->device, 1, &slot->fence) == VK_SUCCESS) &&
+              vkResetCommandBuffer(slot->cmd, 0) == VK_SUCCESS && vkBeginCommandBuffer(slot->cmd, &binfo) == VK_SUCCESS &&
+              host_record(ring->r, slot->cmd, v, (uint32_t)s) == 0 && vkEndCommandBuffer(slot->cmd) == VK_SUCCESS &&
+              vkQueueSubmit2(ring->queue, 1, &sinfo, slot->fence) == VK_SUCCESS;
+    if (!ok) {
+        fprintf(stderr, "vksky: frame %ld could not be recorded or submitted\n", frame);
+        free(job);
+        return 1;
+    }
+    pthread_mutex_lock(&ring->lock);
+    slot->recorded = true;
+    slot->job = job;
+    ring->submitted = frame + 1;
+    pthread_cond_broadcast(&ring->changed);
+    pthread_mutex_unlock(&ring->lock);
+    return 0;
+}
+
+/* The fences of every slot submitted since its last reuse: each frame in flight has one. */
+static void wait_all(host_ring *ring)
+{
+    for (int s = 0; s < ring->count; ++s)
+        if (ring->slots[s].recorded) vkWaitForFences(ring->device, 1, &ring->slots[s].fence, VK_TRUE, UINT64_MAX);
+}
+
+void host_ring_drain(host_ring *ring)
+{
+    /* Host -> GPU: frames in flight read the atmosphere uniform block (and the pipelines and LUTs a new atmosphere
+     * may rebuild); vksky_renderer_set_scene is about to rewrite it: WAR. Wait for all of them. */
+    long frame = ring->submitted;
+    if (ring_wait(ring, "ring.drain", frame, (int)(frame % ring->count),
+                  "waiter=producer on=fences hazard=WAR (uniform read -> host write)"))
+        wait_all(ring);
+}
+
+int host_ring_settle(host_ring *ring)
+{
+    /* Not a GPU wait: the consumer has written every frame submitted so far (their fences waited by it). */
+    pthread_mutex_lock(&ring->lock);
+    while (!ring->status && ring->consumed < ring->submitted) pthread_cond_wait(&ring->changed, &ring->lock);
+    int status = ring->status;
+    pthread_mutex_unlock(&ring->lock);
+    return status;
+}
+
+int host_ring_finish(host_ring *ring)
+{
+    if (ring->started) {
+        pthread_mutex_lock(&ring->lock);
+        ring->closing = true;
+        pthread_cond_broadcast(&ring->changed);
+        pthread_mutex_unlock(&ring->lock);
+        pthread_join(ring->thread, NULL);
+    }
+    wait_all(ring);   /* frames the consumer skipped after a failure or a stop may still run */
+    for (int s = 0; s < ring->count; ++s) {
+        host_ring_slot *slot = &ring->slots[s];
+        if (slot->fence) vkDestroyFence(ring->device, slot->fence, NULL);
+        free(slot->job);
+    }
+    if (ring->pool) vkDestroyCommandPool(ring->device, ring->pool, NULL);   /* frees the command buffers */
+    pthread_cond_destroy(&ring->changed);
+    pthread_mutex_destroy(&ring->lock);
+    return ring->status;
+}

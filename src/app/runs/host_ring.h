@@ -1,0 +1,76 @@
+/* The readback ring of a host of include/vksky.h (issue 25 item 1; the same ring as app/runs/frame_ring.h, issue 27):
+ * the GPU renders frame N+1 while a consumer thread writes frame N. The ring is the host's — its slots in turn, its
+ * command buffers and fences, its three waits (docs/synchronization.md, "The readback ring"):
+ *
+ *   ring.gpu_done   the consumer waits for the frame's fence before it reads the slot's pixels (GPU -> host, RAW);
+ *   ring.slot_free  the producer waits for the consumer to release a slot before recording into it again (WAR);
+ *   ring.drain      the producer waits for every frame in flight before vksky rewrites what they read (a new scene).
+ *
+ * The copies into a slot are vksky's: the frame spine's readback step, into the renderer's readback slot the frame
+ * names (vksky_readback_target). Each wait is printed by --trace-barriers ("sync <name> ...") and left out by
+ * VKSKY_DROP_BARRIER=<name> (tests/readback_ring_test.sh). No src/sky or src/lib header (tests/layering_test.sh). */
+#ifndef VKSKY_APP_HOST_RING_H
+#define VKSKY_APP_HOST_RING_H
+#include <volk.h>
+#include <vksky.h>
+#include "app/runs/sequence_frames.h"
+#include <pthread.h>
+#include <stdio.h>
+
+#define HOST_RING_MAX_SLOTS 4
+
+/* A frame as the command line gives it: its view (yaw, pitch, fov), its exposure, or auto exposure metered on the GPU. */
+typedef struct host_view {
+    double yaw_deg, pitch_deg, fov_deg, exposure;
+    bool auto_exposure;
+} host_view;
+
+/* Records one frame of `v` into cmd (begun): its pixels into readback slot `slot`, auto exposure's result in meter slot
+ * `slot`. 0, or 1 (vksky's message printed). */
+int host_record(vksky_renderer *r, VkCommandBuffer cmd, const host_view *v, uint32_t slot);
+
+/* The consumer, on the ring's thread, in submission order: non-zero stops the ring. `job` is freed by the ring. */
+typedef int (*host_ring_consume_fn)(void *user, const frame_ring_pixels *px, void *job);
+
+typedef struct host_ring_slot {
+    VkCommandBuffer cmd;
+    VkFence fence;
+    bool recorded;               /* since its last reuse */
+    void *job;
+} host_ring_slot;
+
+typedef struct host_ring {
+    vksky_renderer *r;
+    VkDevice device;
+    VkQueue queue;
+    VkCommandPool pool;
+    int count;
+    host_ring_slot slots[HOST_RING_MAX_SLOTS];
+    host_ring_consume_fn consume;
+    void *user;
+    FILE *trace;                 /* --trace-barriers: the "sync" lines, and "commands" where a command buffer begins */
+    const char *drop;            /* VKSKY_DROP_BARRIER */
+    int delay_ms;                /* VKSKY_RING_DELAY_MS */
+    pthread_t thread;
+    pthread_mutex_t lock;
+    pthread_cond_t changed;
+    long submitted, consumed;
+    int status;
+    bool closing, started;
+} host_ring;
+
+/* The number of slots a run uses: VKSKY_READBACK_SLOTS (0 or 1: one frame at a time, no ring; default 2). */
+int host_ring_slots_wanted(void);
+/* A ring of `slots` (2..HOST_RING_MAX_SLOTS) over r (a readback renderer: given that many readback slots). 0, or 1. */
+int host_ring_create(host_ring *ring, vksky_context *ctx, vksky_renderer *r, int slots, host_ring_consume_fn consume,
+                     void *user, FILE *trace);
+/* Records v into the next slot (after ring.slot_free), submits it, hands `job` (malloc'd) to the consumer. Returns the
+ * consumer's status so far (non-zero: stop; the job was freed). */
+int host_ring_submit(host_ring *ring, const host_view *v, void *job);
+/* ring.drain: every frame submitted so far finished on the GPU. */
+void host_ring_drain(host_ring *ring);
+/* Every frame submitted so far written by the consumer; its status. */
+int host_ring_settle(host_ring *ring);
+/* Waits for the consumer, stops it, frees the slots. Its status. */
+int host_ring_finish(host_ring *ring);
+#endif

@@ -1,0 +1,218 @@
+/* The frames of a sequence through include/vksky.h (sequence_host.h): the serial loop and the pipelined one, as
+ * app/runs/sequence.c's (their lines, order and files), over the public API. */
+#include "app/runs/sequence_host.h"
+#include "app/runs/host_ring.h"
+#include "app/runs/sequence_frames.h"
+#include "app/runs/sequence_resume.h"
+#include "app/runs/stop.h"
+#include "app/scene/light.h"
+#include <stdlib.h>
+
+bool sequence_host_wanted(const options *o) { return !o->async_luts; }
+
+static void print_message(void *user, vksky_severity severity, const char *message)
+{
+    (void)user, (void)severity;
+    fprintf(stderr, "vksky: %s\n", message);
+}
+
+static int frame_count(const options *o) { return o->frame_count > 0 ? o->frame_count : 1; }
+
+/* Frame i's scene: its animated values set on the command line's scene, and the renderer given it. Frames in flight
+ * (the ring) are waited for first only when the scene changes what they read (ring.drain). *luts: whether the next
+ * frame computes the LUTs. 0, or 1 (the line printed). */
+static int set_frame_scene(const options *base, int i, vksky_scene *scene, vksky_renderer *r, host_ring *ring,
+                           bool first, bool *luts)
+{
+    const char *names[OPTIONS_MAX_ANIMATE];
+    double values[OPTIONS_MAX_ANIMATE];
+    int n = sequence_frame_values(base, i, names, values);
+    if (vksky_scene_set_values(scene, (uint32_t)n, names, values, print_message, NULL) != VKSKY_SUCCESS) return 1;
+    if (ring && !first && vksky_renderer_scene_changes(r, scene)) host_ring_drain(ring);
+    if (vksky_renderer_set_scene(r, scene) != VKSKY_SUCCESS) return 1;
+    *luts = vksky_renderer_luts_stale(r);
+    return 0;
+}
+
+/* The view and exposure a frame's options give (auto exposure metered on the GPU, as the CLI's loops do). */
+static host_view view_of(const options *f)
+{
+    return (host_view){.yaw_deg = f->view.yaw_deg, .pitch_deg = f->view.pitch_deg, .fov_deg = f->view.fov_deg,
+                       .exposure = f->view.exposure_ev, .auto_exposure = light_auto_exposure_wanted(f)};
+}
+
+/* One frame at a time: the host's command buffer, submitted and waited for. */
+typedef struct serial_commands {
+    VkDevice device;
+    VkQueue queue;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+} serial_commands;
+
+static int render_one(serial_commands *h, vksky_renderer *r, const host_view *v, FILE *trace)
+{
+    if (trace) fputs("commands\n", trace);   /* the host's command buffer, as the CLI's trace names one */
+    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
+    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
+                           .pCommandBufferInfos = &cinfo};
+    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS ||
+        host_record(r, h->cmd, v, 0) != 0 || vkEndCommandBuffer(h->cmd) != VK_SUCCESS)
+        return 1;
+    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
+    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
+    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
+    if (vr != VK_SUCCESS) {
+        fprintf(stderr, "vksky: the frame's submission failed (VkResult %d)\n", (int)vr);
+        return 1;
+    }
+    /* A LUT cache miss: the LUTs this frame computed, into the cache (a hit, none, or stored already: nothing). */
+    return vksky_renderer_store_luts(r) == VKSKY_SUCCESS ? 0 : 1;
+}
+
+static int serial_loop(const options *base, serial_commands *h, vksky_scene *scene, vksky_renderer *r, FILE *trace)
+{
+    bool sequence = sequence_active(base);
+    int done = 0, skipped = 0, lut_computations = 0;
+    int range = base->frame_last - base->frame_first + 1;
+    for (int i = base->frame_first; i <= base->frame_last && !stop_requested(); ++i) {   /* stop: between frames */
+        options f;
+        if (sequence_frame_options(base, i, &f)) return 1;   /* parsed before (sequence_check): not expected */
+        /* --skip-existing: a frame this job wrote before (whole, by the atomic rename) is kept (sequence_resume.h). */
+        if (base->skip_existing && sequence_resume_skip(&f, i, frame_count(base), done + skipped + 1, range)) {
+            ++skipped;
+            continue;
+        }
+        bool luts = false;
+        if (set_frame_scene(base, i, scene, r, NULL, true, &luts)) return 1;
+        lut_computations += luts;
+        host_view v = view_of(&f);
+        if (render_one(h, r, &v, trace)) return 1;
+        if (v.auto_exposure && !sequence && !base->quiet) {
+            vksky_exposure e;
+            if (vksky_renderer_get_exposure(r, 0, &e) != VKSKY_SUCCESS) return 1;
+            fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered "
+                            "on the GPU)\n", e.ev100, e.log_average, f.view.ev100 ? "cd/m2" : "(relative units)",
+                    e.pixel_count);
+        }
+        vksky_readback px;
+        if (vksky_renderer_get_readback_slot(r, 0, &px) != VKSKY_SUCCESS) return 1;
+        frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
+        const char *path = "";
+        if (sequence_write_outputs(&f, &pixels, i, sequence, &path) != 0) return 1;
+        ++done;
+        if (sequence) sequence_frame_line(base, i, done + skipped, path, luts);
+    }
+    if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
+    if (sequence) sequence_summary_line(base, done, skipped, lut_computations);
+    return 0;
+}
+
+static int render_serial(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r, FILE *trace)
+{
+    vksky_context_handles k;
+    vksky_context_get_handles(ctx, &k);
+    serial_commands h = {.device = k.device, .queue = k.queue};
+    VkCommandPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                     .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                     .queueFamilyIndex = k.queue_family};
+    VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    int status = 1;
+    if (vkCreateCommandPool(h.device, &pinfo, NULL, &h.pool) == VK_SUCCESS) {
+        VkCommandBufferAllocateInfo ainfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                             .commandPool = h.pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                             .commandBufferCount = 1};
+        if (vkAllocateCommandBuffers(h.device, &ainfo, &h.cmd) == VK_SUCCESS &&
+            vkCreateFence(h.device, &finfo, NULL, &h.fence) == VK_SUCCESS)
+            status = serial_loop(base, &h, scene, r, trace);
+        else
+            fprintf(stderr, "vksky: cannot make the frame's command buffer and fence\n");
+    }
+    if (h.fence) vkDestroyFence(h.device, h.fence, NULL);
+    if (h.pool) vkDestroyCommandPool(h.device, h.pool, NULL);
+    return status;
+}
+
+/* The pipelined loop's job for a frame: what the consumer needs to write it. */
+typedef struct frame_job {
+    options f;
+    int frame;
+    bool luts;
+} frame_job;
+
+typedef struct consumer_state {
+    const options *base;
+    int done;      /* frames written by the consumer */
+    int skipped;   /* frames kept (--skip-existing): counted by the producer while the consumer is idle */
+} consumer_state;
+
+/* host_ring_consume_fn: a frame's files and its line, on the ring's thread, in frame order. */
+static int consume_frame(void *user, const frame_ring_pixels *px, void *job)
+{
+    consumer_state *c = user;
+    const frame_job *j = job;
+    const char *path = "";
+    if (stop_requested() || sequence_write_outputs(&j->f, px, j->frame, true, &path) != 0) return 1;
+    ++c->done;
+    sequence_frame_line(c->base, j->frame, c->done + c->skipped, path, j->luts);
+    return 0;
+}
+
+static int render_ring(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r, int slots,
+                       FILE *trace)
+{
+    consumer_state state = {.base = base};
+    host_ring ring;
+    if (host_ring_create(&ring, ctx, r, slots, consume_frame, &state, trace)) return 1;
+    int lut_computations = 0, status = 0;
+    bool first = true;
+    for (int i = base->frame_first; i <= base->frame_last && !stop_requested() && status == 0; ++i) {
+        frame_job *j = calloc(1, sizeof *j);
+        if (!j || sequence_frame_options(base, i, &j->f)) {
+            free(j);
+            status = 1;
+            break;
+        }
+        /* --skip-existing: the progress lines stay in frame order and the counts settled, so the frames before this
+         * one are written (the consumer idle) before a kept frame's line is printed. Only where the files exist. */
+        if (base->skip_existing && sequence_resume_exists(&j->f, i)) {
+            status = host_ring_settle(&ring);
+            if (status == 0 && sequence_resume_skip(&j->f, i, frame_count(base), state.done + state.skipped + 1,
+                                                    base->frame_last - base->frame_first + 1)) {
+                ++state.skipped;
+                free(j);
+                continue;
+            }
+            if (status) {
+                free(j);
+                break;
+            }
+        }
+        j->frame = i;
+        if (set_frame_scene(base, i, scene, r, &ring, first, &j->luts)) {
+            free(j);
+            status = 1;
+            break;
+        }
+        first = false;
+        lut_computations += j->luts;
+        host_view v = view_of(&j->f);
+        status = host_ring_submit(&ring, &v, j);
+    }
+    int consumed = host_ring_finish(&ring);
+    if (status == 0) status = consumed;
+    if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
+    if (status == 0) sequence_summary_line(base, state.done, state.skipped, lut_computations);
+    return status;
+}
+
+int sequence_host_render(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r, FILE *trace)
+{
+    int slots = host_ring_slots_wanted();
+    /* The ring pays off from two frames on; one frame keeps the serial path (as sequence.c's). */
+    if (slots >= 2 && sequence_active(base) && base->frame_last > base->frame_first)
+        return render_ring(base, ctx, scene, r, slots, trace);
+    return render_serial(base, ctx, scene, r, trace);
+}
