@@ -42,7 +42,8 @@ extern "C" {
  *    vksky_readback_config, vksky_frame_view, vksky_scene_from_args, vksky_renderer_get_readback,
  *    vksky_context_set_device_features, vksky_auto_exposure + vksky_renderer_get_exposure,
  *    vksky_context_set_cache_directory + vksky_renderer_store_luts;
- *    readback slots (vksky_readback_target), vksky_scene_set_values, vksky_renderer_scene_changes, vksky_renderer_luts_stale (sequences). */
+ *    readback slots (vksky_readback_target), vksky_scene_set_values, vksky_renderer_scene_changes, vksky_renderer_luts_stale (sequences);
+ *    vksky_renderer_get_stats (--timings). */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -468,6 +469,23 @@ typedef struct vksky_pass_timing {
 } vksky_pass_timing;
 VKSKY_API vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
                                                   uint32_t *count);
+
+/* What making the renderer cost and what its LUT cache did (ABI 2: the command line's --timings): wall milliseconds
+ * spent making pipelines and resources (creation and variant rebuilds), the times the pipelines were built, and the
+ * LUT cache's state after the last frame (and vksky_renderer_store_luts). */
+typedef enum vksky_lut_cache_state {
+    VKSKY_LUT_CACHE_OFF = 0,           /* no cache directory */
+    VKSKY_LUT_CACHE_HIT = 1,           /* uploaded, not computed */
+    VKSKY_LUT_CACHE_COMPUTED = 2,      /* computed, not stored yet (vksky_renderer_store_luts) */
+    VKSKY_LUT_CACHE_STORED = 3,        /* computed and stored */
+    VKSKY_LUT_CACHE_NOT_STORED = 4     /* computed, the file could not be written */
+} vksky_lut_cache_state;
+typedef struct vksky_renderer_stats {
+    double pipelines_ms;
+    uint32_t variant_builds;
+    vksky_lut_cache_state lut_cache;
+} vksky_renderer_stats;
+VKSKY_API vksky_result vksky_renderer_get_stats(const vksky_renderer *renderer, vksky_renderer_stats *out);
 
 /* ABI 2, the LUTs on an async compute queue (a context with a compute queue): records the LUT passes into
  * `compute_cmd` (recording, a command buffer of the compute queue's family) when the scene's medium changed since they

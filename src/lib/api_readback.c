@@ -1,5 +1,6 @@
 /* Readback slots (include/vksky.h, "Readback slots"): a host's readback ring names the pair of host-visible buffers
- * each frame's copies go to; the ring itself (slots in turn, command buffers, fences, waits) is the host's. */
+ * each frame's copies go to; the ring itself (slots in turn, command buffers, fences, waits) is the host's. And the
+ * renderer's costs for the command line's --timings (vksky_renderer_get_stats). */
 #include "lib/lib_internal.h"
 
 void lib_readback_slots_init(vksky_renderer *r)
@@ -74,5 +75,19 @@ vksky_result vksky_renderer_get_readback_slot(vksky_renderer *renderer, uint32_t
     gpu_trap_arm(NULL);
     *out = (vksky_readback){.linear_rgba16f = linear->mapped, .display_rgba8 = display->mapped,
                             .width = renderer->desc.width, .height = renderer->desc.height};
+    return VKSKY_SUCCESS;
+}
+
+/* The report's states are the renderer's, in its order (sky/renderer.h). */
+_Static_assert(SKY_LUT_CACHE_OFF == (int)VKSKY_LUT_CACHE_OFF && SKY_LUT_CACHE_HIT == (int)VKSKY_LUT_CACHE_HIT &&
+               SKY_LUT_CACHE_MISS == (int)VKSKY_LUT_CACHE_COMPUTED && SKY_LUT_CACHE_STORED == (int)VKSKY_LUT_CACHE_STORED &&
+               SKY_LUT_CACHE_UNWRITABLE == (int)VKSKY_LUT_CACHE_NOT_STORED, "the LUT cache's states");
+
+vksky_result vksky_renderer_get_stats(const vksky_renderer *renderer, vksky_renderer_stats *out)
+{
+    if (!renderer || !out) return VKSKY_ERROR_INVALID_ARGUMENT;
+    *out = (vksky_renderer_stats){.pipelines_ms = renderer->r.pipelines_ms,
+                                  .variant_builds = (uint32_t)renderer->r.variant_builds,
+                                  .lut_cache = (vksky_lut_cache_state)renderer->r.lut_cache};
     return VKSKY_SUCCESS;
 }

@@ -5,6 +5,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/runs/host_ring.h"
+#include "app/runs/startup.h"
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -26,8 +27,77 @@ int host_record(vksky_renderer *r, VkCommandBuffer cmd, const host_view *v, uint
     vksky_readback_target target = {.type = VKSKY_STRUCTURE_TYPE_READBACK_TARGET, .next = &given, .slot = slot};
     vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, .next = &target, .slot = slot};
     vksky_frame frame = {.next = v->auto_exposure ? (const void *)&metered : (const void *)&target,
-                         .exposure = v->exposure};
+                         .exposure = v->exposure, .force_luts = v->force_luts};
     return vksky_record(r, cmd, &frame) == VKSKY_SUCCESS ? 0 : 1;
+}
+
+int host_commands_create(host_commands *h, vksky_context *ctx)
+{
+    vksky_context_handles k;
+    vksky_context_get_handles(ctx, &k);
+    *h = (host_commands){.device = k.device, .queue = k.queue};
+    VkCommandPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
+                                     .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
+                                     .queueFamilyIndex = k.queue_family};
+    VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    bool ok = vkCreateCommandPool(h->device, &pinfo, NULL, &h->pool) == VK_SUCCESS;
+    VkCommandBufferAllocateInfo ainfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                         .commandPool = h->pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                         .commandBufferCount = 1};
+    ok = ok && vkAllocateCommandBuffers(h->device, &ainfo, &h->cmd) == VK_SUCCESS &&
+         vkCreateFence(h->device, &finfo, NULL, &h->fence) == VK_SUCCESS;
+    if (!ok) fprintf(stderr, "vksky: cannot make the frame's command buffer and fence\n");
+    return ok ? 0 : 1;
+}
+
+void host_commands_destroy(host_commands *h)
+{
+    if (h->fence) vkDestroyFence(h->device, h->fence, NULL);
+    if (h->pool) vkDestroyCommandPool(h->device, h->pool, NULL);   /* frees its command buffer */
+    h->fence = VK_NULL_HANDLE, h->pool = VK_NULL_HANDLE;
+}
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+int host_commands_render(host_commands *h, vksky_renderer *r, const host_view *v, FILE *trace, double *wall_ms)
+{
+    if (trace) fputs("commands\n", trace);   /* the host's command buffer, as the CLI's trace names one */
+    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
+    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
+                           .pCommandBufferInfos = &cinfo};
+    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS ||
+        host_record(r, h->cmd, v, 0) != 0 || vkEndCommandBuffer(h->cmd) != VK_SUCCESS)
+        return 1;
+    double t0 = now_ms();
+    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
+    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
+    if (wall_ms) *wall_ms = now_ms() - t0;
+    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
+    if (vr != VK_SUCCESS) {
+        fprintf(stderr, "vksky: the frame's submission failed (VkResult %d)\n", (int)vr);
+        return 1;
+    }
+    return 0;
+}
+
+void host_timings_frame_end(vksky_renderer *r)
+{
+    vksky_renderer_stats stats = {0};
+    vksky_pass_timing timed[64];
+    uint32_t n = 0;
+    vksky_renderer_get_stats(r, &stats);
+    if (vksky_renderer_get_timings(r, timed, 64, &n) != VKSKY_SUCCESS || n > 64) n = 0;   /* no timestamps: none */
+    const char *names[64];
+    double ms[64];
+    for (uint32_t k = 0; k < n; ++k) names[k] = timed[k].name, ms[k] = timed[k].gpu_ms;
+    startup_frame_end_values(stats.pipelines_ms, (int)stats.variant_builds, (int)stats.lut_cache, names, ms, n);
 }
 
 /* A wait of the ring: traced, and skipped when it is the one VKSKY_DROP_BARRIER names. Returns whether to wait. */

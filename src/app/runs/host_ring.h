@@ -23,11 +23,31 @@
 typedef struct host_view {
     double yaw_deg, pitch_deg, fov_deg, exposure;
     bool auto_exposure;
+    bool force_luts;             /* the LUT passes even if the scene did not change (--bench) */
 } host_view;
 
 /* Records one frame of `v` into cmd (begun): its pixels into readback slot `slot`, auto exposure's result in meter slot
  * `slot`. 0, or 1 (vksky's message printed). */
 int host_record(vksky_renderer *r, VkCommandBuffer cmd, const host_view *v, uint32_t slot);
+
+/* One frame at a time: the host's command buffer and fence, the frame recorded into it, submitted and waited for. */
+typedef struct host_commands {
+    VkDevice device;
+    VkQueue queue;
+    VkCommandPool pool;
+    VkCommandBuffer cmd;
+    VkFence fence;
+} host_commands;
+/* 0, or 1 (the line printed). */
+int host_commands_create(host_commands *h, vksky_context *ctx);
+void host_commands_destroy(host_commands *h);
+/* v into readback slot 0; trace: --trace-barriers's stream for the "commands" line (NULL: none); *wall_ms (may be NULL):
+ * submit to fence. 0, or 1 (the line printed). */
+int host_commands_render(host_commands *h, vksky_renderer *r, const host_view *v, FILE *trace, double *wall_ms);
+
+/* --timings: the first image's figures (app/runs/startup.h) from the renderer's stats and its last frame's pass
+ * timings (after the host waited for that frame; later frames are not measured). */
+void host_timings_frame_end(vksky_renderer *r);
 
 /* The consumer, on the ring's thread, in submission order: non-zero stops the ring. `job` is freed by the ring. */
 typedef int (*host_ring_consume_fn)(void *user, const frame_ring_pixels *px, void *job);

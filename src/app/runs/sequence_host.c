@@ -4,6 +4,7 @@
 #include "app/runs/host_ring.h"
 #include "app/runs/sequence_frames.h"
 #include "app/runs/sequence_resume.h"
+#include "app/runs/startup.h"
 #include "app/runs/stop.h"
 #include "app/scene/light.h"
 #include <stdlib.h>
@@ -41,38 +42,20 @@ static host_view view_of(const options *f)
                        .exposure = f->view.exposure_ev, .auto_exposure = light_auto_exposure_wanted(f)};
 }
 
-/* One frame at a time: the host's command buffer, submitted and waited for. */
-typedef struct serial_commands {
-    VkDevice device;
-    VkQueue queue;
-    VkCommandPool pool;
-    VkCommandBuffer cmd;
-    VkFence fence;
-} serial_commands;
-
-static int render_one(serial_commands *h, vksky_renderer *r, const host_view *v, FILE *trace)
+/* One frame, waited for; its LUTs into the cache on a miss; --timings' first image. */
+static int render_one(host_commands *h, vksky_renderer *r, const host_view *v, FILE *trace, bool timings)
 {
-    if (trace) fputs("commands\n", trace);   /* the host's command buffer, as the CLI's trace names one */
-    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
-                           .pCommandBufferInfos = &cinfo};
-    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS ||
-        host_record(r, h->cmd, v, 0) != 0 || vkEndCommandBuffer(h->cmd) != VK_SUCCESS)
-        return 1;
-    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
-    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
-    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
-    if (vr != VK_SUCCESS) {
-        fprintf(stderr, "vksky: the frame's submission failed (VkResult %d)\n", (int)vr);
-        return 1;
-    }
+    /* --timings: the first frame's files are done when the second frame begins (or the run ends). */
+    startup_outputs_done();
+    startup_frame_begin();
+    if (host_commands_render(h, r, v, trace, NULL)) return 1;
     /* A LUT cache miss: the LUTs this frame computed, into the cache (a hit, none, or stored already: nothing). */
-    return vksky_renderer_store_luts(r) == VKSKY_SUCCESS ? 0 : 1;
+    if (vksky_renderer_store_luts(r) != VKSKY_SUCCESS) return 1;
+    if (timings) host_timings_frame_end(r);
+    return 0;
 }
 
-static int serial_loop(const options *base, serial_commands *h, vksky_scene *scene, vksky_renderer *r, FILE *trace)
+static int serial_loop(const options *base, host_commands *h, vksky_scene *scene, vksky_renderer *r, FILE *trace)
 {
     bool sequence = sequence_active(base);
     int done = 0, skipped = 0, lut_computations = 0;
@@ -89,7 +72,7 @@ static int serial_loop(const options *base, serial_commands *h, vksky_scene *sce
         if (set_frame_scene(base, i, scene, r, NULL, true, &luts)) return 1;
         lut_computations += luts;
         host_view v = view_of(&f);
-        if (render_one(h, r, &v, trace)) return 1;
+        if (render_one(h, r, &v, trace, base->timings)) return 1;
         if (v.auto_exposure && !sequence && !base->quiet) {
             vksky_exposure e;
             if (vksky_renderer_get_exposure(r, 0, &e) != VKSKY_SUCCESS) return 1;
@@ -112,26 +95,9 @@ static int serial_loop(const options *base, serial_commands *h, vksky_scene *sce
 
 static int render_serial(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r, FILE *trace)
 {
-    vksky_context_handles k;
-    vksky_context_get_handles(ctx, &k);
-    serial_commands h = {.device = k.device, .queue = k.queue};
-    VkCommandPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
-                                     .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
-                                     .queueFamilyIndex = k.queue_family};
-    VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    int status = 1;
-    if (vkCreateCommandPool(h.device, &pinfo, NULL, &h.pool) == VK_SUCCESS) {
-        VkCommandBufferAllocateInfo ainfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-                                             .commandPool = h.pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
-                                             .commandBufferCount = 1};
-        if (vkAllocateCommandBuffers(h.device, &ainfo, &h.cmd) == VK_SUCCESS &&
-            vkCreateFence(h.device, &finfo, NULL, &h.fence) == VK_SUCCESS)
-            status = serial_loop(base, &h, scene, r, trace);
-        else
-            fprintf(stderr, "vksky: cannot make the frame's command buffer and fence\n");
-    }
-    if (h.fence) vkDestroyFence(h.device, h.fence, NULL);
-    if (h.pool) vkDestroyCommandPool(h.device, h.pool, NULL);
+    host_commands h;
+    int status = host_commands_create(&h, ctx) ? 1 : serial_loop(base, &h, scene, r, trace);
+    host_commands_destroy(&h);
     return status;
 }
 
