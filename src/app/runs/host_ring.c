@@ -168,15 +168,12 @@ int host_ring_create(host_ring *ring, vksky_context *ctx, vksky_renderer *r, int
     VkCommandPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
                                      .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
                                      .queueFamilyIndex = k.queue_family};
+    /* The pool is the producer's alone (the consumer never touches a command buffer): no lock around it. */
     bool ok = vksky_renderer_set_readback_slots(r, (uint32_t)slots) == VKSKY_SUCCESS &&
               vkCreateCommandPool(ring->device, &pinfo, NULL, &ring->pool) == VK_SUCCESS;
     for (int s = 0; ok && s < slots; ++s) {
-        VkCommandBufferAllocateInfo ainfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-                                             .commandPool = ring->pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
-                                             .commandBufferCount = 1};
         VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        ok = vkAllocateCommandBuffers(ring->device, &ainfo, &ring->slots[s].cmd) == VK_SUCCESS &&
-             vkCreateFence(ring->device, &finfo, NULL, &ring->slots[s].fence) == VK_SUCCESS;
+        ok = vkCreateFence(ring->device, &finfo, NULL, &ring->slots[s].fence) == VK_SUCCESS;
     }
     if (ok) ok = pthread_create(&ring->thread, NULL, consumer, ring) == 0;
     if (!ok) {
@@ -208,14 +205,23 @@ int host_ring_submit(host_ring *ring, const host_view *v, void *job)
     }
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = slot->cmd};
+    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
                            .pCommandBufferInfos = &cinfo};
+    /* The slot's last command buffer freed (its frame is done: ring.slot_free) and a new one made, its fence reset. */
+    if (slot->recorded) {
+        vkFreeCommandBuffers(ring->device, ring->pool, 1, &slot->cmd);
+        slot->cmd = VK_NULL_HANDLE;
+    }
+    VkCommandBufferAllocateInfo ainfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+                                         .commandPool = ring->pool, .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
+                                         .commandBufferCount = 1};
     if (ring->trace) fputs("commands\n", ring->trace);   /* the host's command buffer, as the CLI's trace names one */
     bool ok = (!slot->recorded || vkResetFences(ring->device, 1, &slot->fence) == VK_SUCCESS) &&
-              vkResetCommandBuffer(slot->cmd, 0) == VK_SUCCESS && vkBeginCommandBuffer(slot->cmd, &binfo) == VK_SUCCESS &&
+              (slot->cmd || vkAllocateCommandBuffers(ring->device, &ainfo, &slot->cmd) == VK_SUCCESS) &&
+              vkBeginCommandBuffer(slot->cmd, &binfo) == VK_SUCCESS &&
               host_record(ring->r, slot->cmd, v, (uint32_t)s) == 0 && vkEndCommandBuffer(slot->cmd) == VK_SUCCESS &&
-              vkQueueSubmit2(ring->queue, 1, &sinfo, slot->fence) == VK_SUCCESS;
+              (cinfo.commandBuffer = slot->cmd, vkQueueSubmit2(ring->queue, 1, &sinfo, slot->fence) == VK_SUCCESS);
     if (!ok) {
         fprintf(stderr, "vksky: frame %ld could not be recorded or submitted\n", frame);
         free(job);
