@@ -72,8 +72,8 @@ else
   echo "compare_builds: no xvfb-run, window screenshot skipped"
 fi
 
-# Sequences (issue 25 item 1: through include/vksky.h since 25h): the frames' files, their progress lines (paths made
-# relative) and traces. The ring's trace is compared sorted (its consumer thread's "sync ring.gpu_done" lines
+# Sequences, --bench and --timings (issue 25 item 1: through include/vksky.h since 25h): the frames' files, their
+# progress lines (paths made relative) and traces; the reports of --bench and --timings with every number as N. The ring's trace is compared sorted (its consumer thread's "sync ring.gpu_done" lines
 # interleave with the producer's as the threads run); the serial loop's (VKSKY_READBACK_SLOTS=1) as printed.
 seq=(--width 64 --height 36 --frame-count 4 --animate sun-elevation=-2:30 --animate yaw=0:40)
 run_seq() { # name env args (FILE: the output path without extension)
@@ -86,7 +86,13 @@ run_seq() { # name env args (FILE: the output path without extension)
     env $env "$bin" ${args//FILE/$out} >"$out.raw_stdout" 2>"$out.raw_stderr"
     echo $? >"$out.status"
     sed "s|$work/$tag/||g" "$out.raw_stderr" >"$out.stderr"
-    case $name in *ring*) sort "$out.raw_stdout" >"$out.stdout" ;; *) cp "$out.raw_stdout" "$out.stdout" ;; esac
+    case $name in
+      *ring*) sort "$out.raw_stdout" >"$out.stdout" ;;
+      # --bench and --timings: figures differ from run to run, the report's structure does not.
+      bench*|timings*) sed -E 's/-?[0-9]+(\.[0-9]+)?/N/g; s/ +/ /g' "$out.raw_stdout" >"$out.stdout"
+                       sed -E 's/-?[0-9]+(\.[0-9]+)?/N/g; s/ +/ /g' "$out.stderr" >"$out.norm" && mv "$out.norm" "$out.stderr" ;;
+      *) cp "$out.raw_stdout" "$out.stdout" ;;
+    esac
     rm -f "$out.raw_stdout" "$out.raw_stderr"
   done
 }
@@ -101,6 +107,10 @@ run_seq seq_skip "" "--render FILE_%d.exr --render FILE_%d.png ${seq[*]} --frame
 run_seq seq_skip "" "--render FILE_%d.exr --render FILE_%d.png ${seq[*]} --skip-existing"
 run_seq skip_one "" "--render FILE.png --width 64 --height 36 --skip-existing"
 run_seq skip_one "" "--render FILE.png --width 64 --height 36 --skip-existing"
+run_seq bench_one "" "--render FILE.png --width 64 --height 36 --bench 2"
+run_seq bench_seq "" "--render FILE_%d.exr ${seq[*]} --bench 2"
+run_seq timings_one "" "--render FILE.png --width 64 --height 36 --timings --no-cache"
+run_seq timings_seq "VKSKY_READBACK_SLOTS=1" "--render FILE_%d.exr ${seq[*]} --timings --no-cache"
 
 # Two EXRs' pixels (and channel types and sizes), bit for bit.
 same_pixels() {
