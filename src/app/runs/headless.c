@@ -180,9 +180,9 @@ static int finish(gpu_context *ctx, int status, bool timings)
 static int run_checked(const options *o);
 
 /* The runs that go through the public API as its host (app/runs/headless_api.c; docs/library.md's status): one
- * perspective frame to files, sequences and --skip-existing (app/runs/sequence_host.c), --timings. Bands and
- * environment maps, --bench, --spectral, sequences with --async-luts and the tests' VKSKY_FRAMES loop still call src/sky
- * here. */
+ * perspective frame to files, sequences and --skip-existing (app/runs/sequence_host.c), --timings, --bench with
+ * --render (app/runs/bench_host.c). Bands and environment maps, --bench alone, --spectral, --async-luts with a sequence
+ * or --bench, and the tests' VKSKY_FRAMES loop still call src/sky here. */
 static bool api_host_wanted(const options *o)
 {
     return o->output_count > 0 && (o->bench_frames == 0 || !o->async_luts) && !tiles_wanted(o) && !o->spectral &&
