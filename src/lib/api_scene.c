@@ -25,6 +25,13 @@ int lib_options_parse(int argc, char *const *argv_store, options *o, char *why, 
     FILE *memory = open_memstream(&captured, &captured_size);
     FILE *saved = stderr;
     if (memory) stderr = memory;
+    /* The parse's reports on stdout (--max-error's pick and its notes) are the command line's to print, once, from
+     * its own parse: the library prints nothing (include/vksky.h). */
+    char *reported = NULL;
+    size_t reported_size = 0;
+    FILE *dropped = open_memstream(&reported, &reported_size);
+    FILE *saved_out = stdout;
+    if (dropped) stdout = dropped;
     int rc = options_parse(o, argc, (char **)argv_store);
     /* An animated command line: a quality chosen by the scene serves every frame (the command line's sequence). */
     if (rc == 0 && o->animate_count > 0 && sequence_choose_quality(o) != 0) {
@@ -35,6 +42,11 @@ int lib_options_parse(int argc, char *const *argv_store, options *o, char *why, 
         stderr = saved;
         fclose(memory);
     }
+    if (dropped) {
+        stdout = saved_out;
+        fclose(dropped);
+    }
+    free(reported);
     why[0] = 0;
     if (captured) {
         /* One line, without the CLI's "vksky: " and its newline. */
