@@ -41,7 +41,9 @@ extern "C" {
  *    vksky_renderer_get_timings; the compute queue (vksky_context_desc.compute_queue, vksky_record_luts);
  *    vksky_readback_config, vksky_frame_view, vksky_scene_from_args, vksky_renderer_get_readback,
  *    vksky_context_set_device_features, vksky_auto_exposure + vksky_renderer_get_exposure,
- *    vksky_context_set_cache_directory + vksky_renderer_store_luts; vksky_frame_band (projections, bands). */
+ *    vksky_context_set_cache_directory + vksky_renderer_store_luts; vksky_frame_band (projections, bands);
+ *    readback slots (vksky_readback_target), vksky_scene_set_values, vksky_renderer_scene_changes, vksky_renderer_luts_stale (sequences);
+ *    vksky_renderer_get_stats (--timings). */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -177,6 +179,15 @@ VKSKY_API vksky_result vksky_scene_load(const char *path_or_name, vksky_message_
  * name. A bad flag: VKSKY_ERROR_INVALID_ARGUMENT with the command line's own one-line message to `message`. */
 VKSKY_API vksky_result vksky_scene_from_args(int argc, char *const *argv, vksky_message_fn message,
                                              void *message_user, vksky_scene **out);
+/* A frame of a command line's sequence (ABI 2): for a scene of vksky_scene_from_args whose command line animates
+ * (`--animate FLAG=FROM:TO`), the animated flags `flags[k]` ("--sun-elevation", ...; "--time" in decimal hours) set
+ * to `values[k]` over the flags and scene file as that command line read them, then everything derived from them
+ * derived again (a date's sun, density scales, exposure units): the scene the same command line with those values
+ * gives. Numbers, not text: nothing parsed again, no file read. A flag the command line does not animate:
+ * VKSKY_ERROR_INVALID_ARGUMENT (message names it). vksky_scene_from_args of an animated command line chooses a
+ * quality chosen by the scene (auto, --max-error) once for every frame, as the command line's sequence does. */
+VKSKY_API vksky_result vksky_scene_set_values(vksky_scene *scene, uint32_t count, const char *const *flags,
+                                              const double *values, vksky_message_fn message, void *message_user);
 VKSKY_API vksky_result vksky_scene_copy(const vksky_scene *scene, vksky_scene **out);
 VKSKY_API void vksky_scene_destroy(vksky_scene *scene);
 /* The sun's direction: azimuth from north (the host world's -Z with +Y up) towards east (+X), elevation above the
@@ -243,7 +254,8 @@ typedef enum vksky_structure_type {
     VKSKY_STRUCTURE_TYPE_READBACK_CONFIG = 2,  /* vksky_readback_config, from vksky_renderer_desc.next */
     VKSKY_STRUCTURE_TYPE_FRAME_VIEW = 3,       /* vksky_frame_view, from vksky_frame.next */
     VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE = 4,    /* vksky_auto_exposure, from vksky_frame.next */
-    VKSKY_STRUCTURE_TYPE_FRAME_BAND = 5        /* vksky_frame_band, from vksky_frame.next */
+    VKSKY_STRUCTURE_TYPE_FRAME_BAND = 5,       /* vksky_frame_band, from vksky_frame.next */
+    VKSKY_STRUCTURE_TYPE_READBACK_TARGET = 16  /* vksky_readback_target, from vksky_frame.next (sequences) */
 } vksky_structure_type;
 typedef struct vksky_chain {   /* the head every extension struct starts with: to walk a chain */
     vksky_structure_type type;
@@ -308,12 +320,35 @@ typedef struct vksky_readback {
 /* The pixels of the last frame recorded into a command buffer the host has waited for (non-coherent memory is
  * invalidated here); valid until the next vksky_record. VKSKY_ERROR_INVALID_ARGUMENT without a readback config. */
 VKSKY_API vksky_result vksky_renderer_get_readback(vksky_renderer *renderer, vksky_readback *out);
+/* Readback slots (ABI 2, a host's readback ring: the command line's sequences). A renderer with a readback config has
+ * one pair of readback buffers (slot 0); vksky_renderer_set_readback_slots(renderer, n) gives it n pairs (1..
+ * VKSKY_READBACK_SLOTS_MAX, no command buffer of it pending), and a frame chaining a vksky_readback_target copies into
+ * pair `slot` (the frame spine's readback step as always: its barriers traced as the CLI's). The ring stays the
+ * host's: which slot a frame uses, its command buffers, its fences, its waits. After the host waited for that frame,
+ * vksky_renderer_get_readback_slot gives the slot's pixels; it may run on another thread than the one recording the
+ * next frames into other slots (it only invalidates and reads that slot's memory): the one exception to the rule
+ * that calls on a renderer do not overlap. */
+#define VKSKY_READBACK_SLOTS_MAX 4u
+typedef struct vksky_readback_target {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_READBACK_TARGET */
+    const void *next;
+    uint32_t slot;                 /* < the renderer's readback slots */
+} vksky_readback_target;
+VKSKY_API vksky_result vksky_renderer_set_readback_slots(vksky_renderer *renderer, uint32_t count);
+VKSKY_API vksky_result vksky_renderer_get_readback_slot(vksky_renderer *renderer, uint32_t slot, vksky_readback *out);
 /* The host must know no command buffer recorded for it is pending. NULL is ignored. */
 VKSKY_API void vksky_renderer_destroy(vksky_renderer *renderer);
 /* A new scene (copied). The LUTs are rebuilt by the next vksky_record if the medium changed; the pipelines only if
  * the scene needs another variant (species present, multi-scattering, ground, phase model). No command buffer
  * recorded for the renderer may be pending. */
 VKSKY_API vksky_result vksky_renderer_set_scene(vksky_renderer *renderer, const vksky_scene *scene);
+/* Would vksky_renderer_set_scene(renderer, scene) rewrite what recorded frames read (the uniform block, the LUTs'
+ * inputs, the pipelines)? A host with frames in flight waits for them first only then (the command line's ring:
+ * `ring.drain`); a scene that changes only what each frame records (the sun's place, the view) needs no wait. */
+VKSKY_API bool vksky_renderer_scene_changes(const vksky_renderer *renderer, const vksky_scene *scene);
+/* Will the next vksky_record compute the LUTs (none built yet, or the medium changed since)? (ABI 2: the command
+ * line's "LUTs computed / reused" per frame.) */
+VKSKY_API bool vksky_renderer_luts_stale(const vksky_renderer *renderer);
 VKSKY_API vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uint32_t height);
 
 /* After the host waited for the frame that computed the LUTs on a cache miss (vksky_context_set_cache_directory):
@@ -465,6 +500,23 @@ typedef struct vksky_pass_timing {
 } vksky_pass_timing;
 VKSKY_API vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
                                                   uint32_t *count);
+
+/* What making the renderer cost and what its LUT cache did (ABI 2: the command line's --timings): wall milliseconds
+ * spent making pipelines and resources (creation and variant rebuilds), the times the pipelines were built, and the
+ * LUT cache's state after the last frame (and vksky_renderer_store_luts). */
+typedef enum vksky_lut_cache_state {
+    VKSKY_LUT_CACHE_OFF = 0,           /* no cache directory */
+    VKSKY_LUT_CACHE_HIT = 1,           /* uploaded, not computed */
+    VKSKY_LUT_CACHE_COMPUTED = 2,      /* computed, not stored yet (vksky_renderer_store_luts) */
+    VKSKY_LUT_CACHE_STORED = 3,        /* computed and stored */
+    VKSKY_LUT_CACHE_NOT_STORED = 4     /* computed, the file could not be written */
+} vksky_lut_cache_state;
+typedef struct vksky_renderer_stats {
+    double pipelines_ms;
+    uint32_t variant_builds;
+    vksky_lut_cache_state lut_cache;
+} vksky_renderer_stats;
+VKSKY_API vksky_result vksky_renderer_get_stats(const vksky_renderer *renderer, vksky_renderer_stats *out);
 
 /* ABI 2, the LUTs on an async compute queue (a context with a compute queue): records the LUT passes into
  * `compute_cmd` (recording, a command buffer of the compute queue's family) when the scene's medium changed since they

@@ -121,6 +121,9 @@ fi
 # no src/sky header and no src/lib header; they reach the renderer only through the public API. One line per
 # converted path (docs/library.md, "The command-line tool as a host").
 api_hosts=(app/runs/headless_api.c app/runs/headless_api.h)   # `--render`: one perspective frame, or a map in one band
+api_hosts+=(app/runs/sequence_host.c app/runs/sequence_host.h app/runs/host_ring.c app/runs/host_ring.h
+           app/runs/sequence_frames.h app/runs/bench_host.c app/runs/bench_host.h)   # sequences, --skip-existing,
+                                                                                  # the readback ring, --bench (25h)
 for f in "${api_hosts[@]}"; do
   [ -f "$f" ] || { echo "layering: $f: listed as an API host but missing"; fail=1; continue; }
   door=$(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"(sky|lib)/' "$f")

@@ -86,6 +86,46 @@ else
   echo "compare_builds: no xvfb-run, window screenshot skipped"
 fi
 
+# Sequences, --bench and --timings (issue 25 item 1: through include/vksky.h since 25h): the frames' files, their
+# progress lines (paths made relative) and traces; the reports of --bench and --timings with every number as N. The ring's trace is compared sorted (its consumer thread's "sync ring.gpu_done" lines
+# interleave with the producer's as the threads run); the serial loop's (VKSKY_READBACK_SLOTS=1) as printed.
+seq=(--width 64 --height 36 --frame-count 4 --animate sun-elevation=-2:30 --animate yaw=0:40)
+run_seq() { # name env args (FILE: the output path without extension)
+  local name=$1 env=$2 args=$3 tag bin out
+  for tag in old new; do
+    bin=$OLD; [ "$tag" = new ] && bin=$NEW
+    out=$work/$tag/$name
+    mkdir -p "$work/$tag"
+    # shellcheck disable=SC2086 # the argument list is word-split on purpose
+    env $env "$bin" ${args//FILE/$out} >"$out.raw_stdout" 2>"$out.raw_stderr"
+    echo $? >"$out.status"
+    sed "s|$work/$tag/||g" "$out.raw_stderr" >"$out.stderr"
+    case $name in
+      *ring*) sort "$out.raw_stdout" >"$out.stdout" ;;
+      # --bench and --timings: figures differ from run to run, the report's structure does not.
+      bench*|timings*) sed -E 's/-?[0-9]+(\.[0-9]+)?/N/g; s/ +/ /g' "$out.raw_stdout" >"$out.stdout"
+                       sed -E 's/-?[0-9]+(\.[0-9]+)?/N/g; s/ +/ /g' "$out.stderr" >"$out.norm" && mv "$out.norm" "$out.stderr" ;;
+      *) cp "$out.raw_stdout" "$out.stdout" ;;
+    esac
+    rm -f "$out.raw_stdout" "$out.raw_stderr"
+  done
+}
+run_seq seq_ring "" "--render FILE_%d.exr --render FILE_%d.png ${seq[*]} --trace-barriers --trace-passes"
+run_seq seq_serial "VKSKY_READBACK_SLOTS=1" "--render FILE_%d.exr --render FILE_%d.png ${seq[*]} --trace-barriers"
+run_seq seq_range "" "--render FILE_%d.exr --render FILE_%d.png ${seq[*]} --frame-range 1:2"
+run_seq seq_exposure "" "--render FILE_%d.png --width 64 --height 36 --frame-count 3 --animate exposure=10:14 --animate mie-g=0.7:0.85"
+run_seq seq_altitude "" "--render FILE_%d.exr --width 64 --height 36 --frame-count 3 --animate altitude=0:30 --quality high"
+# --skip-existing: frames 0 and 2 written by a first job, then the whole sequence resumed (and one frame alone).
+run_seq seq_skip "" "--render FILE_%d.exr --render FILE_%d.png ${seq[*]} --frame-range 0:0"
+run_seq seq_skip "" "--render FILE_%d.exr --render FILE_%d.png ${seq[*]} --frame-range 2:2"
+run_seq seq_skip "" "--render FILE_%d.exr --render FILE_%d.png ${seq[*]} --skip-existing"
+run_seq skip_one "" "--render FILE.png --width 64 --height 36 --skip-existing"
+run_seq skip_one "" "--render FILE.png --width 64 --height 36 --skip-existing"
+run_seq bench_one "" "--render FILE.png --width 64 --height 36 --bench 2"
+run_seq bench_seq "" "--render FILE_%d.exr ${seq[*]} --bench 2"
+run_seq timings_one "" "--render FILE.png --width 64 --height 36 --timings --no-cache"
+run_seq timings_seq "VKSKY_READBACK_SLOTS=1" "--render FILE_%d.exr ${seq[*]} --timings --no-cache"
+
 # Two EXRs' pixels (and channel types and sizes), bit for bit.
 same_pixels() {
   /usr/bin/python3 - "$1" "$2" <<'PY'

@@ -62,26 +62,30 @@ vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const 
 }
 
 vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view,
-                             const vksky_auto_exposure **exposure, const vksky_frame_band **band)
+                             const vksky_auto_exposure **exposure, const vksky_frame_band **band,
+                             const vksky_readback_target **target)
 {
-    *view = NULL, *exposure = NULL, *band = NULL;
+    *view = NULL, *exposure = NULL, *band = NULL, *target = NULL;
     for (int depth = 0; next; ++depth) {
         const vksky_chain *link = next;
         bool known = link->type == VKSKY_STRUCTURE_TYPE_FRAME_VIEW || link->type == VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE ||
-                     link->type == VKSKY_STRUCTURE_TYPE_FRAME_BAND;
+                     link->type == VKSKY_STRUCTURE_TYPE_FRAME_BAND || link->type == VKSKY_STRUCTURE_TYPE_READBACK_TARGET;
         bool twice = (link->type == VKSKY_STRUCTURE_TYPE_FRAME_VIEW && *view) ||
                      (link->type == VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE && *exposure) ||
-                     (link->type == VKSKY_STRUCTURE_TYPE_FRAME_BAND && *band);
+                     (link->type == VKSKY_STRUCTURE_TYPE_FRAME_BAND && *band) ||
+                     (link->type == VKSKY_STRUCTURE_TYPE_READBACK_TARGET && *target);
         if (depth >= 16 || !known || twice) {
             lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                         "vksky_record: frame.next: structure type %d %s (accepted here: VKSKY_STRUCTURE_TYPE_FRAME_VIEW, "
-                        "VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, VKSKY_STRUCTURE_TYPE_FRAME_BAND, each once)", (int)link->type,
+                        "VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, VKSKY_STRUCTURE_TYPE_FRAME_BAND, "
+                        "VKSKY_STRUCTURE_TYPE_READBACK_TARGET, each once)", (int)link->type,
                         depth >= 16 ? "past 16 links (a loop?)" : twice ? "twice" : "is unknown to this library or not a frame's");
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
         if (link->type == VKSKY_STRUCTURE_TYPE_FRAME_VIEW) *view = next;
         else if (link->type == VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE) *exposure = next;
-        else *band = next;
+        else if (link->type == VKSKY_STRUCTURE_TYPE_FRAME_BAND) *band = next;
+        else *target = next;
         next = link->next;
     }
     const vksky_auto_exposure *e = *exposure;

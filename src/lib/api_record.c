@@ -258,11 +258,12 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
     const vksky_frame_view *given = NULL;
     const vksky_auto_exposure *metered = NULL;
     const vksky_frame_band *band = NULL;
-    vksky_result chain = lib_frame_chain(renderer->ctx, frame->next, &given, &metered, &band);
+    const vksky_readback_target *readback_target = NULL;
+    vksky_result chain = lib_frame_chain(renderer->ctx, frame->next, &given, &metered, &band, &readback_target);
     if (chain != VKSKY_SUCCESS) return chain;
     vksky_context *c = renderer->ctx;
     sky_view v = renderer->o.view;
-    if (renderer->desc.output == VKSKY_OUTPUT_LUTS_ONLY) {
+    if (renderer->desc.output == VKSKY_OUTPUT_LUTS_ONLY && !readback_target) {
         /* The camera gives the sky-view LUT its altitude; without one, the scene's camera altitude serves. */
         if (frame->camera && !camera_to_view(frame->camera, renderer->o.atmosphere.bottom_radius, &v)) {
             lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
@@ -272,7 +273,7 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
         frame_desc f = {.view = &v, .force_luts = frame->force_luts};
         return record_trapped(renderer, cmd, &f, true);
     }
-    if ((given || metered || band) && renderer->desc.output != VKSKY_OUTPUT_DISPLAY) {
+    if ((given || metered || band || readback_target) && renderer->desc.output != VKSKY_OUTPUT_DISPLAY) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                     "vksky_record: vksky_frame_view, vksky_auto_exposure and vksky_frame_band are for output DISPLAY "
                     "only (the others take frame.camera and leave exposure to the host)");
@@ -305,7 +306,16 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
     v.auto_exposure = metered != NULL;
     v.auto_exposure_ease = metered ? metered->ease : 0.0;
     uint32_t slot = metered ? metered->slot : 0;
+    if (readback_target && (!renderer->readback || readback_target->slot >= renderer->slot_count)) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_record: vksky_readback_target: slot %u; the renderer has %u readback slot%s "
+                    "(vksky_renderer_set_readback_slots)", readback_target->slot, renderer->slot_count,
+                    renderer->slot_count == 1 ? "" : "s");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
     if (renderer->readback) {
+        /* The host's ring names the pair of readback buffers this frame's copies go to (slot 0 without one). */
+        lib_readback_select(renderer, readback_target ? readback_target->slot : 0);
         /* vksky's own display and composite images, copied to its readback buffers: frame.color is not used. */
         frame_desc own = {.view = &v, .force_luts = frame->force_luts, .meter_slot = slot,
                           .meter_first_row = band ? band->meter_first_row : 0, .meter_rows = band ? band->meter_rows : 0};

@@ -20,6 +20,7 @@ static vksky_result renderer_options(vksky_context *c, const vksky_renderer_desc
 {
     const options *scene = &from->o;
     *o = *scene;
+    o->unresolved = NULL;   /* the scene's own (vksky_scene_set_values) */
     o->units = d->units == VKSKY_UNITS_RELATIVE ? OPTIONS_UNITS_RELATIVE : OPTIONS_UNITS_PHOTOMETRIC;
     light_finish(o);
     const quality_config *q = NULL;
@@ -170,6 +171,7 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
     r->readback = readback;
     r->desc = *desc;
     r->desc.scene = NULL, r->desc.quality = NULL, r->desc.next = NULL;
+    r->scene_quality = !explicit_quality && desc->max_error == 0.0 && desc->quality && !strcmp(desc->quality, "scene");
     res = renderer_options(context, desc, scene ? scene : earth, explicit_quality, &r->o);
     vksky_scene_destroy(earth);
     const gpu_trace_sink *was = lib_trace_begin(context);   /* the uploads' commands and barriers */
@@ -179,6 +181,8 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
         free(r);
         return res;
     }
+    lib_readback_slots_init(r);
+    lib_render_inputs_of(&r->o, &r->applied);
     context->renderers++;
     *out = r;
     return VKSKY_SUCCESS;
@@ -187,6 +191,7 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
 void vksky_renderer_destroy(vksky_renderer *renderer)
 {
     if (!renderer) return;
+    lib_readback_slots_destroy(renderer);
     host_frame_destroy(&renderer->hf, &renderer->r);
     sky_renderer_destroy(&renderer->r);
     renderer->ctx->renderers--;
@@ -204,22 +209,65 @@ vksky_result vksky_renderer_set_scene(vksky_renderer *renderer, const vksky_scen
     return res;
 }
 
-static vksky_result set_scene(vksky_renderer *renderer, const vksky_scene *scene)
+void lib_scene_for_renderer(const vksky_renderer *r, const vksky_scene *scene, options *o)
 {
     /* The scene whole (medium, features, sun, camera altitude); the renderer's quality, size and units stay. */
-    const options *was = &renderer->o;
-    options o = scene->o;
+    const options *was = &r->o;
+    *o = scene->o;
+    o->unresolved = NULL;   /* the scene's own */
     sky_view view = was->view;
-    view.sun_azimuth_deg = o.view.sun_azimuth_deg, view.sun_elevation_deg = o.view.sun_elevation_deg;
-    view.altitude_km = o.view.altitude_km;
-    o.view = view;
-    o.lut = was->lut, o.render_scale = was->render_scale, o.bloom_mips = was->bloom_mips;
-    o.bloom_quarter = was->bloom_quarter, o.post_pass = was->post_pass, o.bloom_downsample = was->bloom_downsample;
-    o.width = was->width, o.height = was->height, o.units = was->units;
-    light_finish(&o);
-    model_atmosphere lit;
-    light_render_atmosphere(&o, &lit);
-    sky_features features = options_features(&o);
+    if (r->scene_quality && scene->from_args) {
+        /* A command line's frame (a sequence's): its view settings too (tone map, bloom strength, the march knobs
+         * of the quality it chose, which is the renderer's), as that command line renders them. */
+        view = o->view;
+        view.bloom = was->view.bloom;
+    }
+    view.sun_azimuth_deg = o->view.sun_azimuth_deg, view.sun_elevation_deg = o->view.sun_elevation_deg;
+    view.altitude_km = o->view.altitude_km;
+    o->view = view;
+    o->lut = was->lut, o->render_scale = was->render_scale, o->bloom_mips = was->bloom_mips;
+    o->bloom_quarter = was->bloom_quarter, o->post_pass = was->post_pass, o->bloom_downsample = was->bloom_downsample;
+    o->width = was->width, o->height = was->height, o->units = was->units;
+    light_finish(o);
+}
+
+void lib_render_inputs_of(const options *o, lib_render_inputs *out)
+{
+    memset(out, 0, sizeof *out);
+    light_render_atmosphere(o, &out->lit);
+    out->sun_radius_rad = options_sun_radius_rad(o);
+    out->features = options_features(o);
+}
+
+bool vksky_renderer_scene_changes(const vksky_renderer *renderer, const vksky_scene *scene)
+{
+    if (!renderer || !scene) return false;
+    options o;
+    lib_scene_for_renderer(renderer, scene, &o);
+    lib_render_inputs in;
+    lib_render_inputs_of(&o, &in);
+    return memcmp(&in, &renderer->applied, sizeof in) != 0;
+}
+
+bool vksky_renderer_luts_stale(const vksky_renderer *renderer)
+{
+    return renderer && sky_renderer_luts_dirty(&renderer->r);
+}
+
+static vksky_result set_scene(vksky_renderer *renderer, const vksky_scene *scene)
+{
+    options o;
+    lib_scene_for_renderer(renderer, scene, &o);
+    lib_render_inputs in;
+    lib_render_inputs_of(&o, &in);
+    if (!memcmp(&in, &renderer->applied, sizeof in)) {
+        /* Nothing recorded frames read changes (the sun's place and the view go into each frame's recording): no
+         * write, so frames may still be pending (vksky_renderer_scene_changes). */
+        renderer->o = o;
+        return VKSKY_SUCCESS;
+    }
+    model_atmosphere lit = in.lit;
+    sky_features features = in.features;
     gpu_trap trap;
     if (setjmp(trap.jump)) {
         /* A failed pipeline rebuild leaves no usable renderer: the host destroys it. */
@@ -241,6 +289,7 @@ static vksky_result set_scene(vksky_renderer *renderer, const vksky_scene *scene
     }
     gpu_trap_arm(NULL);
     renderer->o = o;
+    renderer->applied = in;
     return VKSKY_SUCCESS;
 }
 
@@ -276,7 +325,9 @@ vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uin
         return lib_result_from_vk(trap.result);
     }
     gpu_trap_arm(&trap);
+    lib_readback_slots_destroy(renderer);   /* new sizes: one slot again, the renderer's own (remade) */
     sky_renderer_resize(&renderer->r, width, height);
+    lib_readback_slots_init(renderer);
     gpu_trap_arm(NULL);
     lib_trace_end(was);
     renderer->desc.width = width, renderer->desc.height = height;

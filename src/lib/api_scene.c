@@ -2,6 +2,8 @@
 #include "lib/lib_internal.h"
 #include "app/scene/light.h"
 #include "app/cli/options.h"
+#include "app/runs/sequence_frames.h"
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,11 +25,28 @@ int lib_options_parse(int argc, char *const *argv_store, options *o, char *why, 
     FILE *memory = open_memstream(&captured, &captured_size);
     FILE *saved = stderr;
     if (memory) stderr = memory;
+    /* The parse's reports on stdout (--max-error's pick and its notes) are the command line's to print, once, from
+     * its own parse: the library prints nothing (include/vksky.h). */
+    char *reported = NULL;
+    size_t reported_size = 0;
+    FILE *dropped = open_memstream(&reported, &reported_size);
+    FILE *saved_out = stdout;
+    if (dropped) stdout = dropped;
     int rc = options_parse(o, argc, (char **)argv_store);
+    /* An animated command line: a quality chosen by the scene serves every frame (the command line's sequence). */
+    if (rc == 0 && o->animate_count > 0 && sequence_choose_quality(o) != 0) {
+        options_release(o);
+        rc = 2;
+    }
     if (memory) {
         stderr = saved;
         fclose(memory);
     }
+    if (dropped) {
+        stdout = saved_out;
+        fclose(dropped);
+    }
+    free(reported);
     why[0] = 0;
     if (captured) {
         /* One line, without the CLI's "vksky: " and its newline. */
@@ -36,6 +55,12 @@ int lib_options_parse(int argc, char *const *argv_store, options *o, char *why, 
         free(captured);
     }
     o->argc = 0, o->argv = NULL;   /* the loader's argv was this function's */
+    if (rc == 0 && o->unresolved) {
+        /* A frame's values are set over these (vksky_scene_set_values); finishing them reads argv[0] only. */
+        static char *const program[] = {"vksky", NULL};
+        o->argc = 1, o->argv = (char **)program;
+        o->unresolved->argc = 1, o->unresolved->argv = (char **)program;
+    }
     return rc;
 }
 
@@ -112,11 +137,69 @@ vksky_result vksky_scene_copy(const vksky_scene *scene, vksky_scene **out)
     vksky_scene *s = scene_new();
     if (!s) return VKSKY_ERROR_OUT_OF_MEMORY;
     *s = *scene;
+    s->o.unresolved = NULL;
+    if (scene->o.unresolved) {
+        s->o.unresolved = malloc(sizeof *s->o.unresolved);
+        if (!s->o.unresolved) {
+            free(s);
+            return VKSKY_ERROR_OUT_OF_MEMORY;
+        }
+        *s->o.unresolved = *scene->o.unresolved;
+    }
     *out = s;
     return VKSKY_SUCCESS;
 }
 
-void vksky_scene_destroy(vksky_scene *scene) { free(scene); }
+void vksky_scene_destroy(vksky_scene *scene)
+{
+    if (scene) options_release(&scene->o);
+    free(scene);
+}
+
+vksky_result vksky_scene_set_values(vksky_scene *scene, uint32_t count, const char *const *flags,
+                                    const double *values, vksky_message_fn message, void *message_user)
+{
+    if (!scene || (count && (!flags || !values)) || count > OPTIONS_MAX_ANIMATE) {
+        lib_message(message, message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_scene_set_values: a scene, and %d flags at most with their values, are required",
+                    OPTIONS_MAX_ANIMATE);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    const options *base = &scene->o;
+    for (uint32_t k = 0; k < count; ++k) {
+        bool animated = false;
+        for (int a = 0; a < base->animate_count; ++a) animated = animated || !strcmp(flags[k], base->animate[a].flag_name);
+        if (!animated || !base->unresolved || !isfinite(values[k])) {
+            lib_message(message, message_user, VKSKY_SEVERITY_ERROR,
+                        "vksky_scene_set_values: %s %g: accepted the flags the scene's command line animates "
+                        "(--animate), with finite values", flags[k] ? flags[k] : "(null)", values[k]);
+            return VKSKY_ERROR_INVALID_ARGUMENT;
+        }
+    }
+    if (count == 0) return VKSKY_SUCCESS;
+    /* The command line's own frame function (values, not text), its one-line complaint captured for the callback. */
+    char *captured = NULL;
+    size_t captured_size = 0;
+    FILE *memory = open_memstream(&captured, &captured_size);
+    FILE *saved = stderr;
+    if (memory) stderr = memory;
+    options f;
+    int rc = options_frame(base, flags, values, (int)count, &f);
+    if (memory) {
+        stderr = saved;
+        fclose(memory);
+    }
+    if (rc != 0) {
+        const char *text = captured && !strncmp(captured, "vksky: ", 7) ? captured + 7 : captured ? captured : "";
+        lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%.*s", (int)strcspn(text, "\n"), text);
+        free(captured);
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    free(captured);
+    f.unresolved = scene->o.unresolved;   /* kept: the next frame's values are set over it too */
+    scene->o = f;
+    return VKSKY_SUCCESS;
+}
 
 vksky_result vksky_scene_set_sun(vksky_scene *scene, double azimuth_deg, double elevation_deg)
 {

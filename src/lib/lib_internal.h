@@ -24,6 +24,14 @@ struct vksky_scene {
     bool from_args;                /* vksky_scene_from_args: o holds a command line's resolved quality too */
 };
 
+/* What recorded frames read of a scene (the uniform block's medium and sun, the features that pick pipelines):
+ * zeroed before it is filled, so that two compare bytewise. */
+typedef struct lib_render_inputs {
+    model_atmosphere lit;          /* the sun in the HDR image's units */
+    double sun_radius_rad;
+    sky_features features;
+} lib_render_inputs;
+
 struct vksky_renderer {
     vksky_context *ctx;
     sky_renderer r;
@@ -31,6 +39,11 @@ struct vksky_renderer {
     vksky_renderer_desc desc;      /* as given (desc.scene and desc.quality not kept: they are the caller's) */
     host_frame hf;                 /* SCENE_LINEAR: the pass over the host's colour and depth (sky/host_frame.h) */
     bool readback;                 /* vksky_readback_config: DISPLAY into its own images, copied to its buffers */
+    bool scene_quality;            /* made with quality "scene": a from_args scene's view settings follow set_scene */
+    /* Readback slots (api_readback.c): slot 0 is the renderer's own pair; the spine copies into r.readback_* */
+    uint32_t slot_count;
+    gpu_buffer slot_linear[VKSKY_READBACK_SLOTS_MAX], slot_display[VKSKY_READBACK_SLOTS_MAX];
+    lib_render_inputs applied;     /* what the GPU reads of the scene, as last set (vksky_renderer_scene_changes) */
 };
 
 /* The context's trace bound to this thread for the length of a call (no trace of its own: the process-wide streams
@@ -44,7 +57,8 @@ vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const 
 /* A frame's `next` chain checked (types known, in place, once): the view (vksky_frame_view), the auto exposure and
  * the band (vksky_frame_band: its ranges are the renderer's, checked by vksky_record), each or NULL. */
 vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view,
-                             const vksky_auto_exposure **exposure, const vksky_frame_band **band);
+                             const vksky_auto_exposure **exposure, const vksky_frame_band **band,
+                             const vksky_readback_target **target);
 struct quality_config;
 void lib_quality_from_config(const vksky_quality_config *q, struct quality_config *out);
 /* One message line to the callback (NULL: dropped). */
@@ -59,4 +73,13 @@ vksky_result lib_result_from_vk(VkResult r);
 int lib_options_load(const char *path_or_name, options *o, char *why, size_t why_size);
 /* A command line (argv[0] the program's) parsed by the CLI's own parser; as lib_options_load. */
 int lib_options_parse(int argc, char *const *argv, options *o, char *why, size_t why_size);
+/* Readback slots: the renderer's own pair as slot 0 (after creation); the extra pairs destroyed (before the renderer
+ * is). api_readback.c. */
+void lib_readback_slots_init(vksky_renderer *r);
+void lib_readback_slots_destroy(vksky_renderer *r);
+/* The readback pair `slot` for the next frame's copies. */
+void lib_readback_select(vksky_renderer *r, uint32_t slot);
+/* A scene's options as a renderer of these options would take them (set_scene), and what the GPU reads of them. */
+void lib_scene_for_renderer(const vksky_renderer *r, const vksky_scene *scene, options *o);
+void lib_render_inputs_of(const options *o, lib_render_inputs *out);
 #endif

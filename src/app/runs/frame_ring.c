@@ -6,8 +6,8 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/runs/frame_ring.h"
+#include "app/runs/ring_order.h"
 #include "app/runs/stage_times.h"
-#include "io/encode_settings.h"
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -83,17 +83,7 @@ static void *consumer(void *arg)
     return NULL;
 }
 
-int frame_ring_consumers_wanted(long pixels)
-{
-    const char *env = getenv("VKSKY_ENCODE_FRAMES");
-    int n = env && *env ? atoi(env) : io_encode_threads_all() / 4;
-    if (!(env && *env)) {
-        /* In flight per frame: a slot (12 bytes a pixel) and the EXR's float copy (16): ~1 GiB in all at most. */
-        long cap = pixels > 0 ? (1L << 30) / (pixels * 28) : 1;
-        if (n > cap) n = (int)cap;
-    }
-    return n < 1 ? 1 : n > FRAME_RING_MAX_CONSUMERS ? FRAME_RING_MAX_CONSUMERS : n;
-}
+int frame_ring_consumers_wanted(long pixels) { return ring_consumers_wanted(pixels, FRAME_RING_MAX_CONSUMERS); }
 
 int frame_ring_wait_turn(frame_ring *ring, long frame)
 {
@@ -115,11 +105,8 @@ int frame_ring_create(frame_ring *ring, sky_renderer *r, int slots, int consumer
                          .own_display = r->readback_display};
     const char *drop = getenv("VKSKY_DROP_BARRIER");
     ring->drop = drop && *drop ? drop : NULL;
-    const char *delay = getenv("VKSKY_RING_DELAY_MS");
-    ring->delay_ms = delay ? atoi(delay) : 0;
     /* "EVEN:ODD": even and odd frames dawdle differently, so frames encoded at once finish out of order. */
-    const char *odd = delay ? strchr(delay, ':') : NULL;
-    ring->delay_odd_ms = odd ? atoi(odd + 1) : ring->delay_ms;
+    ring_delays(&ring->delay_ms, &ring->delay_odd_ms);
     const gpu_context *ctx = r->ctx;
     for (int s = 0; s < slots; ++s) {
         frame_ring_slot *slot = &ring->slots[s];

@@ -14,6 +14,7 @@
 #ifndef VKSKY_APP_FRAME_RING_H
 #define VKSKY_APP_FRAME_RING_H
 #include "sky/frame.h"
+#include "app/runs/sequence_frames.h"
 #include <pthread.h>
 #include <stdio.h>
 
@@ -24,11 +25,7 @@
 #define FRAME_RING_MAX_CONSUMERS (FRAME_RING_MAX_SLOTS - 1)
 
 /* What the consumer reads: the frame's linear (RGBA half) and display (RGBA8) pixels, as the renderer lays them out
- * (renderer.h: readback_linear, readback_display). */
-typedef struct frame_ring_pixels {
-    const uint16_t *linear;
-    const uint8_t *display;
-} frame_ring_pixels;
+ * (renderer.h: readback_linear, readback_display): frame_ring_pixels (app/runs/sequence_frames.h). */
 
 /* The consumer: called on one of the ring's threads, once per frame; `job` is the producer's (freed by the ring
  * afterwards with free()). With one consumer thread (the default) frames are consumed in submission order; with

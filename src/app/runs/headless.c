@@ -5,6 +5,7 @@
 #include "app/runs/frame_ring.h"
 #include "app/runs/headless_api.h"
 #include "app/runs/sequence.h"
+#include "app/runs/sequence_host.h"
 #include "app/runs/startup.h"
 #include "app/runs/spectral_render.h"
 #include "app/runs/stop.h"
@@ -179,12 +180,13 @@ static int finish(gpu_context *ctx, int status, bool timings)
 static int run_checked(const options *o);
 
 /* The runs that go through the public API as its host (app/runs/headless_api.c; docs/library.md's status): one
- * perspective frame to files. Sequences, bands and environment maps, --bench, --spectral, --timings (its report reads
- * the renderer's timers), --skip-existing and the tests' VKSKY_FRAMES loop still call src/sky here. */
+ * perspective frame to files, sequences and --skip-existing (app/runs/sequence_host.c), --timings, --bench with
+ * --render (app/runs/bench_host.c). Bands and environment maps, --bench alone, --spectral, --async-luts with a sequence
+ * or --bench, and the tests' VKSKY_FRAMES loop still call src/sky here. */
 static bool api_host_wanted(const options *o)
 {
-    return o->output_count > 0 && o->bench_frames == 0 && !tiles_in_bands(o) && !sequence_active(o) && !o->spectral &&
-           !o->timings && !o->skip_existing && !getenv("VKSKY_FRAMES");
+    return o->output_count > 0 && (o->bench_frames == 0 || !o->async_luts) && !tiles_in_bands(o) && !o->spectral &&
+           ((!sequence_active(o) && !o->skip_existing) || sequence_host_wanted(o)) && !getenv("VKSKY_FRAMES");
 }
 
 int headless_run(const options *given)
@@ -233,7 +235,7 @@ static int run_checked(const options *o)
         vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
                                              .vulkan_memory_model = ctx.memory_model_device_scope,
                                              .vulkan_memory_model_device_scope = ctx.memory_model_device_scope};
-        return finish(&ctx, headless_api_render(o, &device, &enabled, gpu_cache_dir(&ctx)), false);
+        return finish(&ctx, headless_api_render(o, &device, &enabled, gpu_cache_dir(&ctx)), o->timings);
     }
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/runs/tiles.c). */

@@ -1,9 +1,13 @@
-/* One headless frame through include/vksky.h (headless_api.h): a perspective frame, or an environment map in one band. The order a host follows (docs/library.md): context,
- * scene, renderer, then per frame: begin its command buffer, vksky_record, end, submit, wait, read. */
+/* One headless frame through include/vksky.h (headless_api.h): a perspective frame, or an environment map in one
+ * band. The order a host follows (docs/library.md): context, scene, renderer, then per frame: begin its command
+ * buffer, vksky_record, end, submit, wait, read. */
 #include "app/runs/headless_api.h"
-#include "app/runs/frame_ring.h"
-#include "app/runs/sequence.h"
 #include "app/runs/tiles_out.h"
+#include "app/runs/bench_host.h"
+#include "app/runs/sequence_frames.h"
+#include "app/runs/sequence_host.h"
+#include "app/runs/host_ring.h"
+#include "app/runs/startup.h"
 #include "app/runs/stop.h"
 #include "app/scene/light.h"
 #include <math.h>
@@ -23,76 +27,6 @@ static void print_trace(void *user, const char *line)
     (void)user;
     fputs(line, stdout);
     fputc('\n', stdout);
-}
-
-/* The host's own command buffer and fence: one frame at a time, submitted and waited for. */
-typedef struct host_commands {
-    VkDevice device;
-    VkQueue queue;
-    VkCommandPool pool;
-    VkCommandBuffer cmd;
-    VkFence fence;
-    bool trace;                  /* --trace-barriers: a "commands" line where a command buffer begins */
-} host_commands;
-
-static bool commands_create(host_commands *h, const vksky_context *ctx, bool trace)
-{
-    vksky_context_handles k;
-    vksky_context_get_handles(ctx, &k);
-    *h = (host_commands){.device = k.device, .queue = k.queue, .trace = trace};
-    VkCommandPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
-                                     .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
-                                     .queueFamilyIndex = k.queue_family};
-    VkCommandBufferAllocateInfo ainfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
-                                         .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY, .commandBufferCount = 1};
-    VkFenceCreateInfo finfo = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    if (vkCreateCommandPool(h->device, &pinfo, NULL, &h->pool) != VK_SUCCESS) return false;
-    ainfo.commandPool = h->pool;
-    return vkAllocateCommandBuffers(h->device, &ainfo, &h->cmd) == VK_SUCCESS &&
-           vkCreateFence(h->device, &finfo, NULL, &h->fence) == VK_SUCCESS;
-}
-
-static void commands_destroy(host_commands *h)
-{
-    if (h->fence) vkDestroyFence(h->device, h->fence, NULL);
-    if (h->pool) vkDestroyCommandPool(h->device, h->pool, NULL);   /* frees its command buffer */
-}
-
-/* One frame: recorded by vksky into the host's command buffer, submitted, waited for. The readback buffers are then
- * the renderer's to hand out (vksky_renderer_get_readback). */
-static int render_frame(host_commands *h, vksky_renderer *r, const options *o, bool auto_exposure)
-{
-    const sky_view *view = &o->view;
-    if (h->trace) print_trace(NULL, "commands");   /* the host's command buffer, as the CLI's own trace names one */
-    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
-    /* The view as the command line gave it: the sky pass's own rays from yaw, pitch and fov. */
-    vksky_frame_view given = {.type = VKSKY_STRUCTURE_TYPE_FRAME_VIEW, .yaw_deg = view->yaw_deg,
-                              .pitch_deg = view->pitch_deg, .fov_deg = view->fov_deg};
-    /* Auto exposure: the GPU meters the frame and its tone map reads the result (slot 0: one frame at a time). */
-    vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE};
-    if (auto_exposure) given.next = &metered;
-    /* An environment map (one band: the whole image): the projection gives each pixel its direction. */
-    vksky_frame_band map = {.type = VKSKY_STRUCTURE_TYPE_FRAME_BAND, .next = auto_exposure ? &metered : NULL,
-                            .projection = (vksky_projection)view->projection, .whole_width = (uint32_t)o->width,
-                            .whole_height = (uint32_t)o->height};
-    bool is_map = view->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE;
-    vksky_frame frame = {.next = is_map ? (const void *)&map : &given, .exposure = view->exposure_ev};
-    vksky_result res = vksky_record(r, h->cmd, &frame);
-    if (res != VKSKY_SUCCESS) return 1;   /* the callback printed why */
-    if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
-    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
-                           .pCommandBufferInfos = &cinfo};
-    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
-    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
-    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
-    if (vr != VK_SUCCESS) {
-        fprintf(stderr, "vksky: the frame's submission failed (VkResult %d)\n", (int)vr);
-        return 1;
-    }
-    return 0;
 }
 
 /* Auto exposure's figures, as the command line prints them (the GPU metered the frame that was just rendered). */
@@ -133,10 +67,19 @@ static int render_and_write(const options *o, host_commands *h, vksky_renderer *
 {
     const sky_view *view = &o->view;
     bool auto_exposure = light_auto_exposure_wanted(o);
-    int status = render_frame(h, r, o, auto_exposure);
+    startup_frame_begin();   /* --timings: the first image */
+    /* The view as the command line gave it (the sky pass's own rays from yaw, pitch and fov); auto exposure: the GPU
+     * meters the frame and its tone map reads the result (slot 0: one frame at a time). An environment map: one band,
+     * the whole image, the projection giving each pixel its direction. */
+    host_view v = {.yaw_deg = view->yaw_deg, .pitch_deg = view->pitch_deg, .fov_deg = view->fov_deg,
+                   .exposure = view->exposure_ev, .auto_exposure = auto_exposure,
+                   .projection = (vksky_projection)view->projection, .whole_width = (uint32_t)o->width,
+                   .whole_height = (uint32_t)o->height};
+    int status = host_commands_render(h, r, &v, o->trace_barriers ? stdout : NULL, NULL);
     if (status == 0 && auto_exposure) status = print_metered(o, view, r);
     /* A LUT cache miss: the LUTs this frame computed, into the cache for the next start (a hit or none: nothing). */
     if (status == 0 && vksky_renderer_store_luts(r) != VKSKY_SUCCESS) status = 1;
+    if (status == 0 && o->timings) host_timings_frame_end(r);
     vksky_readback px;
     if (status != 0 || vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
     /* A map stopped (Ctrl-C, TERM) while it rendered: no file, as a banded render stops (stop_status says so). */
@@ -189,14 +132,21 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     if (o->trace_passes)
         vksky_context_set_trace(ctx, (o->trace_barriers ? VKSKY_TRACE_BARRIERS : 0u) | VKSKY_TRACE_PASSES,
                                 print_trace, NULL);
-    if (!commands_create(&h, ctx, o->trace_barriers)) {
-        fprintf(stderr, "vksky: cannot make the frame's command buffer and fence\n");
-        goto done;
-    }
+    if (host_commands_create(&h, ctx)) goto done;
     /* Stopped while the device and the renderer were made: nothing to render (stop_status says why). */
-    status = stop_requested() ? 0 : render_and_write(o, &h, r);
+    /* A sequence (or --skip-existing): the frames through the host's readback ring or one at a time
+     * (app/runs/sequence_host.c); else the one frame. */
+    if (stop_requested()) {
+        status = 0;
+    } else if (o->bench_frames > 0) {
+        /* --bench: no barrier trace over its frames (the pass trace stays, as the CLI's own bench keeps it). */
+        vksky_context_set_trace(ctx, o->trace_passes ? VKSKY_TRACE_PASSES : 0u, print_trace, NULL);
+        status = bench_host_run(o, ctx, scene, r);
+    } else if (sequence_active(o) || o->skip_existing)
+        status = sequence_host_render(o, ctx, scene, r, o->trace_barriers ? stdout : NULL);
+    else status = render_and_write(o, &h, r);
 done:
-    commands_destroy(&h);
+    host_commands_destroy(&h);
     vksky_renderer_destroy(r);
     vksky_scene_destroy(scene);
     vksky_context_destroy(ctx);

@@ -9,7 +9,7 @@
 #include <vksky.h>
 #include "app/cli/options_struct.h"
 
-/* The frame of `o` (one frame: no sequence, no more than one band, no bench) on the device `device` describes (the caller's, which
+/* The frame of `o` (one frame, or a sequence's frames, or --bench with --render; no more than one band) on the device `device` describes (the caller's, which
  * it keeps and destroys after), with the features `enabled` on it. Returns the run's exit status: 0, or 1 for a
  * runtime failure (the line printed). */
 /* cache_dir: the CLI's cache directory (the LUT cache beside its pipeline cache), or NULL (--no-cache). */

@@ -34,15 +34,21 @@ static double animated_value(const options_animation *a, int frame, int count)
     return a->integer ? (double)llround(v) : v;
 }
 
-int sequence_frame_options(const options *base, int frame, options *out)
+int sequence_frame_values(const options *base, int frame, const char **names, double *values)
 {
-    const char *names[OPTIONS_MAX_ANIMATE];
-    double values[OPTIONS_MAX_ANIMATE];
     for (int k = 0; k < base->animate_count; ++k) {
         names[k] = base->animate[k].flag_name;
         values[k] = animated_value(&base->animate[k], frame, frame_count(base));
     }
-    return options_frame(base, names, values, base->animate_count, out);
+    return base->animate_count;
+}
+
+int sequence_frame_options(const options *base, int frame, options *out)
+{
+    const char *names[OPTIONS_MAX_ANIMATE];
+    double values[OPTIONS_MAX_ANIMATE];
+    int count = sequence_frame_values(base, frame, names, values);
+    return options_frame(base, names, values, count, out);
 }
 
 /* A --render value's file for a frame: the pattern filled in, or a value without one %d as it is. */
@@ -64,7 +70,7 @@ static bool same_luts(const sky_lut_quality *a, const sky_lut_quality *b)
  * sequence: for every scene class its frames pass through (all of them, whatever --frame-range renders, so that a
  * split sequence equals the whole), and the base options are parsed again under that choice. Frames then differ
  * only in view, sun and medium values: no preset switch (and no jump in the error) from one frame to the next. */
-static int choose_sequence_quality(options *base)
+int sequence_choose_quality(options *base)
 {
     if (base->animate_count == 0 || base->quality_classes == 0) return 0;
     unsigned classes = 0;
@@ -79,7 +85,7 @@ static int choose_sequence_quality(options *base)
 
 int sequence_check(options *base)
 {
-    if (choose_sequence_quality(base)) return 2;
+    if (sequence_choose_quality(base)) return 2;
     for (int i = base->frame_first; i <= base->frame_last; ++i) {
         options f;
         if (sequence_frame_options(base, i, &f)) return 2;
@@ -114,8 +120,8 @@ static bool is_exr(const char *path)
 
 /* The frame's files; EXRs with the header that says how they were made (exr_header.h). */
 /* `first` (PATH_MAX bytes) gets the first output's path (the progress line's). Safe on several threads at once (frames
- * encoded together, frame_ring.h). */
-static int write_outputs(const options *o, const frame_ring_pixels *px, int frame, bool sequence, char *first)
+ * encoded together: frame_ring.h, host_ring.h). */
+int sequence_write_outputs(const options *o, const frame_ring_pixels *px, int frame, bool sequence, char *first)
 {
     char err[512];
     first[0] = '\0';
@@ -166,18 +172,18 @@ static int write_outputs(const options *o, const frame_ring_pixels *px, int fram
 int sequence_write_frame(const options *o, const frame_ring_pixels *px, int frame, bool sequence)
 {
     char path[PATH_MAX];
-    return write_outputs(o, px, frame, sequence, path);
+    return sequence_write_outputs(o, px, frame, sequence, path);
 }
 
 /* A frame's progress line (not with --quiet). */
-static void frame_line(const options *base, int i, int done, const char *path, bool luts)
+void sequence_frame_line(const options *base, int i, int done, const char *path, bool luts)
 {
     if (base->quiet) return;
     fprintf(stderr, "vksky: frame %d (%d of %d; %d/%d of this job): %s, LUTs %s\n", i, i + 1, frame_count(base), done,
             base->frame_last - base->frame_first + 1, path, luts ? "computed" : "reused");
 }
 
-static void summary_line(const options *base, int done, int skipped, int lut_computations)
+void sequence_summary_line(const options *base, int done, int skipped, int lut_computations)
 {
     if (base->quiet) return;
     char skips[48] = "";   /* resumed: the frames kept count too */
@@ -218,12 +224,12 @@ static int sequence_render_serial(const options *base, sky_renderer *r, sequence
         }
         char path[PATH_MAX];
         frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
-        if (write_outputs(&f, &px, i, sequence, path) != 0) return 1;
+        if (sequence_write_outputs(&f, &px, i, sequence, path) != 0) return 1;
         ++done;
-        if (sequence) frame_line(base, i, done + skipped, path, luts);
+        if (sequence) sequence_frame_line(base, i, done + skipped, path, luts);
     }
     if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
-    if (sequence) summary_line(base, done, skipped, lut_computations);
+    if (sequence) sequence_summary_line(base, done, skipped, lut_computations);
     return 0;
 }
 
@@ -266,7 +272,7 @@ static int consume_frame(void *user, const frame_ring_pixels *px, void *job)
     commit_turn turn = {c->ring, j->seq};
     io_encode_threads_local(c->share);
     io_atomic_set_commit_gate(c->ring->consumers > 1 ? commit_gate : NULL, &turn);
-    int rc = stop_requested() || write_outputs(&j->f, px, j->frame, true, j->path) != 0;
+    int rc = stop_requested() || sequence_write_outputs(&j->f, px, j->frame, true, j->path) != 0;
     io_atomic_set_commit_gate(NULL, NULL);
     return rc;
 }
@@ -277,7 +283,7 @@ static void retire_frame(void *user, void *job)
     consumer_state *c = user;
     const frame_job *j = job;
     ++c->done;
-    frame_line(c->base, j->frame, c->done + c->skipped, j->path, j->luts);
+    sequence_frame_line(c->base, j->frame, c->done + c->skipped, j->path, j->luts);
 }
 
 /* The pipelined loop (frame_ring.h): frame N+1 renders while frame N is written. Same frames, same files, same
@@ -345,7 +351,7 @@ static int sequence_render_ring(const options *base, sky_renderer *r, int slots,
     if (base->timings && status == 0)
         stage_report(stderr, "sequence", state.done, "frame", ring.consumers, share ? share : threads);
     if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
-    if (status == 0) summary_line(base, state.done, state.skipped, lut_computations);
+    if (status == 0) sequence_summary_line(base, state.done, state.skipped, lut_computations);
     return status;
 }
 

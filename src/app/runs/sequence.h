@@ -5,13 +5,10 @@
 #ifndef VKSKY_APP_SEQUENCE_H
 #define VKSKY_APP_SEQUENCE_H
 #include "app/cli/options_struct.h"
+#include "app/runs/sequence_frames.h"
 #include "sky/frame.h"
 #include <stdio.h>
 
-/* Whether the options ask for a sequence (progress lines, frame numbers in the EXR header). */
-bool sequence_active(const options *o);
-/* Frame `frame`'s options (base itself when nothing is animated). 0 ok, 2 bad (one line printed). */
-int sequence_frame_options(const options *base, int frame, options *out);
 /* Before any GPU work: a quality chosen by the scene (auto, --max-error) is chosen once for every scene class the
  * sequence's frames pass through (base is parsed again under it); every frame of the range parses, keeps what the
  * renderer is made for (size, LUTs, bloom) and has writable output files. 0 ok, 2 bad (one line printed; nothing
@@ -25,8 +22,4 @@ typedef void (*sequence_render_fn)(sky_renderer *r, const frame_desc *f);
  * written; the same files, bytes and order); trace: the ring's waits (--trace-barriers; NULL: none). `render` is the
  * serial loop's (the tests' VKSKY_FRAMES). 0 ok, 1 failed. */
 int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render, int slots, FILE *trace);
-/* A frame's files (its --render values, EXRs with their header) from its read-back pixels: 0, or 1 with the line
- * printed. The single frame of app/runs/headless_api.c writes through it. */
-struct frame_ring_pixels;
-int sequence_write_frame(const options *o, const struct frame_ring_pixels *px, int frame, bool sequence);
 #endif

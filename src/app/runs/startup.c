@@ -59,16 +59,23 @@ void startup_frame_begin(void)
 void startup_frame_end(sky_renderer *r)
 {
     if (t.frame_done) return;
-    t.frame_end = now_ms();
-    t.frame = t.frame_end - t.frame_begin;
-    t.pipelines = r->pipelines_ms, t.variant_builds = r->variant_builds, t.lut_cache = (int)r->lut_cache;
-    t.commit_before = io_atomic_commit_ms();
     double ms[GPU_TIMER_MAX];
     uint32_t n = r->timer.enabled ? gpu_timer_read(r->ctx, &r->timer, ms) : 0;
+    startup_frame_end_values(r->pipelines_ms, r->variant_builds, (int)r->lut_cache, r->timer.names, ms, n);
+}
+
+void startup_frame_end_values(double pipelines_ms, int variant_builds, int lut_cache, const char *const *names,
+                              const double *ms, uint32_t n)
+{
+    if (t.frame_done) return;
+    t.frame_end = now_ms();
+    t.frame = t.frame_end - t.frame_begin;
+    t.pipelines = pipelines_ms, t.variant_builds = variant_builds, t.lut_cache = lut_cache;
+    t.commit_before = io_atomic_commit_ms();
     t.gpu_timed = n > 0;
     if (t.gpu_timed) t.gpu_luts = t.gpu_readback = 0;
     for (uint32_t k = 0; k < n; ++k) {
-        const char *name = r->timer.names[k];
+        const char *name = names[k];
         size_t len = strlen(name);
         if (len > 4 && !strcmp(name + len - 4, "_lut")) t.gpu_luts += ms[k];
         if (!strcmp(name, "readback")) t.gpu_readback += ms[k];

@@ -17,6 +17,10 @@ void startup_close_cache(gpu_context *ctx);
  * then once its files are written (before the next frame, or at the end). Later frames are not measured. */
 void startup_frame_begin(void);
 void startup_frame_end(sky_renderer *r);
+/* The same from a host of include/vksky.h (vksky_renderer_get_stats, vksky_renderer_get_timings): the pipelines' ms,
+ * the variant builds, the LUT cache's state (vksky_lut_cache_state) and the frame's timed passes (n 0: none). */
+void startup_frame_end_values(double pipelines_ms, int variant_builds, int lut_cache, const char *const *names,
+                              const double *ms, uint32_t n);
 void startup_outputs_done(void);
 
 /* --timings: the breakdown on `out` (instance, device, pipelines, LUTs, frame, readback, encode, write), if a

@@ -1,0 +1,14 @@
+/* --bench N with --render as a host of include/vksky.h (issue 25 item 1): per-pass GPU medians from
+ * vksky_renderer_get_timings, the LUT passes from frames with frame.force_luts, wall and CPU time per frame; then a
+ * sequence's frames to disk, timed (app/runs/sequence_host.c). The same lines as app/runs/headless.c's bench. No src/sky
+ * or src/lib header (tests/layering_test.sh). */
+#ifndef VKSKY_APP_BENCH_HOST_H
+#define VKSKY_APP_BENCH_HOST_H
+#include <volk.h>
+#include <vksky.h>
+#include "app/cli/options_struct.h"
+
+/* The benchmark of o's frame with r (a readback renderer made from `scene`), then its sequence, if any, to disk.
+ * 0 ok, 1 failed. */
+int bench_host_run(const options *o, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r);
+#endif
