@@ -38,7 +38,13 @@ vec3 hdr_upsample(sampler2D hdr, vec2 uv, ivec2 out_size, ivec2 rows)
 {
     ivec2 size = textureSize(hdr, 0);
     ivec2 lo = ivec2(0, rows.x), hi = ivec2(size.x - 1, rows.y);
-    vec4 bilinear = textureLod(hdr, uv, 0.0);
+    /* At render scale 1 an output pixel is its texel, fetched (issue 26: the 64x32 map's row 27). A bilinear sample
+     * at the pixel's centre, (x + 0.5) / size, lands on the texel's centre only where that is exact in float (a
+     * power-of-two size); elsewhere the filter mixes a neighbour in at a rounding-sized weight, and where the value
+     * is a half subnormal (a dark ground under a photometric frame's disc scale, 2^-24 a step: 1/256 cd/m2) the
+     * rounding of the result moves it by a whole step: a band, whose image height is not the whole image's, then
+     * differed from the whole image on the rows that sat at a step's edge. */
+    vec4 bilinear = size == out_size ? texelFetch(hdr, ivec2(uv * vec2(size)), 0) : textureLod(hdr, uv, 0.0);
     if (abs(bilinear.a) > 2.0) return bilinear.rgb;
     /* The four taps, the distance's gradient per output pixel, its unit normal, the pixel's distance in output
      * pixels and its coverage of the sky. */
