@@ -161,6 +161,7 @@ VKSKY_STRUCT(MeterPush) {
 #define VKSKY_SUN_VISIBILITY_LESSON_FADE 1
 #define VKSKY_SPEC_AP_RANGE 15          /* the aerial-perspective volume's (ap_volume.c): its range in km */
 #define VKSKY_SPEC_AP_DISTRIBUTION 16   /* and its slice distribution exponent (1 linear, 2 quadratic) */
+#define VKSKY_SPEC_TONEMAP_FAR 17       /* the fragment tone map's far-only variant (sky/tonemap_regions.h) */
 /* The multi-scattering LUT is an atlas of this many N x N parts side by side (multiscatter_lut.comp): Psi^(1/4)
  * and D; Q_zz, Q_xz, m_x, m_z; the zonal moments of degrees 3 to 6. */
 #define VKSKY_MULTISCATTER_PARTS 3

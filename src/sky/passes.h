@@ -94,6 +94,8 @@ typedef struct tonemap_pass {
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;
     VkPipeline pipeline;
+    VkPipeline far_pipeline[2];   /* hdr_upsample.glsl's far path only (the regions away from the horizon); [1]:
+                                     the sky image is the output's size */
     VkDescriptorSet set;
     bool composite;
 } tonemap_pass;
@@ -101,6 +103,10 @@ typedef struct tonemap_pass {
 void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view, VkImageView bloom_view,
                     VkFormat display_format, bool composite);
 void tonemap_destroy(tonemap_pass *t, const pass_shared *s);
+/* `regions` (sky/tonemap_regions.h): each drawn by its pipeline under its scissor; NULL: the whole target, full.
+ * hdr_full_size: the sky image is `extent` (render scale 1). */
+typedef struct tonemap_regions tonemap_regions;
 void tonemap_record(const tonemap_pass *t, VkCommandBuffer cmd, VkExtent2D extent, VkImageView display,
-                    VkImageView composite, const TonemapPush *push);
+                    VkImageView composite, const TonemapPush *push, const tonemap_regions *regions,
+                    bool hdr_full_size);
 #endif
