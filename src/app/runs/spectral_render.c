@@ -58,13 +58,50 @@ void spectral_render_begin(const options *o, sequence_render_fn inner)
     job.inner = inner;
 }
 
-/* The ground's albedo at the group's wavelengths: the RGB law (680, 550, 440 nm, linear between), as the spectral
- * reference's irradiance takes it. */
-static void group_albedo(const sky_features *base, const double nm[3], double out[3])
+bool spectral_render_four_wide(const options *o)
+{
+    const char *pack = getenv("VKSKY_SPECTRAL_PACK");
+    return o->spectral > 0 && !(pack && !strcmp(pack, "3"));
+}
+
+/* The ground's albedo at a wavelength: the RGB law (680, 550, 440 nm, linear between), as the spectral reference's
+ * irradiance takes it. */
+static double albedo_at(const sky_features *base, double nm)
 {
     spectral_law law = {.kind = SPECTRAL_LAW_RGB};
     memcpy(law.rgb, base->ground_albedo, sizeof law.rgb);
-    for (int c = 0; c < 3; ++c) out[c] = spectral_law_eval(&law, nm[c]);
+    return spectral_law_eval(&law, nm);
+}
+
+/* Group g of `width` (3 or 4) wavelengths: the first three as the channels of a model_atmosphere (the reference's
+ * packing, ref_spectral_group's for width 3), the fourth (width 4) as sky_fourth, each channel's sun the configured
+ * sun's luminance `sun_y`. idx: the bins, a group past the last bin repeats it (weight 0). Returns the real ones. */
+static int pack_group(const ref_spectral *s, int g, int width, const model_atmosphere *base, double sun_y,
+                      const sky_features *base_features, model_atmosphere *a, sky_features *feat, int idx[4])
+{
+    int n = s->wavelengths, real = 0;
+    double nm[4], sun[3] = {sun_y, sun_y, sun_y};
+    for (int c = 0; c < width; ++c) {
+        int i = width * g + c;
+        if (i < n) ++real;
+        else i = n - 1;
+        idx[c] = i;
+        nm[c] = ref_spectral_nm(n, i);
+    }
+    spectral_medium_pack(&s->medium, base, nm, sun, a);
+    *feat = *base_features;
+    for (int c = 0; c < 3; ++c) feat->ground_albedo[c] = albedo_at(base_features, nm[c]);
+    if (width == 4) {
+        spectral_coefficients k;
+        spectral_medium_eval(&s->medium, nm[3], &k);
+        sky_fourth *w = &feat->fourth;
+        *w = (sky_fourth){.rayleigh_scattering = k.rayleigh_scattering, .mie_scattering = k.mie_scattering,
+                          .mie_absorption = k.mie_absorption, .ozone_absorption = k.ozone_absorption,
+                          .sun_illuminance = sun_y, .ground_albedo = albedo_at(base_features, nm[3])};
+        for (int e = 0; e < VKSKY_MAX_EXTRA && e < MODEL_MAX_EXTRA_SPECIES; ++e)
+            w->extra_scattering[e] = k.extra_scattering[e], w->extra_absorption[e] = k.extra_absorption[e];
+    }
+    return real;
 }
 
 void spectral_render_frame(sky_renderer *r, const frame_desc *f)
@@ -88,28 +125,28 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
         fprintf(stderr, "vksky: --spectral: out of memory\n");
         exit(1);
     }
-    int n = job.wavelengths, groups = (n + 2) / 3;
+    /* Four wavelengths a pass in the four-wide build (its composite holds them in RGBA), else three. */
+    int width = r->desc.spectral4 ? 4 : 3;
+    int n = job.wavelengths, groups = (n + width - 1) / width;
     uint16_t *px = r->readback_linear.mapped;
     for (int g = 0; g < groups && !stop_requested(); ++g) {
         model_atmosphere a;
-        int idx[3];
-        int real = ref_spectral_group(&s, g, &a, idx);
-        double nm[3], m[3][3];   /* m[c]: channel c's XYZ per unit of the group's image */
-        for (int c = 0; c < 3; ++c) {
-            nm[c] = ref_spectral_nm(n, idx[c]);
-            a.sun_illuminance[c] = sun_y;
+        sky_features feat;
+        int idx[4];
+        int real = pack_group(&s, g, width, &base, sun_y, &base_features, &a, &feat, idx);
+        double m[4][3];   /* m[c]: channel c's XYZ per unit of the group's image */
+        for (int c = 0; c < width; ++c) {
             ref_spectral_weights(n, idx[c], m[c]);
             for (int k = 0; k < 3; ++k) m[c][k] = c < real ? m[c][k] / toa : 0.0;
         }
-        sky_features feat = base_features;
-        group_albedo(&base_features, nm, feat.ground_albedo);
         sky_renderer_set_scene(r, &a, sun_radius, &feat);
         job.inner(r, f);
         for (size_t i = 0; i < pixels; ++i) {
             const uint16_t *p = px + 4 * i;
-            float v[3] = {io_half_to_float(p[0]), io_half_to_float(p[1]), io_half_to_float(p[2])};
-            for (int k = 0; k < 3; ++k)
-                xyz[3 * i + k] += (float)(m[0][k] * v[0] + m[1][k] * v[1] + m[2][k] * v[2]);
+            for (int c = 0; c < width; ++c) {
+                float v = io_half_to_float(p[c]);
+                for (int k = 0; k < 3; ++k) xyz[3 * i + k] += (float)(m[c][k] * v);
+            }
         }
     }
     /* XYZ -> linear Rec.709 (D65), back into the linear readback the EXR writer takes (alpha as rendered). */
@@ -124,6 +161,30 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
     }
     free(xyz);
     sky_renderer_set_scene(r, &base, sun_radius, &base_features);
+}
+
+int spectral_auto(options *o, bool possible)
+{
+    if (!o->quality_auto || o->spectral || o->max_color_error > 0.0 || o->reference || !possible) return 0;
+    if (o->output_count == 0 || o->bench_frames > 0 || tiles_wanted(o)) return 0;
+    for (int i = 0; i < o->output_count; ++i)
+        if (!ends_with(o->outputs[i], ".exr")) return 0;
+    unsigned classes = o->quality_classes;
+    double rgb = 0.0, measured;
+    for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
+        if (classes & (1u << c)) rgb = fmax(rgb, quality_color_error(0, c));
+    /* Noon and afternoon (RGB within 2.4) stay RGB: their colour is off by less than the keep threshold, and the
+     * fewest wavelengths within the budget there (8) would double the frame's cost for it. */
+    if (rgb <= SPECTRAL_AUTO_RGB_KEEP) return 0;
+    int n = spectral_pick(SPECTRAL_AUTO_BUDGET, classes, &measured);
+    if (n <= 0) return 0;
+    o->spectral = n;
+    char names[96];
+    quality_class_names(classes, names, sizeof names);
+    printf("vksky: --quality auto: RGB's colour on the '%s' scene is within CIEDE2000 %.2f of the spectrum's, over %g: "
+           "picked --spectral %d (measured worst CIEDE2000 %.2f, budget %g; --spectral 0 keeps RGB)\n",
+           names, rgb, SPECTRAL_AUTO_RGB_KEEP, n, measured, SPECTRAL_AUTO_BUDGET);
+    return n;
 }
 
 /* The measured colour table lives with the other measured tables (app/quality/quality_color_table.h). */
