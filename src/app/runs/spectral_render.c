@@ -168,7 +168,8 @@ int spectral_auto(options *o, bool possible)
     if (!o->quality_auto || o->spectral || o->max_color_error > 0.0 || o->reference || !possible) return 0;
     for (int i = 1; i < o->argc; ++i)   /* --spectral 0 given: RGB asked for */
         if (!strcmp(o->argv[i], "--spectral") || !strncmp(o->argv[i], "--spectral=", 11)) return 0;
-    if (o->output_count == 0 || o->bench_frames > 0 || tiles_wanted(o)) return 0;
+    /* A still frame only: a sequence keeps its pipelined RGB frames (spectral runs serially, a pass per group). */
+    if (o->output_count == 0 || o->bench_frames > 0 || tiles_wanted(o) || sequence_active(o)) return 0;
     for (int i = 0; i < o->output_count; ++i)
         if (!ends_with(o->outputs[i], ".exr")) return 0;
     unsigned classes = o->quality_classes;

@@ -32,8 +32,8 @@ int spectral_pick(double max_de, unsigned classes, double *measured);
 
 /* --quality auto's colour (issue 32): where RGB's measured worst CIEDE2000 on the run's scene classes is over
  * SPECTRAL_AUTO_RGB_KEEP, the fewest wavelengths within the default colour budget SPECTRAL_AUTO_BUDGET (spectral_pick),
- * said on one stdout line. Only for a run that can render spectral (`possible`: EXR outputs of a perspective frame, no
- * composite; else RGB, as before) and gives no colour choice of its own (--spectral, --max-color-error). Sets
+ * said on one stdout line. Only for a run that can render spectral (`possible`: EXR outputs of a still perspective
+ * frame, no composite or sequence; else RGB, as before) and gives no colour choice of its own (--spectral, --max-color-error). Sets
  * o->spectral; returns it (0: RGB kept). */
 #define SPECTRAL_AUTO_BUDGET 1.0
 #define SPECTRAL_AUTO_RGB_KEEP 3.0
