@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Four wavelengths to a texel (issue 32): the four-wide build (the SPECTRAL4 shaders, --spectral's default) against
+# Four wavelengths to a texel (issue 32): the four-wide build (the SPECTRAL4 shaders: VKSKY_SPECTRAL_PACK=4) against
 # the three-wide one (the RGB shaders, a group per three channels: VKSKY_SPECTRAL_PACK=3) at the same wavelengths and
 # weights, and --quality auto's colour choice. Every GPU render runs with --validate (any validation message exits
 # non-zero). 12x7 images; about 35 s of CPU on lavapipe.
@@ -27,7 +27,7 @@ noon=(--sun-elevation 60 --sun-azimuth 0 --yaw 180 --pitch 30 --fov 70)
 pack() {
     local name=$1 n=$2 bound=$3; shift 3
     local f=(--width 12 --height 7 --no-bloom --quality high --spectral "$n" --validate "$@")
-    "$VKSKY" "${f[@]}" --render "$work/$name.4.exr" >/dev/null 2>"$work/err" && [ ! -s "$work/err" ] ||
+    VKSKY_SPECTRAL_PACK=4 "$VKSKY" "${f[@]}" --render "$work/$name.4.exr" >/dev/null 2>"$work/err" && [ ! -s "$work/err" ] ||
         { fail "$name: four-wide render: $(cat "$work/err")"; return; }
     VKSKY_SPECTRAL_PACK=3 "$VKSKY" "${f[@]}" --render "$work/$name.3.exr" >/dev/null 2>"$work/err" &&
         [ ! -s "$work/err" ] || { fail "$name: three-wide render: $(cat "$work/err")"; return; }
@@ -39,6 +39,17 @@ pack() {
 pack twilight_single 8 1e-3 --no-multiscatter "${twilight[@]}"
 pack noon_single 8 1e-3 --no-multiscatter "${noon[@]}"
 pack twilight_multi 24 3e-3 "${twilight[@]}"
+
+# Which packing --spectral takes by itself: four to a pass where the horizon is not within 3 pixels of the frame (the
+# same pixels as VKSKY_SPECTRAL_PACK=4), three where it is (its tone map resolves the horizon per pixel: the same
+# pixels as VKSKY_SPECTRAL_PACK=3).
+h=(--width 16 --height 9 --no-bloom --quality high --spectral 4 --no-multiscatter --validate)
+"$VKSKY" "${h[@]}" --pitch 60 --fov 30 --render "$work/sky.exr" && VKSKY_SPECTRAL_PACK=4 "$VKSKY" "${h[@]}" --pitch 60 \
+    --fov 30 --render "$work/sky4.exr" && "$PIXELS" same "$work/sky.exr" "$work/sky4.exr" ||
+    fail "no horizon in view: --spectral is not the four-wide build"
+"$VKSKY" "${h[@]}" --sun-elevation 5 --pitch 5 --render "$work/hz.exr" && VKSKY_SPECTRAL_PACK=3 "$VKSKY" "${h[@]}" \
+    --sun-elevation 5 --pitch 5 --render "$work/hz3.exr" && "$PIXELS" same "$work/hz.exr" "$work/hz3.exr" ||
+    fail "the horizon in view: --spectral is not the three-wide build"
 
 # --quality auto at twilight: a spectral pick of its own, within CIEDE2000 1 of the 48-wavelength reference.
 f=(--width 12 --height 7 --no-bloom --no-sun-disc --no-multiscatter "${twilight[@]}")

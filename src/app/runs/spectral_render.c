@@ -6,6 +6,7 @@
 #include "io/half_float.h"
 #include "model/spectrum.h"
 #include "reference/spectral.h"
+#include "sky/view_params.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -58,10 +59,36 @@ void spectral_render_begin(const options *o, sequence_render_fn inner)
     job.inner = inner;
 }
 
+/* Whether the horizon passes within HORIZON_MARGIN pixels of any pixel of the (perspective) frame: the sign of each
+ * pixel centre's elevation sine against the horizon's, over the image grown by the margin on every side. */
+#define HORIZON_MARGIN 3
+static bool horizon_in_view(const options *o)
+{
+    double f[3], right[3], up[3];
+    sky_view_basis(&o->view, f, right, up);
+    double ty = tan(0.5 * o->view.fov_deg * 3.14159265358979323846 / 180.0), tx = ty * o->width / o->height;
+    double sin_h = sky_view_horizon_sine(o->view.altitude_km, o->atmosphere.bottom_radius);
+    bool above = false, below = false;
+    for (int j = -HORIZON_MARGIN; j < o->height + HORIZON_MARGIN; ++j)
+        for (int i = -HORIZON_MARGIN; i < o->width + HORIZON_MARGIN; ++i) {
+            double x = 2.0 * (i + 0.5) / o->width - 1.0, y = 1.0 - 2.0 * (j + 0.5) / o->height, d[3];
+            for (int k = 0; k < 3; ++k) d[k] = f[k] + x * tx * right[k] + y * ty * up[k];
+            double s = d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+            if (s >= sin_h) above = true;
+            else below = true;
+            if (above && below) return true;
+        }
+    return false;
+}
+
 bool spectral_render_four_wide(const options *o)
 {
     const char *pack = getenv("VKSKY_SPECTRAL_PACK");
-    return o->spectral > 0 && !(pack && !strcmp(pack, "3"));
+    if (o->spectral <= 0 || (pack && !strcmp(pack, "3"))) return false;
+    if (pack && !strcmp(pack, "4")) return true;
+    /* The four-wide image has no horizon resolve (its alpha is a wavelength): a frame with the horizon in it keeps
+     * three to a pass, whose tone map anti-aliases the horizon per pixel (issue 26). */
+    return !horizon_in_view(o);
 }
 
 /* The ground's albedo at a wavelength: the RGB law (680, 550, 440 nm, linear between), as the spectral reference's
@@ -149,7 +176,8 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
             }
         }
     }
-    /* XYZ -> linear Rec.709 (D65), back into the linear readback the EXR writer takes (alpha as rendered). */
+    /* XYZ -> linear Rec.709 (D65), back into the linear readback the EXR writer takes; alpha 1, the composite's (the
+     * four-wide readback's alpha is the last group's fourth wavelength). */
     for (size_t i = 0; i < pixels; ++i) {
         double in[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, rgb[3];
         spectrum_xyz_to_rec709(in, rgb);
@@ -158,6 +186,7 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
             double v = rgb[k] < -65504.0 ? -65504.0 : rgb[k] > 65504.0 ? 65504.0 : rgb[k];
             px[4 * i + k] = io_float_to_half((float)v);
         }
+        px[4 * i + 3] = io_float_to_half(1.0f);
     }
     free(xyz);
     sky_renderer_set_scene(r, &base, sun_radius, &base_features);

@@ -13,8 +13,9 @@
  * stderr naming `flag` (the flag that asked for the wavelengths) and 2; else 0. Call before any GPU work. */
 int spectral_render_check(const options *o, const char *flag);
 
-/* Whether --spectral renders four wavelengths to a texel (the SPECTRAL4 build, the default) rather than three (the
- * RGB shaders, one group per three channels: VKSKY_SPECTRAL_PACK=3, kept to check the four-wide build against). */
+/* Whether --spectral renders four wavelengths to a texel (the SPECTRAL4 build) rather than three (the RGB shaders,
+ * one group per three channels): four unless the horizon passes within 3 pixels of the frame (the four-wide image
+ * has no horizon resolve); VKSKY_SPECTRAL_PACK=3 or 4 forces one (to check one against the other). */
 bool spectral_render_four_wide(const options *o);
 
 /* Arm the frame function for o's wavelengths and medium; inner renders (and reads back) one frame. */
