@@ -34,8 +34,8 @@ for n in "${counts[@]}"; do
     packs=(4 3)
     [ "$n" -gt 0 ] || packs=(-)
     for pack in "${packs[@]}"; do
-        env=()
-        [ "$pack" != 3 ] || env=(VKSKY_SPECTRAL_PACK=3)
+        env=()   # the packing forced (by itself --spectral takes three where the horizon is in the frame)
+        [ "$pack" = - ] || env=(VKSKY_SPECTRAL_PACK="$pack")
         env "${env[@]}" "$VKSKY" "${args[@]}" >/dev/null   # warm-up (pipeline cache, page cache)
         : >"$work/wall"; : >"$work/cpu"
         for _ in $(seq "$runs"); do
