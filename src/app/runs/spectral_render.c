@@ -81,6 +81,27 @@ static bool horizon_in_view(const options *o)
     return false;
 }
 
+/* Whether the sun's disc reaches into the (perspective) frame: above the horizon, its direction within the image
+ * grown by 4 pixels and the sun's radius (the power disc's support reaches 3 texels past the true disc). */
+static bool sun_in_view(const options *o)
+{
+    double f[3], right[3], up[3], s[3];
+    const double deg = 3.14159265358979323846 / 180.0;
+    sky_view_basis(&o->view, f, right, up);
+    double ty = tan(0.5 * o->view.fov_deg * deg), tx = ty * o->width / o->height;
+    double el = o->view.sun_elevation_deg * deg, az = o->view.sun_azimuth_deg * deg;
+    s[0] = cos(el) * cos(az), s[1] = sin(el), s[2] = cos(el) * sin(az);
+    /* Wholly below the horizon: the planet hides it (the power disc's share above the horizon is its penumbra's). */
+    double horizon = asin(sky_view_horizon_sine(o->view.altitude_km, o->atmosphere.bottom_radius));
+    if (el + o->sun_angular_radius_deg * deg < horizon) return false;
+    double z = s[0] * f[0] + s[1] * f[1] + s[2] * f[2];
+    if (z <= 0.0) return false;
+    double x = (s[0] * right[0] + s[1] * right[1] + s[2] * right[2]) / (z * tx);
+    double y = (s[0] * up[0] + s[1] * up[1] + s[2] * up[2]) / (z * ty);
+    double r = tan(o->sun_angular_radius_deg * deg) / ty;   /* the disc's radius, in y's units */
+    return fabs(x) <= 1.0 + 8.0 / o->width + r * o->height / o->width && fabs(y) <= 1.0 + 8.0 / o->height + r;
+}
+
 bool spectral_render_four_wide(const options *o)
 {
     const char *pack = getenv("VKSKY_SPECTRAL_PACK");
@@ -197,8 +218,11 @@ int spectral_auto(options *o, bool possible)
     if (!o->quality_auto || o->spectral || o->max_color_error > 0.0 || o->reference || !possible) return 0;
     for (int i = 1; i < o->argc; ++i)   /* --spectral 0 given: RGB asked for */
         if (!strcmp(o->argv[i], "--spectral") || !strncmp(o->argv[i], "--spectral=", 11)) return 0;
-    /* A still frame only: a sequence keeps its pipelined RGB frames (spectral runs serially, a pass per group). */
+    /* A still frame only: a sequence keeps its pipelined RGB frames (spectral runs serially, a pass per group). Not
+     * with the sun's disc in the frame: it carries the sun's power at radiances past half floats' range (an EXR
+     * written as float, docs/units.md), and the spectral sum is read back in half floats. */
     if (o->output_count == 0 || o->bench_frames > 0 || tiles_wanted(o) || sequence_active(o)) return 0;
+    if (o->sun_disc && sun_in_view(o)) return 0;
     for (int i = 0; i < o->output_count; ++i)
         if (!ends_with(o->outputs[i], ".exr")) return 0;
     unsigned classes = o->quality_classes;
