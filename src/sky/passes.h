@@ -20,6 +20,7 @@ typedef struct pass_shared {
     gpu_buffer atmosphere_ubo;
     VkShaderModule fullscreen_vs;
     const VkSpecializationInfo *spec;   /* the scene's variant, for every shader that includes atmosphere.glsl */
+    bool spectral4;                     /* the four-wide spectral build's SPIR-V (sky_renderer_desc.spectral4) */
 } pass_shared;
 
 /* --- LUT compute passes (luts.c): transmittance and multi-scattering (when the atmosphere changes), sky-view
@@ -39,6 +40,7 @@ typedef struct sky_luts {
     VkPipeline ground_pipeline;
     VkDescriptorSet ground_set;
     VkImageView ground_irradiance_view;
+    uint32_t multiscatter_parts;         /* N x N parts of the multi-scattering atlas (4 in the four-wide build) */
 } sky_luts;
 /* multiscatter false: no multi-scattering LUT image, pipeline or pass. */
 void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter, bool ground);

@@ -13,7 +13,8 @@ void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view,
                               {VKSKY_BINDING_METER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     t->set_layout = gpu_set_layout(ctx, slots, 3, VK_SHADER_STAGE_FRAGMENT_BIT, "tonemap set layout");
     t->layout = gpu_pipeline_layout(ctx, t->set_layout, sizeof(TonemapPush), VK_SHADER_STAGE_FRAGMENT_BIT, "tonemap layout");
-    const sky_spirv *spv = composite ? &spirv_tonemap_composite : &spirv_tonemap;
+    /* The four-wide spectral build's composite carries the HDR texel's four wavelengths. */
+    const sky_spirv *spv = composite ? (s->spectral4 ? &spirv_tonemap_composite_s4 : &spirv_tonemap_composite) : &spirv_tonemap;
     VkShaderModule fs = gpu_shader_module(ctx, spv->code, spv->size, composite ? "tonemap_composite.frag" : "tonemap.frag");
     VkFormat formats[2] = {display_format, HDR_FORMAT};
     t->pipeline = gpu_fullscreen_pipeline(ctx, t->layout, s->fullscreen_vs, fs, formats, composite ? 2 : 1,
