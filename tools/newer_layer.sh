@@ -9,18 +9,20 @@
 # recipe is in docs/synchronization.md §14, "What a newer layer sees"), then this runs offline.
 #
 # With VK_LAYER_PATH=LAYER_DIR (the loader then takes explicit layers from there only) it
-#   1. checks that the loader loads that layer's library, not Debian's (VK_LOADER_DEBUG=layer), and prints its
-#      version;
+#   1. checks that the loader inserts that layer, not Debian's (VK_LOADER_DEBUG=layer), and prints its version;
 #   2. runs every configuration's clean frame (tests/barrier_drop_test.sh - CONFIG): a new message on an unmutated
-#      frame is either a bug of vksky or a false positive of the layer, and is shown in full;
-#   3. runs every drop of tests/barrier_drops.txt (tests/barrier_drop_test.sh NAME CONFIG) and records what the
-#      layer reports;
-#   4. runs the whole mutation matrix (tools/mutation_matrix.sh --out), unless --skip-matrix;
-# and writes to DIR (default build/newer_layer):
-#   clean.txt      CONFIG RESULT                       (RESULT: RAW/WAR/WAW/layout/other:<id> joined by +, or none)
-#   clean.log      the first lines of every clean frame's messages
-#   drops.txt      BARRIER CONFIG OLD NEW              (OLD: the expected set in tests/barrier_drops.txt, 1.3.239)
-#   mutations.txt  the matrix, as tools/mutation_matrix.sh writes it
+#      frame is either a bug of vksky or a false positive of the layer; its messages go to clean.log;
+#   3. runs every drop of tests/barrier_drops.txt (tests/barrier_drop_test.sh NAME CONFIG);
+#   4. runs every mutation of tests/barrier_mutations.txt (1.3.239's matrix: every drop-tested barrier x field and
+#      the explicit masks; fields already minimal, "same", are not run), the ones 1.3.239 found silent first,
+#      unless --skip-matrix. (VK_LAYER_PATH=LAYER_DIR tools/mutation_matrix.sh --out FILE writes the same matrix
+#      in that tool's format.)
+# Results are appended as each run ends, so an interrupted run keeps what it measured. Written to DIR (default
+# build/newer_layer):
+#   clean.txt      CONFIG RESULT             RESULT: RAW/WAR/WAW/layout/other:<id>, joined by +, or none
+#   clean.log      the messages of every clean frame that was not silent
+#   drops.txt      BARRIER CONFIG OLD NEW    OLD: what 1.3.239 reports (tests/barrier_drops.txt's expected set)
+#   mutations.txt  MUTATION CONFIG OLD NEW   OLD: tests/barrier_mutations.txt's result
 #   compare.txt    every drop and mutation whose result differs: KIND NAME CONFIG OLD NEW CLASS
 #                  CLASS: new-catch (none -> something), lost-catch (something -> none), changed
 # and a summary on stdout. Exit 0 when it ran (differences are findings, not failures), 2 on bad arguments.
@@ -60,8 +62,10 @@ export VKSKY_LUT_CACHE=0
 version=$(sed -n 's/.*"api_version" *: *"\([^"]*\)".*/\1/p' "$json")
 VK_LOADER_DEBUG=layer "$vksky" --render "$out/probe.png" --width 16 --height 16 --quality lesson --units relative \
     --validate >"$out/loader.log" 2>&1
-manifest=$(awk '$1 == "LAYER:" && $2 == "Manifest:" { print $3 }' "$out/loader.log" | sort -u)
-library=$(awk '$1 == "LAYER:" && $2 == "Library:" { print $3 }' "$out/loader.log" | sort -u)
+# The loader lists each active layer as "LAYER: <name>", then its "Manifest:" and "Library:" lines.
+active() { awk -v k="$1" '$1 == "LAYER:" && NF == 2 { name = $2 } $1 == "LAYER:" && $2 == k && name == "VK_LAYER_KHRONOS_validation" { print $3 }' "$out/loader.log" | sort -u; }
+manifest=$(active Manifest:)
+library=$(active Library:)
 echo "newer_layer: layer $version; the loader inserted $manifest ($library)"
 [ "$manifest" = "$layer_dir/VkLayer_khronos_validation.json" ] || {
     echo "newer_layer: the loader did not insert the layer of $layer_dir (see $out/loader.log)" >&2
@@ -83,35 +87,33 @@ for cfg in $(awk '$1 == "config" { print $2 }' "$drops"); do
     [ "$got" = none ] || printf '== %s\n%s\n' "$cfg" "$log" >>"$out/clean.log"
 done
 
-# 3. Drops: every line of the list, run against its 1.3.239 expectation; the reported set is what we keep.
+# 3 and 4. One run per line "NAME CONFIG OLD" of a list: "NAME CONFIG OLD NEW" appended to a file as each ends.
+# NEW is what the layer reports (barrier_drop_test.sh's "ok: ...: {SET}" or "... validation reported {SET} ...").
+run_list() { # LIST_FOR_CONFIGS INPUT OUTPUT
+    : >"$3"
+    # shellcheck disable=SC2016
+    xargs -P "$jobs" -L 1 sh -c 'r=$("$0" "$1" "$2" "$3" "$4" 2>&1 | sed -n "s/^ok: .*: {\([^}]*\)}\$/\1/p; s/^FAIL: .*validation reported {\([^}]*\)}.*/\1/p" | head -n 1)
+        printf "%s %s %s %s\n" "$3" "$4" "$5" "${r:-error}" >>"$6"' "$root/tests/barrier_drop_test.sh" \
+        <<<"$(awk -v v="$vksky" -v l="$1" -v o="$3" '{ print v, l, $1, $2, $3, o }' "$2")"
+}
 awk '$1 != "config" && $1 !~ /^#/ && NF >= 3 { print $1, $2, $3 }' "$drops" >"$out/drops.in"
-# shellcheck disable=SC2016
-xargs -P "$jobs" -L 1 sh -c 'r=$("$0" "$3" "$4" "$1" "$2" 2>&1 | sed -n "s/^ok: .*: {\([^}]*\)}\$/\1/p; s/^FAIL: .*validation reported {\([^}]*\)}.*/\1/p" | head -n 1)
-    printf "%s %s %s %s\n" "$1" "$2" "$5" "${r:-error}"' "$root/tests/barrier_drop_test.sh" \
-    <<<"$(awk -v v="$vksky" -v d="$drops" '{ print $1, $2, v, d, $3 }' "$out/drops.in")" >"$out/drops.unsorted"
-awk 'NR == FNR { r[$1 " " $2] = $0; next } ($1 " " $2) in r { print r[$1 " " $2] }' "$out/drops.unsorted" "$out/drops.in" \
-    >"$out/drops.txt"
-rm -f "$out/drops.in" "$out/drops.unsorted"
-
-# 4. The mutation matrix, into DIR (tests/barrier_mutations.txt stays 1.3.239's).
+run_list "$drops" "$out/drops.in" "$out/drops.txt"
+# A mutation is checked against its expected set only when its list has one; any set is printed either way.
 if [ $matrix -eq 1 ]; then
-    "$root/tools/mutation_matrix.sh" --vksky "$vksky" --jobs "$jobs" --out "$out/mutations.txt" || echo "newer_layer: the matrix reported errors (see above)" >&2
+    m=$root/tests/barrier_mutations.txt
+    { awk '$1 !~ /^#/ && $3 == "none"' "$m"; awk '$1 !~ /^#/ && $3 != "none" && $3 != "same"' "$m"; } >"$out/mutations.in"
+    run_list "$m" "$out/mutations.in" "$out/mutations.txt"
 fi
+rm -f "$out/drops.in" "$out/mutations.in"
 
 # Differences, each classed.
-classify='function cls(o, n) { return o == "none" ? "new-catch" : n == "none" ? "lost-catch" : "changed" }'
-{
-    awk "$classify"' $3 != $4 { print "drop", $1, $2, $3, $4, cls($3, $4) }' "$out/drops.txt"
-    if [ -f "$out/mutations.txt" ]; then
-        awk "$classify"' $1 ~ /^#/ { next } NR == FNR { old[$1 " " $2] = $3; next }
-             ($1 " " $2) in old && old[$1 " " $2] != $3 { print "mutation", $1, $2, old[$1 " " $2], $3, cls(old[$1 " " $2], $3) }' \
-            "$root/tests/barrier_mutations.txt" "$out/mutations.txt"
-    fi
-} >"$out/compare.txt"
+awk 'function cls(o, n) { return o == "none" ? "new-catch" : n == "none" ? "lost-catch" : "changed" }
+     $3 != $4 { print (FILENAME ~ /drops\.txt$/ ? "drop" : "mutation"), $1, $2, $3, $4, cls($3, $4) }' \
+    "$out/drops.txt" $([ -f "$out/mutations.txt" ] && echo "$out/mutations.txt") >"$out/compare.txt"
 
 echo "newer_layer: layer $version; results in $out"
 echo "  clean frames: $(awk '$2 == "none"' "$out/clean.txt" | wc -l) of $(wc -l <"$out/clean.txt") silent$(awk '$2 != "none" { printf " | %s: %s", $1, $2 }' "$out/clean.txt")"
 echo "  drops: $(wc -l <"$out/drops.txt") run, $(grep -c '^drop ' "$out/compare.txt") differ from 1.3.239"
-[ -f "$out/mutations.txt" ] && echo "  mutations: $(grep -vc '^#' "$out/mutations.txt") results, $(grep -c '^mutation ' "$out/compare.txt") differ from 1.3.239"
+[ -f "$out/mutations.txt" ] && echo "  mutations: $(wc -l <"$out/mutations.txt") run, $(grep -c '^mutation ' "$out/compare.txt") differ from 1.3.239"
 for k in new-catch lost-catch changed; do echo "  $k: $(awk -v k="$k" '$6 == k' "$out/compare.txt" | wc -l)"; done
 exit 0
