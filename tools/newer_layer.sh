@@ -2,7 +2,11 @@
 # What another Khronos validation layer (a newer one, built from source: not a Debian package, so CI keeps Debian
 # 12's 1.3.239) reports on the frames of tests/barrier_drops.txt, against what 1.3.239 reports.
 #
-#   tools/newer_layer.sh LAYER_DIR [--vksky PATH] [--jobs N] [--out DIR] [--skip-matrix]
+#   tools/newer_layer.sh LAYER_DIR [--vksky PATH] [--jobs N] [--out DIR] [--skip-matrix] [--shader-accesses]
+#
+# --shader-accesses turns on the layer setting syncval_shader_accesses_heuristic: from some 1.4 release on,
+# synchronization validation ignores what shaders access through descriptors unless it is on (it is off by
+# default), so without it every storage/sampled access of a dispatch or draw is invisible to the layer.
 #
 # LAYER_DIR holds VkLayer_khronos_validation.json and the library it names (an install's
 # share/vulkan/explicit_layer.d, or a build's layers/ directory). Nothing is fetched: build the layer once (the
@@ -28,7 +32,7 @@
 # and a summary on stdout. Exit 0 when it ran (differences are findings, not failures), 2 on bad arguments.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-usage="usage: tools/newer_layer.sh LAYER_DIR [--vksky PATH] [--jobs N] [--out DIR] [--skip-matrix]"
+usage="usage: tools/newer_layer.sh LAYER_DIR [--vksky PATH] [--jobs N] [--out DIR] [--skip-matrix] [--shader-accesses]"
 layer_dir=
 vksky=$root/build/vksky
 jobs=2
@@ -40,6 +44,7 @@ while [ $# -gt 0 ]; do
     --jobs) jobs=${2:?--jobs needs a number}; shift ;;
     --out) out=${2:?--out needs a directory}; shift ;;
     --skip-matrix) matrix=0 ;;
+    --shader-accesses) export VK_KHRONOS_VALIDATION_SYNCVAL_SHADER_ACCESSES_HEURISTIC=1 ;;
     -*) echo "newer_layer: unknown option '$1'; $usage" >&2; exit 2 ;;
     *) [ -z "$layer_dir" ] || { echo "newer_layer: one LAYER_DIR only; $usage" >&2; exit 2; }; layer_dir=$1 ;;
     esac
@@ -51,11 +56,24 @@ json=$layer_dir/VkLayer_khronos_validation.json
 [ -x "$vksky" ] || { echo "newer_layer: no vksky at '$vksky' (build first, or give --vksky PATH)" >&2; exit 2; }
 case $jobs in '' | *[!0-9]* | 0) echo "newer_layer: --jobs must be a positive integer, not '$jobs'" >&2; exit 2 ;; esac
 layer_dir=$(cd "$layer_dir" && pwd)
-mkdir -p "$out" || exit 2
+mkdir -p "$out/layer" || exit 2
 out=$(cd "$out" && pwd)
 drops=$root/tests/barrier_drops.txt
 unset VKSKY_DROP_BARRIER VKSKY_WEAKEN_BARRIER VKSKY_FRAMES VKSKY_VALIDATION
-export VK_LAYER_PATH=$layer_dir
+# An installed manifest names its library by bare name ("libVkLayer_khronos_validation.so"), which the dynamic
+# linker would resolve to Debian's 1.3.239 library. So the manifest is copied with the library's absolute path:
+# beside the manifest (a build's layers/ directory) or in the install's lib/ (share/vulkan/explicit_layer.d/../../../lib).
+lib=$(sed -n 's/.*"library_path" *: *"\([^"]*\)".*/\1/p' "$json")
+case $lib in
+/*) ;;
+*/*) lib=$layer_dir/$lib ;;
+*) for cand in "$layer_dir/$lib" "$layer_dir/../../../lib/$lib"; do [ -f "$cand" ] && { lib=$cand; break; }; done ;;
+esac
+[ -f "$lib" ] || { echo "newer_layer: the layer's library '$lib' is neither beside $json nor in ../../../lib" >&2; exit 2; }
+lib=$(cd "$(dirname "$lib")" && pwd)/$(basename "$lib")
+sed 's|"library_path" *: *"[^"]*"|"library_path": "'"$lib"'"|' "$json" >"$out/layer/VkLayer_khronos_validation.json"
+json=$out/layer/VkLayer_khronos_validation.json
+export VK_LAYER_PATH=$out/layer
 export VKSKY_LUT_CACHE=0
 
 # 1. Which layer the loader really loads: the manifest and library of the layer it inserts (VK_LOADER_DEBUG=layer).
@@ -67,7 +85,7 @@ active() { awk -v k="$1" '$1 == "LAYER:" && NF == 2 { name = $2 } $1 == "LAYER:"
 manifest=$(active Manifest:)
 library=$(active Library:)
 echo "newer_layer: layer $version; the loader inserted $manifest ($library)"
-[ "$manifest" = "$layer_dir/VkLayer_khronos_validation.json" ] || {
+[ "$manifest" = "$json" ] && [ "$library" = "$lib" ] || {
     echo "newer_layer: the loader did not insert the layer of $layer_dir (see $out/loader.log)" >&2
     exit 1
 }
