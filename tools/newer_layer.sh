@@ -85,10 +85,10 @@ active() { awk -v k="$1" '$1 == "LAYER:" && NF == 2 { name = $2 } $1 == "LAYER:"
 manifest=$(active Manifest:)
 library=$(active Library:)
 echo "newer_layer: layer $version; the loader inserted $manifest ($library)"
-[ "$manifest" = "$json" ] && [ "$library" = "$lib" ] || {
+if [ "$manifest" != "$json" ] || [ "$library" != "$lib" ]; then
     echo "newer_layer: the loader did not insert the layer of $layer_dir (see $out/loader.log)" >&2
     exit 1
-}
+fi
 
 # The set a barrier_drop_test.sh line reports: "ok: LABEL: {SET}" or "FAIL: LABEL: validation reported {SET}, ...".
 reported() { sed -n 's/^ok: .*: {\([^}]*\)}$/\1/p; s/^FAIL: .*validation reported {\([^}]*\)}.*/\1/p' | head -n 1; }
@@ -125,9 +125,11 @@ fi
 rm -f "$out/drops.in" "$out/mutations.in"
 
 # Differences, each classed.
+mutations=()
+[ -f "$out/mutations.txt" ] && mutations=("$out/mutations.txt")
 awk 'function cls(o, n) { return o == "none" ? "new-catch" : n == "none" ? "lost-catch" : "changed" }
      $3 != $4 { print (FILENAME ~ /drops\.txt$/ ? "drop" : "mutation"), $1, $2, $3, $4, cls($3, $4) }' \
-    "$out/drops.txt" $([ -f "$out/mutations.txt" ] && echo "$out/mutations.txt") >"$out/compare.txt"
+    "$out/drops.txt" "${mutations[@]}" >"$out/compare.txt"
 
 echo "newer_layer: layer $version; results in $out"
 echo "  clean frames: $(awk '$2 == "none"' "$out/clean.txt" | wc -l) of $(wc -l <"$out/clean.txt") silent$(awk '$2 != "none" { printf " | %s: %s", $1, $2 }' "$out/clean.txt")"
