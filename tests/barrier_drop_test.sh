@@ -80,8 +80,9 @@ got=$(awk '
         else if (id == "SYNC-HAZARD-WRITE-AFTER-READ") print "WAR"
         else if (id == "SYNC-HAZARD-WRITE-AFTER-WRITE") print "WAW"
         else if (id ~ /^SYNC-HAZARD-/) print substr(id, 13)
-        # Core checks: an image used, transitioned or presented in a layout it is not in.
-        else if (id ~ /InvalidImageLayout|oldLayout-01197|imageLayout-00344|None-02699|srcImageLayout-00189|dstImageLayout-00180|pImageIndices-01296/)
+        # Core checks: an image used, transitioned or presented in a layout it is not in (the last three are the
+        # names newer layers give them, docs/synchronization.md "What a newer layer sees").
+        else if (id ~ /InvalidImageLayout|oldLayout-01197|imageLayout-00344|None-02699|srcImageLayout-00189|dstImageLayout-00180|pImageIndices-01296|None-09600|pRenderingInfo-09592|pImageIndices-01430/)
             print "layout"
         else print "other:" id
     }' "$work/stderr" | LC_ALL=C sort -u | paste -sd+ -)

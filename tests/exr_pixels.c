@@ -7,7 +7,9 @@
  *   exr_pixels project A.exr AZ EL       print "x y" (pixels) where worldToNDC puts the direction of azimuth AZ and
  *                                        elevation EL (degrees; (cos el cos az, sin el, cos el sin az), +Y up: vksky's
  *                                        documented convention), and "cam X Y Z": worldToCamera's image of it
- *   exr_pixels plain OUT.exr             write a 2x2 grey EXR with no header attributes beyond the required ones */
+ *   exr_pixels plain OUT.exr             write a 2x2 grey EXR with no header attributes beyond the required ones
+ *   exr_pixels reldiff A.exr B.exr       print the largest |A - B| over the colour channels of any pixel, relative to
+ *                                        that pixel's largest |B| channel (issue 32: four-wide vs three-wide) */
 #include "io/exr_read.h"
 #include "io/exr_write.h"
 #include "io/half_float.h"
@@ -66,6 +68,26 @@ int main(int argc, char **argv)
                 printf("pixel %zu channel %zu differs: %.9g and %.9g\n", i / 4, i % 4, px[0][i], px[1][i]);
                 rc = 1;
             }
+        free(px[0]);
+        free(px[1]);
+        return rc;
+    }
+    if (argc == 4 && !strcmp(argv[1], "reldiff")) {
+        int w[2], h[2];
+        float *px[2] = {NULL, NULL};
+        if (read_pixels(argv[2], &w[0], &h[0], &px[0]) || read_pixels(argv[3], &w[1], &h[1], &px[1])) {
+            free(px[0]);
+            return 1;
+        }
+        int rc = w[0] != w[1] || h[0] != h[1];
+        double worst = 0.0;
+        for (size_t i = 0, n = rc ? 0 : (size_t)w[0] * (size_t)h[0]; i < n; ++i) {
+            const float *a = px[0] + 4 * i, *b = px[1] + 4 * i;
+            double scale = fmax(fabs(b[0]), fmax(fabs(b[1]), fabs(b[2])));
+            for (int c = 0; c < 3 && scale > 0.0; ++c) worst = fmax(worst, fabs((double)a[c] - b[c]) / scale);
+        }
+        if (rc) printf("sizes differ: %dx%d and %dx%d\n", w[0], h[0], w[1], h[1]);
+        else printf("%.6g\n", worst);
         free(px[0]);
         free(px[1]);
         return rc;

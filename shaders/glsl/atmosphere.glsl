@@ -3,6 +3,25 @@
  * ground, never the planet-scale radius minus the ground radius) and the cosine mu of a ray's zenith angle. */
 #include "shared.h"
 
+/* The channels' type: three wavelengths (RGB, or the three of a --spectral group), or with SPECTRAL4 four (the
+ * four-wide spectral build: every coefficient's .w is the fourth wavelength's, the scalars that .w held in RGB live
+ * in atmo.scalars4; docs/spectral.md "Four to a texel"). The RGB build preprocesses to exactly its former text. */
+#ifdef SPECTRAL4
+#define spectrum_t vec4
+#define CH rgba
+#define SPECTRUM_TO_VEC4(c, w) (c)
+#define MIE_G atmo.scalars4.x
+#define SUN_RADIUS atmo.scalars4.y
+#define LIMB_U atmo.scalars4.z
+#else
+#define spectrum_t vec3
+#define CH rgb
+#define SPECTRUM_TO_VEC4(c, w) vec4(c, w)
+#define MIE_G atmo.mie_absorption.w
+#define SUN_RADIUS atmo.sun.w
+#define LIMB_U atmo.ground.w
+#endif
+
 layout(std140, set = 0, binding = VKSKY_BINDING_ATMOSPHERE) uniform AtmosphereUbo { AtmosphereParams atmo; };
 
 /* The scene's variant (see shared.h): species with zero coefficients, multi-scattering, the sun disc and a lit
@@ -35,10 +54,10 @@ float top_altitude() { return atmo.radii.z; }          /* Rt - Rb, computed in d
 #include "geometry.glsl"
 
 struct Medium {
-    vec3 scattering;        /* sigma_s total */
-    vec3 extinction;        /* sigma_t total */
-    vec3 rayleigh;          /* sigma_s Rayleigh */
-    vec3 mie;               /* sigma_s Mie */
+    spectrum_t scattering;  /* sigma_s total */
+    spectrum_t extinction;  /* sigma_t total */
+    spectrum_t rayleigh;    /* sigma_s Rayleigh */
+    spectrum_t mie;         /* sigma_s Mie */
 };
 
 /* Density of species 0 (Rayleigh), 1 (Mie), 2 (ozone) at altitude h >= 0: a pair of Bruneton density layers
@@ -61,13 +80,13 @@ Medium sample_medium(float h)
     float d_m = HAS_MIE ? profile_density(1, MIE_PROFILE, h) : 0.0;
     float d_o = HAS_OZONE ? profile_density(2, OZONE_PROFILE, h) : 0.0;
     Medium m;
-    m.rayleigh = atmo.rayleigh_scattering.rgb * d_r;
-    m.mie = atmo.mie_scattering.rgb * d_m;
-    vec3 absorption = atmo.mie_absorption.rgb * d_m + atmo.ozone_absorption.rgb * d_o;
+    m.rayleigh = atmo.rayleigh_scattering.CH * d_r;
+    m.mie = atmo.mie_scattering.CH * d_m;
+    spectrum_t absorption = atmo.mie_absorption.CH * d_m + atmo.ozone_absorption.CH * d_o;
     for (int i = 0; i < EXTRA_SPECIES; ++i) { /* extra species scatter with the Rayleigh phase */
         float d_e = profile_density(3 + i, i == 0 ? EXTRA0_PROFILE : EXTRA1_PROFILE, h);
-        m.rayleigh += atmo.extra_scattering[i].rgb * d_e;
-        absorption += atmo.extra_absorption[i].rgb * d_e;
+        m.rayleigh += atmo.extra_scattering[i].CH * d_e;
+        absorption += atmo.extra_absorption[i].CH * d_e;
     }
     m.scattering = m.rayleigh + m.mie;
     m.extinction = m.scattering + absorption;
@@ -111,11 +130,11 @@ float henyey_greenstein_phase(float nu, float g)
 
 /* (1 - exp(-sigma dt)) / sigma, the exact integral of exp(-sigma s) over one step, given the step's
  * transmittance exp(-sigma dt) (computed once by the caller); -> dt as sigma -> 0. */
-vec3 step_integral(vec3 sigma, float dt, vec3 step_transmittance)
+spectrum_t step_integral(spectrum_t sigma, float dt, spectrum_t step_transmittance)
 {
-    vec3 x = sigma * dt;
-    vec3 exact = (1.0 - step_transmittance) / max(sigma, vec3(1e-30));
-    return mix(exact, vec3(dt) * (1.0 - 0.5 * x), lessThan(x, vec3(1e-4)));
+    spectrum_t x = sigma * dt;
+    spectrum_t exact = (1.0 - step_transmittance) / max(sigma, spectrum_t(1e-30));
+    return mix(exact, spectrum_t(dt) * (1.0 - 0.5 * x), lessThan(x, spectrum_t(1e-4)));
 }
 
 #include "sun_visibility.glsl"

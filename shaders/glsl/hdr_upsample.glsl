@@ -34,12 +34,25 @@ ivec2 hdr_rows(ivec2 size, vec4 dither)
     return dither.w > 0.0 ? ivec2(max(0, -top), min(size.y - 1, int(dither.w) - 1 - top)) : ivec2(0, size.y - 1);
 }
 
+/* The far-only variants: the tiles of the output that sky/tonemap_regions.c finds out of the horizon path's reach
+ * (lavapipe pays for the path's body on every pixel of a shader that has it, taken or not). Each of their pixels
+ * would take the far path anyway: the image is the same. 0: the full shader; 1: far only, the sky image smaller
+ * than the output (filtered); 2: far only, the sky image the output's size (fetched). */
+layout(constant_id = VKSKY_SPEC_TONEMAP_FAR) const int HDR_FAR = 0;
+
 vec3 hdr_upsample(sampler2D hdr, vec2 uv, ivec2 out_size, ivec2 rows)
 {
     ivec2 size = textureSize(hdr, 0);
     ivec2 lo = ivec2(0, rows.x), hi = ivec2(size.x - 1, rows.y);
-    vec4 bilinear = textureLod(hdr, uv, 0.0);
-    if (abs(bilinear.a) > 2.0) return bilinear.rgb;
+    /* At render scale 1 an output pixel is its texel, fetched (issue 26: the 64x32 map's row 27). A bilinear sample
+     * at the pixel's centre, (x + 0.5) / size, lands on the texel's centre only where that is exact in float (a
+     * power-of-two size); elsewhere the filter mixes a neighbour in at a rounding-sized weight, and where the value
+     * is a half subnormal (a dark ground under a photometric frame's disc scale, 2^-24 a step: 1/256 cd/m2) the
+     * rounding of the result moves it by a whole step: a band, whose image height is not the whole image's, then
+     * differed from the whole image on the rows that sat at a step's edge. */
+    bool fetch = HDR_FAR == 0 ? size == out_size : HDR_FAR == 2;   /* (a variant's: no second fetch on lavapipe) */
+    vec4 bilinear = fetch ? texelFetch(hdr, ivec2(uv * vec2(size)), 0) : textureLod(hdr, uv, 0.0);
+    if (HDR_FAR != 0 || abs(bilinear.a) > 2.0) return bilinear.rgb;
     /* The four taps, the distance's gradient per output pixel, its unit normal, the pixel's distance in output
      * pixels and its coverage of the sky. */
     vec2 pos = uv * vec2(size), t = pos - 0.5;

@@ -52,13 +52,13 @@ float horizon_distance(vec2 centre, SkyPush p, out vec2 n)
 
 /* One ray's radiance: the variant's (SKY_RADIANCE: march, lookup or fill) or, in the blend variant, a blend of the
  * lookup and the ray's own march (the march alone where `direct`). */
-vec3 sky_eval(vec3 v, SkyPush p, bool direct)
+spectrum_t sky_eval(vec3 v, SkyPush p, bool direct)
 {
 #ifdef SKY_RADIANCE_DIRECT
     /* horizon.z: the march's weight from a quarter of the atmosphere's height up; horizon.w: the weight of the rays
      * near the horizon, from a tenth of it to three tenths (sky_view_march_blend). */
     float march_weight = direct ? p.horizon.w : p.horizon.z;
-    vec3 c = vec3(0.0);
+    spectrum_t c = spectrum_t(0.0);
     if (march_weight < 1.0) c += (1.0 - march_weight) * SKY_RADIANCE(p.forward.w, v, p.sun_dir.xyz, p.march);
     if (march_weight > 0.0) c += march_weight * SKY_RADIANCE_DIRECT(p.forward.w, v, p.sun_dir.xyz, p.march);
     return c;
@@ -76,7 +76,12 @@ vec4 sky_pixel(vec2 centre, SkyPush p)
 {
     bool inside;
     vec3 v = pixel_view_dir(centre, p, inside);
+#ifdef SPECTRAL4
+    /* The four-wide build's alpha is its fourth wavelength: no horizon distance (its tone map reads the texel). */
+    if (!inside) return vec4(0.0);
+#else
     if (!inside) return vec4(0.0, 0.0, 0.0, 1.0e4);
+#endif
     sky_texel_angle = texel_angle(p);
     vec2 n;
     float d = horizon_distance(centre, p, n);
@@ -87,7 +92,7 @@ vec4 sky_pixel(vec2 centre, SkyPush p)
      * altitude, so no pixel switches from the LUT to the march as the camera climbs (no pop on the way to space). */
     bool direct = abs(d) < VKSKY_HORIZON_DIRECT_PX || (d > 0.0 && v.y < VKSKY_HORIZON_DIRECT_SIN);
     sky_forced_class = d >= 0.0 ? 1 : 0;
-    return vec4(sky_eval(v, p, direct), d);
+    return SPECTRUM_TO_VEC4(sky_eval(v, p, direct), d);
 }
 #endif
 #endif

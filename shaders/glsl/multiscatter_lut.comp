@@ -19,8 +19,14 @@ layout(set = 0, binding = VKSKY_BINDING_TRANSMITTANCE_LUT) uniform sampler2D tra
 #endif
 layout(set = 0, binding = VKSKY_BINDING_OUTPUT, LUT_FORMAT) uniform writeonly image2D multiscatter_out;
 
-shared vec3 shared_l[THREADS];
-shared vec3 shared_f[THREADS];
+#ifdef SPECTRAL4
+#define MULTISCATTER_PARTS VKSKY_MULTISCATTER_PARTS4   /* D in a fourth part: Psi fills the first's four channels */
+#else
+#define MULTISCATTER_PARTS VKSKY_MULTISCATTER_PARTS
+#endif
+
+shared spectrum_t shared_l[THREADS];
+shared spectrum_t shared_f[THREADS];
 shared float shared_x[THREADS];
 shared vec4 shared_m[THREADS];
 shared vec4 shared_z[THREADS];
@@ -29,7 +35,7 @@ void main()
 {
     ivec2 texel = ivec2(gl_WorkGroupID.xy);
     uint thread = gl_LocalInvocationIndex;
-    vec2 size = vec2(imageSize(multiscatter_out)) * vec2(1.0 / float(VKSKY_MULTISCATTER_PARTS), 1.0); /* a part */
+    vec2 size = vec2(imageSize(multiscatter_out)) * vec2(1.0 / float(MULTISCATTER_PARTS), 1.0); /* a part */
     vec2 t_size = vec2(textureSize(transmittance_lut, 0));
     vec2 uv = (vec2(texel) + 0.5) / size;
     float mu_s = multiscatter_mu_s_of_x(sub_uv_to_unit(uv.x, size.x));
@@ -41,8 +47,8 @@ void main()
     int sqrt_dirs = int(atmo.lut_steps.z);
     int dir_count = sqrt_dirs * sqrt_dirs;
     int steps = int(atmo.lut_steps.y);
-    vec3 l_2nd = vec3(0.0);
-    vec3 f_ms = vec3(0.0);
+    spectrum_t l_2nd = spectrum_t(0.0);
+    spectrum_t f_ms = spectrum_t(0.0);
     /* Green L2 weighted by the moments' functions of the direction, in the texel's frame x toward the sun's
      * azimuth, y up, z across: D by dir_x^2 - dir_z^2; Q_zz (up) by dir_y^2 - 1/3, Q_xz by dir_x dir_y; the
      * first moment by dir_x and dir_y. */
@@ -62,8 +68,8 @@ void main()
         /* Inclusive ground test (seed bug 1): rays toward the ground stop there. */
         float t_max = ray_hits_ground(h, mu) ? distance_to_ground(h, mu) : distance_to_top(h, mu);
         float dt = t_max / float(steps);
-        vec3 throughput = vec3(1.0);
-        vec3 l_dir = vec3(0.0);
+        spectrum_t throughput = spectrum_t(1.0);
+        spectrum_t l_dir = spectrum_t(0.0);
         /* The first bounce's phase (sunlight scattered at the sample toward the texel's point, cosine nu): the
          * lesson's isotropic one, or the real Rayleigh and Mie phases, which give L2 its true directions (docs/model.md
          * "Multiple scattering"; the moments below carry them into the second bounce). */
@@ -80,7 +86,7 @@ void main()
                     float theta_b = 2.0 * PI * (float(i) + (float(b) + 0.5) / float(PHASE_CELL)) / float(sqrt_dirs);
                     float nu_ab = cos(theta_b) * sin_a * sun.x + mu_a * sun.y;
                     phase_r += rayleigh_phase(nu_ab);
-                    phase_m += mie_phase(nu_ab, atmo.mie_absorption.w);
+                    phase_m += mie_phase(nu_ab, MIE_G);
                 }
             }
             phase_r /= float(PHASE_CELL * PHASE_CELL);
@@ -94,9 +100,9 @@ void main()
             Medium m = sample_medium(h_t);
             float mu_t;
             float visible = sun_visibility(h_t, mu_s_t, mu_t);
-            vec3 sun_t = texture(transmittance_lut, transmittance_uv(h_t, mu_t, t_size)).rgb;
-            vec3 step_t = exp(-m.extinction * dt);
-            vec3 integral = step_integral(m.extinction, dt, step_t);
+            spectrum_t sun_t = texture(transmittance_lut, transmittance_uv(h_t, mu_t, t_size)).CH;
+            spectrum_t step_t = exp(-m.extinction * dt);
+            spectrum_t integral = step_integral(m.extinction, dt, step_t);
             /* Earth shadow baked in (seed bug 9); the first bounce's phase on the scattered light only. */
             l_dir += throughput * (m.rayleigh * phase_r + m.mie * phase_m) * sun_t * visible * integral;
             f_ms += throughput * m.scattering * integral;
@@ -109,8 +115,8 @@ void main()
             /* The lesson's bounce has no shadow term (the cosine does it); the penumbra's has its visible part. */
             float mu_t_g = mu_s_g;
             float visible_g = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE ? 1.0 : sun_visibility(0.0, mu_s_g, mu_t_g);
-            vec3 sun_g = texture(transmittance_lut, transmittance_uv(0.0, mu_t_g, t_size)).rgb;
-            l_dir += throughput * sun_g * visible_g * max(mu_t_g, 0.0) * atmo.ground.rgb / PI;
+            spectrum_t sun_g = texture(transmittance_lut, transmittance_uv(0.0, mu_t_g, t_size)).CH;
+            l_dir += throughput * sun_g * visible_g * max(mu_t_g, 0.0) * atmo.ground.CH / PI;
         }
         l_2nd += l_dir;
         l_x += l_dir.g * (dir.x * dir.x - dir.z * dir.z);
@@ -138,7 +144,7 @@ void main()
     float inv_n = 1.0 / float(dir_count);
     l_2nd = shared_l[0] * inv_n;
     f_ms = shared_f[0] * inv_n;
-    vec3 psi = l_2nd / max(1.0 - f_ms, vec3(1e-6));
+    spectrum_t psi = l_2nd / max(1.0 - f_ms, spectrum_t(1e-6));
     /* Stored as Psi^(1/4) (MULTISCATTER_ENCODE_POWER, atmosphere.glsl): across the terminator Psi falls by
      * orders of magnitude over a few texels, and the sampler's linear interpolation of Psi itself overshoots there
      * (the sky low opposite the sun at twilight, 4 % at sun -4 deg); interpolating the fourth root follows a
@@ -151,7 +157,12 @@ void main()
     float d = clamp(shared_x[0] * share, -1.0, 1.0);
     vec4 moments = clamp(shared_m[0] * share, vec4(-1.0), vec4(1.0));
     vec4 zonal = clamp(shared_z[0] * share, vec4(-1.0), vec4(1.0));
+#ifdef SPECTRAL4
+    imageStore(multiscatter_out, texel, sqrt(sqrt(min(psi, spectrum_t(FP16_MAX)))));
+    imageStore(multiscatter_out, texel + ivec2(3 * int(size.x), 0), vec4(d, 0.0, 0.0, 0.0));
+#else
     imageStore(multiscatter_out, texel, vec4(sqrt(sqrt(min(psi, vec3(FP16_MAX)))), d));
+#endif
     imageStore(multiscatter_out, texel + ivec2(int(size.x), 0), moments);
     imageStore(multiscatter_out, texel + ivec2(2 * int(size.x), 0), zonal);
 }

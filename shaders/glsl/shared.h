@@ -38,6 +38,11 @@ VKSKY_STRUCT(AtmosphereParams) {
     vec4 ground;               /* rgb: ground albedo (Lambertian), w: sun limb darkening coefficient u */
     vec4 sun_disc;             /* x: 1 the disc carries the sun's power (its radiance integrates to sun.rgb x the
                                   transmittance), 0 the lesson's disc (sun.rgb x 10, --units relative); yzw: unused */
+#if !defined(VULKAN) || defined(SPECTRAL4)
+    vec4 scalars4;             /* the four-wide spectral build (SPECTRAL4): x Mie phase g, y the sun's angular radius,
+                                  z limb darkening u, w: 1 (their .w slots above carry the fourth wavelength's
+                                  coefficient, illuminance and albedo); zero and not declared in the RGB shaders */
+#endif
 } VKSKY_END(AtmosphereParams)
 
 /* Sky pass (and sky-view LUT) push constants: the camera as altitude + directions (never an absolute
@@ -161,9 +166,13 @@ VKSKY_STRUCT(MeterPush) {
 #define VKSKY_SUN_VISIBILITY_LESSON_FADE 1
 #define VKSKY_SPEC_AP_RANGE 15          /* the aerial-perspective volume's (ap_volume.c): its range in km */
 #define VKSKY_SPEC_AP_DISTRIBUTION 16   /* and its slice distribution exponent (1 linear, 2 quadratic) */
+#define VKSKY_SPEC_TONEMAP_FAR 17       /* the fragment tone map's far-only variant (sky/tonemap_regions.h) */
 /* The multi-scattering LUT is an atlas of this many N x N parts side by side (multiscatter_lut.comp): Psi^(1/4)
  * and D; Q_zz, Q_xz, m_x, m_z; the zonal moments of degrees 3 to 6. */
 #define VKSKY_MULTISCATTER_PARTS 3
+/* The four-wide spectral build (SPECTRAL4): Psi^(1/4) fills the first part's four channels, so D moves to a fourth
+ * part (D, 0, 0, 0). */
+#define VKSKY_MULTISCATTER_PARTS4 4
 #define VKSKY_MIE_PHASE_HG 0
 #define VKSKY_MIE_PHASE_CORNETTE_SHANKS 1
 

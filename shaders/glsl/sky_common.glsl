@@ -2,19 +2,19 @@
  * sky passes and the sky-view LUT. Expects atmosphere.glsl, the LUT samplers transmittance_lut and
  * multiscatter_lut, and (for the lookup path) skyview_lut. */
 
-vec3 lookup_transmittance(float h, float mu)
+spectrum_t lookup_transmittance(float h, float mu)
 {
-    return texture(transmittance_lut, transmittance_uv(h, mu, vec2(textureSize(transmittance_lut, 0)))).rgb;
+    return texture(transmittance_lut, transmittance_uv(h, mu, vec2(textureSize(transmittance_lut, 0)))).CH;
 }
 /* The sky's irradiance on the ground (per unit sun illuminance) by sun zenith cosine. */
 #ifndef GROUND_SKY_IRRADIANCE
 #define GROUND_SKY_IRRADIANCE(mu_s) texture(ground_irradiance_lut, vec2(unit_to_sub_uv(multiscatter_x_of_mu_s(mu_s), \
-                                            float(textureSize(ground_irradiance_lut, 0).x)), 0.5)).rgb
+                                            float(textureSize(ground_irradiance_lut, 0).x)), 0.5)).CH
 #endif
 
 /* Psi and the second bounce's moments at a point (docs/model.md "Multiple scattering"). */
 struct MultiScatter {
-    vec3 psi;       /* per unit sun illuminance */
+    spectrum_t psi; /* per unit sun illuminance */
     float d;        /* E[w_x^2 - w_y^2] of L2 x its share of Psi (x toward the sun's azimuth, y across, z up) */
     vec4 moments;   /* Q_zz = E[w_z^2] - 1/3, Q_xz = E[w_x w_z], m_x = E[w_x], m_z = E[w_z], likewise weighted */
     vec4 zonal;     /* E[P_l(w_z)] for l = 3 .. 6, likewise weighted */
@@ -23,17 +23,27 @@ struct MultiScatter {
 /* The LUT's three parts (multiscatter_lut.comp): Psi^(1/4) and D, the other moments of degree <= 2, the zonal
  * moments; the sub-UV of one N x N part, scaled by 1/3, stays within it. The lesson's model has no moments (one
  * fetch). */
+#ifdef SPECTRAL4
+#define MULTISCATTER_PARTS VKSKY_MULTISCATTER_PARTS4
+#else
+#define MULTISCATTER_PARTS VKSKY_MULTISCATTER_PARTS
+#endif
 MultiScatter lookup_multiscatter(float h, float mu_s)
 {
-    const float part = 1.0 / float(VKSKY_MULTISCATTER_PARTS);
+    const float part = 1.0 / float(MULTISCATTER_PARTS);
     vec2 part_size = vec2(textureSize(multiscatter_lut, 0)) * vec2(part, 1.0);
     vec2 uv = multiscatter_uv(h, mu_s, part_size) * vec2(part, 1.0);
     vec4 left = texture(multiscatter_lut, uv);
-    vec3 root2 = left.rgb * left.rgb;
+    spectrum_t root2 = left.CH * left.CH;
     MultiScatter ms;
     ms.psi = root2 * root2;
+#ifndef SPECTRAL4
     ms.d = left.a;
+#endif
     bool lesson = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE;
+#ifdef SPECTRAL4
+    ms.d = lesson ? 0.0 : texture(multiscatter_lut, uv + vec2(3.0 * part, 0.0)).r;   /* the fourth part: D */
+#endif
     ms.moments = lesson ? vec4(0.0) : texture(multiscatter_lut, uv + vec2(part, 0.0));
     ms.zonal = lesson ? vec4(0.0) : texture(multiscatter_lut, uv + vec2(2.0 * part, 0.0));
     return ms;
@@ -139,8 +149,8 @@ bool enter_atmosphere(inout float h, inout float mu, inout float mu_s, float nu,
  * (Psi multiplies the total scattering coefficient, which is the sum of the two groups'.) The lit ground's
  * reflection is not part of either: sky_march adds it where the whole ray ends on the ground. */
 struct MarchSegment {
-    vec3 rayleigh, mie;     /* in-scattered radiance of each part, up to the segment's end */
-    vec3 throughput;        /* transmittance from the camera to the segment's end */
+    spectrum_t rayleigh, mie;  /* in-scattered radiance of each part, up to the segment's end */
+    spectrum_t throughput;     /* transmittance from the camera to the segment's end */
     bool hits_ground;       /* the whole ray (not the segment) ends on the ground */
     float r, mu_s, nu;      /* at the march's origin (the camera, or where a ray from space enters) */
     float t_max;            /* the whole ray's length from that origin (to the ground or the top) */
@@ -156,9 +166,9 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     float mu_s = s.y;
     float nu = dot(v, s);
     MarchSegment seg;
-    seg.rayleigh = vec3(0.0);
-    seg.mie = vec3(0.0);
-    seg.throughput = vec3(1.0);
+    seg.rayleigh = spectrum_t(0.0);
+    seg.mie = spectrum_t(0.0);
+    seg.throughput = spectrum_t(1.0);
     seg.hits_ground = false;
     seg.nu = nu;
     /* Uniform steps from space, the given distribution near the ground, and a smooth hand-over between them
@@ -179,8 +189,8 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
     float steps = floor(mix(march.x, march.y, clamp(t_stop / max(march.w, 1e-6), 0.0, 1.0)));
     float r = seg.r;
     float phase_r = rayleigh_phase(nu);
-    float phase_m = mie_phase(nu, atmo.mie_absorption.w);
-    PhaseLegendre mie_k = mie_legendre(atmo.mie_absorption.w);
+    float phase_m = mie_phase(nu, MIE_G);
+    PhaseLegendre mie_k = mie_legendre(MIE_G);
     /* Step boundaries at t_stop (i/N)^p: p = 1 uniform, p = 2 Hillaire's quadratic spacing, which puts short
      * steps near the camera where an upward or horizontal ray meets the dense, thin Mie layer. A ray that
      * enters from space starts in the thinnest air, so it keeps uniform steps. In between, the exponent moves
@@ -199,11 +209,11 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
         float h_t = altitude_along(h, mu, t, r_t);
         float mu_s_t = clamp((r * mu_s + t * nu) / r_t, -1.0, 1.0);
         Medium m = sample_medium(h_t);
-        vec3 step_t = exp(-m.extinction * dt);
+        spectrum_t step_t = exp(-m.extinction * dt);
         float mu_t;
         float visible = sun_visibility(h_t, mu_s_t, mu_t);
-        vec3 sun_t = lookup_transmittance(h_t, mu_t);
-        MultiScatter ms = MultiScatter(vec3(0.0), 0.0, vec4(0.0), vec4(0.0));
+        spectrum_t sun_t = lookup_transmittance(h_t, mu_t);
+        MultiScatter ms = MultiScatter(spectrum_t(0.0), 0.0, vec4(0.0), vec4(0.0));
         if (HAS_MULTISCATTER) ms = lookup_multiscatter(h_t, mu_s_t);
         /* The second bounce's anisotropy: the view direction in the sample's frame (v_x toward the sun's azimuth,
          * v_z = mu_v up) and each phase's factor on its part of the Psi term; 1 for the lesson's model. */
@@ -217,8 +227,8 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
         }
         /* Single scattering is shadowed by the planet (seed bug 5), the penumbra included; multiple scattering is
          * already integrated over the sphere, shadow included, in the LUT (seed bug 9). */
-        vec3 sun_single = visible * sun_t;
-        vec3 weight = atmo.sun.rgb * seg.throughput * step_integral(m.extinction, dt, step_t);
+        spectrum_t sun_single = visible * sun_t;
+        spectrum_t weight = atmo.sun.CH * seg.throughput * step_integral(m.extinction, dt, step_t);
         seg.rayleigh += weight * m.rayleigh * (sun_single * phase_r + ms.psi * f_r);
         seg.mie += weight * m.mie * (sun_single * phase_m + ms.psi * f_m);
         seg.throughput *= step_t;
@@ -229,22 +239,22 @@ MarchSegment march_segment(float h_cam, vec3 v, vec3 s, vec4 march, float distri
 /* A lit ground (albedo > 0) where the whole ray ends on it, seen through the ray's transmittance: Lambertian, lit
  * by the sun through the atmosphere and by the sky (the ground-irradiance LUT: the sky's irradiance on the ground
  * per unit sun illuminance, by sun angle). Zero without a lit ground. */
-vec3 lit_ground(MarchSegment seg)
+spectrum_t lit_ground(MarchSegment seg)
 {
-    if (!HAS_GROUND || !seg.hits_ground) return vec3(0.0);
+    if (!HAS_GROUND || !seg.hits_ground) return spectrum_t(0.0);
     float mu_s_g = clamp((seg.r * seg.mu_s + seg.t_max * seg.nu) / ground_radius(), -1.0, 1.0);
     float mu_t_g;
     float visible_g = sun_visibility(0.0, mu_s_g, mu_t_g);
-    vec3 sun_g = lookup_transmittance(0.0, mu_t_g) * visible_g * max(mu_t_g, 0.0);
-    return seg.throughput * atmo.sun.rgb * (sun_g + GROUND_SKY_IRRADIANCE(mu_s_g)) * atmo.ground.rgb / PI;
+    spectrum_t sun_g = lookup_transmittance(0.0, mu_t_g) * visible_g * max(mu_t_g, 0.0);
+    return seg.throughput * atmo.sun.CH * (sun_g + GROUND_SKY_IRRADIANCE(mu_s_g)) * atmo.ground.CH / PI;
 }
 
 /* The march: in-scattered radiance along the ray (no sun disc) and the ray's transmittance. */
-vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out vec3 throughput,
-               out bool hits_ground)
+spectrum_t sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out spectrum_t throughput,
+                     out bool hits_ground)
 {
     MarchSegment seg = march_segment(h_cam, v, s, march, distribution, 3.0e38);
-    vec3 radiance = seg.rayleigh + seg.mie;
+    spectrum_t radiance = seg.rayleigh + seg.mie;
     throughput = seg.throughput;
     hits_ground = seg.hits_ground;
     return radiance + lit_ground(seg);
@@ -258,7 +268,7 @@ vec3 sky_march(float h_cam, vec3 v, vec3 s, vec4 march, float distribution, out 
  * radius max(true radius, one texel), its edge a linear ramp one texel wide centred on that radius (a texel's
  * coverage of the disc, to first order), and its radiance scaled by (true / drawn radius)^2 so that it keeps the
  * sun's power. With sky_texel_angle 0 it is the hard-edged disc of the true radius. */
-float sun_drawn_radius() { return max(atmo.sun.w, sky_texel_angle); }
+float sun_drawn_radius() { return max(SUN_RADIUS, sky_texel_angle); }
 float sun_disc_extent_lesson() { return sun_drawn_radius() + 0.5 * sky_texel_angle; }   /* no coverage beyond */
 
 /* The disc that carries the sun's power (--units photometric, atmo.sun_disc.x = 1) must keep it when its pixels are
@@ -273,7 +283,7 @@ const float SUN_POWER_RADIUS = 1.5, SUN_POWER_EDGE = 3.0;   /* texels */
 /* A texel over 0.5 rad (an image a few pixels across) is taken as 0.5: the support stays under 1.5 rad, well inside
  * the sphere (at such sizes no shape survives one sample per pixel; the disc stays finite and in its place). */
 float sun_power_texel() { return min(sky_texel_angle, 0.5); }
-float sun_power_radius() { return max(atmo.sun.w, SUN_POWER_RADIUS * sun_power_texel()); }
+float sun_power_radius() { return max(SUN_RADIUS, SUN_POWER_RADIUS * sun_power_texel()); }
 float sun_power_support() { return sun_power_radius() + 0.5 * SUN_POWER_EDGE * sun_power_texel(); }
 float sun_disc_extent() { return atmo.sun_disc.x > 0.5 ? sun_power_support() : sun_disc_extent_lesson(); }
 
@@ -301,20 +311,20 @@ float sun_power_integral(float u)
     return 6.2831853 * sum * (1.5707963 / float(N));
 }
 
-vec3 sun_disc(vec3 v, vec3 s, vec3 throughput, bool hits_ground)
+spectrum_t sun_disc(vec3 v, vec3 s, spectrum_t throughput, bool hits_ground)
 {
     float angle = small_angle(v, s);
-    if (!HAS_SUN_DISC || hits_ground || angle >= sun_disc_extent()) return vec3(0.0);
+    if (!HAS_SUN_DISC || hits_ground || angle >= sun_disc_extent()) return spectrum_t(0.0);
     if (atmo.sun_disc.x > 0.5)
-        return atmo.sun.rgb * throughput * (sun_power_shape(angle, atmo.ground.w) / sun_power_integral(atmo.ground.w));
+        return atmo.sun.CH * throughput * (sun_power_shape(angle, LIMB_U) / sun_power_integral(LIMB_U));
     /* The lesson's disc (--units relative): drawn with radius max(true radius, one texel), its edge a linear ramp one
      * texel wide, its radiance sun x 10 scaled by (true / drawn radius)^2. */
     float radius = sun_drawn_radius();
     float coverage = sky_texel_angle > 0.0 ? clamp((radius - angle) / sky_texel_angle + 0.5, 0.0, 1.0) : 1.0;
     float x = min(angle / radius, 1.0);
-    float limb = 1.0 - atmo.ground.w * (1.0 - sqrt(max(0.0, 1.0 - x * x)));
-    float power_kept = (atmo.sun.w / radius) * (atmo.sun.w / radius);   /* solid angles' ratio (small angles) */
-    return atmo.sun.rgb * 10.0 * throughput * limb * coverage * power_kept;
+    float limb = 1.0 - LIMB_U * (1.0 - sqrt(max(0.0, 1.0 - x * x)));
+    float power_kept = (SUN_RADIUS / radius) * (SUN_RADIUS / radius);   /* solid angles' ratio (small angles) */
+    return atmo.sun.CH * 10.0 * throughput * limb * coverage * power_kept;
 }
 
 /* The power disc's share above the camera's horizon: the penumbra's visible fraction of the sun (sun_visibility.glsl).
@@ -327,19 +337,19 @@ float sun_disc_visible(float h_cam, vec3 s)
     return atmo.sun_disc.x > 0.5 ? sun_visibility(h_cam, s.y, mu_t) : 1.0;
 }
 
-vec3 sky_radiance(float h_cam, vec3 v, vec3 s, vec4 march, float distribution)
+spectrum_t sky_radiance(float h_cam, vec3 v, vec3 s, vec4 march, float distribution)
 {
-    vec3 throughput;
+    spectrum_t throughput;
     bool hits_ground;
-    vec3 radiance = sky_march(h_cam, v, s, march, distribution, throughput, hits_ground);
-    return clamp(radiance + sun_disc(v, s, throughput, hits_ground) * sun_disc_visible(h_cam, s), vec3(0.0),
-                 vec3(FP16_MAX));
+    spectrum_t radiance = sky_march(h_cam, v, s, march, distribution, throughput, hits_ground);
+    return clamp(radiance + sun_disc(v, s, throughput, hits_ground) * sun_disc_visible(h_cam, s), spectrum_t(0.0),
+                 spectrum_t(FP16_MAX));
 }
 
 #ifdef VKSKY_SKYVIEW_LOOKUP
 /* The fast path (camera inside the atmosphere): one sky-view LUT lookup plus the sun disc, whose transmittance
  * comes from the transmittance LUT. */
-vec3 sky_radiance_lookup(float h_cam, vec3 v, vec3 s)
+spectrum_t sky_radiance_lookup(float h_cam, vec3 v, vec3 s)
 {
     vec2 hv = v.xz, hs = s.xz;
     float lv = length(hv), ls = length(hs);
@@ -353,13 +363,13 @@ vec3 sky_radiance_lookup(float h_cam, vec3 v, vec3 s)
         float sky_last = (float(size.y / 2) - 0.5) / float(size.y), ground_first = (float((size.y + 1) / 2) + 0.5) / float(size.y);
         uv.y = sky_forced_class == 1 ? min(uv.y, sky_last) : max(uv.y, ground_first);
     }
-    vec3 radiance = texture(skyview_lut, uv).rgb;
+    spectrum_t radiance = texture(skyview_lut, uv).CH;
     /* Only pixels inside the sun's disc pay for its transmittance lookup. */
     if (HAS_SUN_DISC && small_angle(v, s) < sun_disc_extent()) {
         bool hits_ground = ray_class_ground(h_cam, v.y);
-        vec3 throughput = hits_ground ? vec3(0.0) : lookup_transmittance(h_cam, v.y);
+        spectrum_t throughput = hits_ground ? spectrum_t(0.0) : lookup_transmittance(h_cam, v.y);
         radiance += sun_disc(v, s, throughput, hits_ground) * sun_disc_visible(h_cam, s);
     }
-    return clamp(radiance, vec3(0.0), vec3(FP16_MAX));
+    return clamp(radiance, spectrum_t(0.0), spectrum_t(FP16_MAX));
 }
 #endif

@@ -25,8 +25,8 @@ void main()
     vec3 s = vec3(sqrt(max(0.0, 1.0 - mu_s * mu_s)), mu_s, 0.0);
     float sin_theta = sqrt(max(0.0, 1.0 - mu * mu));
     vec3 v = vec3(sin_theta * cos_azimuth, mu, sin_theta * sqrt(max(0.0, 1.0 - cos_azimuth * cos_azimuth)));
-    vec3 throughput;
+    spectrum_t throughput;
     bool hits_ground;
-    vec3 radiance = sky_march(h, v, s, push.march, push.sun_dir.w, throughput, hits_ground);
-    imageStore(skyview_out, p, vec4(min(radiance, vec3(FP16_MAX)), 1.0));
+    spectrum_t radiance = sky_march(h, v, s, push.march, push.sun_dir.w, throughput, hits_ground);
+    imageStore(skyview_out, p, SPECTRUM_TO_VEC4(min(radiance, spectrum_t(FP16_MAX)), 1.0));
 }

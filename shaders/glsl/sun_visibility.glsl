@@ -51,7 +51,7 @@ float sun_visibility(float h, float mu_s, out float mu_t)
         float lit = ray_hits_ground(h, mu_s) ? 0.0 : 1.0;
         return lit * clamp(mu_s * 10.0 + 0.5, 0.0, 1.0);
     }
-    float R = atmo.sun.w;
+    float R = SUN_RADIUS;
     if (mu_s >= R && R > 0.0) return 1.0;   /* asin(mu_s) >= mu_s: the whole disc is up, no trigonometry */
     float rho = sqrt(rho2_of(h));
     if (mu_s + rho / ground_radius() <= -R) return 0.0;   /* asin(mu_s) <= mu_s, atan(rho, Rb) <= rho / Rb: all hidden */

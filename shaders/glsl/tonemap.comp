@@ -36,7 +36,12 @@ void main()
     }
     color = min(color, vec3(65504.0));
 #ifdef VKSKY_COMPOSITE
+#ifdef SPECTRAL4
+    /* The four-wide spectral build: the sky texel's four wavelengths as they are (tonemap_common.glsl). */
+    imageStore(composite, p, min(textureLod(hdr, uv, 0.0), vec4(65504.0)));
+#else
     imageStore(composite, p, vec4(color, 1.0));
+#endif
 #endif
     vec3 mapped = tonemap_apply(color, tonemap_exposed(push.tonemap, push.meter));
     imageStore(display, p, vec4(dither_display(mapped, p, push.dither, push.tonemap.w > 0.5), 1.0));

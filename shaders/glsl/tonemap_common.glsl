@@ -22,7 +22,13 @@ void main()
     if (push.params.z > 0.0) color += push.params.z * texture(bloom, in_uv).rgb;
     color = min(color, vec3(65504.0));
 #ifdef VKSKY_COMPOSITE
+#ifdef SPECTRAL4
+    /* The four-wide spectral build: the sky texel's four wavelengths as they are (render scale 1, no bloom: the host
+     * sums the groups' linear images into colour; docs/spectral.md "Four to a texel"). */
+    out_linear = min(textureLod(hdr, in_uv, 0.0), vec4(65504.0));
+#else
     out_linear = vec4(color, 1.0);
+#endif
 #endif
     vec3 mapped = tonemap_apply(color, tonemap_exposed(push.params, push.meter));
     out_display = vec4(dither_display(mapped, ivec2(gl_FragCoord.xy), push.dither, push.params.w > 0.5), 1.0);

@@ -23,14 +23,14 @@ void main()
     /* Simpson's rule per step (ends and midpoint, the end shared with the next step): 40 midpoint samples
      * miss ~3e-3 of transmittance where a step is longer than Mie's 1.2 km scale height or straddles the
      * perigee of a grazing ray; Simpson's error there is ~1e-5. */
-    vec3 optical_depth = vec3(0.0);
+    spectrum_t optical_depth = spectrum_t(0.0);
     float r_t;
-    vec3 sigma_a = sample_medium(h).extinction;
+    spectrum_t sigma_a = sample_medium(h).extinction;
     for (int i = 0; i < steps; ++i) {
-        vec3 sigma_m = sample_medium(altitude_along(h, mu, (float(i) + 0.5) * dt, r_t)).extinction;
-        vec3 sigma_b = sample_medium(altitude_along(h, mu, float(i + 1) * dt, r_t)).extinction;
+        spectrum_t sigma_m = sample_medium(altitude_along(h, mu, (float(i) + 0.5) * dt, r_t)).extinction;
+        spectrum_t sigma_b = sample_medium(altitude_along(h, mu, float(i + 1) * dt, r_t)).extinction;
         optical_depth += dt / 6.0 * (sigma_a + 4.0 * sigma_m + sigma_b);
         sigma_a = sigma_b;
     }
-    imageStore(transmittance_out, texel, vec4(exp(-optical_depth), 1.0));
+    imageStore(transmittance_out, texel, SPECTRUM_TO_VEC4(exp(-optical_depth), 1.0));
 }

@@ -39,8 +39,17 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverity
                         : severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT ? "warning"
                                                                                       : "info";
     if (ctx) ctx->validation_messages++;
-    if (ctx && ctx->message) ctx->message(ctx->message_user, 3, data->pMessage ? data->pMessage : "(no text)");
-    else fprintf(stderr, "vksky: validation %s: %s\n", level, data->pMessage ? data->pMessage : "(no text)");
+    /* Layers up to 1.3.2xx put "[ <message id> ]" into pMessage; newer ones (docs/synchronization.md §14, "What a
+     * newer layer sees") pass it only as pMessageIdName. Prefix it then, so every message names its id. */
+    const char *text = data->pMessage ? data->pMessage : "(no text)";
+    char *tagged = NULL;
+    const char *id = data->pMessageIdName;
+    if (id && *id && !strstr(text, id) && (tagged = malloc(strlen(id) + strlen(text) + 6)))
+        sprintf(tagged, "[ %s ] %s", id, text);
+    if (tagged) text = tagged;
+    if (ctx && ctx->message) ctx->message(ctx->message_user, 3, text);
+    else fprintf(stderr, "vksky: validation %s: %s\n", level, text);
+    free(tagged);
     return VK_FALSE;
 }
 

@@ -59,6 +59,7 @@ sky_variant sky_variant_of(const model_atmosphere *a, const sky_features *f)
                           extras > 1 ? profile_kind(&a->extra[1].density) : VKSKY_PROFILE_GENERAL},
         .sun_visibility = a->sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE ? VKSKY_SUN_VISIBILITY_LESSON_FADE
                                                                                : VKSKY_SUN_VISIBILITY_PENUMBRA,
+        .spectral4 = f->spectral4,
     };
 }
 
@@ -101,6 +102,21 @@ void sky_atmosphere_pack(const model_atmosphere *a, double sun_angular_radius_ra
                                   (float)q.multiscatter_sqrt_dirs, f->multiple_scattering ? 1.0f : 0.0f};
     out->ground = v4(f->ground_albedo, f->limb_darkening);
     out->sun_disc = (vksky_vec4){f->sun_disc_power ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f};
+    if (f->spectral4) {
+        /* SPECTRAL4: every .w is the fourth wavelength's; the scalars the RGB block keeps there move to scalars4. */
+        const sky_fourth *w = &f->fourth;
+        out->scalars4 = (vksky_vec4){(float)a->mie_g, (float)sun_angular_radius_rad, (float)f->limb_darkening, 1.0f};
+        out->rayleigh_scattering.w = (float)w->rayleigh_scattering;
+        out->mie_scattering.w = (float)w->mie_scattering;
+        out->mie_absorption.w = (float)w->mie_absorption;
+        out->ozone_absorption.w = (float)w->ozone_absorption;
+        for (int i = 0; i < species - 3; ++i) {
+            out->extra_scattering[i].w = (float)w->extra_scattering[i];
+            out->extra_absorption[i].w = (float)w->extra_absorption[i];
+        }
+        out->sun.w = (float)w->sun_illuminance;
+        out->ground.w = (float)w->ground_albedo;
+    }
 }
 
 static uint64_t fnv1a(uint64_t h, const void *data, size_t size)
@@ -128,5 +144,12 @@ uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p, int sun_visibility)
     h = fnv1a(h, p->extra_scattering, sizeof p->extra_scattering);
     h = fnv1a(h, p->extra_absorption, sizeof p->extra_absorption);
     h = fnv1a(h, p->profile_widths, sizeof p->profile_widths);
+    if (p->scalars4.w != 0.0f) {
+        /* SPECTRAL4 (scalars4 set): the fourth wavelength's coefficients and albedo count, and g and the sun's size
+         * from their new places (the extras' .w are hashed with the arrays above). */
+        const float fourth[] = {p->rayleigh_scattering.w, p->mie_scattering.w, p->mie_absorption.w,
+                                p->ozone_absorption.w, p->ground.w, p->scalars4.x, p->scalars4.y};
+        h = fnv1a(h, fourth, sizeof fourth);
+    }
     return fnv1a(h, p->profiles, sizeof p->profiles);
 }

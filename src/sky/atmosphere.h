@@ -22,6 +22,14 @@ typedef struct sky_lut_quality {
 
 sky_lut_quality sky_lut_quality_default(void);
 
+/* The four-wide spectral build (SPECTRAL4 shaders, --spectral N): the fourth wavelength's value of every per-channel
+ * quantity, packed into the .w slots of the uniform block (the three others are the model_atmosphere's channels). */
+typedef struct sky_fourth {
+    double rayleigh_scattering, mie_scattering, mie_absorption, ozone_absorption;
+    double extra_scattering[VKSKY_MAX_EXTRA], extra_absorption[VKSKY_MAX_EXTRA];
+    double sun_illuminance, ground_albedo;
+} sky_fourth;
+
 /* Scene features beyond the medium (scene files and their flags). */
 typedef struct sky_features {
     double ground_albedo[3];      /* Lambertian; 0: the ground is black and not shaded (compiled out) */
@@ -30,6 +38,8 @@ typedef struct sky_features {
     bool sun_disc;
     bool multiple_scattering;     /* false: no multi-scattering LUT pass, no Psi term */
     bool sun_disc_power;          /* the disc integrates to the sun's illuminance (else the lesson's sun x 10) */
+    bool spectral4;               /* pack `fourth` as a fourth channel (set by the renderer: its desc.spectral4) */
+    sky_fourth fourth;
 } sky_features;
 sky_features sky_features_default(void);
 
@@ -41,6 +51,7 @@ typedef struct sky_variant {
     int32_t extra_species;        /* extra species evaluated (0 .. VKSKY_MAX_EXTRA) */
     int32_t extra_profile[VKSKY_MAX_EXTRA];
     int32_t sun_visibility;       /* VKSKY_SUN_VISIBILITY_* (the model's sun_visibility) */
+    VkBool32 spectral4;           /* the SPECTRAL4 shaders (not a specialization constant: other SPIR-V) */
 } sky_variant;
 sky_variant sky_variant_of(const model_atmosphere *a, const sky_features *f);
 void sky_atmosphere_pack(const model_atmosphere *a, double sun_angular_radius_rad, sky_lut_quality q,

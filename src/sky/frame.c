@@ -11,6 +11,7 @@
 #include "sky/frame.h"
 #include "sky/frame_parts.h"
 #include "sky/view_params.h"
+#include "sky/tonemap_regions.h"
 #include "gpu/async_queue.h"
 
 /* How each frame image was last used by the previous frame: the first barrier of this frame waits for it (WAR)
@@ -421,9 +422,13 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
     TonemapPush tm = sky_view_tonemap_push(v, !f->target ? false : !format_is_srgb(r->desc.display_format));
     if (!bloom) tm.params.z = 0.0f;
     tm.meter.y = (float)(f->meter_slot % VKSKY_METER_SLOTS);
+    /* Issue 26: the horizon path only in the tiles it may reach (sky/tonemap_regions.h). */
+    tonemap_regions regions;
+    tonemap_regions_plan(&regions, &push, r->hdr.extent, display->extent);
     t = frame_timed_begin(r, cmd, "tonemap");
     tonemap_record(&r->tonemap, cmd, display->extent, display->view,
-                   r->desc.readback ? r->composite.view : VK_NULL_HANDLE, &tm);
+                   r->desc.readback ? r->composite.view : VK_NULL_HANDLE, &tm, &regions,
+                   r->hdr.extent.width == display->extent.width && r->hdr.extent.height == display->extent.height);
     frame_timed_end(r, cmd, t);
 
     /* 5. Readback (headless): record_readback. */

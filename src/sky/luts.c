@@ -19,6 +19,10 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
      * cache, copied in by the LUT cache (sky/lut_cache.h). */
     VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                               VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    /* The four-wide build (s->spectral4): its own SPIR-V, and the atlas's D in a fourth part (Psi takes all four
+     * channels of the first). */
+    bool s4 = s->spectral4;
+    l->multiscatter_parts = s4 ? VKSKY_MULTISCATTER_PARTS4 : VKSKY_MULTISCATTER_PARTS;
     gpu_image_create(ctx, &l->transmittance, "transmittance LUT", format, (uint32_t)q->transmittance_width,
                      (uint32_t)q->transmittance_height, 1, usage);
     if (multiscatter)
@@ -26,7 +30,7 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
          * zonal moments (one image, one descriptor, one barrier; the texel-centre sub-UV keeps each part's
          * bilinear taps inside it). */
         gpu_image_create(ctx, &l->multiscatter, "multiscatter LUT", format,
-                         VKSKY_MULTISCATTER_PARTS * (uint32_t)q->multiscatter_size, (uint32_t)q->multiscatter_size, 1,
+                         l->multiscatter_parts * (uint32_t)q->multiscatter_size, (uint32_t)q->multiscatter_size, 1,
                          usage);
     l->multiscatter_view = multiscatter ? l->multiscatter.view : l->transmittance.view;
     gpu_image_create(ctx, &l->skyview, "skyview LUT", HDR_FORMAT, (uint32_t)q->skyview_width,
@@ -39,7 +43,8 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
     l->transmittance_set_layout = gpu_set_layout(ctx, t_slots, 2, VK_SHADER_STAGE_COMPUTE_BIT, "transmittance set layout");
     l->transmittance_layout = gpu_pipeline_layout(ctx, l->transmittance_set_layout, 0, 0, "transmittance layout");
     l->transmittance_pipeline = compute_pipeline(s, l->transmittance_layout,
-                                                 q->lut_f32 ? &spirv_transmittance_lut_f32 : &spirv_transmittance_lut,
+                                                 s4 ? (q->lut_f32 ? &spirv_transmittance_lut_f32_s4 : &spirv_transmittance_lut_s4)
+                                                    : q->lut_f32 ? &spirv_transmittance_lut_f32 : &spirv_transmittance_lut,
                                                  "transmittance LUT");
     l->transmittance_set = gpu_alloc_set(ctx, s->pool, l->transmittance_set_layout, "transmittance set");
     gpu_write_uniform(ctx, l->transmittance_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
@@ -52,7 +57,8 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
         l->multiscatter_set_layout = gpu_set_layout(ctx, m_slots, 3, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
         l->multiscatter_layout = gpu_pipeline_layout(ctx, l->multiscatter_set_layout, 0, 0, "multiscatter layout");
         l->multiscatter_pipeline = compute_pipeline(s, l->multiscatter_layout,
-                                                    q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut,
+                                                    s4 ? (q->lut_f32 ? &spirv_multiscatter_lut_f32_s4 : &spirv_multiscatter_lut_s4)
+                                                       : q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut,
                                                     "multiscatter LUT");
         l->multiscatter_set = gpu_alloc_set(ctx, s->pool, l->multiscatter_set_layout, "multiscatter set");
         gpu_write_uniform(ctx, l->multiscatter_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
@@ -68,7 +74,8 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
                                     {VKSKY_BINDING_MULTISCATTER_LUT, SAMPLED}, {VKSKY_BINDING_OUTPUT, STORAGE}};
         l->ground_set_layout = gpu_set_layout(ctx, g_slots, 4, VK_SHADER_STAGE_COMPUTE_BIT, "ground irradiance set layout");
         l->ground_layout = gpu_pipeline_layout(ctx, l->ground_set_layout, 0, 0, "ground irradiance layout");
-        l->ground_pipeline = compute_pipeline(s, l->ground_layout, &spirv_ground_irradiance_lut, "ground irradiance LUT");
+        l->ground_pipeline = compute_pipeline(s, l->ground_layout, s4 ? &spirv_ground_irradiance_lut_s4 : &spirv_ground_irradiance_lut,
+                                             "ground irradiance LUT");
         l->ground_set = gpu_alloc_set(ctx, s->pool, l->ground_set_layout, "ground irradiance set");
         gpu_write_uniform(ctx, l->ground_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
                           sizeof(AtmosphereParams));
@@ -84,7 +91,7 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
     l->skyview_set_layout = gpu_set_layout(ctx, v_slots, 5, VK_SHADER_STAGE_COMPUTE_BIT, "skyview set layout");
     l->skyview_layout = gpu_pipeline_layout(ctx, l->skyview_set_layout, sizeof(SkyPush), VK_SHADER_STAGE_COMPUTE_BIT,
                                             "skyview layout");
-    l->skyview_pipeline = compute_pipeline(s, l->skyview_layout, &spirv_skyview_lut, "skyview LUT");
+    l->skyview_pipeline = compute_pipeline(s, l->skyview_layout, s4 ? &spirv_skyview_lut_s4 : &spirv_skyview_lut, "skyview LUT");
     l->skyview_set = gpu_alloc_set(ctx, s->pool, l->skyview_set_layout, "skyview set");
     gpu_write_uniform(ctx, l->skyview_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
     gpu_write_sampled(ctx, l->skyview_set, VKSKY_BINDING_TRANSMITTANCE_LUT, l->transmittance.view, s->linear_clamp);
@@ -131,7 +138,7 @@ void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd)
     /* One 64-thread workgroup per texel (the threads share the sphere directions). */
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_layout, 0, 1, &l->multiscatter_set, 0, NULL);
-    vkCmdDispatch(cmd, l->multiscatter.extent.width / VKSKY_MULTISCATTER_PARTS, l->multiscatter.extent.height, 1);   /* a workgroup a texel */
+    vkCmdDispatch(cmd, l->multiscatter.extent.width / l->multiscatter_parts, l->multiscatter.extent.height, 1);   /* a workgroup a texel */
 }
 
 void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *push)

@@ -20,6 +20,7 @@ typedef struct pass_shared {
     gpu_buffer atmosphere_ubo;
     VkShaderModule fullscreen_vs;
     const VkSpecializationInfo *spec;   /* the scene's variant, for every shader that includes atmosphere.glsl */
+    bool spectral4;                     /* the four-wide spectral build's SPIR-V (sky_renderer_desc.spectral4) */
 } pass_shared;
 
 /* --- LUT compute passes (luts.c): transmittance and multi-scattering (when the atmosphere changes), sky-view
@@ -39,6 +40,7 @@ typedef struct sky_luts {
     VkPipeline ground_pipeline;
     VkDescriptorSet ground_set;
     VkImageView ground_irradiance_view;
+    uint32_t multiscatter_parts;         /* N x N parts of the multi-scattering atlas (4 in the four-wide build) */
 } sky_luts;
 /* multiscatter false: no multi-scattering LUT image, pipeline or pass. */
 void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter, bool ground);
@@ -94,6 +96,8 @@ typedef struct tonemap_pass {
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;
     VkPipeline pipeline;
+    VkPipeline far_pipeline[2];   /* hdr_upsample.glsl's far path only (the regions away from the horizon); [1]:
+                                     the sky image is the output's size */
     VkDescriptorSet set;
     bool composite;
 } tonemap_pass;
@@ -101,6 +105,10 @@ typedef struct tonemap_pass {
 void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view, VkImageView bloom_view,
                     VkFormat display_format, bool composite);
 void tonemap_destroy(tonemap_pass *t, const pass_shared *s);
+/* `regions` (sky/tonemap_regions.h): each drawn by its pipeline under its scissor; NULL: the whole target, full.
+ * hdr_full_size: the sky image is `extent` (render scale 1). */
+typedef struct tonemap_regions tonemap_regions;
 void tonemap_record(const tonemap_pass *t, VkCommandBuffer cmd, VkExtent2D extent, VkImageView display,
-                    VkImageView composite, const TonemapPush *push);
+                    VkImageView composite, const TonemapPush *push, const tonemap_regions *regions,
+                    bool hdr_full_size);
 #endif

@@ -108,7 +108,9 @@ void post_compute_create(post_compute *p, const pass_shared *s, const gpu_image 
     p->tonemap_layout = gpu_pipeline_layout(ctx, p->tonemap_set_layout, sizeof(PostPush), VK_SHADER_STAGE_COMPUTE_BIT,
                                             "tonemap (compute) layout");
     p->tonemap_pipeline = compute_pipeline(ctx, p->tonemap_layout,
-                                           p->composite ? &spirv_tonemap_composite_comp : &spirv_tonemap_comp,
+                                           p->composite ? (s->spectral4 ? &spirv_tonemap_composite_comp_s4
+                                                                        : &spirv_tonemap_composite_comp)
+                                                        : &spirv_tonemap_comp,
                                            "tonemap (compute)");
     p->tonemap_set = gpu_alloc_set(ctx, p->pool, p->tonemap_set_layout, "tonemap (compute) set");
     write_image(ctx, p->tonemap_set, VKSKY_BINDING_POST_SOURCE, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

@@ -127,6 +127,7 @@ static void build_variant(sky_renderer *r)
 
 static void rebuild_variant_if_changed(sky_renderer *r)
 {
+    r->features.spectral4 = r->desc.spectral4;   /* the renderer's build, whatever the caller's features say */
     sky_variant want = sky_variant_of(&r->medium, &r->features);
     if (!memcmp(&want, &r->variant, sizeof want)) return;
     double start = now_ms();
@@ -149,6 +150,7 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
     r->post_kind = post_pass_resolve(desc->post_pass, ctx);
     pass_shared *s = &r->shared;
     s->ctx = ctx;
+    s->spectral4 = desc->spectral4;
     VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 8},
                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 32},
                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
@@ -168,6 +170,7 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
     r->sun_angular_radius = 0.5 * 0.53 * 3.14159265358979323846 / 180.0;
     if (desc->atmosphere) r->medium = *desc->atmosphere, r->sun_angular_radius = desc->sun_angular_radius_rad;
     if (desc->features) r->features = *desc->features;
+    r->features.spectral4 = desc->spectral4;
     r->desc.atmosphere = NULL, r->desc.features = NULL;   /* the caller's, valid only during this call */
     build_variant(r);
     create_sized(r);

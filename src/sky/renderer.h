@@ -28,6 +28,9 @@ typedef struct sky_renderer_desc {
     const model_atmosphere *atmosphere;
     double sun_angular_radius_rad;     /* with atmosphere */
     const sky_features *features;
+    bool spectral4;              /* the four-wide spectral build for the renderer's life (--spectral N): SPECTRAL4
+                                    shaders, features.fourth packed as a fourth channel, the linear composite the HDR
+                                    image's four wavelengths (no bloom, no horizon resolve) */
 } sky_renderer_desc;
 
 typedef struct sky_renderer {

@@ -6,12 +6,16 @@
  * horizon (shaders/glsl/horizon.glsl): its own variant, because on lavapipe a march merely present in the
  * lookup shader costs every pixel (measured: 8x the lookup's sky pass with no pixel marching). */
 #define SKY_MODE_BLEND 3
-static const sky_spirv *variant(int kind, int mode)
+static const sky_spirv *variant(int kind, int mode, bool spectral4)
 {
     static const sky_spirv *const table[2][4] = {
         {&spirv_sky_march_frag, &spirv_sky_lookup_frag, &spirv_sky_fill_frag, &spirv_sky_blend_frag},
         {&spirv_sky_march_comp, &spirv_sky_lookup_comp, &spirv_sky_fill_comp, &spirv_sky_blend_comp}};
-    return table[kind][mode];
+    /* The four-wide spectral build's (no fill: a benchmark's floor, never spectral). */
+    static const sky_spirv *const table4[2][4] = {
+        {&spirv_sky_march_frag_s4, &spirv_sky_lookup_frag_s4, &spirv_sky_fill_frag, &spirv_sky_blend_frag_s4},
+        {&spirv_sky_march_comp_s4, &spirv_sky_lookup_comp_s4, &spirv_sky_fill_comp, &spirv_sky_blend_comp_s4}};
+    return spectral4 ? table4[kind][mode] : table[kind][mode];
 }
 
 static VkPipeline make_pipeline(const sky_pass *p, const pass_shared *s, int kind, int mode)
@@ -20,7 +24,7 @@ static VkPipeline make_pipeline(const sky_pass *p, const pass_shared *s, int kin
         {"sky march (fragment)", "sky lookup (fragment)", "sky fill (fragment)", "sky blend (fragment)"},
         {"sky march (compute)", "sky lookup (compute)", "sky fill (compute)", "sky blend (compute)"}};
     const char *name = names_km[kind][mode];
-    const sky_spirv *spv = variant(kind, mode);
+    const sky_spirv *spv = variant(kind, mode, s->spectral4);
     VkFormat format = HDR_FORMAT;
     VkShaderModule m = gpu_shader_module(s->ctx, spv->code, spv->size, name);
     VkPipeline pipeline = kind == SKY_PASS_FRAGMENT

@@ -40,8 +40,11 @@ static VKAPI_ATTR VkBool32 VKAPI_CALL host_debug(VkDebugUtilsMessageSeverityFlag
     (void)s, (void)t, (void)u;
     host_validation_messages++;
     if (d->pMessage && !strncmp(d->pMessage, "VK_ERROR_", 9) && !strchr(d->pMessage, ' ')) host_result_messages++;
-    /* The CLI's words, so that tests/barrier_drop_test.sh reads the drop probe's messages as it reads vksky's. */
-    fprintf(stderr, "vksky: validation error: %s\n", d->pMessage);
+    /* The CLI's words, so that tests/barrier_drop_test.sh reads the drop probe's messages as it reads vksky's
+     * (with the id in front where a newer layer leaves it out of the text, as src/gpu/context.c does). */
+    const char *id = d->pMessageIdName, *text = d->pMessage ? d->pMessage : "(no text)";
+    if (id && *id && !strstr(text, id)) fprintf(stderr, "vksky: validation error: [ %s ] %s\n", id, text);
+    else fprintf(stderr, "vksky: validation error: %s\n", text);
     return VK_FALSE;
 }
 

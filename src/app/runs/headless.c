@@ -249,6 +249,7 @@ static int run_checked(const options *o)
     sky_renderer_desc rdesc = render_desc(&quality, &scene);
     rdesc.width = (uint32_t)o->width, rdesc.height = (uint32_t)o->height, rdesc.bloom = o->view.bloom;
     rdesc.readback = o->output_count > 0, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
+    rdesc.spectral4 = spectral_render_four_wide(o), rdesc.bloom = rdesc.bloom && !rdesc.spectral4;   /* no bloom there */
     sky_renderer_create(&r, &ctx, &rdesc);
     if (o->trace_passes) gpu_barrier_trace_passes(stdout);
 

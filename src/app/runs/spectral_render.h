@@ -13,6 +13,11 @@
  * stderr naming `flag` (the flag that asked for the wavelengths) and 2; else 0. Call before any GPU work. */
 int spectral_render_check(const options *o, const char *flag);
 
+/* Whether --spectral renders four wavelengths to a texel (the SPECTRAL4 build) rather than three (the RGB shaders,
+ * one group per three channels): four unless the horizon passes within 3 pixels of the frame (the four-wide image
+ * has no horizon resolve); VKSKY_SPECTRAL_PACK=3 or 4 forces one (to check one against the other). */
+bool spectral_render_four_wide(const options *o);
+
 /* Arm the frame function for o's wavelengths and medium; inner renders (and reads back) one frame. */
 void spectral_render_begin(const options *o, sequence_render_fn inner);
 
@@ -25,5 +30,14 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f);
  * reference is <= max_de on every scene class of the set (quality.h's classes; app/quality/quality_color_table.h,
  * from tools/color_error's 57 rows). -1 if none is; *measured gets the pick's worst (or the best setting's worst). */
 int spectral_pick(double max_de, unsigned classes, double *measured);
+
+/* --quality auto's colour (issue 32): where RGB's measured worst CIEDE2000 on the run's scene classes is over
+ * SPECTRAL_AUTO_RGB_KEEP, the fewest wavelengths within the default colour budget SPECTRAL_AUTO_BUDGET (spectral_pick),
+ * said on one stdout line. Only for a run that can render spectral (`possible`: EXR outputs of a still perspective
+ * frame, no composite or sequence; else RGB, as before) and gives no colour choice of its own (--spectral, --max-color-error). Sets
+ * o->spectral; returns it (0: RGB kept). */
+#define SPECTRAL_AUTO_BUDGET 1.0
+#define SPECTRAL_AUTO_RGB_KEEP 3.0
+int spectral_auto(options *o, bool possible);
 
 #endif

@@ -36,6 +36,9 @@ long tiles_budget(void)
 
 int tiles_band_rows(int width, int height, long budget)
 {
+    /* VKSKY_TILE_ROWS=N (tests): bands of exactly N rows, whatever the budget (tests/band_rows_test.sh). */
+    const char *exact = getenv("VKSKY_TILE_ROWS");
+    if (exact && atoi(exact) > 0) return atoi(exact) >= height ? height : atoi(exact);
     long rows = budget / width;
     rows -= rows % 16;
     if (rows < 16) rows = 16;

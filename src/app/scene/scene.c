@@ -309,7 +309,8 @@ static int parse_quality(const scene_ctx *c, const cJSON *q)
     static const char *const names[] = {
         "preset", "sky_mode", "sky_pass", "steps", "max_steps", "steps_ramp_km", "step_distribution", "sample_offset",
         "skyview_lut", "skyview_steps", "transmittance_lut", "transmittance_steps", "multiscatter_lut",
-        "multiscatter_directions", "multiscatter_steps", "lut_format", "render_scale", "bloom_mips", "bloom_res"};
+        "multiscatter_directions", "multiscatter_steps", "lut_format", "render_scale", "bloom_mips", "bloom_res",
+        "spectral"};
     options *o = c->o;
     sky_view *v = &o->view;
     sky_lut_quality *lut = &o->lut;
@@ -345,7 +346,8 @@ static int parse_quality(const scene_ctx *c, const cJSON *q)
         scene_get_word(c, q, "lut_format", "quality", lut_format_words, COUNT(lut_format_words), &f32) ||
         scene_get_number(c, q, "render_scale", "quality", scene_flag_range("--render-scale", false), &o->render_scale) ||
         scene_get_int(c, q, "bloom_mips", "quality", scene_flag_range("--bloom-mips", true), &o->bloom_mips) ||
-        scene_get_word(c, q, "bloom_res", "quality", bloom_res_words, COUNT(bloom_res_words), &quarter))
+        scene_get_word(c, q, "bloom_res", "quality", bloom_res_words, COUNT(bloom_res_words), &quarter) ||
+        scene_get_int(c, q, "spectral", "quality", scene_flag_range("--spectral", true), &o->spectral))
         return 2;
     int root = (int)(sqrt((double)dirs) + 0.5);
     if (root * root != dirs)

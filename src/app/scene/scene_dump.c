@@ -176,6 +176,7 @@ int scene_dump(const options *o, FILE *out)
     num(&b, q, "render_scale", o->render_scale);
     num(&b, q, "bloom_mips", o->bloom_mips);
     str(&b, q, "bloom_res", o->bloom_quarter ? "quarter" : "half");
+    if (o->spectral > 0) num(&b, q, "spectral", o->spectral);   /* --spectral's (or --quality auto's) wavelengths */
 
     char *text = b.ok ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
