@@ -2,7 +2,7 @@
 # tools/gpu_table_remeasure.sh [BUILD] [OUT]: re-measure the GPU quality table (src/app/quality/quality_table.h) on the
 # GPU this runs on, at the frame size the promise is held at, and check the promise with it (issue 31 item 4).
 #
-# Run on 2026-11-27 (NVIDIA H100, driver 580.159.04): the table in docs/perf/h100-2026-11-27-f is the one shipped, and
+# Run on 2026-11-27 (NVIDIA H100, driver 580.159.04): the table in docs/perf/h100-2026-11-27-g is the one shipped, and
 # ctest promise passed with it on the H100 (twilight's --max-error 0.005 pick: medium, 0.31 %). Tables measured on
 # 96x54 or 1920x1080 frames did not hold the promise (docs/perf/h100-issue31/, docs/claims.md).
 #
