@@ -52,6 +52,9 @@ static const gpu_usage_info usages[GPU_USAGE_COUNT] = {
     [GPU_USAGE_SHADER_STORAGE_READ] = {"shader_storage_read",
                                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT,
                                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT, VK_IMAGE_LAYOUT_GENERAL},
+    [GPU_USAGE_COMPUTE_STORAGE_READ_WRITE] = {"compute_storage_read_write", VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                              VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                              VK_IMAGE_LAYOUT_GENERAL},
 };
 
 static FILE *trace_out;

@@ -33,6 +33,7 @@ typedef enum gpu_usage {
     GPU_USAGE_CLEAR_DST,                /* vkCmdClearColorImage destination, kept in GENERAL */
     GPU_USAGE_COMPUTE_STORAGE_READ,     /* a storage buffer read by a compute shader */
     GPU_USAGE_SHADER_STORAGE_READ,      /* a storage buffer read by compute or fragment shaders (a tone map, either) */
+    GPU_USAGE_COMPUTE_STORAGE_READ_WRITE, /* a storage buffer read and written by one compute dispatch */
     GPU_USAGE_COUNT
 } gpu_usage;
 

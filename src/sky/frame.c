@@ -161,10 +161,13 @@ static void record_meter(sky_renderer *r, VkCommandBuffer cmd, const frame_desc 
     meter_record_tiles(&r->meter, cmd, scale, every_pixel, f->meter_first_row, f->meter_rows,
                        f->view->projection == VKSKY_PROJECTION_FISHEYE, f->view->tile_y);
     frame_timed_end(r, cmd, t);
-    /* The tiles wrote their partial sums; the average reads them: RAW. */
+    /* The tiles wrote their partial sums; the average reads them: RAW. The average also writes the buffer (result[slot]
+     * and `adapted`, bytes the tiles never write, so no WAW by the specification's definition of a data race); its
+     * destination access says so, because a validator that tracks a descriptor's whole range, not the bytes a
+     * shader touches, counts a WAW otherwise (docs/synchronization.md §14, "What a newer layer sees"). */
     b = gpu_barrier_batch_begin("before meter_average");
     gpu_barrier_add_buffer(&b, "meter.partials_to_average", "meter", buf, GPU_USAGE_COMPUTE_STORAGE_WRITE,
-                           GPU_USAGE_COMPUTE_STORAGE_READ);
+                           GPU_USAGE_COMPUTE_STORAGE_READ_WRITE);
     gpu_barrier_flush(cmd, &b);
     t = frame_timed_begin(r, cmd, "meter_average");
     meter_record_average(&r->meter, cmd, scale, every_pixel, f->meter_slot % VKSKY_METER_SLOTS,
@@ -211,11 +214,19 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
         if (spd)
             gpu_barrier_add_image(&b, "spd_counters.to_clear", "spd_counters", pc->counters.image, one,
                                   GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_CLEAR_DST, true);
-    } else if (r->desc.bloom) {
+    } else if (r->desc.bloom && compute_tonemap) {
         /* Bloom switched off at run time: the tone map's descriptors still name mips 0 and 1 in GENERAL, never
          * sampled (strength 0): a layout-only transition (WAR on the previous frame's reads). */
         gpu_barrier_add_image(first, "bloom.off_to_storage", "bloom", bl->mips.image, gpu_color_range(0, bl->mip_count),
                               CHAIN_LAST_USE_COMPUTE, GPU_USAGE_COMPUTE_STORAGE_RW, true);
+    } else if (r->desc.bloom) {
+        /* The same for the fragment tone map (a swapchain target): its descriptor names mip 0 in SHADER_READ_ONLY.
+         * One transition, UNDEFINED -> SHADER_READ_ONLY, whose own source stages hold the previous frame's reads
+         * (WAR): not GENERAL first and SHADER_READ_ONLY second, where the second transition would be ordered after
+         * those reads only through the first, which the specification does not promise (docs/synchronization.md
+         * §14, "What a newer layer sees"). */
+        gpu_barrier_add_image(next, "bloom.off_to_sample", "bloom", bl->mips.image, one, CHAIN_LAST_USE_COMPUTE,
+                              GPU_USAGE_FRAGMENT_SAMPLED, true);
     }
     if (bloom) gpu_barrier_flush(cmd, &b);
 
@@ -305,7 +316,7 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     }
     /* A target the compute tone map cannot write (a swapchain image): the fragment tone map follows (frame_record
      * step 4); it samples mip 0, which the compute upsample wrote: RAW + GENERAL -> SHADER_READ_ONLY. */
-    if (r->desc.bloom)
+    if (bloom)
         gpu_barrier_add_image(next, "bloom.mip0.storage_to_fragment", "bloom", bl->mips.image, one,
                               GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_FRAGMENT_SAMPLED, false);
     return false;
