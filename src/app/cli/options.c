@@ -287,13 +287,6 @@ static int apply_value(options *o, const flag *f, const char *value, double x)
     return 0;
 }
 
-static int apply(options *o, const flag *f, const char *value)
-{
-    double x = 0;
-    if ((f->kind == ARG_INT || f->kind == ARG_DOUBLE) && parse_number(f, value, &x) != 0) return 2;
-    return apply_value(o, f, value, x);
-}
-
 /* No --render, --bench, --reference or an informational flag: the window will open. */
 static bool window_mode(int argc, char **argv)
 {
@@ -336,14 +329,80 @@ void options_defaults(options *o)
     model_atmosphere_earth(&o->atmosphere);
 }
 
+/* A flag given as a value: a number parsed once (by the command line's parse), then applied as that number. */
+static int apply_given(options *o, options_given *g)
+{
+    const flag *f = g->flag;
+    bool numeric = f->kind == ARG_INT || f->kind == ARG_DOUBLE;
+    if (numeric && !g->parsed) {
+        if (parse_number(f, g->text, &g->number) != 0) return 2;
+        g->parsed = true;
+    }
+    return apply_value(o, f, numeric ? NULL : g->text, g->number);
+}
+
+static int resolve(options *o, unsigned quality_classes, bool report);
+
 int options_parse_for_classes(options *o, int argc, char **argv, unsigned quality_classes)
 {
     options_defaults(o);
     o->argc = argc, o->argv = argv;
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
-    /* Three passes: --scene first (pass -1), wherever it stands; then the quality preset (or --max-error's choice)
-     * sets the knobs, so that any knob flag, wherever it stands, overrides it. */
+    /* Three passes: --scene first (pass -1), wherever it stands, while the command line is read into values (each
+     * flag with its text, o->given); then the quality preset (or --max-error's choice) sets the knobs, so that any
+     * knob flag, wherever it stands, overrides it (resolve). */
+    for (int i = 1; i < argc; ++i) {
+        const char *arg = argv[i];
+        const char *eq = strchr(arg, '=');
+        size_t name_len = eq && !strncmp(arg, "--", 2) ? (size_t)(eq - arg) : strlen(arg);
+        const flag *f = flags_find(arg, name_len);
+        if (!f) {
+            char msg[160];
+            snprintf(msg, sizeof msg, "unknown %s; see vksky --help for the accepted flags",
+                     arg[0] == '-' ? "flag" : "argument (flags start with --)");
+            return bad(arg, msg);
+        }
+        const char *value = NULL;
+        if (f->kind != ARG_NONE) {
+            if (eq && name_len < strlen(arg)) value = eq + 1;
+            else if (i + 1 < argc) value = argv[++i];
+            else return bad(f->name, "missing value; see vksky --help");
+        } else if (eq && name_len < strlen(arg)) {
+            return bad(f->name, "takes no value");
+        }
+        if (o->given_count == OPTIONS_MAX_GIVEN) return bad(f->name, "one flag too many; at most 256 flags");
+        options_given *g = &o->given[o->given_count++];
+        *g = (options_given){.flag = f, .text = value};
+        if (!strcmp(f->name, "--scene") && apply_given(o, g) != 0) return 2;
+    }
+    return resolve(o, quality_classes, true);
+}
+
+int options_reload(const options *o, options *fresh)
+{
+    /* The defaults, the scene file as it is now on disk (the scene loader, as --scene read it at start-up), then the
+     * command line's flags over it: the values the start-up parse kept (numbers as parsed then), not its text. */
+    options_defaults(fresh);
+    fresh->argc = o->argc, fresh->argv = o->argv;
+    fresh->validate = o->validate;
+    memcpy(fresh->given, o->given, (size_t)o->given_count * sizeof o->given[0]);
+    fresh->given_count = o->given_count;
+    if (o->scene_path) {
+        fresh->scene_path = o->scene_path;
+        if (scene_load(o->scene_path, fresh) != 0) return 2;
+    }
+    if (resolve(fresh, 0, false) != 0) return 2;
+    options_release(fresh);   /* an animated command line's frame base: a reload has no frames */
+    return 0;
+}
+
+/* Passes 0 and 1 over the command line's values (the scene loaded), then what follows from them. `report`: print
+ * --max-error's pick and its notes (the start-up parse does; a reload does not print them again). */
+static int resolve(options *o, unsigned quality_classes, bool report)
+{
+    int argc = o->argc;
+    char **argv = o->argv;
     const char *scene_quality = NULL;
     /* The interactive window starts from the interactive preset, headless renders from --quality auto (the
      * measured front's point for the scene kind, chosen once the view is known); a scene and the flags override
@@ -355,7 +414,7 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
     double picked_error = 0.0;
     char picked_scene[96] = "";
     bool picked_cpu = false;                    /* the table it picked from: the CPU device's or the GPU's */
-    for (int pass = -1; pass < 2; ++pass) {
+    for (int pass = 0; pass < 2; ++pass) {
     if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
     if (pass == 1) {
         if (options_tooling_resolve(o)) return 2;   /* the sun from a date and place, before --max-error reads it */
@@ -391,25 +450,9 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         if (q) quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
         else o->quality = scene_quality;
     }
-    for (int i = 1; i < argc; ++i) {
-        const char *arg = argv[i];
-        const char *eq = strchr(arg, '=');
-        size_t name_len = eq && !strncmp(arg, "--", 2) ? (size_t)(eq - arg) : strlen(arg);
-        const flag *f = flags_find(arg, name_len);
-        if (!f) {
-            char msg[160];
-            snprintf(msg, sizeof msg, "unknown %s; see vksky --help for the accepted flags",
-                     arg[0] == '-' ? "flag" : "argument (flags start with --)");
-            return bad(arg, msg);
-        }
-        const char *value = NULL;
-        if (f->kind != ARG_NONE) {
-            if (eq && name_len < strlen(arg)) value = eq + 1;
-            else if (i + 1 < argc) value = argv[++i];
-            else return bad(f->name, "missing value; see vksky --help");
-        } else if (eq && name_len < strlen(arg)) {
-            return bad(f->name, "takes no value");
-        }
+    for (int k = 0; k < o->given_count; ++k) {
+        options_given *g = &o->given[k];
+        const flag *f = g->flag;
         bool scene_flag = !strcmp(f->name, "--scene");
         bool first_pass_flag = !strcmp(f->name, "--quality") || !strcmp(f->name, "--max-error") ||
                                !strcmp(f->name, "--altitude") || !strcmp(f->name, "--sun-elevation") ||
@@ -417,11 +460,10 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
                                !strcmp(f->name, "--reference") || !strcmp(f->name, "--help") ||
                                !strcmp(f->name, "--version") || !strcmp(f->name, "--list-devices") ||
                                options_tooling_first_pass(f->name);
-        /* Pass -1 loads the scene; pass 0 reads only what the choice depends on; pass 1 applies every flag except the
-         * scene and the choice. */
-        if (pass < 0 ? scene_flag
-                     : pass == 0 ? first_pass_flag : !scene_flag && strcmp(f->name, "--quality") && strcmp(f->name, "--max-error"))
-            if (apply(o, f, value) != 0) return 2;
+        /* Pass -1 loaded the scene; pass 0 reads only what the choice depends on; pass 1 applies every flag except
+         * the scene and the choice. */
+        if (pass == 0 ? first_pass_flag : !scene_flag && strcmp(f->name, "--quality") && strcmp(f->name, "--max-error"))
+            if (apply_given(o, g) != 0) return 2;
     }
     }
     /* A sequence's frames start from here: the flags and the scene read, nothing derived yet (options_frame). */
@@ -437,6 +479,7 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         return 2;
     }
     /* The --max-error choice, reported only now: every flag has been read and accepted. */
+    if (!report) picked = NULL;   /* a reload: reported at start-up */
     if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
@@ -513,12 +556,6 @@ void options_release(options *o)
 {
     free(o->unresolved);
     o->unresolved = NULL;
-}
-
-int options_reload(const options *o, options *fresh)
-{
-    /* The command line as given: --scene reads the file as it is now, every other flag overrides it as at start. */
-    return options_parse(fresh, o->argc, o->argv);
 }
 
 int options_copy(options *dst, const options *src)
