@@ -287,29 +287,33 @@ static int apply_value(options *o, const flag *f, const char *value, double x)
     return 0;
 }
 
-/* No --render, --bench, --reference or an informational flag: the window will open. */
-static bool window_mode(int argc, char **argv)
+/* Did the command line name one of these flags? (Its values, o->given: a reload asks without a command line.) */
+static bool named_any(const options *o, const char *const *names, size_t count)
+{
+    for (int i = 0; i < o->given_count; ++i)
+        for (size_t k = 0; k < count; ++k)
+            if (!strcmp(o->given[i].flag->name, names[k])) return true;
+    return false;
+}
+
+/* No --render, --bench, --reference or an informational flag: the window will open. (--render-scale is no --render:
+ * a window with --render-scale starts from the window's preset, not from --quality auto.) */
+static bool window_mode(const options *o)
 {
     static const char *const headless[] = {"--render", "--bench", "--reference", "--help", "--version",
                                            "--list-devices", "--dump-scene", "--list-scenes"};
-    /* The flag itself or FLAG=VALUE: --render-scale is no --render (a window with --render-scale starts from the
-     * window's preset, not from --quality auto). */
-    for (int i = 1; i < argc; ++i)
-        for (size_t k = 0; k < sizeof headless / sizeof headless[0]; ++k) {
-            size_t n = strlen(headless[k]);
-            if (!strncmp(argv[i], headless[k], n) && (argv[i][n] == '\0' || argv[i][n] == '=')) return false;
-        }
-    return true;
+    return !named_any(o, headless, sizeof headless / sizeof headless[0]);
 }
 
 /* Will the run's device (--device N, or the default choice) be a CPU implementation? Asked of a bare instance,
  * only when --quality auto chooses: its measured tables differ by device kind. No device: the GPU table (the run
  * reports the missing device itself). A sequence: the GPU table on every device, so that its frames are the same
  * files wherever each job of a farm ran (docs/sequences.md). VKSKY_QUALITY_TABLE=cpu|gpu (tests) forces the answer. */
-static bool device_is_cpu(const options *o, int argc, char **argv)
+static bool device_is_cpu(const options *o)
 {
+    static const char *const sequence[] = {"--animate", "--frame-count", "--frame-range"};
     if (o->reference || o->help || o->version || o->list_devices) return false;   /* no device in this run */
-    if (options_sequence_named(argc, argv)) return false;
+    if (named_any(o, sequence, 3)) return false;
     const char *forced = getenv("VKSKY_QUALITY_TABLE");
     if (forced && *forced) return !strcmp(forced, "cpu");
     VkPhysicalDeviceType type;
@@ -401,13 +405,11 @@ int options_reload(const options *o, options *fresh)
  * --max-error's pick and its notes (the start-up parse does; a reload does not print them again). */
 static int resolve(options *o, unsigned quality_classes, bool report)
 {
-    int argc = o->argc;
-    char **argv = o->argv;
     const char *scene_quality = NULL;
     /* The interactive window starts from the interactive preset, headless renders from --quality auto (the
      * measured front's point for the scene kind, chosen once the view is known); a scene and the flags override
      * either. */
-    bool window = window_mode(argc, argv);
+    bool window = window_mode(o);
     if (window)
         quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
     const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
@@ -428,12 +430,12 @@ static int resolve(options *o, unsigned quality_classes, bool report)
         unsigned classes = quality_classes ? quality_classes
                                            : quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
         if (automatic) {
-            q = quality_auto(classes, device_is_cpu(o, argc, argv), &measured);
+            q = quality_auto(classes, device_is_cpu(o), &measured);
             o->quality = NULL;
             o->quality_auto = true;
             o->quality_classes = classes;
         } else if (o->max_error > 0.0) {
-            picked_cpu = device_is_cpu(o, argc, argv);
+            picked_cpu = device_is_cpu(o);
             q = quality_pick(o->max_error, classes, picked_cpu, &measured);
             quality_class_names(classes, picked_scene, sizeof picked_scene);
             o->quality_classes = classes;
@@ -472,9 +474,11 @@ static int resolve(options *o, unsigned quality_classes, bool report)
         if (!o->unresolved) return bad("--animate", "out of memory");
         *o->unresolved = *o;
     }
-    bool exposure_flag = false;   /* a scene's exposure gives way to --auto-exposure; the flag does not */
-    for (int i = 1; i < argc; ++i) exposure_flag = exposure_flag || !strncmp(argv[i], "--exposure", 10);
-    if (finish(o, argc, argv, exposure_flag)) {
+    static const char *const exposure[] = {"--exposure"};
+    bool exposure_flag = named_any(o, exposure, 1);   /* a scene's exposure gives way to --auto-exposure; the flag does not */
+    /* A reload: the projection's notes about the command line were printed at start-up (argc 1, as a frame's). */
+    char *no_args[] = {"vksky", NULL};
+    if (finish(o, report ? o->argc : 1, report ? o->argv : no_args, exposure_flag)) {
         options_release(o);
         return 2;
     }
