@@ -347,15 +347,23 @@ static int apply_given(options *o, options_given *g)
 
 static int resolve(options *o, unsigned quality_classes, bool report);
 
+/* The interactive window starts from the interactive preset, headless renders from --quality auto (resolve); a scene
+ * file's quality section and the flags override either. */
+static void window_preset(options *o)
+{
+    if (window_mode(o))
+        quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
+}
+
 int options_parse_for_classes(options *o, int argc, char **argv, unsigned quality_classes)
 {
     options_defaults(o);
     o->argc = argc, o->argv = argv;
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
-    /* Three passes: --scene first (pass -1), wherever it stands, while the command line is read into values (each
-     * flag with its text, o->given); then the quality preset (or --max-error's choice) sets the knobs, so that any
-     * knob flag, wherever it stands, overrides it (resolve). */
+    /* The command line read into values (each flag with its text, o->given), then three passes: --scene first (pass
+     * -1), wherever it stands; then the quality preset (or --max-error's choice) sets the knobs, so that any knob flag,
+     * wherever it stands, overrides it (resolve). */
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         const char *eq = strchr(arg, '=');
@@ -378,8 +386,11 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         if (o->given_count == OPTIONS_MAX_GIVEN) return bad(f->name, "one flag too many; at most 256 flags");
         options_given *g = &o->given[o->given_count++];
         *g = (options_given){.flag = f, .text = value};
-        if (!strcmp(f->name, "--scene") && apply_given(o, g) != 0) return 2;
     }
+    /* The interactive window starts from its preset, under the scene file's quality section and the flags. */
+    window_preset(o);
+    for (int k = 0; k < o->given_count; ++k)
+        if (!strcmp(o->given[k].flag->name, "--scene") && apply_given(o, &o->given[k]) != 0) return 2;
     return resolve(o, quality_classes, true);
 }
 
@@ -392,6 +403,7 @@ int options_reload(const options *o, options *fresh)
     fresh->validate = o->validate;
     memcpy(fresh->given, o->given, (size_t)o->given_count * sizeof o->given[0]);
     fresh->given_count = o->given_count;
+    window_preset(fresh);
     if (o->scene_path) {
         fresh->scene_path = o->scene_path;
         if (scene_load(o->scene_path, fresh) != 0) return 2;
@@ -410,8 +422,6 @@ static int resolve(options *o, unsigned quality_classes, bool report)
      * measured front's point for the scene kind, chosen once the view is known); a scene and the flags override
      * either. */
     bool window = window_mode(o);
-    if (window)
-        quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
     const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
     double picked_error = 0.0;
     char picked_scene[96] = "";
