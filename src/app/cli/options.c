@@ -418,8 +418,8 @@ int options_reload(const options *o, options *fresh)
 static int resolve(options *o, unsigned quality_classes, bool report)
 {
     const char *scene_quality = NULL;
-    /* The interactive window starts from the interactive preset, headless renders from --quality auto (the
-     * measured front's point for the scene kind, chosen once the view is known); a scene and the flags override
+    /* The interactive window started from its preset (window_preset), headless renders start from --quality auto
+     * (the measured front's point for the scene kind, chosen once the view is known); a scene and the flags override
      * either. */
     bool window = window_mode(o);
     const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
