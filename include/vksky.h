@@ -43,7 +43,7 @@ extern "C" {
  *    vksky_context_set_device_features, vksky_auto_exposure + vksky_renderer_get_exposure,
  *    vksky_context_set_cache_directory + vksky_renderer_store_luts; vksky_frame_band (projections, bands);
  *    readback slots (vksky_readback_target), vksky_scene_set_values, vksky_renderer_scene_changes, vksky_renderer_luts_stale (sequences);
- *    vksky_renderer_get_stats (--timings). */
+ *    vksky_renderer_get_stats (--timings); vksky_scene_reload (F5). */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -188,6 +188,12 @@ VKSKY_API vksky_result vksky_scene_from_args(int argc, char *const *argv, vksky_
  * quality chosen by the scene (auto, --max-error) once for every frame, as the command line's sequence does. */
 VKSKY_API vksky_result vksky_scene_set_values(vksky_scene *scene, uint32_t count, const char *const *flags,
                                               const double *values, vksky_message_fn message, void *message_user);
+/* F5 (the window's; ABI 2): a scene of vksky_scene_from_args whose command line names --scene (and animates nothing)
+ * gets its scene file read again, as it is on disk now, and the command line's other flags applied over it again as
+ * the values vksky_scene_from_args parsed (nothing of the command line parsed again: its strings, which the scene
+ * points to, must outlive it): a flag still wins over the file's field. A file that no longer loads: VKSKY_ERROR_IO or
+ * VKSKY_ERROR_PARSE (the loader's line to `message`), the scene as it was. vksky_renderer_set_scene applies it. */
+VKSKY_API vksky_result vksky_scene_reload(vksky_scene *scene, vksky_message_fn message, void *message_user);
 VKSKY_API vksky_result vksky_scene_copy(const vksky_scene *scene, vksky_scene **out);
 VKSKY_API void vksky_scene_destroy(vksky_scene *scene);
 /* The sun's direction: azimuth from north (the host world's -Z with +Y up) towards east (+X), elevation above the

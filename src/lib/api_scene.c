@@ -233,3 +233,35 @@ double vksky_scene_sun_illuminance(const vksky_scene *scene)
     light_sun(&scene->o, sun);
     return 0.2126 * sun[0] + 0.7152 * sun[1] + 0.0722 * sun[2];
 }
+
+vksky_result vksky_scene_reload(vksky_scene *scene, vksky_message_fn message, void *message_user)
+{
+    if (!scene || !scene->from_args || !scene->o.scene_path || scene->o.animate_count > 0) {
+        lib_message(message, message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_scene_reload: accepted a scene of vksky_scene_from_args whose command line names --scene "
+                    "and animates nothing");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    /* The scene loader's one-line complaint goes to the callback, as vksky_scene_load's (lib_options_parse). */
+    char *captured = NULL;
+    size_t captured_size = 0;
+    FILE *memory = open_memstream(&captured, &captured_size);
+    FILE *saved = stderr;
+    if (memory) stderr = memory;
+    options fresh;
+    int rc = options_reload(&scene->o, &fresh);
+    if (memory) {
+        stderr = saved;
+        fclose(memory);
+    }
+    if (rc != 0) {
+        const char *text = captured && !strncmp(captured, "vksky: ", 7) ? captured + 7 : captured ? captured : "";
+        lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%.*s", (int)strcspn(text, "\n"), text);
+        bool io = strstr(text, "cannot read") || strstr(text, "no scene") || strstr(text, "not found");
+        free(captured);
+        return io ? VKSKY_ERROR_IO : VKSKY_ERROR_PARSE;   /* the scene as it was */
+    }
+    free(captured);
+    scene->o = fresh;
+    return VKSKY_SUCCESS;
+}

@@ -287,36 +287,33 @@ static int apply_value(options *o, const flag *f, const char *value, double x)
     return 0;
 }
 
-static int apply(options *o, const flag *f, const char *value)
+/* Did the command line name one of these flags? (Its values, o->given: a reload asks without a command line.) */
+static bool named_any(const options *o, const char *const *names, size_t count)
 {
-    double x = 0;
-    if ((f->kind == ARG_INT || f->kind == ARG_DOUBLE) && parse_number(f, value, &x) != 0) return 2;
-    return apply_value(o, f, value, x);
+    for (int i = 0; i < o->given_count; ++i)
+        for (size_t k = 0; k < count; ++k)
+            if (!strcmp(o->given[i].flag->name, names[k])) return true;
+    return false;
 }
 
-/* No --render, --bench, --reference or an informational flag: the window will open. */
-static bool window_mode(int argc, char **argv)
+/* No --render, --bench, --reference or an informational flag: the window will open. (--render-scale is no --render:
+ * a window with --render-scale starts from the window's preset, not from --quality auto.) */
+static bool window_mode(const options *o)
 {
     static const char *const headless[] = {"--render", "--bench", "--reference", "--help", "--version",
                                            "--list-devices", "--dump-scene", "--list-scenes"};
-    /* The flag itself or FLAG=VALUE: --render-scale is no --render (a window with --render-scale starts from the
-     * window's preset, not from --quality auto). */
-    for (int i = 1; i < argc; ++i)
-        for (size_t k = 0; k < sizeof headless / sizeof headless[0]; ++k) {
-            size_t n = strlen(headless[k]);
-            if (!strncmp(argv[i], headless[k], n) && (argv[i][n] == '\0' || argv[i][n] == '=')) return false;
-        }
-    return true;
+    return !named_any(o, headless, sizeof headless / sizeof headless[0]);
 }
 
 /* Will the run's device (--device N, or the default choice) be a CPU implementation? Asked of a bare instance,
  * only when --quality auto chooses: its measured tables differ by device kind. No device: the GPU table (the run
  * reports the missing device itself). A sequence: the GPU table on every device, so that its frames are the same
  * files wherever each job of a farm ran (docs/sequences.md). VKSKY_QUALITY_TABLE=cpu|gpu (tests) forces the answer. */
-static bool device_is_cpu(const options *o, int argc, char **argv)
+static bool device_is_cpu(const options *o)
 {
+    static const char *const sequence[] = {"--animate", "--frame-count", "--frame-range"};
     if (o->reference || o->help || o->version || o->list_devices) return false;   /* no device in this run */
-    if (options_sequence_named(argc, argv)) return false;
+    if (named_any(o, sequence, 3)) return false;
     const char *forced = getenv("VKSKY_QUALITY_TABLE");
     if (forced && *forced) return !strcmp(forced, "cpu");
     VkPhysicalDeviceType type;
@@ -336,61 +333,37 @@ void options_defaults(options *o)
     model_atmosphere_earth(&o->atmosphere);
 }
 
+/* A flag given as a value: a number parsed once (by the command line's parse), then applied as that number. */
+static int apply_given(options *o, options_given *g)
+{
+    const flag *f = g->flag;
+    bool numeric = f->kind == ARG_INT || f->kind == ARG_DOUBLE;
+    if (numeric && !g->parsed) {
+        if (parse_number(f, g->text, &g->number) != 0) return 2;
+        g->parsed = true;
+    }
+    return apply_value(o, f, numeric ? NULL : g->text, g->number);
+}
+
+static int resolve(options *o, unsigned quality_classes, bool report);
+
+/* The interactive window starts from the interactive preset, headless renders from --quality auto (resolve); a scene
+ * file's quality section and the flags override either. */
+static void window_preset(options *o)
+{
+    if (window_mode(o))
+        quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
+}
+
 int options_parse_for_classes(options *o, int argc, char **argv, unsigned quality_classes)
 {
     options_defaults(o);
     o->argc = argc, o->argv = argv;
     const char *env = getenv("VKSKY_VALIDATION");
     if (env && strcmp(env, "") != 0 && strcmp(env, "0") != 0) o->validate = true;
-    /* Three passes: --scene first (pass -1), wherever it stands; then the quality preset (or --max-error's choice)
-     * sets the knobs, so that any knob flag, wherever it stands, overrides it. */
-    const char *scene_quality = NULL;
-    /* The interactive window starts from the interactive preset, headless renders from --quality auto (the
-     * measured front's point for the scene kind, chosen once the view is known); a scene and the flags override
-     * either. */
-    bool window = window_mode(argc, argv);
-    if (window)
-        quality_apply(quality_preset("low"), &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
-    const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
-    double picked_error = 0.0;
-    char picked_scene[96] = "";
-    bool picked_cpu = false;                    /* the table it picked from: the CPU device's or the GPU's */
-    for (int pass = -1; pass < 2; ++pass) {
-    if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
-    if (pass == 1) {
-        if (options_tooling_resolve(o)) return 2;   /* the sun from a date and place, before --max-error reads it */
-        if (o->quality && o->max_error > 0.0) return bad("--max-error", "not with --quality; give one or the other");
-        /* auto: named, or the default of a headless run that names no quality (no --quality, --max-error or scene
-         * file quality section). It is no preset a scene file can name, so a dump lists its knobs instead. */
-        bool automatic = o->quality ? !strcmp(o->quality, "auto")
-                                    : !window && o->max_error <= 0.0 && !o->scene_quality;
-        const quality_config *q = o->quality && !automatic ? quality_preset(o->quality) : NULL;
-        double measured = 0.0;
-        unsigned classes = quality_classes ? quality_classes
-                                           : quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
-        if (automatic) {
-            q = quality_auto(classes, device_is_cpu(o, argc, argv), &measured);
-            o->quality = NULL;
-            o->quality_auto = true;
-            o->quality_classes = classes;
-        } else if (o->max_error > 0.0) {
-            picked_cpu = device_is_cpu(o, argc, argv);
-            q = quality_pick(o->max_error, classes, picked_cpu, &measured);
-            quality_class_names(classes, picked_scene, sizeof picked_scene);
-            o->quality_classes = classes;
-            if (!q) {
-                char msg[240];
-                snprintf(msg, sizeof msg, "no measured configuration reaches %g on a %s scene; try a larger budget or --quality ultra",
-                         o->max_error, picked_scene);
-                return bad("--max-error", msg);
-            }
-            picked = q, picked_error = measured;
-        }
-        /* --quality / --max-error replace the scene's whole quality section; without them the scene's preset (applied
-         * by scene_load, under the scene's knobs) stays. */
-        if (q) quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
-        else o->quality = scene_quality;
-    }
+    /* The command line read into values (each flag with its text, o->given), then three passes: --scene first (pass
+     * -1), wherever it stands; then the quality preset (or --max-error's choice) sets the knobs, so that any knob flag,
+     * wherever it stands, overrides it (resolve). */
     for (int i = 1; i < argc; ++i) {
         const char *arg = argv[i];
         const char *eq = strchr(arg, '=');
@@ -410,6 +383,88 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         } else if (eq && name_len < strlen(arg)) {
             return bad(f->name, "takes no value");
         }
+        if (o->given_count == OPTIONS_MAX_GIVEN) return bad(f->name, "one flag too many; at most 256 flags");
+        options_given *g = &o->given[o->given_count++];
+        *g = (options_given){.flag = f, .text = value};
+    }
+    /* The interactive window starts from its preset, under the scene file's quality section and the flags. */
+    window_preset(o);
+    for (int k = 0; k < o->given_count; ++k)
+        if (!strcmp(o->given[k].flag->name, "--scene") && apply_given(o, &o->given[k]) != 0) return 2;
+    return resolve(o, quality_classes, true);
+}
+
+int options_reload(const options *o, options *fresh)
+{
+    /* The defaults, the scene file as it is now on disk (the scene loader, as --scene read it at start-up), then the
+     * command line's flags over it: the values the start-up parse kept (numbers as parsed then), not its text. */
+    options_defaults(fresh);
+    fresh->argc = o->argc, fresh->argv = o->argv;
+    fresh->validate = o->validate;
+    memcpy(fresh->given, o->given, (size_t)o->given_count * sizeof o->given[0]);
+    fresh->given_count = o->given_count;
+    window_preset(fresh);
+    if (o->scene_path) {
+        fresh->scene_path = o->scene_path;
+        if (scene_load(o->scene_path, fresh) != 0) return 2;
+    }
+    if (resolve(fresh, 0, false) != 0) return 2;
+    options_release(fresh);   /* an animated command line's frame base: a reload has no frames */
+    return 0;
+}
+
+/* Passes 0 and 1 over the command line's values (the scene loaded), then what follows from them. `report`: print
+ * --max-error's pick and its notes (the start-up parse does; a reload does not print them again). */
+static int resolve(options *o, unsigned quality_classes, bool report)
+{
+    const char *scene_quality = NULL;
+    /* The interactive window started from its preset (window_preset), headless renders start from --quality auto
+     * (the measured front's point for the scene kind, chosen once the view is known); a scene and the flags override
+     * either. */
+    bool window = window_mode(o);
+    const quality_config *picked = NULL;        /* --max-error's choice, reported once the options are final */
+    double picked_error = 0.0;
+    char picked_scene[96] = "";
+    bool picked_cpu = false;                    /* the table it picked from: the CPU device's or the GPU's */
+    for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 0) scene_quality = o->quality, o->quality = NULL;   /* the scene's preset: applied by scene_load */
+    if (pass == 1) {
+        if (options_tooling_resolve(o)) return 2;   /* the sun from a date and place, before --max-error reads it */
+        if (o->quality && o->max_error > 0.0) return bad("--max-error", "not with --quality; give one or the other");
+        /* auto: named, or the default of a headless run that names no quality (no --quality, --max-error or scene
+         * file quality section). It is no preset a scene file can name, so a dump lists its knobs instead. */
+        bool automatic = o->quality ? !strcmp(o->quality, "auto")
+                                    : !window && o->max_error <= 0.0 && !o->scene_quality;
+        const quality_config *q = o->quality && !automatic ? quality_preset(o->quality) : NULL;
+        double measured = 0.0;
+        unsigned classes = quality_classes ? quality_classes
+                                           : quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
+        if (automatic) {
+            q = quality_auto(classes, device_is_cpu(o), &measured);
+            o->quality = NULL;
+            o->quality_auto = true;
+            o->quality_classes = classes;
+        } else if (o->max_error > 0.0) {
+            picked_cpu = device_is_cpu(o);
+            q = quality_pick(o->max_error, classes, picked_cpu, &measured);
+            quality_class_names(classes, picked_scene, sizeof picked_scene);
+            o->quality_classes = classes;
+            if (!q) {
+                char msg[240];
+                snprintf(msg, sizeof msg, "no measured configuration reaches %g on a %s scene; try a larger budget or --quality ultra",
+                         o->max_error, picked_scene);
+                return bad("--max-error", msg);
+            }
+            picked = q, picked_error = measured;
+        }
+        /* --quality / --max-error replace the scene's whole quality section; without them the scene's preset (applied
+         * by scene_load, under the scene's knobs) stays. */
+        if (q) quality_apply(q, &o->view, &o->lut, &o->render_scale, &o->bloom_mips, &o->bloom_quarter);
+        else o->quality = scene_quality;
+    }
+    for (int k = 0; k < o->given_count; ++k) {
+        options_given *g = &o->given[k];
+        const flag *f = g->flag;
         bool scene_flag = !strcmp(f->name, "--scene");
         bool first_pass_flag = !strcmp(f->name, "--quality") || !strcmp(f->name, "--max-error") ||
                                !strcmp(f->name, "--altitude") || !strcmp(f->name, "--sun-elevation") ||
@@ -417,11 +472,10 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
                                !strcmp(f->name, "--reference") || !strcmp(f->name, "--help") ||
                                !strcmp(f->name, "--version") || !strcmp(f->name, "--list-devices") ||
                                options_tooling_first_pass(f->name);
-        /* Pass -1 loads the scene; pass 0 reads only what the choice depends on; pass 1 applies every flag except the
-         * scene and the choice. */
-        if (pass < 0 ? scene_flag
-                     : pass == 0 ? first_pass_flag : !scene_flag && strcmp(f->name, "--quality") && strcmp(f->name, "--max-error"))
-            if (apply(o, f, value) != 0) return 2;
+        /* Pass -1 loaded the scene; pass 0 reads only what the choice depends on; pass 1 applies every flag except
+         * the scene and the choice. */
+        if (pass == 0 ? first_pass_flag : !scene_flag && strcmp(f->name, "--quality") && strcmp(f->name, "--max-error"))
+            if (apply_given(o, g) != 0) return 2;
     }
     }
     /* A sequence's frames start from here: the flags and the scene read, nothing derived yet (options_frame). */
@@ -430,13 +484,16 @@ int options_parse_for_classes(options *o, int argc, char **argv, unsigned qualit
         if (!o->unresolved) return bad("--animate", "out of memory");
         *o->unresolved = *o;
     }
-    bool exposure_flag = false;   /* a scene's exposure gives way to --auto-exposure; the flag does not */
-    for (int i = 1; i < argc; ++i) exposure_flag = exposure_flag || !strncmp(argv[i], "--exposure", 10);
-    if (finish(o, argc, argv, exposure_flag)) {
+    static const char *const exposure[] = {"--exposure"};
+    bool exposure_flag = named_any(o, exposure, 1);   /* a scene's exposure gives way to --auto-exposure; the flag does not */
+    /* A reload: the projection's notes about the command line were printed at start-up (argc 1, as a frame's). */
+    char *no_args[] = {"vksky", NULL};
+    if (finish(o, report ? o->argc : 1, report ? o->argv : no_args, exposure_flag)) {
         options_release(o);
         return 2;
     }
     /* The --max-error choice, reported only now: every flag has been read and accepted. */
+    if (!report) picked = NULL;   /* a reload: reported at start-up */
     if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
@@ -513,12 +570,6 @@ void options_release(options *o)
 {
     free(o->unresolved);
     o->unresolved = NULL;
-}
-
-int options_reload(const options *o, options *fresh)
-{
-    /* The command line as given: --scene reads the file as it is now, every other flag overrides it as at start. */
-    return options_parse(fresh, o->argc, o->argv);
 }
 
 int options_copy(options *dst, const options *src)

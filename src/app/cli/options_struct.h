@@ -17,6 +17,17 @@
 #define OPTIONS_EXR_HALF 1
 #define OPTIONS_EXR_FLOAT 2
 
+/* One flag of the command line as a value (issue 25: F5 applies them again over a scene file read again, without
+ * parsing the command line again): the flag, its text (words, names, paths: what the flag's value is), and for a
+ * numeric flag its number, parsed once where the parse applied it. */
+#define OPTIONS_MAX_GIVEN 256
+typedef struct options_given {
+    const struct flag *flag;                    /* app/cli/flags.h */
+    const char *text;                           /* NULL for a flag without a value */
+    double number;                              /* a numeric flag's value, once parsed */
+    bool parsed;
+} options_given;
+
 /* One --animate PARAM=FROM:TO: a numeric flag (or "time": the local clock, decimal hours) going linearly from FROM at
  * the sequence's first frame to TO at its last. */
 typedef struct options_animation {
@@ -105,5 +116,8 @@ typedef struct options {
     /* sequences (issue 25): the options as the flags and scene left them, before the derived steps (malloc'd by the
      * parse when something is animated; options_release): each frame sets its animated values there and finishes */
     struct options *unresolved;
+    /* F5 (issue 25): the command line's flags as values, in their order (options_reload) */
+    options_given given[OPTIONS_MAX_GIVEN];
+    int given_count;
 } options;
 #endif

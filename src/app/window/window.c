@@ -32,6 +32,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define TITLE_PERIOD_S 0.5
 #define STEADY_FROM 10          /* the summary's steady figures start at this presented frame */
@@ -322,6 +323,19 @@ static void test_hook(app *a)
     }
 }
 
+/* VKSKY_TEST_F5=N:FILE: at presented frame N, wait (events still polled, at most 60 s) until FILE exists, the test's
+ * word that it changed the scene file on disk, then press F5 from inside (window_input_reload): no keyboard focus
+ * or window manager needed, and the frames before and after the change are known. */
+static void test_f5(app *a)
+{
+    if (!a->test.f5_file || a->presented != a->test.f5_frame) return;
+    printf("test: F5 at frame %ld waits for %s\n", a->presented, a->test.f5_file);
+    fflush(stdout);
+    for (int i = 0; i < 1200 && !stop_requested() && access(a->test.f5_file, F_OK) != 0; ++i) glfwWaitEventsTimeout(0.05);
+    a->test.f5_file = NULL;
+    window_input_reload(a);
+}
+
 /* Nothing to present to: an iconified or unmapped window, or a 0x0 framebuffer (minimised on some platforms). */
 static bool window_minimized(app *a)
 {
@@ -390,6 +404,7 @@ static void run_loop(app *a)
         }
         if (draw_frame(a, NULL)) update_title(a, now);
         test_hook(a);
+        test_f5(a);
     }
 }
 
@@ -525,6 +540,16 @@ int window_run(const options *o)
     a.test.report = (test = getenv("VKSKY_TEST_REPORT")) && strcmp(test, "1") == 0;
     stop_install();
     a.test.last_frame = -1;
+    if ((test = getenv("VKSKY_TEST_F5")) && *test) {
+        char *colon = NULL;
+        a.test.f5_frame = strtol(test, &colon, 10);
+        if (colon == test || *colon != ':' || !colon[1] || a.test.f5_frame < 1) {
+            fprintf(stderr, "vksky: VKSKY_TEST_F5: '%s'; expected N:FILE (a frame number >= 1, a file to wait for)\n",
+                    test);
+            return 2;
+        }
+        a.test.f5_file = colon + 1;
+    }
     char why[200];
     if (!gpu_barrier_set_weaken(getenv("VKSKY_WEAKEN_BARRIER"), why, sizeof why)) {
         fprintf(stderr, "vksky: VKSKY_WEAKEN_BARRIER: %s\n", why);

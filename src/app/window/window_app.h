@@ -37,6 +37,8 @@ typedef struct test_hooks {
     long last_frame;           /* the presented count the hook last acted on */
     int minimized_waits;       /* > 0: we minimised the window; restore after a few idle waits */
     bool hid;                  /* no window manager iconified it: we unmapped it ourselves */
+    long f5_frame;             /* VKSKY_TEST_F5=N:FILE: at presented frame N, wait for FILE, then do what F5 does */
+    const char *f5_file;
 } test_hooks;
 
 typedef struct app {

@@ -44,11 +44,12 @@ static const char *tonemap_name(int t)
 }
 
 /* Discrete keys (toggles, steps) act on the press; held keys are polled once a frame in window_input_read. */
-/* F5: reload the scene file's medium and features, the command line's flags over them again (options_reload). The
+/* F5: reload the scene file's medium and features through the scene loader, the command line's flags over them again
+ * as the values the start-up parse kept (options_reload: no second parse of the command line). The
  * renderer recomputes only what changed: the LUTs when their inputs' hash changed, the pipelines when the variant
  * changed. The camera and the sun stay where the user put them. A broken file leaves the current scene (its one-line
  * error is printed). */
-static void reload_scene(app *a)
+void window_input_reload(app *a)
 {
     if (!a->o->scene_path) {
         printf("F5: no --scene file to reload\n");
@@ -98,7 +99,7 @@ static void on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
         break;
     case GLFW_KEY_B: v->bloom = !v->bloom; printf("bloom %s\n", v->bloom ? "on" : "off"); break;
     case GLFW_KEY_F1: case GLFW_KEY_H: print_controls(); return;
-    case GLFW_KEY_F5: reload_scene(a); return;
+    case GLFW_KEY_F5: window_input_reload(a); return;
     default: return;
     }
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_3) printf("tonemap %s\n", tonemap_name(v->tonemap));

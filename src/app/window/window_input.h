@@ -16,6 +16,9 @@ typedef struct input_state {
 
 /* Key, mouse button and cursor callbacks on a->window (whose user pointer is a). */
 void window_input_install(app *a);
+/* F5: the --scene file read again, the command line's flags over it as values; the renderer keeps what did not
+ * change. A broken file keeps the current scene (its one line printed). */
+void window_input_reload(app *a);
 /* Held keys and the mouse since the last frame -> camera and sun (a->view), over dt seconds of wall time. */
 void window_input_read(app *a, double dt);
 #endif
