@@ -9,7 +9,9 @@
  *  - whole files (float and half, ZIP and ZIPS, zlib levels 1 and 9) written with 1, 3 and 8 threads are the same
  *    bytes, and OpenEXRCore (zlib inflating) reads back the pixels of the same image written uncompressed;
  *  - the streamed writer (one pool over every band) fed bands of 5, 16 and 37 rows with 1 and 4 threads writes the
- *    same bytes each time and the same pixels.
+ *    same bytes each time and the same pixels;
+ *  - a streamed write failing half-way (RLIMIT_FSIZE) with 4 threads fails with EFBIG and leaves no file (the pool
+ *    stops, nothing hangs).
  * `test_exr_deflate bench FILE.exr [REPEATS]` times zlib (compress2, as OpenEXR 3.1) against libdeflate on the
  * file's ZIP chunks instead: a benchmark, not a test. */
 #ifndef _POSIX_C_SOURCE
@@ -22,11 +24,14 @@
 #include "io/exr_write.h"
 #include "check.h"
 
+#include <errno.h>
 #include <libdeflate.h>
+#include <signal.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -248,6 +253,32 @@ static void check_files(void)
     free(sky);
 }
 
+static void check_write_failure(void)
+{
+    int w = 512, h = 400;   /* float noise: ~3 MB, far past the limit */
+    float *px = malloc((size_t)w * h * 4 * sizeof(float));
+    for (size_t i = 0; i < (size_t)w * h * 4; ++i) px[i] = (float)next_rand();
+    char path[600], err[512] = "";
+    snprintf(path, sizeof path, "%s/full.exr", dir);
+    settings(EXR_COMPRESSION_ZIP, 0, 4);
+    struct rlimit old, lim;
+    getrlimit(RLIMIT_FSIZE, &old);
+    lim = old, lim.rlim_cur = 100000;
+    void (*prev)(int) = signal(SIGXFSZ, SIG_IGN);
+    if (setrlimit(RLIMIT_FSIZE, &lim) == 0) {
+        io_exr_stream *s = io_exr_stream_open_f32(path, w, h, NULL, true, err, sizeof err);
+        int rc = s ? 0 : -1;
+        for (int y = 0; y < h && rc == 0; y += 37)
+            rc = io_exr_stream_rows_f32(s, px + (size_t)y * w * 4, h - y < 37 ? h - y : 37, err, sizeof err);
+        if (rc == 0) rc = io_exr_stream_finish(s, err, sizeof err);
+        setrlimit(RLIMIT_FSIZE, &old);
+        CHECK(rc == -1 && strstr(err, strerror(EFBIG)), "a write past RLIMIT_FSIZE: rc %d, '%s'", rc, err);
+        CHECK(access(path, F_OK) != 0, "a failed write left %s", path);
+    }
+    signal(SIGXFSZ, prev);
+    free(px);
+}
+
 static double thread_cpu_s(void)
 {
     struct timespec ts;
@@ -343,6 +374,7 @@ int main(int argc, char **argv)
     check_predictor();
     check_chunks();
     check_files();
+    check_write_failure();
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
