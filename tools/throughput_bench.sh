@@ -95,6 +95,20 @@ if [ "${GOALS:-0}" = 1 ]; then
     measure equirect_4096_threads1 1 "$V" --projection equirect --width 4096 --render "$scratch/o/e.exr" --quiet \
         --threads 1 --timings
     for i in 1 2 3; do measure "first_1080p_exr_$i" 1 "$V" --width 1920 --height 1080 --render "$scratch/o/a.exr"; done
+    # Helper 27f: ZIP chunks through libdeflate and the chunk pool across bands. With BASELINE_VKSKY (a build before
+    # them), its headline goal cases in the same run; then zlib vs libdeflate per chunk on a rendered 720p float
+    # frame, and libpng's settings on a 720p PNG (build/tests/test_exr_deflate, build/png_settings_bench beside VKSKY).
+    if [ -n "$BASE" ]; then
+        seq_case base_720p_exr_default "$BASE" 1280 720 exr "$G" --bench 10
+        seq_case base_1080p_exr_default "$BASE" 1920 1080 exr "$G"
+        seq_case base_720p_exr_threads1 "$BASE" 1280 720 exr 24 --threads 1 --timings
+        measure base_equirect_16384 1 "$BASE" --projection equirect --width 16384 --render "$scratch/o/e.exr" --quiet
+        for i in 1 2 3; do measure "base_first_1080p_exr_$i" 1 "$BASE" --width 1920 --height 1080 --render "$scratch/o/a.exr"; done
+    fi
+    "$V" --width 1280 --height 720 --render "$scratch/f720.exr" --render "$scratch/p720.png" --quiet
+    d=$(dirname "$(readlink -f "$V")")
+    [ -x "$d/tests/test_exr_deflate" ] && "$d/tests/test_exr_deflate" bench "$scratch/f720.exr" 7 | sed 's/^/exr_deflate_bench /'
+    [ -x "$d/png_settings_bench" ] && "$d/png_settings_bench" "$scratch/p720.png" 5 | sed 's/^/png_settings_bench /'
     exit 0
 fi
 

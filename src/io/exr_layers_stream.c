@@ -33,6 +33,7 @@ struct io_exr_layers_stream {
     int *channels;                               /* per layer: 3 or 4 */
     uint16_t *scratch;                           /* scratch_chunks chunks of every channel, as half */
     int scratch_chunks;
+    io_exr_pool *pool;                           /* the encode threads, from the header to the finish */
 };
 
 static void stream_fail(io_exr_layers_stream *s, const char *stage, exr_result_t rc, char *err, size_t err_size)
@@ -122,6 +123,11 @@ io_exr_layers_stream *io_exr_layers_stream_open(const char *path, int width, int
         if (!s->scratch) rc = EXR_ERR_OUT_OF_MEMORY;
         s->scratch_chunks = 1;
     }
+    if (rc == EXR_ERR_SUCCESS) {
+        int chunks = (height + s->lines_per_chunk - 1) / s->lines_per_chunk, threads = io_encode_threads();
+        s->pool = io_exr_pool_create(s->ctxt, s->part, s->lines_per_chunk, threads < chunks ? threads : chunks);
+        if (!s->pool) stage = "encode threads", rc = EXR_ERR_OUT_OF_MEMORY;
+    }
     if (rc != EXR_ERR_SUCCESS) {
         stream_fail(s, stage, rc, err, err_size);
         return NULL;
@@ -203,8 +209,9 @@ int io_exr_layers_stream_rows(io_exr_layers_stream *s, const io_exr_band_layer *
         s->scratch = grown, s->scratch_chunks = chunks;
     }
     band_feed f = {s, layers, s->next_row};
-    exr_result_t rc = io_exr_encode_chunks(s->ctxt, s->part, s->next_row, chunks, s->lines_per_chunk, feed_band_chunk,
-                                           &f, io_encode_threads());
+    /* Returns once the band is packed (the scratch is free again); its chunks may still compress while the next band
+     * comes (the stream's pool, exr_parallel.h); the finish waits for them. */
+    exr_result_t rc = io_exr_pool_chunks(s->pool, s->next_row, chunks, feed_band_chunk, &f);
     if (rc != EXR_ERR_SUCCESS || s->out.err_no) {
         stream_fail(s, "encode", rc, err, err_size);
         return -1;
@@ -221,7 +228,14 @@ int io_exr_layers_stream_finish(io_exr_layers_stream *s, char *err, size_t err_s
         io_exr_layers_stream_abort(s);
         return -1;
     }
-    exr_result_t rc = exr_finish(&s->ctxt);
+    exr_result_t rc = io_exr_pool_drain(s->pool);
+    io_exr_pool_destroy(s->pool);
+    s->pool = NULL;
+    if (rc != EXR_ERR_SUCCESS) {
+        stream_fail(s, "encode", rc, err, err_size);
+        return -1;
+    }
+    rc = exr_finish(&s->ctxt);
     s->ctxt = NULL;
     if (rc != EXR_ERR_SUCCESS || s->out.err_no) {
         stream_fail(s, "finish", rc, err, err_size);
@@ -235,6 +249,7 @@ int io_exr_layers_stream_finish(io_exr_layers_stream *s, char *err, size_t err_s
 void io_exr_layers_stream_abort(io_exr_layers_stream *s)
 {
     if (!s) return;
+    io_exr_pool_destroy(s->pool);   /* the workers stopped before the context goes */
     if (s->ctxt) exr_finish(&s->ctxt);
     io_atomic_abort(s->fd, s->tmp);
     free(s->scratch), free(s->names), free(s->channels), free(s);

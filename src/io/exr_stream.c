@@ -1,5 +1,6 @@
 /* vksky image I/O: the streamed EXR writer (see exr_stream.h). Rows arrive in bands of any height; whole chunks
- * (ZIP: 16 rows) are encoded as soon as they are complete, on the encode threads (exr_parallel.h); the remainder
+ * (ZIP: 16 rows) are handed to the stream's chunk pool as soon as they are complete (exr_parallel.h: workers that
+ * live as long as the file, so one band's chunks start while the band before's last ones compress); the remainder
  * waits in a one-chunk buffer. The compression is the process's (encode_settings.h: ZIP unless --exr-compression). */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
@@ -31,6 +32,7 @@ struct io_exr_stream {
     bool store_float;          /* FLOAT channels fed float rows (else HALF fed half rows) */
     uint16_t *scratch;         /* float rows stored as HALF: one band converted (io_exr_stream_rows_f32) */
     size_t scratch_rows;
+    io_exr_pool *pool;         /* the encode threads, from the header to the finish */
 };
 
 /* Bytes per channel value of the rows the stream is fed. */
@@ -90,6 +92,9 @@ static io_exr_stream *stream_open(const char *path, int width, int height, const
     if (rc == EXR_ERR_SUCCESS) rc = exr_write_header(s->ctxt);
     if (rc == EXR_ERR_SUCCESS) rc = exr_get_scanlines_per_chunk(s->ctxt, part, &s->lines_per_chunk);
     if (rc != EXR_ERR_SUCCESS) return fail(s, "header", rc, err, err_size), NULL;
+    int chunks = (height + s->lines_per_chunk - 1) / s->lines_per_chunk, threads = io_encode_threads();
+    s->pool = io_exr_pool_create(s->ctxt, part, s->lines_per_chunk, threads < chunks ? threads : chunks);
+    if (!s->pool) return fail(s, "encode threads", EXR_ERR_OUT_OF_MEMORY, err, err_size), NULL;
     s->chunk = malloc((size_t)s->lines_per_chunk * (size_t)width * 4 * value_size(s));
     if (!s->chunk) return fail(s, "buffer", EXR_ERR_OUT_OF_MEMORY, err, err_size), NULL;
     return s;
@@ -132,12 +137,13 @@ static exr_result_t feed_rows(void *user, exr_encode_pipeline_t *enc, int y, int
     return EXR_ERR_SUCCESS;
 }
 
-/* Encodes `count` chunks, the first at row y, from rows of `rgba` (values of value_size) starting at that row (on
- * the encode threads: exr_parallel.h). */
+/* Hands `count` chunks, the first at row y, from rows of `rgba` (values of value_size) starting at that row to the
+ * encode threads (exr_parallel.h); returns once the rows are packed (they may change then), maybe before the chunks
+ * are written (io_exr_stream_finish waits for them). */
 static exr_result_t write_chunks(io_exr_stream *s, int y, int count, const unsigned char *rgba)
 {
     rows_src src = {s->width, y, rgba, (int32_t)value_size(s), s->store_float};
-    return io_exr_encode_chunks(s->ctxt, 0, y, count, s->lines_per_chunk, feed_rows, &src, io_encode_threads());
+    return io_exr_pool_chunks(s->pool, y, count, feed_rows, &src);
 }
 
 static int stream_rows(io_exr_stream *s, const unsigned char *rgba, int rows, char *err, size_t err_size)
@@ -203,7 +209,11 @@ int io_exr_stream_finish(io_exr_stream *s, char *err, size_t err_size)
         io_exr_stream_abort(s);
         return -1;
     }
-    exr_result_t rc = exr_finish(&s->ctxt);
+    exr_result_t rc = io_exr_pool_drain(s->pool);
+    io_exr_pool_destroy(s->pool);
+    s->pool = NULL;
+    if (rc != EXR_ERR_SUCCESS) return fail(s, "encode", rc, err, err_size);
+    rc = exr_finish(&s->ctxt);
     s->ctxt = NULL;
     if (rc != EXR_ERR_SUCCESS || s->out.err_no) return fail(s, "finish", rc, err, err_size);
     int result = io_atomic_commit(s->fd, s->tmp, s->path, err, err_size);
@@ -216,6 +226,7 @@ int io_exr_stream_finish(io_exr_stream *s, char *err, size_t err_size)
 void io_exr_stream_abort(io_exr_stream *s)
 {
     if (!s) return;
+    io_exr_pool_destroy(s->pool);   /* the workers stopped before the context goes */
     if (s->ctxt) exr_finish(&s->ctxt);
     if (s->fd >= 0) io_atomic_abort(s->fd, s->tmp);
     free(s->chunk);
