@@ -15,7 +15,7 @@
  * asserted against the tracer's whole bounce within the model's documented error of the second bounce's angular
  * model (5 %: -3.4 % measured against the tracer's sunlit-only bounce, -2.6 % with 4x the paths; docs/claims.md) +
  * 3 standard errors; the tracer's bounce from the sunlit part of the ground alone is printed as a diagnostic.
- * ~100 s of CPU on lavapipe. */
+ * ~110 s of CPU on lavapipe (553 s of wall on a loaded 2-core machine). */
 #include "app/quality/quality.h"
 #include "gpu_test.h"
 #include "reference/path_tracer.h"
