@@ -47,7 +47,7 @@ while read -r name extra; do
     awk -v name="$name" '
         function bad(m) { print "FAIL: " name ": trace: " m > "/dev/stderr"; failed = 1 }
         /^commands$/ { ++cb; next }
-        /^pass (transmittance|multiscatter|ground_irradiance)_lut$/ { if (cb % 2 == 0) bad("LUT pass in the frame'"'"'s command buffer " cb); luts[cb]++ }
+        /^pass (transmittance|multiscatter|ground_irradiance)_lut(_first|_sky_ground)?$/ { if (cb % 2 == 0) bad("LUT pass in the frame'"'"'s command buffer " cb); luts[cb]++ }
         /^pass sky$/ { if (cb % 2 == 1) bad("sky pass in the LUTs'"'"' command buffer") }
         /^semaphore compute_done.signal / { ++cs; if ($3 != "queue=compute" || $4 != "value=" cs) bad("compute_done.signal: " $0) }
         /^semaphore compute_done.wait / { ++cw; if ($3 != "queue=graphics" || $4 != "value>=" cs || $5 != "stage=COMPUTE_SHADER|FRAGMENT_SHADER") bad("compute_done.wait: " $0) }

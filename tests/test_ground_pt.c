@@ -7,13 +7,15 @@
  * the ground 20 deg down from 10 km (lit ground through 29 km of air), the sky 10 deg up away from the sun from 1 m
  * (the ground's bounce is part of its light). Bound: the daytime target of the model (3 %, docs/model_error.md) plus
  * 3 standard errors of the tracer's estimate. And the ground's share: the sky 10 deg up gains light from the lit
- * ground by as much as the tracer says (the albedo-0.3 minus albedo-0 difference within 20 % of the tracer's).
- * Measured on lavapipe (issue 31): ground -0.7 % (1 m) and -1.8 % (10 km); the sky 10 deg up -3.6 %, of which the
- * ground's bounce is 18 % low (GPU +0.150, tracer +0.182): the model's sky over a bright ground is at the edge of the
- * daytime target, not inside it like the albedo-0 sky (docs/claims.md). The cause, isolated: the multi-scattering
- * LUT's ground term (Hillaire 2020's) lights the ground by the sun alone, while 13 % of the ground's light (luminance;
- * R 6 %, G 14 %, B 30 %) comes from the sky: the tracer's bounce from the sunlit part alone is +0.154, and the GPU's
- * +0.150 matches it (-3.4 %); the test holds that too (5 % + 3 sigma). ~80 s of CPU on lavapipe. */
+ * ground by as much as the tracer says (the albedo-0.3 minus albedo-0 difference, below).
+ * The ground's bounce into the sky (issue 31f): the multi-scattering LUT's ground is lit by the sun and the sky (a
+ * second multi-scattering pass reads the ground-irradiance LUT made from the first; docs/model.md "Lit ground").
+ * Before that its ground was lit by the sun alone, as in Hillaire 2020, and the bounce was 18 % low (GPU +0.150,
+ * tracer +0.182): 13 % of the ground's light comes from the sky (luminance; R 6 %, G 14 %, B 30 %). The bounce is
+ * asserted against the tracer's whole bounce within the model's documented error of the second bounce's angular
+ * model (5 %: -3.4 % measured against the tracer's sunlit-only bounce, -2.6 % with 4x the paths; docs/claims.md) +
+ * 3 standard errors; the tracer's bounce from the sunlit part of the ground alone is printed as a diagnostic.
+ * ~110 s of CPU on lavapipe (553 s of wall on a loaded 2-core machine). */
 #include "app/quality/quality.h"
 #include "gpu_test.h"
 #include "reference/path_tracer.h"
@@ -111,27 +113,24 @@ int main(void)
             gpu_centre(&dark, dark_view, c, g0);
             traced(&earth, 0.0, c, p0_rgb, p0_err, &Lp0, &sp0);
             double dg = Lg - lum3(g0), dp = Lp - Lp0, dse = sqrt(sp * sp + sp0 * sp0);
-            printf("%-28s ground bounce: GPU +%.4g, PT +%.4g +- %.2g\n", c->name, dg, dp, dse);
+            printf("%-28s ground bounce: GPU +%.4g, PT +%.4g +- %.2g (GPU %+.1f %%)\n", c->name, dg, dp, dse,
+                   100.0 * (dg / dp - 1.0));
             CHECK(dp > 3.0 * dse, "%s: the tracer sees no ground bounce (%.4g +- %.2g): the case cannot test it", c->name,
                   dp, dse);
-            CHECK(fabs(dg - dp) <= 0.2 * dp + 3.0 * dse, "%s: ground bounce GPU %.4g vs path tracer %.4g", c->name, dg, dp);
-            /* Why it is low: the multi-scattering LUT's ground term (Hillaire's) lights the ground by the sun alone,
-             * not by the sky (multiscatter_lut.comp; docs/claims.md). The tracer's bounce, channel by channel,
-             * times the ground's direct share is what that term can give: the GPU's bounce must match it within 5 %
-             * (the second bounce's angular model: -3.4 % measured here, -2.6 % with 4x the paths) + 3 standard errors
-             * (11.6 % in all). A lost or doubled ground term or a missing 1/pi fails it; so does the ground lit by the
-             * sky too (about +13 % by the shares), which must come with this check's update. */
+            /* The whole bounce (the ground lit by the sun and the sky) within the second bounce's angular model (5 %)
+             * + 3 standard errors. The ground lit by the sun alone (Hillaire's term; 13 % low in the ground's light)
+             * fails it, as do a lost, doubled or mis-normalised ground term. */
+            CHECK(fabs(dg - dp) <= 0.05 * dp + 3.0 * dse, "%s: ground bounce GPU %.4g vs path tracer %.4g +- %.2g",
+                  c->name, dg, dp, dse);
+            /* Diagnostic: the tracer's bounce channel by channel times the ground's direct share is the bounce of
+             * the sunlit part of the ground alone (what a multi-scattering LUT with Hillaire's ground term gives). */
             double dp_sun[3], dse_sun[3];
             for (int k = 0; k < 3; ++k) {
                 dp_sun[k] = (p_rgb[k] - p0_rgb[k]) * direct_share[k];
                 dse_sun[k] = sqrt(p_err[k] * p_err[k] + p0_err[k] * p0_err[k]) * direct_share[k];
             }
-            double ds = lum3(dp_sun), ds_se = lum3_se(dse_sun);
-            printf("%-28s the tracer's bounce from the sunlit part of the ground: +%.4g +- %.2g (GPU %+.1f %%)\n", c->name,
-                   ds, ds_se, 100.0 * (dg / ds - 1.0));
-            CHECK(fabs(dg - ds) <= 0.05 * ds + 3.0 * ds_se,
-                  "%s: ground bounce GPU %.4g vs the tracer's bounce from the sun-lit ground %.4g +- %.2g", c->name, dg,
-                  ds, ds_se);
+            printf("%-28s the tracer's bounce from the sunlit part of the ground alone: +%.4g +- %.2g (GPU %+.1f %%)\n",
+                   c->name, lum3(dp_sun), lum3_se(dse_sun), 100.0 * (dg / lum3(dp_sun) - 1.0));
         }
     }
     sky_renderer_destroy(&lit);

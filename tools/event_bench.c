@@ -70,7 +70,7 @@ static double frame(gpu_context *ctx, sky_renderer *r1, sky_renderer *r2, VkEven
                           GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
     gpu_barrier_flush(cmd, &b);
     uint32_t slot = gpu_timer_begin(t, cmd, "A..C");
-    luts_record_multiscatter(&r1->luts, cmd);                                       /* A */
+    luts_record_multiscatter(&r1->luts, cmd, false);                                    /* A */
     /* C samples what A wrote: RAW + GENERAL -> SHADER_READ_ONLY. */
     VkImageMemoryBarrier2 ms1 = gpu_image_barrier(r1->luts.multiscatter.image, one, GPU_USAGE_COMPUTE_STORAGE_WRITE,
                                                   GPU_USAGE_COMPUTE_SAMPLED, false);
@@ -78,7 +78,7 @@ static double frame(gpu_context *ctx, sky_renderer *r1, sky_renderer *r2, VkEven
                             .pImageMemoryBarriers = &ms1};
     if (split) vkCmdSetEvent2(cmd, event, &dep);
     else vkCmdPipelineBarrier2(cmd, &dep);
-    luts_record_multiscatter(&r2->luts, cmd);                                       /* B */
+    luts_record_multiscatter(&r2->luts, cmd, false);                                    /* B */
     if (split) vkCmdWaitEvents2(cmd, 1, &event, &dep);
     sky_view view = sky_view_default();
     SkyPush sv = sky_view_skyview_push(&view);

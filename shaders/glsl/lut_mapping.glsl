@@ -62,6 +62,12 @@ vec2 multiscatter_uv(float h, float mu_s, vec2 size)
                 unit_to_sub_uv(multiscatter_y_of_h(h), size.y));
 }
 
+/* The ground-irradiance LUT (a row of texels): the multi-scattering LUT's x <-> mu_s. */
+vec2 ground_irradiance_uv(float mu_s, float width)
+{
+    return vec2(unit_to_sub_uv(multiscatter_x_of_mu_s(mu_s), width), 0.5);
+}
+
 /* Hillaire's sky-view LUT parameterisation, with the exact texel-centre sub-UV. x: azimuth from the sun,
  * u = sqrt((1 - cos)/2), dense toward the sun. y: view zenith angle, the horizon at v = 0.5, quadratic on both
  * sides so texels crowd at the horizon. beta is the angle between the horizon and the nadir at altitude h. */

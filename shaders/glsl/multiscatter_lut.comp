@@ -2,7 +2,8 @@
 /* Multi-scattering LUT (Hillaire 2020, section 5.5): Psi(h, mu_s) = L_2nd / (1 - f_ms), per unit sun
  * illuminance, from 64 sphere directions x 20 steps per texel, and the second bounce's moments of L_2nd's
  * directions (docs/model.md). Three N x N parts side by side (VKSKY_MULTISCATTER_PARTS): Psi^(1/4) and D;
- * Q_zz, Q_xz, m_x, m_z; the zonal moments E[P_l(w_up)] of degrees 3 to 6. Reads the transmittance LUT. */
+ * Q_zz, Q_xz, m_x, m_z; the zonal moments E[P_l(w_up)] of degrees 3 to 6. Reads the transmittance LUT, and with a
+ * lit ground in its second pass the ground-irradiance LUT (the ground lit by the sky too; frame_luts.c). */
 #extension GL_GOOGLE_include_directive : require
 #include "atmosphere.glsl"
 
@@ -18,6 +19,9 @@ layout(set = 0, binding = VKSKY_BINDING_TRANSMITTANCE_LUT) uniform sampler2D tra
 #define LUT_FORMAT rgba16f
 #endif
 layout(set = 0, binding = VKSKY_BINDING_OUTPUT, LUT_FORMAT) uniform writeonly image2D multiscatter_out;
+/* The sky's irradiance on the ground (the second pass of a lit ground; else a stand-in never sampled). */
+layout(set = 0, binding = VKSKY_BINDING_GROUND_IRRADIANCE_LUT) uniform sampler2D ground_irradiance_lut;
+layout(push_constant) uniform MultiscatterPushBlock { MultiscatterPush ms_push; };
 
 #ifdef SPECTRAL4
 #define MULTISCATTER_PARTS VKSKY_MULTISCATTER_PARTS4   /* D in a fourth part: Psi fills the first's four channels */
@@ -108,15 +112,22 @@ void main()
             f_ms += throughput * m.scattering * integral;
             throughput *= step_t;
         }
-        /* Hillaire's ground bounce: the sunlit ground seen along this direction, Lambertian (per unit
-         * illuminance), scattered again like the rest of L_2nd. */
+        /* The ground bounce: the lit ground seen along this direction, Lambertian (per unit illuminance),
+         * scattered again like the rest of L_2nd. Hillaire's lights it by the sun alone (the first pass); the second
+         * pass adds the sky's irradiance, the ground-irradiance LUT made from the first pass's LUT (13 % of the
+         * ground's light at sun 30 deg, albedo 0.3: without it the ground's bounce into the sky is 18 % low). */
         if (HAS_GROUND && ray_hits_ground(h, mu)) {
             float mu_s_g = clamp((r * mu_s + t_max * nu) / ground_radius(), -1.0, 1.0);
             /* The lesson's bounce has no shadow term (the cosine does it); the penumbra's has its visible part. */
             float mu_t_g = mu_s_g;
             float visible_g = SUN_VISIBILITY == VKSKY_SUN_VISIBILITY_LESSON_FADE ? 1.0 : sun_visibility(0.0, mu_s_g, mu_t_g);
             spectrum_t sun_g = texture(transmittance_lut, transmittance_uv(0.0, mu_t_g, t_size)).CH;
-            l_dir += throughput * sun_g * visible_g * max(mu_t_g, 0.0) * atmo.ground.CH / PI;
+            spectrum_t e_g = sun_g * visible_g * max(mu_t_g, 0.0);
+            if (ms_push.ground.x != 0.0) {
+                float n_g = float(textureSize(ground_irradiance_lut, 0).x);
+                e_g += texture(ground_irradiance_lut, ground_irradiance_uv(mu_s_g, n_g)).CH;
+            }
+            l_dir += throughput * e_g * atmo.ground.CH / PI;
         }
         l_2nd += l_dir;
         l_x += l_dir.g * (dir.x * dir.x - dir.z * dir.z);

@@ -142,6 +142,15 @@ VKSKY_STRUCT(MeterPush) {
                                   vksky_frame_band; a whole frame counts every row) */
 } VKSKY_END(MeterPush)
 
+/* The multi-scattering LUT pass (multiscatter_lut.comp, issue 31): with a lit ground it runs twice, the second time
+ * with its ground lit by the sky too (the ground-irradiance LUT that the first pass's LUT made; docs/model.md
+ * "Lit ground"). */
+VKSKY_STRUCT(MultiscatterPush) {
+    vec4 ground;               /* x: 1 = the ground term adds the sky's irradiance (the ground-irradiance LUT), 0 =
+                                  the sun's alone (Hillaire's; the first pass, whose ground-irradiance slot holds a
+                                  stand-in never sampled); yzw: unused */
+} VKSKY_END(MultiscatterPush)
+
 /* Specialization constants: what a scene needs, compiled in; what it does not, compiled out (one pipeline
  * per variant, no per-pixel branch). The same IDs in every shader that includes atmosphere.glsl. */
 #define VKSKY_SPEC_RAYLEIGH 1

@@ -8,8 +8,8 @@ spectrum_t lookup_transmittance(float h, float mu)
 }
 /* The sky's irradiance on the ground (per unit sun illuminance) by sun zenith cosine. */
 #ifndef GROUND_SKY_IRRADIANCE
-#define GROUND_SKY_IRRADIANCE(mu_s) texture(ground_irradiance_lut, vec2(unit_to_sub_uv(multiscatter_x_of_mu_s(mu_s), \
-                                            float(textureSize(ground_irradiance_lut, 0).x)), 0.5)).CH
+#define GROUND_SKY_IRRADIANCE(mu_s) texture(ground_irradiance_lut, ground_irradiance_uv(mu_s, \
+                                            float(textureSize(ground_irradiance_lut, 0).x))).CH
 #endif
 
 /* Psi and the second bounce's moments at a point (docs/model.md "Multiple scattering"). */

@@ -21,9 +21,9 @@ static bool lut_compute_only(const sky_renderer *r)
 /* A LUT pass wrote `base`'s LUT; the passes after it sample it: RAW + GENERAL -> SHADER_READ_ONLY (`at`). With the
  * LUTs on another family's compute queue, the in-queue readers are compute shaders only, and the last LUT (the one
  * whose barrier goes into `next`) is instead *released* to the graphics family: async_luts.c records the others'
- * releases and the acquires. */
+ * releases and the acquires. `name`: the barrier's, when not `base`.write_to_sample (a second pass's). */
 static void lut_written(sky_renderer *r, gpu_barrier_batch *at, gpu_barrier_batch *next, const char *base,
-                        const char *resource, VkImage image)
+                        const char *resource, VkImage image, const char *written_name)
 {
     char name[64];
     if (lut_compute_only(r) && at == next) {
@@ -36,8 +36,65 @@ static void lut_written(sky_renderer *r, gpu_barrier_batch *at, gpu_barrier_batc
         return;
     }
     snprintf(name, sizeof name, "%s.write_to_sample", base);
-    gpu_barrier_add_image(at, name, resource, image, gpu_color_range(0, 1), GPU_USAGE_COMPUTE_STORAGE_WRITE,
+    gpu_barrier_add_image(at, written_name ? written_name : name, resource, image, gpu_color_range(0, 1),
+                          GPU_USAGE_COMPUTE_STORAGE_WRITE,
                           lut_compute_only(r) ? GPU_USAGE_COMPUTE_SAMPLED : GPU_USAGE_COMPUTE_FRAGMENT_SAMPLED, false);
+}
+
+static void record_multiscatter(sky_renderer *r, VkCommandBuffer cmd, bool sky_lit_ground)
+{
+    uint32_t t = frame_timed_begin(r, cmd, sky_lit_ground ? "multiscatter_lut_sky_ground" : "multiscatter_lut");
+    luts_record_multiscatter(&r->luts, cmd, sky_lit_ground);
+    frame_timed_end(r, cmd, t);
+}
+
+static void record_ground_irradiance(sky_renderer *r, VkCommandBuffer cmd, const char *pass)
+{
+    uint32_t t = frame_timed_begin(r, cmd, pass);
+    luts_record_ground_irradiance(&r->luts, cmd);
+    frame_timed_end(r, cmd, t);
+}
+
+/* A lit ground with multi-scattering (issue 31): the multiscatter LUT's ground lit by the sky as well as the sun.
+ * The sky's light on the ground comes from the ground-irradiance LUT, which samples the multiscatter LUT: so the
+ * first multiscatter pass (the ground lit by the sun alone, Hillaire's) feeds a first ground-irradiance pass, whose
+ * LUT the second multiscatter pass reads in its ground term, and a second ground-irradiance pass follows from that
+ * LUT for the sky pass (the pair the view samples agree). The passes rewrite the two images in place; `b` holds the
+ * multiscatter LUT's RAW barrier after the first pass on entry, the second ground-irradiance pass's LUT barrier goes
+ * into `next`. */
+static void record_sky_lit_ground(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch *b, gpu_barrier_batch *next,
+                                  gpu_usage last_use)
+{
+    sky_luts *l = &r->luts;
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    /* The first ground-irradiance pass: previous frames sampled its LUT (WAR + layout; as the only pass, below). */
+    gpu_barrier_add_image(b, "ground_irradiance.to_storage", "ground_irradiance_lut", l->ground_irradiance.image, one,
+                          last_use, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+    gpu_barrier_flush(cmd, b);
+    record_ground_irradiance(r, cmd, "ground_irradiance_lut_first");
+
+    /* It wrote its LUT; the second multiscatter pass samples it: RAW + GENERAL -> SHADER_READ_ONLY. And that pass
+     * rewrites the multiscatter LUT the first ground-irradiance pass sampled: WAR + SHADER_READ_ONLY -> GENERAL (old
+     * contents discarded: every texel is written again). */
+    *b = gpu_barrier_batch_begin("before multiscatter_lut_sky_ground");
+    gpu_barrier_add_image(b, "ground_irradiance.first_to_sample", "ground_irradiance_lut", l->ground_irradiance.image,
+                          one, GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_COMPUTE_SAMPLED, false);
+    gpu_barrier_add_image(b, "multiscatter.to_storage_again", "multiscatter_lut", l->multiscatter.image, one,
+                          GPU_USAGE_COMPUTE_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+    gpu_barrier_flush(cmd, b);
+    record_multiscatter(r, cmd, true);
+
+    /* The second multiscatter pass wrote the LUT; the second ground-irradiance pass and the sky pass sample it: RAW
+     * + layout. And that pass rewrites the ground-irradiance LUT the second multiscatter pass sampled: WAR +
+     * SHADER_READ_ONLY -> GENERAL (discarded). */
+    *b = gpu_barrier_batch_begin("before ground_irradiance_lut");
+    lut_written(r, b, next, "multiscatter", "multiscatter_lut", l->multiscatter.image, "multiscatter.again_to_sample");
+    gpu_barrier_add_image(b, "ground_irradiance.to_storage_again", "ground_irradiance_lut", l->ground_irradiance.image,
+                          one, GPU_USAGE_COMPUTE_SAMPLED, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+    gpu_barrier_flush(cmd, b);
+    record_ground_irradiance(r, cmd, "ground_irradiance_lut");
+    /* It wrote the LUT; the sky pass and the sky-view LUT sample it: RAW + layout. */
+    lut_written(r, next, next, "ground_irradiance", "ground_irradiance_lut", l->ground_irradiance.image, NULL);
 }
 
 /* The LUT passes. Their last barrier (the last LUT made readable) goes into `next`, the batch of the point that
@@ -65,31 +122,30 @@ static void record_luts(sky_renderer *r, VkCommandBuffer cmd, gpu_barrier_batch 
      * transmittance LUT) and a lit ground, this is the LUTs' last barrier. */
     gpu_barrier_batch *at = next;
     if (ms || ground) b = gpu_barrier_batch_begin(ms ? "before multiscatter_lut" : "before ground_irradiance_lut"), at = &b;
-    lut_written(r, at, next, "transmittance", "transmittance_lut", l->transmittance.image);
+    lut_written(r, at, next, "transmittance", "transmittance_lut", l->transmittance.image, NULL);
     if (ms) {
         /* The multiscatter LUT was sampled by the previous frames (WAR) and becomes the storage target. */
         gpu_barrier_add_image(&b, "multiscatter.to_storage", "multiscatter_lut", l->multiscatter.image, one,
                               last_use, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
-        t = frame_timed_begin(r, cmd, "multiscatter_lut");
-        luts_record_multiscatter(l, cmd);
-        frame_timed_end(r, cmd, t);
+        record_multiscatter(r, cmd, false);
         /* The multiscatter compute shader wrote its LUT; the sky pass (and the ground-irradiance LUT) sample it:
          * RAW + layout. (The usage covers compute too, so every frame's first barrier has the same source.) */
         at = next;
         if (ground) b = gpu_barrier_batch_begin("before ground_irradiance_lut"), at = &b;
-        lut_written(r, at, next, "multiscatter", "multiscatter_lut", l->multiscatter.image);
+        lut_written(r, at, next, "multiscatter", "multiscatter_lut", l->multiscatter.image, NULL);
+        /* A lit ground: the ground-irradiance LUT, a second multiscatter pass and the LUT again (above). */
+        if (ground) record_sky_lit_ground(r, cmd, &b, next, last_use);
+        return;
     }
     if (ground) {
         /* The sky's irradiance on the ground (a lit ground only): previous frames sampled it (WAR). */
         gpu_barrier_add_image(&b, "ground_irradiance.to_storage", "ground_irradiance_lut", l->ground_irradiance.image,
                               one, last_use, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
-        t = frame_timed_begin(r, cmd, "ground_irradiance_lut");
-        luts_record_ground_irradiance(l, cmd);
-        frame_timed_end(r, cmd, t);
+        record_ground_irradiance(r, cmd, "ground_irradiance_lut");
         /* It wrote the LUT; the sky pass and the sky-view LUT sample it: RAW + layout. */
-        lut_written(r, next, next, "ground_irradiance", "ground_irradiance_lut", l->ground_irradiance.image);
+        lut_written(r, next, next, "ground_irradiance", "ground_irradiance_lut", l->ground_irradiance.image, NULL);
     }
 }
 

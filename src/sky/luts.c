@@ -51,11 +51,14 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
                       sizeof(AtmosphereParams));
     gpu_write_storage(ctx, l->transmittance_set, VKSKY_BINDING_OUTPUT, l->transmittance.view);
 
+    /* The ground-irradiance LUT exists before the multiscatter LUT's sets: the second multiscatter pass reads it. */
+    if (ground) gpu_image_create(ctx, &l->ground_irradiance, "ground irradiance LUT", format, 64, 1, 1, usage);
     if (multiscatter) {
         const gpu_slot m_slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_TRANSMITTANCE_LUT, SAMPLED},
-                                    {VKSKY_BINDING_OUTPUT, STORAGE}};
-        l->multiscatter_set_layout = gpu_set_layout(ctx, m_slots, 3, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
-        l->multiscatter_layout = gpu_pipeline_layout(ctx, l->multiscatter_set_layout, 0, 0, "multiscatter layout");
+                                    {VKSKY_BINDING_GROUND_IRRADIANCE_LUT, SAMPLED}, {VKSKY_BINDING_OUTPUT, STORAGE}};
+        l->multiscatter_set_layout = gpu_set_layout(ctx, m_slots, 4, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
+        l->multiscatter_layout = gpu_pipeline_layout(ctx, l->multiscatter_set_layout, sizeof(MultiscatterPush),
+                                                     VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter layout");
         l->multiscatter_pipeline = compute_pipeline(s, l->multiscatter_layout,
                                                     s4 ? (q->lut_f32 ? &spirv_multiscatter_lut_f32_s4 : &spirv_multiscatter_lut_s4)
                                                        : q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut,
@@ -66,10 +69,23 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
         gpu_write_sampled(ctx, l->multiscatter_set, VKSKY_BINDING_TRANSMITTANCE_LUT, l->transmittance.view,
                           s->linear_clamp);
         gpu_write_storage(ctx, l->multiscatter_set, VKSKY_BINDING_OUTPUT, l->multiscatter.view);
+        /* The first pass never samples the ground-irradiance slot (its push constant says so): the transmittance
+         * LUT stands in, readable by then. The second pass (a lit ground only) binds the real one. */
+        gpu_write_sampled(ctx, l->multiscatter_set, VKSKY_BINDING_GROUND_IRRADIANCE_LUT, l->transmittance.view,
+                          s->linear_clamp);
+        if (ground) {
+            l->multiscatter_ground_set = gpu_alloc_set(ctx, s->pool, l->multiscatter_set_layout, "multiscatter set (sky-lit ground)");
+            gpu_write_uniform(ctx, l->multiscatter_ground_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
+                              sizeof(AtmosphereParams));
+            gpu_write_sampled(ctx, l->multiscatter_ground_set, VKSKY_BINDING_TRANSMITTANCE_LUT, l->transmittance.view,
+                              s->linear_clamp);
+            gpu_write_sampled(ctx, l->multiscatter_ground_set, VKSKY_BINDING_GROUND_IRRADIANCE_LUT,
+                              l->ground_irradiance.view, s->linear_clamp);
+            gpu_write_storage(ctx, l->multiscatter_ground_set, VKSKY_BINDING_OUTPUT, l->multiscatter.view);
+        }
     }
 
     if (ground) {
-        gpu_image_create(ctx, &l->ground_irradiance, "ground irradiance LUT", format, 64, 1, 1, usage);
         const gpu_slot g_slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_TRANSMITTANCE_LUT, SAMPLED},
                                     {VKSKY_BINDING_MULTISCATTER_LUT, SAMPLED}, {VKSKY_BINDING_OUTPUT, STORAGE}};
         l->ground_set_layout = gpu_set_layout(ctx, g_slots, 4, VK_SHADER_STAGE_COMPUTE_BIT, "ground irradiance set layout");
@@ -133,11 +149,14 @@ void luts_record_transmittance(const sky_luts *l, VkCommandBuffer cmd)
     dispatch(cmd, l->transmittance_pipeline, l->transmittance_layout, l->transmittance_set, &l->transmittance);
 }
 
-void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd)
+void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd, bool sky_lit_ground)
 {
     /* One 64-thread workgroup per texel (the threads share the sphere directions). */
+    MultiscatterPush push = {.ground = {sky_lit_ground ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f}};
+    VkDescriptorSet set = sky_lit_ground ? l->multiscatter_ground_set : l->multiscatter_set;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_layout, 0, 1, &l->multiscatter_set, 0, NULL);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->multiscatter_layout, 0, 1, &set, 0, NULL);
+    vkCmdPushConstants(cmd, l->multiscatter_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatch(cmd, l->multiscatter.extent.width / l->multiscatter_parts, l->multiscatter.extent.height, 1);   /* a workgroup a texel */
 }
 

@@ -31,6 +31,8 @@ typedef struct sky_luts {
     VkPipelineLayout transmittance_layout, multiscatter_layout, skyview_layout;
     VkPipeline transmittance_pipeline, multiscatter_pipeline, skyview_pipeline;
     VkDescriptorSet transmittance_set, multiscatter_set, skyview_set;
+    /* The multiscatter pass's second run with a lit ground: its ground lit by the sky (the ground-irradiance LUT). */
+    VkDescriptorSet multiscatter_ground_set;
     /* What readers bind as the multi-scattering LUT: the LUT, or without multi-scattering (no image, no pass)
      * the transmittance LUT as a stand-in the compiled-out code never samples. */
     VkImageView multiscatter_view;
@@ -46,7 +48,8 @@ typedef struct sky_luts {
 void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter, bool ground);
 void luts_destroy(sky_luts *l, const pass_shared *s);
 void luts_record_transmittance(const sky_luts *l, VkCommandBuffer cmd);
-void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd);
+/* sky_lit_ground: the second pass of a lit ground (the ground lit by the sky too: the ground-irradiance LUT). */
+void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd, bool sky_lit_ground);
 void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *push);
 void luts_record_ground_irradiance(const sky_luts *l, VkCommandBuffer cmd);
 

@@ -151,9 +151,10 @@ void sky_renderer_create(sky_renderer *r, gpu_context *ctx, const sky_renderer_d
     pass_shared *s = &r->shared;
     s->ctx = ctx;
     s->spectral4 = desc->spectral4;
-    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 8},
-                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 32},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
+    /* (+1 set of 1 uniform, 3 samplers' worth and 1 storage image: the second multiscatter pass of a lit ground) */
+    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 9},
+                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 36},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 9},
                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}};   /* the meter's, its and the tone map's sets */
     VkDescriptorPoolCreateInfo pinfo = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 32,
                                         .poolSizeCount = 4, .pPoolSizes = sizes};
