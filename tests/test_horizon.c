@@ -7,7 +7,8 @@
  *    within 1/4 pixel of the analytic horizon: the elevation -atan(sqrt(h (2R + h)) / R) projected by the pinhole
  *    (y = H (1 - tan(e - pitch) / tan(fov / 2)) / 2), all in double here. Altitudes 1 m .. 36 000 km, render
  *    scales 0.25, 0.5, 1, the march and the sky-view LUT (auto below the top), fragment and compute passes, two
- *    pitches and two fovs.
+ *    pitches and two fovs. Then every preset (low, medium, high, ultra, cpu: its own LUT sizes, steps, sky mode and
+ *    render scale, app/quality) at the same six altitudes.
  * 2. Leak: Earth, black ground, sunset, a camera 1 m up (the ground's own in-scattering is a few thousandths of the
  *    sky): no pixel of the rows wholly below the horizon within 2 px of it above 5 % of the sky pixel above the
  *    horizon in its column, at scales 0.25 and 0.5 (the upsample) and 1, march and LUT.
@@ -22,6 +23,7 @@
 #include "gpu_test.h"
 #include "sky/renderer.h"
 #include "sky/view_params.h"
+#include "app/quality/quality.h"
 
 typedef struct run_desc {
     int width, height;
@@ -66,6 +68,7 @@ static double horizon_row(double h, double pitch_deg, double fov_deg, int height
 }
 
 static double worst_position;
+static const char *position_label = "";   /* the preset under test, for the failure's line */
 
 static void check_position(sky_renderer *r, const run_desc *d, sky_view *v, double h, double offset_frac,
                            double fov, float *lum)
@@ -92,8 +95,8 @@ static void check_position(sky_renderer *r, const run_desc *d, sky_view *v, doub
     double y_measured = end - covered, err = fabs(y_measured - y_true);
     if (err > worst_position) worst_position = err;
     CHECK(ground > 0.0 && err <= 0.25,
-          "h %g km pitch %.3f fov %g scale %g kind %d mode %d: horizon at row %.3f, analytic %.3f (%.3f px)", h,
-          v->pitch_deg, fov, d->scale, d->kind, v->mode, y_measured, y_true, err);
+          "%sh %g km pitch %.3f fov %g scale %g kind %d mode %d: horizon at row %.3f, analytic %.3f (%.3f px)",
+          position_label, h, v->pitch_deg, fov, d->scale, d->kind, v->mode, y_measured, y_true, err);
 }
 
 static void test_position(gpu_context *ctx)
@@ -133,6 +136,58 @@ static void test_position(gpu_context *ctx)
         sky_renderer_destroy(&r);
     }
     printf("position: %d frames, worst %.3f px from the analytic horizon (bound 0.25)\n", frames, worst_position);
+}
+
+/* Every preset with its own knobs (quality_apply: LUT sizes, steps, sky mode, render scale: low's and cpu's 0.5) on
+ * the airless planet of test_position, at the six altitudes, a pitch above and one below the edge. */
+static void test_presets(gpu_context *ctx)
+{
+    model_atmosphere air;
+    model_atmosphere_earth(&air);
+    for (int c = 0; c < 3; ++c)
+        air.rayleigh_scattering[c] = air.mie_scattering[c] = air.mie_absorption[c] = air.ozone_absorption[c] = 0.0;
+    sky_features f = sky_features_default();
+    f.ground_albedo[0] = f.ground_albedo[1] = f.ground_albedo[2] = 1.0;
+    f.sun_disc = false;
+    static const char *presets[] = {"low", "medium", "high", "ultra", "cpu"};
+    static const double altitudes[] = {0.001, 1.0, 10.0, 100.0, 400.0, 36000.0};
+    char label[64];
+    double before = worst_position;
+    worst_position = 0.0;
+    for (int p = 0; p < 5; ++p) {
+        const quality_config *q = quality_preset(presets[p]);
+        CHECK(q != NULL, "no preset %s", presets[p]);
+        if (!q) continue;
+        sky_view v = sky_view_default();
+        sky_lut_quality lut = sky_lut_quality_default();
+        double scale = 1.0;
+        int bloom_mips = 0;
+        bool bloom_quarter = false;
+        quality_apply(q, &v, &lut, &scale, &bloom_mips, &bloom_quarter);
+        v.bloom = false;
+        v.tonemap = VKSKY_TONEMAP_CLAMP;
+        run_desc d = {161, 128, scale, v.pass_kind, POST_PASS_FRAGMENT, 0};
+        sky_renderer r;
+        sky_renderer_desc desc = {.width = (uint32_t)d.width, .height = (uint32_t)d.height, .render_scale = scale,
+                                  .readback = true, .display_format = VK_FORMAT_R8G8B8A8_SRGB,
+                                  .post_pass = POST_PASS_FRAGMENT, .lut = lut};
+        sky_renderer_create(&r, ctx, &desc);
+        sky_renderer_set_atmosphere(&r, &air, SUN_RADIUS_RAD);
+        sky_renderer_set_features(&r, &f);
+        float *lum = malloc(sizeof(float) * d.width * d.height);
+        snprintf(label, sizeof label, "preset %s: ", presets[p]);
+        position_label = label;
+        for (int a = 0; a < 6; ++a) {
+            check_position(&r, &d, &v, altitudes[a], -0.17, 20.0, lum);
+            check_position(&r, &d, &v, altitudes[a], 0.21, 75.0, lum);
+        }
+        position_label = "";
+        free(lum);
+        sky_renderer_destroy(&r);
+    }
+    printf("presets: low, medium, high, ultra, cpu at 6 altitudes, worst %.3f px from the analytic horizon (bound "
+           "0.25)\n", worst_position);
+    worst_position = fmax(worst_position, before);
 }
 
 static void test_leak(gpu_context *ctx)
@@ -301,6 +356,7 @@ int main(int argc, char **argv)
     test_context(&ctx);
     const char *only = argc > 1 ? argv[1] : "";
     if (!*only || !strcmp(only, "position")) test_position(&ctx);
+    if (!*only || !strcmp(only, "presets")) test_presets(&ctx);
     if (!*only || !strcmp(only, "leak")) test_leak(&ctx);
     if (!*only || !strcmp(only, "sweep")) test_sweep(&ctx);
     if (!*only || !strcmp(only, "dither")) test_dither(&ctx);

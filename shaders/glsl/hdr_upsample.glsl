@@ -51,11 +51,18 @@ vec3 hdr_upsample(sampler2D hdr, vec2 uv, ivec2 out_size, ivec2 rows)
      * rounding of the result moves it by a whole step: a band, whose image height is not the whole image's, then
      * differed from the whole image on the rows that sat at a step's edge. */
     bool fetch = HDR_FAR == 0 ? size == out_size : HDR_FAR == 2;   /* (a variant's: no second fetch on lavapipe) */
-    vec4 bilinear = fetch ? texelFetch(hdr, ivec2(uv * vec2(size)), 0) : textureLod(hdr, uv, 0.0);
+    /* The same holds for the taps below: at render scale 1 the pixel's position is its texel's centre, exactly. The
+     * interpolated uv times the size lands a rounding away from it, on either side depending on the image's size
+     * (a fragment's uv comes from the full-screen triangle's setup), so floor(pos - 0.5) took the quad one texel up
+     * or left on some rows and columns of one image and not of another: a band's quad and the whole image's then
+     * differed, and at a fisheye's rim, where a tap outside the circle carries the clamped distance 1e4, the
+     * gradient and the coverage with it moved by up to 18/255 (docs/horizon.md "Bands equal the whole image"). */
+    vec2 pos = fetch ? floor(uv * vec2(size)) + 0.5 : uv * vec2(size);
+    vec4 bilinear = fetch ? texelFetch(hdr, ivec2(pos), 0) : textureLod(hdr, uv, 0.0);
     if (HDR_FAR != 0 || abs(bilinear.a) > 2.0) return bilinear.rgb;
     /* The four taps, the distance's gradient per output pixel, its unit normal, the pixel's distance in output
      * pixels and its coverage of the sky. */
-    vec2 pos = uv * vec2(size), t = pos - 0.5;
+    vec2 t = pos - 0.5;
     ivec2 i0 = ivec2(floor(t));
     vec2 f = t - vec2(i0);
     vec4 taps[4];
