@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/runs/bench_host.h"
+#include "app/runs/bench_report.h"
 #include "app/runs/cpu_time.h"
 #include "app/runs/host_ring.h"
 #include "app/runs/sequence_frames.h"
@@ -15,18 +16,6 @@
 #include <time.h>
 
 #define MAX_PASSES 64
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, compare_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /* One frame, waited for (its LUTs into the cache on a miss, as every headless frame); its timed passes in t (count in
  * *n: 0 without timestamps). */
@@ -89,15 +78,11 @@ static int bench(const options *o, host_commands *h, vksky_renderer *r)
         gpu_total[i] = total;
     }
     if (stop_requested() || status) n = 0;   /* the graceful stop: no figures from a cut-short run */
-    double cpu_per_frame = n ? (process_cpu_ms() - cpu_start) / n : 0.0;
-    if (n && timed) {
-        printf("pass transmittance_lut gpu_ms %.4f\n", median(lut_ms[0], n));
-        if (multiscatter) printf("pass multiscatter_lut gpu_ms %.4f\n", median(lut_ms[1], n));
-        for (int p = 0; p < pass_count; ++p) printf("pass %s gpu_ms %.4f\n", names[p], median(per_pass[p], n));
-    }
-    if (n) printf("frame gpu_ms %.4f wall_ms %.4f\n", timed ? median(gpu_total, n) : -1.0, median(wall, n));
-    if (n) printf("frame cpu_ms %.4f\n", cpu_per_frame);
-    if (n) printf("frame_luts wall_ms %.4f\n", median(luts_wall, n));
+    bench_figures figures = {.n = n, .timed = timed, .multiscatter = multiscatter, .lut_ms = {lut_ms[0], lut_ms[1]},
+                             .pass_count = pass_count, .names = names, .per_pass = per_pass, .gpu_total = gpu_total,
+                             .wall = wall, .cpu_per_frame = n ? (process_cpu_ms() - cpu_start) / n : 0.0,
+                             .luts_wall = luts_wall};
+    bench_report_print(&figures);
     free(luts_wall);
     for (int p = 0; p < pass_count; ++p) free(per_pass[p]);
     free(lut_ms[0]);
@@ -114,14 +99,13 @@ static int bench_sequence(const options *o, vksky_context *ctx, vksky_scene *sce
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     double cpu_start = process_cpu_ms();
-    int status = sequence_host_render(o, ctx, scene, r, NULL);
+    int status = sequence_host_render(o, ctx, scene, r, NULL, NULL);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double s = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
     int frames = o->frame_last - o->frame_first + 1;
     if (status == 0)
-        printf("sequence frames %d outputs %d wall_s %.3f frames_per_s %.2f cpu_ms_per_frame %.2f readback_slots %d "
-               "threads %d\n", frames, o->output_count, s, frames / s, (process_cpu_ms() - cpu_start) / frames,
-               host_ring_slots_wanted(), io_encode_threads());
+        bench_report_sequence(frames, o->output_count, s, process_cpu_ms() - cpu_start, host_ring_slots_wanted(),
+                              io_encode_threads());
     return status;
 }
 
