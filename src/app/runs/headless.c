@@ -17,73 +17,42 @@
 #include <string.h>
 #include <time.h>
 
-/* Per-pass GPU medians, then the frame: the benchmark's output format (one line per pass). */
+/* Per-pass GPU medians, then the frame: the benchmark's output format (app/runs/bench_report.h). */
 static void bench(const options *o, sky_renderer *r)
 {
-    enum { MAX_PASSES = GPU_TIMER_MAX };
     int n = o->bench_frames;
-    double *wall = calloc((size_t)n, sizeof *wall), *gpu_total = calloc((size_t)n, sizeof *gpu_total);
-    double *per_pass[MAX_PASSES] = {0};
-    const char *names[MAX_PASSES] = {0};
-    int pass_count = 0;
-    double ms[MAX_PASSES];
-
+    double ms[GPU_TIMER_MAX];
+    bench_figures b;
+    if (bench_figures_begin(&b, n)) n = 0;
     /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. Auto exposure (--auto-exposure, or a
      * photometric PNG among the outputs): the frames meter on the GPU, and the meter's passes are timed too. */
     sky_view view = o->view;
     view.auto_exposure = o->auto_exposure || light_auto_exposure_wanted(o);
     frame_desc f = {.view = &view};
-    for (int i = 0; i < 3 && !stop_requested(); ++i) sky_renderer_render(r, &f);
+    for (int i = 0; i < 3 && n && !stop_requested(); ++i) sky_renderer_render(r, &f);
 
     /* LUT passes, measured on their own (a frame recomputes them only when the atmosphere changes). */
     frame_desc with_luts = {.view = &view, .force_luts = true};
-    double *lut_ms[2] = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double))};
     /* With --async-luts the LUT passes are timed on the compute queue's own timer. The wall time of these frames
      * (each rebuilds the LUTs, as an animated sun does) is tools/async_bench.sh's figure. */
     gpu_timer *lt = r->ctx->compute_queue ? &r->lut_timer : &r->timer;
-    double *luts_wall = calloc((size_t)n, sizeof(double));
     for (int i = 0; i < n && !stop_requested(); ++i) {
-        luts_wall[i] = sky_renderer_render(r, &with_luts);
+        b.luts_wall[i] = sky_renderer_render(r, &with_luts);
         uint32_t c = gpu_timer_read(r->ctx, lt, ms);
-        for (uint32_t k = 0; k < c; ++k) {
-            if (!strcmp(lt->names[k], "transmittance_lut")) lut_ms[0][i] = ms[k];
-            if (!strcmp(lt->names[k], "multiscatter_lut")) lut_ms[1][i] = ms[k];
-        }
+        for (uint32_t k = 0; k < c; ++k) bench_figures_lut_pass(&b, i, lt->names[k], ms[k]);
     }
     /* Steady-state frames. The process's CPU time over them too: on a CPU device (lavapipe) that is the frame's
      * work whatever else the machine runs, where wall and timestamp times grow with the machine's load. */
-    double cpu_start = process_cpu_ms();
+    b.cpu_start = process_cpu_ms();
     for (int i = 0; i < n && !stop_requested(); ++i) {
-        wall[i] = sky_renderer_render(r, &f);
+        b.wall[i] = sky_renderer_render(r, &f);
         uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
-        double total = 0;
-        for (uint32_t k = 0; k < c; ++k) {
-            int slot = -1;
-            for (int p = 0; p < pass_count; ++p)
-                if (!strcmp(names[p], r->timer.names[k])) slot = p;
-            if (slot < 0 && pass_count < MAX_PASSES) {
-                slot = pass_count++;
-                names[slot] = r->timer.names[k];
-                per_pass[slot] = calloc((size_t)n, sizeof(double));
-            }
-            if (slot >= 0) per_pass[slot][i] += ms[k];    /* repeated passes (bloom) add up per frame */
-            total += ms[k];
-        }
-        gpu_total[i] = total;
+        for (uint32_t k = 0; k < c; ++k) bench_figures_pass(&b, i, r->timer.names[k], ms[k]);
     }
-    if (stop_requested()) n = 0;   /* the graceful stop: no figures from a cut-short run */
-    bench_figures figures = {.n = n, .timed = r->timer.enabled, .multiscatter = r->variant.multiscatter,
-                             .lut_ms = {lut_ms[0], lut_ms[1]}, .pass_count = pass_count, .names = names,
-                             .per_pass = per_pass, .gpu_total = gpu_total, .wall = wall,
-                             .cpu_per_frame = n ? (process_cpu_ms() - cpu_start) / n : 0.0, .luts_wall = luts_wall,
-                             .async = r->ctx->compute_queue != VK_NULL_HANDLE};
-    bench_report_print(&figures);
-    free(luts_wall);
-    for (int p = 0; p < pass_count; ++p) free(per_pass[p]);
-    free(lut_ms[0]);
-    free(lut_ms[1]);
-    free(wall);
-    free(gpu_total);
+    b.timed = r->timer.enabled, b.multiscatter = r->variant.multiscatter;
+    b.async = r->ctx->compute_queue != VK_NULL_HANDLE;
+    bench_report_print(&b, stop_requested() ? 0 : n);   /* the graceful stop: no figures from a cut-short run */
+    bench_figures_end(&b);
 }
 
 /* VKSKY_FRAMES=N (tests): N frames recorded back to back into one command buffer, the LUTs recomputed in every
