@@ -11,7 +11,7 @@ static int compare_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-static double median(double *v, int n)
+double bench_median(double *v, int n)
 {
     qsort(v, (size_t)n, sizeof *v, compare_double);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
@@ -52,13 +52,15 @@ void bench_report_print(bench_figures *b, int frames)
     if (!n) return;
     double cpu_per_frame = (process_cpu_ms() - b->cpu_start) / n;
     if (b->timed) {
-        printf("pass transmittance_lut gpu_ms %.4f\n", median(b->lut_ms[0], n));
-        if (b->multiscatter) printf("pass multiscatter_lut gpu_ms %.4f\n", median(b->lut_ms[1], n));
-        for (int p = 0; p < b->pass_count; ++p) printf("pass %s gpu_ms %.4f\n", b->names[p], median(b->per_pass[p], n));
+        printf("pass transmittance_lut gpu_ms %.4f\n", bench_median(b->lut_ms[0], n));
+        if (b->multiscatter) printf("pass multiscatter_lut gpu_ms %.4f\n", bench_median(b->lut_ms[1], n));
+        for (int p = 0; p < b->pass_count; ++p)
+            printf("pass %s gpu_ms %.4f\n", b->names[p], bench_median(b->per_pass[p], n));
     }
-    printf("frame gpu_ms %.4f wall_ms %.4f\n", b->timed ? median(b->gpu_total, n) : -1.0, median(b->wall, n));
+    printf("frame gpu_ms %.4f wall_ms %.4f\n", b->timed ? bench_median(b->gpu_total, n) : -1.0,
+           bench_median(b->wall, n));
     printf("frame cpu_ms %.4f\n", cpu_per_frame);
-    printf("frame_luts wall_ms %.4f%s\n", median(b->luts_wall, n), b->async ? " async" : "");
+    printf("frame_luts wall_ms %.4f%s\n", bench_median(b->luts_wall, n), b->async ? " async" : "");
 }
 
 void bench_figures_end(bench_figures *b)

@@ -22,6 +22,8 @@ typedef struct bench_figures {
     double cpu_start;            /* the process's CPU ms when the steady-state frames began */
 } bench_figures;
 
+/* The median of v[0..n) (sorted in place): every benchmark's figure (tools/event_bench.c's too). */
+double bench_median(double *v, int n);
 /* Room for n frames. 0, or 1 (out of memory; bench_figures_end still frees what was made). */
 int bench_figures_begin(bench_figures *b, int n);
 /* A LUT-rebuilding frame's timed pass (the LUT passes are kept, others ignored). */
