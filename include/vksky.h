@@ -339,6 +339,10 @@ typedef struct vksky_readback_target {
     vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_READBACK_TARGET */
     const void *next;
     uint32_t slot;                 /* < the renderer's readback slots */
+    /* An earlier frame's copies into this slot were recorded into the same command buffer (frames back to back, no
+     * fence and host read between them: the command line's VKSKY_FRAMES test loop): this frame's copies rewrite what
+     * those wrote, so vksky records the write-after-write barrier between them (frames.readback_*). */
+    bool follows_frame;
 } vksky_readback_target;
 VKSKY_API vksky_result vksky_renderer_set_readback_slots(vksky_renderer *renderer, uint32_t count);
 VKSKY_API vksky_result vksky_renderer_get_readback_slot(vksky_renderer *renderer, uint32_t slot, vksky_readback *out);

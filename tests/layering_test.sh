@@ -124,6 +124,8 @@ api_hosts=(app/runs/headless_api.c app/runs/headless_api.h)   # `--render`: one 
 api_hosts+=(app/runs/sequence_host.c app/runs/sequence_host.h app/runs/host_ring.c app/runs/host_ring.h
            app/runs/sequence_frames.h app/runs/bench_host.c app/runs/bench_host.h)   # sequences, --skip-existing,
                                                                                   # the readback ring, --bench (25h)
+api_hosts+=(app/runs/tiles.c app/runs/tiles.h app/runs/bench_report.c app/runs/bench_report.h   # bands, --bench's report,
+           app/runs/host_async.c app/runs/host_async.h)                                       # --async-luts (25i)
 for f in "${api_hosts[@]}"; do
   [ -f "$f" ] || { echo "layering: $f: listed as an API host but missing"; fail=1; continue; }
   door=$(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"(sky|lib)/' "$f")

@@ -70,6 +70,11 @@ for tag in old new; do
   VKSKY_TILE_PIXELS=1600 run_case "$bin" $tag bands_perspective "--render FILE.exr --render FILE.png ${size[*]} --exposure 13 --quiet"
   VKSKY_TILE_PIXELS=1024 run_case "$bin" $tag bands_equirect "--render FILE.exr --render FILE.png --projection equirect --width 64 --exposure 13 --quiet"
   VKSKY_TILE_PIXELS=1600 VKSKY_READBACK_SLOTS=1 run_case "$bin" $tag bands_trace "--render FILE.png ${size[*]} --exposure 13 --quiet --trace-barriers --trace-passes"
+  # Cube and fisheye maps in 16-row bands, auto-exposed (metered band by band); --async-luts over two frames in one
+  # run (VKSKY_FRAMES, one queue), traced (25i: both through include/vksky.h).
+  VKSKY_TILE_ROWS=16 run_case "$bin" $tag bands_cubemap "--render FILE.exr --render FILE.png --projection cubemap --width 16 --quiet"
+  VKSKY_TILE_ROWS=16 run_case "$bin" $tag bands_fisheye "--render FILE.exr --render FILE.png --projection fisheye --width 48 --quiet"
+  VKSKY_ASYNC_ONE_QUEUE=1 VKSKY_FRAMES=2 run_case "$bin" $tag async_frames "--render FILE.exr --render FILE.png ${size[*]} --async-luts --trace-barriers --trace-passes"
 done
 
 # The window: a few frames and a screenshot (skipped without Xvfb).

@@ -15,6 +15,7 @@
  * Output: "event_bench device=... plain_gpu_ms=M split_gpu_ms=M plain_wall_ms=M split_wall_ms=M frames=N" */
 #include "sky/submit.h"
 #include "sky/passes.h"
+#include "app/runs/bench_report.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,18 +26,6 @@ static double now_ms(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, compare_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 static void renderer(sky_renderer *r, gpu_context *ctx, bool small)
@@ -135,8 +124,8 @@ int main(int argc, char **argv)
     for (int i = 0; i < n; ++i)
         for (int split = 0; split < 2; ++split) wall[split][i] = frame(&ctx, &r1, &r2, event, split, &t, &gpu[split][i]);
     printf("event_bench device=\"%s\" plain_gpu_ms=%.4f split_gpu_ms=%.4f plain_wall_ms=%.4f split_wall_ms=%.4f "
-           "frames=%d\n", ctx.props.deviceName, median(gpu[0], n), median(gpu[1], n), median(wall[0], n),
-           median(wall[1], n), n);
+           "frames=%d\n", ctx.props.deviceName, bench_median(gpu[0], n), bench_median(gpu[1], n), bench_median(wall[0], n),
+           bench_median(wall[1], n), n);
     for (int k = 0; k < 2; ++k) free(gpu[k]), free(wall[k]);
     gpu_timer_destroy(&ctx, &t);
     vkDestroyEvent(ctx.device, event, NULL);

@@ -17,7 +17,7 @@ io_encode_settings io_encode_settings_get(void);
 int io_encode_threads(void);
 /* The process's: settings' threads, or the cores available (sched_getaffinity), at least 1. */
 int io_encode_threads_all(void);
-/* Several files encoded at once (a sequence's frames, app/runs/frame_ring.h) share the threads: each encoding
+/* Several files encoded at once (a sequence's frames, app/runs/host_ring.h) share the threads: each encoding
  * thread sets its share here (0: the process's). The bytes do not depend on it: EXR chunks are compressed alone,
  * and a PNG's blocks depend only on whether threads > 1 (png_parallel.h), which a share keeps. */
 void io_encode_threads_local(int n);

@@ -200,8 +200,10 @@ vksky_result vksky_record_luts(vksky_renderer *renderer, VkCommandBuffer compute
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
     if (!force && !sky_renderer_luts_dirty(&renderer->r)) return VKSKY_SUCCESS;
+    const gpu_trace_sink *was = lib_trace_begin(c);   /* the LUT passes' lines go to this context's trace */
     gpu_trap trap;
     if (setjmp(trap.jump)) {
+        lib_trace_end(was);
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                     "vksky_record_luts: %s (the command buffer is incomplete: reset it)", trap.message);
         return lib_result_from_vk(trap.result);
@@ -211,6 +213,7 @@ vksky_result vksky_record_luts(vksky_renderer *renderer, VkCommandBuffer compute
     frame_record_luts_compute(&renderer->r, compute_cmd);
     renderer->r.lut_acquire_pending = gpu_async_other_family(&c->gpu);
     gpu_trap_arm(NULL);
+    lib_trace_end(was);
     if (recorded) *recorded = true;
     return VKSKY_SUCCESS;
 }
@@ -318,6 +321,7 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
         lib_readback_select(renderer, readback_target ? readback_target->slot : 0);
         /* vksky's own display and composite images, copied to its readback buffers: frame.color is not used. */
         frame_desc own = {.view = &v, .force_luts = frame->force_luts, .meter_slot = slot,
+                          .follows_frame = readback_target && readback_target->follows_frame,
                           .meter_first_row = band ? band->meter_first_row : 0, .meter_rows = band ? band->meter_rows : 0};
         return record_trapped(renderer, cmd, &own, false);
     }

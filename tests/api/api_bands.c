@@ -63,14 +63,8 @@ static vksky_readback render(host *h, vksky_renderer *r, const vksky_frame *f)
 static vksky_renderer *band_renderer(vksky_context *c, const vksky_scene *scene, uint32_t width, uint32_t height)
 {
     vksky_readback_config rb = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
-    vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION, .next = &rb, .output = VKSKY_OUTPUT_DISPLAY,
-                             .width = width, .height = height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
-                             .quality = "scene", .units = VKSKY_UNITS_PHOTOMETRIC, .scene = scene};
-    vksky_renderer *r = NULL;
-    vksky_result res = vksky_renderer_create(c, &d, &r);
-    HOST_CHECK(res == VKSKY_SUCCESS && r, "vksky_renderer_create %ux%u: %s", width, height, vksky_result_name(res));
-    if (!r) exit(1);
-    return r;
+    vksky_renderer_desc d = host_readback_desc(&rb, scene, width, height, false);
+    return host_renderer(c, &d);
 }
 
 /* The map in bands of BAND rows, each with a row above and below (dropped), into `out` (whole image, RGBA8); with
@@ -102,12 +96,7 @@ int main(int argc, char **argv)
     }
     char dir[] = "/tmp/vksky_api_bands_XXXXXX";
     if (!mkdtemp(dir)) return 1;
-    vksky_own_device_desc od = {.abi_version = VKSKY_ABI_VERSION, .device_index = -1, .validation = true,
-                                .message = api_message};
-    vksky_context *c = NULL;
-    vksky_result res = vksky_context_create_own(&od, &c);
-    HOST_CHECK(res == VKSKY_SUCCESS, "vksky_context_create_own: %s", vksky_result_name(res));
-    if (!c) return 1;
+    vksky_context *c = host_own_context();
     host h;
     host_from_context(&h, c);
     host_create_target(&h, 4, 4, VK_FORMAT_R8G8B8A8_SRGB);   /* its command buffer and fence (the image unused) */
@@ -125,10 +114,7 @@ int main(int argc, char **argv)
                         "--render-scale", "1", "--no-bloom"};
         int nargs = (int)(sizeof args / sizeof *args);
         uint8_t *want = cli_map(argv[1], dir, m, args, nargs);
-        vksky_scene *scene = NULL;
-        res = vksky_scene_from_args(nargs, args, api_message, NULL, &scene);
-        HOST_CHECK(res == VKSKY_SUCCESS && scene, "vksky_scene_from_args: %s", vksky_result_name(res));
-        if (!scene) return 1;
+        vksky_scene *scene = host_scene_of_args(nargs, args);
         vksky_renderer *banded = band_renderer(c, scene, m->width, BAND + 2);
         uint8_t *got = calloc(4 * (size_t)m->width * m->height, 1);
         double log_sum, count;

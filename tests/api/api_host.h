@@ -158,6 +158,49 @@ static inline void host_from_context(host *h, const vksky_context *c)
     h->family = hd.queue_family;
 }
 
+/* vksky's own device with validation + synchronization validation on, its messages to api_message (the tests that
+ * need no device of their own). A failure is counted and ends the test. */
+static inline vksky_context *host_own_context(void)
+{
+    vksky_own_device_desc od = {.abi_version = VKSKY_ABI_VERSION, .device_index = -1, .validation = true,
+                                .message = api_message};
+    vksky_context *c = NULL;
+    vksky_result res = vksky_context_create_own(&od, &c);
+    HOST_CHECK(res == VKSKY_SUCCESS && c, "vksky_context_create_own: %s", vksky_result_name(res));
+    if (!c) exit(1);
+    return c;
+}
+
+/* The scene of a command line (vksky_scene_from_args); a failure is counted and ends the test. */
+static inline vksky_scene *host_scene_of_args(int argc, char **argv)
+{
+    vksky_scene *scene = NULL;
+    vksky_result res = vksky_scene_from_args(argc, argv, api_message, NULL, &scene);
+    HOST_CHECK(res == VKSKY_SUCCESS && scene, "vksky_scene_from_args: %s", vksky_result_name(res));
+    if (!scene) exit(1);
+    return scene;
+}
+
+/* The renderer `vksky --render` makes (the CLI's own host: app/runs/headless_api.c): DISPLAY read back into vksky's
+ * own images (rb, the caller's), photometric, the quality the command line's scene chose. */
+static inline vksky_renderer_desc host_readback_desc(const vksky_readback_config *rb, const vksky_scene *scene,
+                                                     uint32_t width, uint32_t height, bool bloom)
+{
+    return (vksky_renderer_desc){.abi_version = VKSKY_ABI_VERSION, .next = rb, .output = VKSKY_OUTPUT_DISPLAY,
+                                 .width = width, .height = height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
+                                 .quality = "scene", .bloom = bloom, .units = VKSKY_UNITS_PHOTOMETRIC, .scene = scene};
+}
+
+/* A renderer of `d`; a failure is counted and ends the test. */
+static inline vksky_renderer *host_renderer(vksky_context *c, const vksky_renderer_desc *d)
+{
+    vksky_renderer *r = NULL;
+    vksky_result res = vksky_renderer_create(c, d, &r);
+    HOST_CHECK(res == VKSKY_SUCCESS && r, "vksky_renderer_create %ux%u: %s", d->width, d->height, vksky_result_name(res));
+    if (!r) exit(1);
+    return r;
+}
+
 static inline vksky_context_desc host_context_desc(const host *h, const VkAllocationCallbacks *allocator)
 {
     return (vksky_context_desc){.abi_version = VKSKY_ABI_VERSION, .get_instance_proc_addr = vkGetInstanceProcAddr,

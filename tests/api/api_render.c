@@ -441,29 +441,17 @@ static int quality(const char *vksky)
 static int cli_view(void)
 {
     const uint32_t W = 48, H = 27;
-    vksky_own_device_desc od = {.abi_version = VKSKY_ABI_VERSION, .device_index = -1, .validation = true,
-                                .message = api_message};
-    vksky_context *c = NULL;
-    vksky_result res = vksky_context_create_own(&od, &c);
-    HOST_CHECK(res == VKSKY_SUCCESS, "vksky_context_create_own: %s", vksky_result_name(res));
-    if (!c) return 1;
+    vksky_context *c = host_own_context();
     host h;
     host_from_context(&h, c);
     host_create_target(&h, W, H, VK_FORMAT_R8G8B8A8_SRGB);
     char *argv[] = {"vksky", "--width", "48", "--height", "27", "--yaw", "30", "--pitch", "10", "--fov", "75",
                     "--exposure", "12", "--altitude", "0.001", "--quality", "medium"};
-    vksky_scene *scene = NULL;
-    res = vksky_scene_from_args((int)(sizeof argv / sizeof *argv), argv, api_message, NULL, &scene);
-    HOST_CHECK(res == VKSKY_SUCCESS && scene, "vksky_scene_from_args: %s", vksky_result_name(res));
-    if (!scene) return 1;
+    vksky_scene *scene = host_scene_of_args((int)(sizeof argv / sizeof *argv), argv);
     vksky_readback_config rb = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
-    vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION, .next = &rb, .output = VKSKY_OUTPUT_DISPLAY,
-                             .width = W, .height = H, .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = "scene",
-                             .bloom = true, .units = VKSKY_UNITS_PHOTOMETRIC, .scene = scene};
-    vksky_renderer *own = NULL;
-    res = vksky_renderer_create(c, &d, &own);
-    HOST_CHECK(res == VKSKY_SUCCESS && own, "vksky_renderer_create (readback): %s", vksky_result_name(res));
-    if (!own) return 1;
+    vksky_renderer_desc d = host_readback_desc(&rb, scene, W, H, true);
+    vksky_renderer *own = host_renderer(c, &d);
+    vksky_result res;
     vksky_frame_view view = {.type = VKSKY_STRUCTURE_TYPE_FRAME_VIEW, .yaw_deg = YAW, .pitch_deg = PITCH,
                              .fov_deg = FOV};
     vksky_frame f = {.next = &view, .exposure = EV100};

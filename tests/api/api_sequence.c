@@ -123,25 +123,12 @@ int main(int argc, char **argv)
              "sun-elevation=-2:30 --animate yaw=0:60 --render %s/seq_%%d.png", dir);
     run(args);
 
-    vksky_own_device_desc od = {.abi_version = VKSKY_ABI_VERSION, .device_index = -1, .validation = true,
-                                .message = api_message};
-    vksky_context *c = NULL;
-    vksky_result res = vksky_context_create_own(&od, &c);
-    HOST_CHECK(res == VKSKY_SUCCESS, "vksky_context_create_own: %s", vksky_result_name(res));
-    if (!c) return 1;
-    vksky_scene *scene = NULL;
-    res = vksky_scene_from_args((int)(sizeof seq_argv / sizeof *seq_argv), seq_argv, api_message, NULL, &scene);
-    HOST_CHECK(res == VKSKY_SUCCESS && scene, "vksky_scene_from_args: %s", vksky_result_name(res));
-    if (!scene) return 1;
+    vksky_context *c = host_own_context();
+    vksky_scene *scene = host_scene_of_args((int)(sizeof seq_argv / sizeof *seq_argv), seq_argv);
     vksky_readback_config rb = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
-    vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION, .next = &rb, .output = VKSKY_OUTPUT_DISPLAY,
-                             .width = W, .height = H, .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = "scene",
-                             .bloom = true, .units = VKSKY_UNITS_PHOTOMETRIC, .scene = scene};
-    vksky_renderer *r = NULL;
-    res = vksky_renderer_create(c, &d, &r);
-    HOST_CHECK(res == VKSKY_SUCCESS && r, "vksky_renderer_create: %s", vksky_result_name(res));
-    if (!r) return 1;
-    res = vksky_renderer_set_readback_slots(r, 2);
+    vksky_renderer_desc d = host_readback_desc(&rb, scene, W, H, true);
+    vksky_renderer *r = host_renderer(c, &d);
+    vksky_result res = vksky_renderer_set_readback_slots(r, 2);
     HOST_CHECK(res == VKSKY_SUCCESS, "vksky_renderer_set_readback_slots 2: %s", vksky_result_name(res));
 
     /* The host's two command buffers and fences (a ring of two). */

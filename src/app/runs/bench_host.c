@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/runs/bench_host.h"
+#include "app/runs/bench_report.h"
 #include "app/runs/cpu_time.h"
 #include "app/runs/host_ring.h"
 #include "app/runs/sequence_frames.h"
@@ -14,43 +15,24 @@
 #include <string.h>
 #include <time.h>
 
-#define MAX_PASSES 64
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, compare_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /* One frame, waited for (its LUTs into the cache on a miss, as every headless frame); its timed passes in t (count in
  * *n: 0 without timestamps). */
 static int frame(host_commands *h, vksky_renderer *r, const host_view *v, double *wall, vksky_pass_timing *t,
                  uint32_t *n)
 {
     if (host_commands_render(h, r, v, NULL, wall) || vksky_renderer_store_luts(r) != VKSKY_SUCCESS) return 1;
-    if (vksky_renderer_get_timings(r, t, MAX_PASSES, n) != VKSKY_SUCCESS || *n > MAX_PASSES) *n = 0;
+    if (vksky_renderer_get_timings(r, t, BENCH_MAX_PASSES, n) != VKSKY_SUCCESS || *n > BENCH_MAX_PASSES) *n = 0;
     return 0;
 }
 
-/* Per-pass GPU medians, then the frame: the benchmark's output format (one line per pass). */
+/* Per-pass GPU medians, then the frame: the benchmark's output format (app/runs/bench_report.h). */
 static int bench(const options *o, host_commands *h, vksky_renderer *r)
 {
     int n = o->bench_frames, status = 0;
-    double *wall = calloc((size_t)n, sizeof *wall), *gpu_total = calloc((size_t)n, sizeof *gpu_total);
-    double *lut_ms[2] = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double))};
-    double *luts_wall = calloc((size_t)n, sizeof(double));
-    double *per_pass[MAX_PASSES] = {0};
-    const char *names[MAX_PASSES] = {0};
-    int pass_count = 0;
-    vksky_pass_timing t[MAX_PASSES];
+    bench_figures b;
+    if (bench_figures_begin(&b, n)) status = 1;
+    vksky_pass_timing t[BENCH_MAX_PASSES];
     uint32_t c = 0;
-    bool timed = true, multiscatter = false;
     /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. Auto exposure (--auto-exposure, or a
      * photometric PNG among the outputs): the frames meter on the GPU, and the meter's passes are timed too. */
     host_view v = {.yaw_deg = o->view.yaw_deg, .pitch_deg = o->view.pitch_deg, .fov_deg = o->view.fov_deg,
@@ -60,50 +42,20 @@ static int bench(const options *o, host_commands *h, vksky_renderer *r)
     /* LUT passes, measured on their own (a frame recomputes them only when the atmosphere changes). */
     v.force_luts = true;
     for (int i = 0; i < n && !stop_requested() && status == 0; ++i) {
-        status = frame(h, r, &v, &luts_wall[i], t, &c);
-        for (uint32_t k = 0; k < c; ++k) {
-            if (!strcmp(t[k].name, "transmittance_lut")) lut_ms[0][i] = t[k].gpu_ms;
-            if (!strcmp(t[k].name, "multiscatter_lut")) lut_ms[1][i] = t[k].gpu_ms, multiscatter = true;
-        }
+        status = frame(h, r, &v, &b.luts_wall[i], t, &c);
+        for (uint32_t k = 0; k < c; ++k) bench_figures_lut_pass(&b, i, t[k].name, t[k].gpu_ms);
     }
     /* Steady-state frames. The process's CPU time over them too: on a CPU device (lavapipe) that is the frame's
      * work whatever else the machine runs, where wall and timestamp times grow with the machine's load. */
     v.force_luts = false;
-    double cpu_start = process_cpu_ms();
+    b.cpu_start = process_cpu_ms();
     for (int i = 0; i < n && !stop_requested() && status == 0; ++i) {
-        status = frame(h, r, &v, &wall[i], t, &c);
-        timed = timed && c > 0;
-        double total = 0;
-        for (uint32_t k = 0; k < c; ++k) {
-            int slot = -1;
-            for (int p = 0; p < pass_count; ++p)
-                if (!strcmp(names[p], t[k].name)) slot = p;
-            if (slot < 0 && pass_count < MAX_PASSES) {
-                slot = pass_count++;
-                names[slot] = t[k].name;   /* valid while the renderer lives */
-                per_pass[slot] = calloc((size_t)n, sizeof(double));
-            }
-            if (slot >= 0) per_pass[slot][i] += t[k].gpu_ms;   /* repeated passes (bloom) add up per frame */
-            total += t[k].gpu_ms;
-        }
-        gpu_total[i] = total;
+        status = frame(h, r, &v, &b.wall[i], t, &c);
+        b.timed = b.timed && c > 0;
+        for (uint32_t k = 0; k < c; ++k) bench_figures_pass(&b, i, t[k].name, t[k].gpu_ms);   /* names: the renderer's */
     }
-    if (stop_requested() || status) n = 0;   /* the graceful stop: no figures from a cut-short run */
-    double cpu_per_frame = n ? (process_cpu_ms() - cpu_start) / n : 0.0;
-    if (n && timed) {
-        printf("pass transmittance_lut gpu_ms %.4f\n", median(lut_ms[0], n));
-        if (multiscatter) printf("pass multiscatter_lut gpu_ms %.4f\n", median(lut_ms[1], n));
-        for (int p = 0; p < pass_count; ++p) printf("pass %s gpu_ms %.4f\n", names[p], median(per_pass[p], n));
-    }
-    if (n) printf("frame gpu_ms %.4f wall_ms %.4f\n", timed ? median(gpu_total, n) : -1.0, median(wall, n));
-    if (n) printf("frame cpu_ms %.4f\n", cpu_per_frame);
-    if (n) printf("frame_luts wall_ms %.4f\n", median(luts_wall, n));
-    free(luts_wall);
-    for (int p = 0; p < pass_count; ++p) free(per_pass[p]);
-    free(lut_ms[0]);
-    free(lut_ms[1]);
-    free(wall);
-    free(gpu_total);
+    bench_report_print(&b, stop_requested() || status ? 0 : n);   /* the graceful stop: no figures from a cut-short run */
+    bench_figures_end(&b);
     return status;
 }
 
@@ -114,14 +66,13 @@ static int bench_sequence(const options *o, vksky_context *ctx, vksky_scene *sce
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     double cpu_start = process_cpu_ms();
-    int status = sequence_host_render(o, ctx, scene, r, NULL);
+    int status = sequence_host_render(o, ctx, scene, r, NULL, NULL);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double s = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
     int frames = o->frame_last - o->frame_first + 1;
     if (status == 0)
-        printf("sequence frames %d outputs %d wall_s %.3f frames_per_s %.2f cpu_ms_per_frame %.2f readback_slots %d "
-               "threads %d\n", frames, o->output_count, s, frames / s, (process_cpu_ms() - cpu_start) / frames,
-               host_ring_slots_wanted(), io_encode_threads());
+        bench_report_sequence(frames, o->output_count, s, process_cpu_ms() - cpu_start, host_ring_slots_wanted(),
+                              io_encode_threads());
     return status;
 }
 

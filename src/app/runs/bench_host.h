@@ -1,7 +1,7 @@
 /* --bench N with --render as a host of include/vksky.h (issue 25 item 1): per-pass GPU medians from
  * vksky_renderer_get_timings, the LUT passes from frames with frame.force_luts, wall and CPU time per frame; then a
- * sequence's frames to disk, timed (app/runs/sequence_host.c). The same lines as app/runs/headless.c's bench. No src/sky
- * or src/lib header (tests/layering_test.sh). */
+ * sequence's frames to disk, timed (app/runs/sequence_host.c). The same lines as app/runs/headless.c's bench: one
+ * report (app/runs/bench_report.h). No src/sky or src/lib header (tests/layering_test.sh). */
 #ifndef VKSKY_APP_BENCH_HOST_H
 #define VKSKY_APP_BENCH_HOST_H
 #include <volk.h>

@@ -1,8 +1,8 @@
 #include "app/runs/headless.h"
 #include "app/scene/render_values.h"
 #include "app/scene/light.h"
+#include "app/runs/bench_report.h"
 #include "app/runs/cpu_time.h"
-#include "app/runs/frame_ring.h"
 #include "app/runs/headless_api.h"
 #include "app/runs/sequence.h"
 #include "app/runs/sequence_host.h"
@@ -17,88 +17,42 @@
 #include <string.h>
 #include <time.h>
 
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, compare_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-/* Per-pass GPU medians, then the frame: the benchmark's output format (one line per pass). */
+/* Per-pass GPU medians, then the frame: the benchmark's output format (app/runs/bench_report.h). */
 static void bench(const options *o, sky_renderer *r)
 {
-    enum { MAX_PASSES = GPU_TIMER_MAX };
     int n = o->bench_frames;
-    double *wall = calloc((size_t)n, sizeof *wall), *gpu_total = calloc((size_t)n, sizeof *gpu_total);
-    double *per_pass[MAX_PASSES] = {0};
-    const char *names[MAX_PASSES] = {0};
-    int pass_count = 0;
-    double ms[MAX_PASSES];
-
+    double ms[GPU_TIMER_MAX];
+    bench_figures b;
+    if (bench_figures_begin(&b, n)) n = 0;
     /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. Auto exposure (--auto-exposure, or a
      * photometric PNG among the outputs): the frames meter on the GPU, and the meter's passes are timed too. */
     sky_view view = o->view;
     view.auto_exposure = o->auto_exposure || light_auto_exposure_wanted(o);
     frame_desc f = {.view = &view};
-    for (int i = 0; i < 3 && !stop_requested(); ++i) sky_renderer_render(r, &f);
+    for (int i = 0; i < 3 && n && !stop_requested(); ++i) sky_renderer_render(r, &f);
 
     /* LUT passes, measured on their own (a frame recomputes them only when the atmosphere changes). */
     frame_desc with_luts = {.view = &view, .force_luts = true};
-    double *lut_ms[2] = {calloc((size_t)n, sizeof(double)), calloc((size_t)n, sizeof(double))};
     /* With --async-luts the LUT passes are timed on the compute queue's own timer. The wall time of these frames
      * (each rebuilds the LUTs, as an animated sun does) is tools/async_bench.sh's figure. */
     gpu_timer *lt = r->ctx->compute_queue ? &r->lut_timer : &r->timer;
-    double *luts_wall = calloc((size_t)n, sizeof(double));
     for (int i = 0; i < n && !stop_requested(); ++i) {
-        luts_wall[i] = sky_renderer_render(r, &with_luts);
+        b.luts_wall[i] = sky_renderer_render(r, &with_luts);
         uint32_t c = gpu_timer_read(r->ctx, lt, ms);
-        for (uint32_t k = 0; k < c; ++k) {
-            if (!strcmp(lt->names[k], "transmittance_lut")) lut_ms[0][i] = ms[k];
-            if (!strcmp(lt->names[k], "multiscatter_lut")) lut_ms[1][i] = ms[k];
-        }
+        for (uint32_t k = 0; k < c; ++k) bench_figures_lut_pass(&b, i, lt->names[k], ms[k]);
     }
     /* Steady-state frames. The process's CPU time over them too: on a CPU device (lavapipe) that is the frame's
      * work whatever else the machine runs, where wall and timestamp times grow with the machine's load. */
-    double cpu_start = process_cpu_ms();
+    b.cpu_start = process_cpu_ms();
     for (int i = 0; i < n && !stop_requested(); ++i) {
-        wall[i] = sky_renderer_render(r, &f);
+        b.wall[i] = sky_renderer_render(r, &f);
         uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
-        double total = 0;
-        for (uint32_t k = 0; k < c; ++k) {
-            int slot = -1;
-            for (int p = 0; p < pass_count; ++p)
-                if (!strcmp(names[p], r->timer.names[k])) slot = p;
-            if (slot < 0 && pass_count < MAX_PASSES) {
-                slot = pass_count++;
-                names[slot] = r->timer.names[k];
-                per_pass[slot] = calloc((size_t)n, sizeof(double));
-            }
-            if (slot >= 0) per_pass[slot][i] += ms[k];    /* repeated passes (bloom) add up per frame */
-            total += ms[k];
-        }
-        gpu_total[i] = total;
+        for (uint32_t k = 0; k < c; ++k) bench_figures_pass(&b, i, r->timer.names[k], ms[k]);
     }
-    if (stop_requested()) n = 0;   /* the graceful stop: no figures from a cut-short run */
-    double cpu_per_frame = n ? (process_cpu_ms() - cpu_start) / n : 0.0;
-    if (n && r->timer.enabled) {
-        printf("pass transmittance_lut gpu_ms %.4f\n", median(lut_ms[0], n));
-        if (r->variant.multiscatter) printf("pass multiscatter_lut gpu_ms %.4f\n", median(lut_ms[1], n));
-        for (int p = 0; p < pass_count; ++p) printf("pass %s gpu_ms %.4f\n", names[p], median(per_pass[p], n));
-    }
-    if (n) printf("frame gpu_ms %.4f wall_ms %.4f\n", r->timer.enabled ? median(gpu_total, n) : -1.0, median(wall, n));
-    if (n) printf("frame cpu_ms %.4f\n", cpu_per_frame);
-    if (n) printf("frame_luts wall_ms %.4f%s\n", median(luts_wall, n), r->ctx->compute_queue ? " async" : "");
-    free(luts_wall);
-    for (int p = 0; p < pass_count; ++p) free(per_pass[p]);
-    free(lut_ms[0]);
-    free(lut_ms[1]);
-    free(wall);
-    free(gpu_total);
+    b.timed = r->timer.enabled, b.multiscatter = r->variant.multiscatter;
+    b.async = r->ctx->compute_queue != VK_NULL_HANDLE;
+    bench_report_print(&b, stop_requested() ? 0 : n);   /* the graceful stop: no figures from a cut-short run */
+    bench_figures_end(&b);
 }
 
 /* VKSKY_FRAMES=N (tests): N frames recorded back to back into one command buffer, the LUTs recomputed in every
@@ -145,19 +99,17 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
 /* --bench with --render and a sequence (issue 27): the frames to disk, timed from the first frame's submit to the
  * last file (the renderer is warm: bench() ran first). Frames per second to disk, and the process's CPU time per
  * frame (on a CPU device, lavapipe, that is the work whatever else the machine runs). */
-static int bench_sequence(const options *o, sky_renderer *r, int slots)
+static int bench_sequence(const options *o, sky_renderer *r)
 {
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
     double cpu_start = process_cpu_ms();
-    int status = sequence_render(o, r, render_frames, slots, NULL);
+    int status = sequence_render(o, r, render_frames);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double s = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
     int frames = o->frame_last - o->frame_first + 1;
     if (status == 0)
-        printf("sequence frames %d outputs %d wall_s %.3f frames_per_s %.2f cpu_ms_per_frame %.2f readback_slots %d "
-               "threads %d\n", frames, o->output_count, s, frames / s, (process_cpu_ms() - cpu_start) / frames, slots,
-               io_encode_threads());
+        bench_report_sequence(frames, o->output_count, s, process_cpu_ms() - cpu_start, 0, io_encode_threads());
     return status;
 }
 
@@ -180,13 +132,14 @@ static int finish(gpu_context *ctx, int status, bool timings)
 static int run_checked(const options *o);
 
 /* The runs that go through the public API as its host (app/runs/headless_api.c; docs/library.md's status): one
- * perspective frame to files, sequences and --skip-existing (app/runs/sequence_host.c), --timings, --bench with
- * --render (app/runs/bench_host.c). Bands and environment maps, --bench alone, --spectral, --async-luts with a sequence
- * or --bench, and the tests' VKSKY_FRAMES loop still call src/sky here. */
+ * perspective frame to files, sequences and --skip-existing (app/runs/sequence_host.c), --async-luts (the LUTs on the
+ * compute queue: app/runs/host_async.c), the tests' VKSKY_FRAMES loop, --timings, --bench with --render
+ * (app/runs/bench_host.c), environment maps and images in bands (app/runs/tiles.c). --bench alone or with
+ * --async-luts, and --spectral, still call src/sky here. */
 static bool api_host_wanted(const options *o)
 {
-    return o->output_count > 0 && (o->bench_frames == 0 || !o->async_luts) && !tiles_in_bands(o) && !o->spectral &&
-           ((!sequence_active(o) && !o->skip_existing) || sequence_host_wanted(o)) && !getenv("VKSKY_FRAMES");
+    return o->output_count > 0 && (o->bench_frames == 0 || !o->async_luts) &&
+           (o->bench_frames == 0 || !tiles_in_bands(o)) && !o->spectral;
 }
 
 int headless_run(const options *given)
@@ -230,7 +183,11 @@ static int run_checked(const options *o)
         vksky_context_desc device = {
             .abi_version = VKSKY_ABI_VERSION, .get_instance_proc_addr = vkGetInstanceProcAddr,
             .instance = ctx.instance, .physical_device = ctx.physical, .device = ctx.device,
-            .queue_family = ctx.queue_family, .queue_index = 0, .pipeline_cache = ctx.pipeline_cache};
+            .queue_family = ctx.queue_family, .queue_index = 0, .pipeline_cache = ctx.pipeline_cache,
+            /* --async-luts: the compute queue the device was made with (the main queue itself under
+             * VKSKY_ASYNC_ONE_QUEUE=1), for vksky_record_luts. */
+            .compute_queue = ctx.compute_queue != VK_NULL_HANDLE, .compute_queue_family = ctx.compute_family,
+            .compute_queue_index = ctx.compute_index};
         /* What the CLI's device creation enabled: the memory model too where the device has it (single-pass SPD). */
         vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
                                              .vulkan_memory_model = ctx.memory_model_device_scope,
@@ -238,9 +195,6 @@ static int run_checked(const options *o)
         return finish(&ctx, headless_api_render(o, &device, &enabled, gpu_cache_dir(&ctx)), o->timings);
     }
     if (o->trace_barriers) gpu_barrier_trace(stdout);
-    /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/runs/tiles.c). */
-    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
-        return finish(&ctx, tiles_render(o, &ctx), o->timings);
 
     sky_renderer r;
     render_scene scene;
@@ -260,15 +214,12 @@ static int run_checked(const options *o)
         gpu_barrier_trace(NULL);
         bench(o, &r);
         if (o->output_count > 0 && sequence_active(o) && !stop_requested())
-            status = bench_sequence(o, &r, getenv("VKSKY_FRAMES") ? 0 : frame_ring_slots_wanted());
+            status = bench_sequence(o, &r);   /* --async-luts: one frame at a time, its LUTs on the compute queue */
     } else {
-        /* One frame, or the frames of a sequence: pipelined through the readback ring (app/runs/frame_ring.h) unless
-         * the tests' VKSKY_FRAMES loop records frames its own way; --spectral: each frame once per wavelength
-         * group, combined on the host before it is written (the serial loop). */
-        int slots = getenv("VKSKY_FRAMES") || o->spectral ? 0 : frame_ring_slots_wanted();
+        /* A frame with no output (its traces), or --spectral: each frame once per wavelength group, combined on the
+         * host before it is written (the serial loop). */
         if (o->spectral) spectral_render_begin(o, render_frames);
-        status = sequence_render(o, &r, o->spectral ? spectral_render_frame : render_frames, slots,
-                                 o->trace_barriers ? stdout : NULL);
+        status = sequence_render(o, &r, o->spectral ? spectral_render_frame : render_frames);
     }
     sky_renderer_destroy(&r);
     return finish(&ctx, status, o->timings);

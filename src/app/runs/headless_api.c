@@ -9,6 +9,7 @@
 #include "app/runs/host_ring.h"
 #include "app/runs/startup.h"
 #include "app/runs/stop.h"
+#include "app/runs/tiles.h"
 #include "app/scene/light.h"
 #include <math.h>
 #include <stdio.h>
@@ -75,6 +76,7 @@ static int render_and_write(const options *o, host_commands *h, vksky_renderer *
                    .exposure = view->exposure_ev, .auto_exposure = auto_exposure,
                    .projection = (vksky_projection)view->projection, .whole_width = (uint32_t)o->width,
                    .whole_height = (uint32_t)o->height};
+    h->frames = host_frames_wanted();   /* the tests' VKSKY_FRAMES loop (host_ring.h) */
     int status = host_commands_render(h, r, &v, o->trace_barriers ? stdout : NULL, NULL);
     if (status == 0 && auto_exposure) status = print_metered(o, view, r);
     /* A LUT cache miss: the LUTs this frame computed, into the cache for the next start (a hit or none: nothing). */
@@ -106,16 +108,19 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     vksky_renderer *r = NULL;
     int status = 1;
     host_commands h = {0};
+    host_async async = {0};
     /* The command line's scene, view and quality (flags over a --scene file), parsed again by the API's loader:
      * the same parser, so the same values. */
-    /* A map is drawn at full size (a band's rows are its own, as tiles.c draws them): the command line, at scale 1. */
+    /* A map, or an image in several bands (app/runs/tiles.c), is drawn at full size (a band's rows are its own): the
+     * command line, at scale 1. */
     bool is_map = o->view.projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE;
+    bool banded = o->bench_frames == 0 && tiles_in_bands(o);
     char **argv = malloc(((size_t)o->argc + 2) * sizeof *argv);
     if (!argv) goto done;
     int argc = o->argc;
     memcpy(argv, o->argv, (size_t)argc * sizeof *argv);
-    if (is_map) {
-        tiles_note_render_scale(o);
+    if (is_map || banded) {
+        tiles_begin_notes(o);
         argv[argc++] = "--render-scale=1";
     }
     argv[argc] = NULL;
@@ -125,28 +130,36 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
     vksky_renderer_desc rd = {
         .abi_version = VKSKY_ABI_VERSION, .next = &readback, .output = VKSKY_OUTPUT_DISPLAY,
-        .width = (uint32_t)o->width, .height = (uint32_t)o->height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
-        .quality = "scene", .bloom = o->view.bloom,
+        .width = (uint32_t)o->width, .height = (uint32_t)(banded ? tiles_frame_rows(o) : o->height),
+        .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = "scene", .bloom = o->view.bloom && !banded,
         .units = o->units == OPTIONS_UNITS_RELATIVE ? VKSKY_UNITS_RELATIVE : VKSKY_UNITS_PHOTOMETRIC, .scene = scene};
     if (vksky_renderer_create(ctx, &rd, &r) != VKSKY_SUCCESS) goto done;
     if (o->trace_passes)
         vksky_context_set_trace(ctx, (o->trace_barriers ? VKSKY_TRACE_BARRIERS : 0u) | VKSKY_TRACE_PASSES,
                                 print_trace, NULL);
     if (host_commands_create(&h, ctx)) goto done;
+    /* --async-luts: the LUT passes on the compute queue the device was made with (app/runs/host_async.h). */
+    if (o->async_luts) {
+        if (host_async_create(&async, ctx, device->compute_queue_index, o->trace_barriers ? stdout : NULL)) goto done;
+        h.async = &async;
+    }
     /* Stopped while the device and the renderer were made: nothing to render (stop_status says why). */
     /* A sequence (or --skip-existing): the frames through the host's readback ring or one at a time
-     * (app/runs/sequence_host.c); else the one frame. */
+     * (app/runs/sequence_host.c); an image in several bands, band by band (app/runs/tiles.c); else the one frame. */
     if (stop_requested()) {
         status = 0;
     } else if (o->bench_frames > 0) {
         /* --bench: no barrier trace over its frames (the pass trace stays, as the CLI's own bench keeps it). */
         vksky_context_set_trace(ctx, o->trace_passes ? VKSKY_TRACE_PASSES : 0u, print_trace, NULL);
         status = bench_host_run(o, ctx, scene, r);
+    } else if (banded) {
+        status = tiles_render(o, ctx, r, &h, o->trace_barriers ? stdout : NULL);
     } else if (sequence_active(o) || o->skip_existing)
-        status = sequence_host_render(o, ctx, scene, r, o->trace_barriers ? stdout : NULL);
+        status = sequence_host_render(o, ctx, scene, r, h.async, o->trace_barriers ? stdout : NULL);
     else status = render_and_write(o, &h, r);
 done:
     host_commands_destroy(&h);
+    host_async_destroy(&async);
     vksky_renderer_destroy(r);
     vksky_scene_destroy(scene);
     vksky_context_destroy(ctx);

@@ -1,5 +1,5 @@
 /* The host's readback ring (host_ring.h). The producer is the caller's thread: it records (vksky_record) and submits.
- * The consumers are threads of ours (one, or several encoding frames at once: issue 27, as frame_ring.c): each waits
+ * The consumers are threads of ours (one, or several encoding frames at once: issue 27): each waits
  * for its frame's fence, reads the slot (vksky_renderer_get_readback_slot, which touches only that slot: it may run
  * beside the recording of other slots and beside other consumers) and hands the pixels on. Frames retire in order. */
 #ifndef _POSIX_C_SOURCE
@@ -28,13 +28,17 @@ int host_record(vksky_renderer *r, VkCommandBuffer cmd, const host_view *v, uint
     /* The view as the command line gave it: the sky pass's own rays from yaw, pitch and fov. */
     vksky_frame_view given = {.type = VKSKY_STRUCTURE_TYPE_FRAME_VIEW, .yaw_deg = v->yaw_deg,
                               .pitch_deg = v->pitch_deg, .fov_deg = v->fov_deg};
-    /* An environment map (one band: the whole image): the projection gives each pixel its direction, not the view. */
-    vksky_frame_band map = {.type = VKSKY_STRUCTURE_TYPE_FRAME_BAND, .projection = v->projection,
-                            .whole_width = v->whole_width, .whole_height = v->whole_height};
+    /* An environment map (one band: the whole image, or a band of it): the projection gives each pixel its direction,
+     * not the view. A perspective band keeps the view (chained after the band). */
     bool is_map = v->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE;
+    vksky_frame_band map = {.type = VKSKY_STRUCTURE_TYPE_FRAME_BAND, .next = is_map ? NULL : &given,
+                            .projection = v->projection, .whole_width = v->whole_width,
+                            .whole_height = v->whole_height, .first_row = v->first_row,
+                            .meter_first_row = v->meter_first_row, .meter_rows = v->meter_rows};
     /* The slot's pair of readback buffers; auto exposure's result beside it (one per frame in flight). */
     vksky_readback_target target = {.type = VKSKY_STRUCTURE_TYPE_READBACK_TARGET,
-                                    .next = is_map ? (const void *)&map : (const void *)&given, .slot = slot};
+                                    .next = is_map || v->band ? (const void *)&map : (const void *)&given,
+                                    .slot = slot, .follows_frame = v->follows_frame};
     vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, .next = &target, .slot = slot};
     vksky_frame frame = {.next = v->auto_exposure ? (const void *)&metered : (const void *)&target,
                          .exposure = v->exposure, .force_luts = v->force_luts};
@@ -74,17 +78,39 @@ static double now_ms(void)
     return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
 }
 
-int host_commands_render(host_commands *h, vksky_renderer *r, const host_view *v, FILE *trace, double *wall_ms)
+int host_frames_wanted(void)
 {
+    const char *env = getenv("VKSKY_FRAMES");
+    int n = env ? atoi(env) : 1;
+    return n < 1 ? 1 : n > 16 ? 16 : n;
+}
+
+/* Frames first .. first + count - 1 of a render (frame k > 0 rebuilds the LUTs) into h's command buffer, submitted
+ * (after the LUT passes on the compute queue, with h->async) and waited for. */
+static int render_frames(host_commands *h, vksky_renderer *r, const host_view *v, int first, int count, FILE *trace,
+                         double *wall_ms)
+{
+    VkSemaphoreSubmitInfo wait, signal;
+    uint32_t waits = 0;
+    bool luts_waited = false;
+    if (h->async && host_async_luts(h->async, r, v->force_luts || first > 0, &luts_waited)) return 1;
     if (trace) fputs("commands\n", trace);   /* the host's command buffer, as the CLI's trace names one */
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
+    for (int k = first; k < first + count; ++k) {
+        host_view f = *v;
+        /* With the LUTs on the compute queue (recorded above) the frame records none. */
+        f.force_luts = !h->async && (v->force_luts || k > 0);
+        f.follows_frame = k > first;   /* the readback copies' write-after-write: a barrier of the spine's */
+        if (host_record(r, h->cmd, &f, 0) != 0) return 1;
+    }
+    if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
+    if (h->async) waits = host_async_frame(h->async, luts_waited, &wait, &signal);
     VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
-                           .pCommandBufferInfos = &cinfo};
-    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS ||
-        host_record(r, h->cmd, v, 0) != 0 || vkEndCommandBuffer(h->cmd) != VK_SUCCESS)
-        return 1;
+    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = waits,
+                           .pWaitSemaphoreInfos = &wait, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cinfo,
+                           .signalSemaphoreInfoCount = h->async ? 1 : 0, .pSignalSemaphoreInfos = &signal};
     double t0 = now_ms();
     VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
     if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
@@ -95,6 +121,19 @@ int host_commands_render(host_commands *h, vksky_renderer *r, const host_view *v
         return 1;
     }
     return 0;
+}
+
+int host_commands_render(host_commands *h, vksky_renderer *r, const host_view *v, FILE *trace, double *wall_ms)
+{
+    int n = h->frames > 1 ? h->frames : 1;
+    /* --async-luts: each frame is its own pair of submissions (the LUTs on the compute queue, the frame on the
+     * graphics queue), which synchronization validation checks across submissions and queues. */
+    if (h->async) {
+        for (int k = 0; k < n; ++k)
+            if (render_frames(h, r, v, k, 1, trace, wall_ms)) return 1;
+        return 0;
+    }
+    return render_frames(h, r, v, 0, n, trace, wall_ms);
 }
 
 void host_timings_frame_end(vksky_renderer *r)

@@ -1,4 +1,4 @@
-/* The readback ring of a host of include/vksky.h (issue 25 item 1; the same ring as app/runs/frame_ring.h, issue 27):
+/* The readback ring of a host of include/vksky.h (issue 25 item 1; issue 27's ring, the command line's only one):
  * the GPU renders frame N+1 while a consumer thread writes frame N. The ring is the host's — its slots in turn, its
  * command buffers and fences, its three waits (docs/synchronization.md, "The readback ring"):
  *
@@ -13,6 +13,7 @@
 #define VKSKY_APP_HOST_RING_H
 #include <volk.h>
 #include <vksky.h>
+#include "app/runs/host_async.h"
 #include "app/runs/sequence_frames.h"
 #include <pthread.h>
 #include <stdio.h>
@@ -29,6 +30,12 @@ typedef struct host_view {
     bool force_luts;             /* the LUT passes even if the scene did not change (--bench) */
     vksky_projection projection; /* 0: perspective (the view's rays) */
     uint32_t whole_width, whole_height;   /* a map's size: the renderer's */
+    /* A band of the whole image (app/runs/tiles.c, vksky_frame_band): its first row there, and the rows of the frame
+     * auto exposure's meter counts (0: every row). */
+    bool band;
+    int32_t first_row;
+    uint32_t meter_first_row, meter_rows;
+    bool follows_frame;          /* an earlier frame was recorded into the same command buffer (VKSKY_FRAMES) */
 } host_view;
 
 /* Records one frame of `v` into cmd (begun): its pixels into readback slot `slot`, auto exposure's result in meter slot
@@ -42,7 +49,15 @@ typedef struct host_commands {
     VkCommandPool pool;
     VkCommandBuffer cmd;
     VkFence fence;
+    host_async *async;           /* --async-luts: the LUT passes on the compute queue first (NULL: in the frame) */
+    /* VKSKY_FRAMES=N (tests; host_frames_wanted): each render is N frames, the LUTs rebuilt in every frame after the
+     * first, recorded back to back into the one command buffer (each its own pair of submissions with --async-luts).
+     * The queue then sees frames in flight, and synchronization validation each frame's first use of an image after
+     * the previous frame's last (the write-after-read barriers that only matter from the second frame on). */
+    int frames;
 } host_commands;
+/* VKSKY_FRAMES: 1..16 (1 when unset). */
+int host_frames_wanted(void);
 /* 0, or 1 (the line printed). */
 int host_commands_create(host_commands *h, vksky_context *ctx);
 void host_commands_destroy(host_commands *h);
@@ -57,7 +72,7 @@ void host_timings_frame_end(vksky_renderer *r);
 /* The consumer, on one of the ring's threads: non-zero stops the ring. `job` is freed by the ring. With one consumer
  * thread frames are consumed in submission order; with several, frames N and N+1 are consumed at once, each on its
  * own thread: the function must be safe to run concurrently and order what must be ordered itself
- * (host_ring_wait_turn), as frame_ring.h's. */
+ * (host_ring_wait_turn). */
 typedef int (*host_ring_consume_fn)(void *user, const frame_ring_pixels *px, void *job);
 /* Optional: once per consumed frame in submission order, under the ring's lock, after its consume returned (a progress
  * line, counts). Not called for frames after a failure. */
@@ -99,7 +114,7 @@ typedef struct host_ring {
 
 /* The number of slots a run uses: VKSKY_READBACK_SLOTS (0 or 1: one frame at a time, no ring; default 2). */
 int host_ring_slots_wanted(void);
-/* Frames a sequence encodes at once (consumer threads) for images of `pixels`: frame_ring.h's rule
+/* Frames a sequence encodes at once (consumer threads) for images of `pixels`
  * (VKSKY_ENCODE_FRAMES, else one per 4 encode threads, at most 3, ~1 GiB in flight at most; app/runs/ring_order.h). */
 int host_ring_consumers_wanted(long pixels);
 /* A ring of `slots` (2..HOST_RING_MAX_SLOTS) over r (a readback renderer: given that many readback slots) with

@@ -1,7 +1,6 @@
-/* What the two readback rings share (issue 27: several frames encoding at once): app/runs/frame_ring.h, the CLI's own
- * ring over the renderer, and app/runs/host_ring.h, a host's of include/vksky.h. How many frames a run encodes at once
- * is one rule for both, so a sequence encodes the same way on either path. No src/sky or src/lib header (host_ring.c
- * is an API host: tests/layering_test.sh). */
+/* The readback ring's rules (issue 27: several frames encoding at once), for app/runs/host_ring.h, the command line's
+ * ring as a host of include/vksky.h (its own ring over the renderer, frame_ring.c, went in 25i). No src/sky or
+ * src/lib header (host_ring.c is an API host: tests/layering_test.sh). */
 #ifndef VKSKY_APP_RING_ORDER_H
 #define VKSKY_APP_RING_ORDER_H
 

@@ -2,7 +2,6 @@
 #include "app/runs/sequence.h"
 #include "app/scene/render_values.h"
 #include "app/runs/exr_header.h"
-#include "app/runs/frame_ring.h"
 #include "app/scene/light.h"
 #include "app/cli/options.h"
 #include "app/cli/options_sequence.h"
@@ -120,7 +119,7 @@ static bool is_exr(const char *path)
 
 /* The frame's files; EXRs with the header that says how they were made (exr_header.h). */
 /* `first` (PATH_MAX bytes) gets the first output's path (the progress line's). Safe on several threads at once (frames
- * encoded together: frame_ring.h, host_ring.h). */
+ * encoded together: host_ring.h). */
 int sequence_write_outputs(const options *o, const frame_ring_pixels *px, int frame, bool sequence, char *first)
 {
     char err[512];
@@ -233,133 +232,7 @@ static int sequence_render_serial(const options *base, sky_renderer *r, sequence
     return 0;
 }
 
-/* The pipelined loop's job for a frame: what the consumer needs to write it. */
-typedef struct frame_job {
-    options f;
-    int frame;
-    long seq;              /* its place among the frames submitted to the ring */
-    bool luts;
-    char path[PATH_MAX];   /* its first file (the progress line's) */
-} frame_job;
-
-typedef struct consumer_state {
-    const options *base;
-    frame_ring *ring;
-    int share;     /* encode threads of each frame when several are encoded at once (io_encode_threads_local) */
-    int done;      /* frames written (retired, in order) */
-    int skipped;   /* frames kept (--skip-existing): counted by the producer while the consumers are idle */
-} consumer_state;
-
-typedef struct commit_turn {
-    frame_ring *ring;
-    long seq;
-} commit_turn;
-
-/* io_commit_gate_fn: a frame's files are renamed into place only after every earlier frame's, so frames encoded at
- * once still appear in order (a stop keeps the first frames, never a gap; --skip-existing resumes after them). */
-static void commit_gate(void *user)
+int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render)
 {
-    const commit_turn *t = user;
-    frame_ring_wait_turn(t->ring, t->seq);
-}
-
-/* frame_ring_consume_fn: a frame's files, on one of the ring's threads (several frames at once with
- * VKSKY_ENCODE_FRAMES or many cores: frame_ring_consumers_wanted). */
-static int consume_frame(void *user, const frame_ring_pixels *px, void *job)
-{
-    consumer_state *c = user;
-    frame_job *j = job;
-    commit_turn turn = {c->ring, j->seq};
-    io_encode_threads_local(c->share);
-    io_atomic_set_commit_gate(c->ring->consumers > 1 ? commit_gate : NULL, &turn);
-    int rc = stop_requested() || sequence_write_outputs(&j->f, px, j->frame, true, j->path) != 0;
-    io_atomic_set_commit_gate(NULL, NULL);
-    return rc;
-}
-
-/* frame_ring_retire_fn: the frame's line, in frame order. */
-static void retire_frame(void *user, void *job)
-{
-    consumer_state *c = user;
-    const frame_job *j = job;
-    ++c->done;
-    sequence_frame_line(c->base, j->frame, c->done + c->skipped, j->path, j->luts);
-}
-
-/* The pipelined loop (frame_ring.h): frame N+1 renders while frame N is written. Same frames, same files, same
- * order and lines as the serial loop. */
-static int sequence_render_ring(const options *base, sky_renderer *r, int slots, FILE *trace)
-{
-    frame_ring ring;
-    /* Several frames encode at once where there are cores to spare (frame_ring_consumers_wanted), each on a share of
-     * the encode threads: what stays serial per frame (its float conversion, header, fsync) then overlaps. */
-    int consumers = frame_ring_consumers_wanted((long)base->width * base->height);
-    if (consumers > 1 && slots < consumers + 1) slots = consumers + 1;
-    int threads = io_encode_threads_all();
-    int share = consumers > 1 ? threads / consumers : 0;
-    if (consumers > 1 && threads > 1 && share < 2) share = 2;   /* a PNG's blocks need > 1 (png_parallel.h) */
-    consumer_state state = {.base = base, .ring = &ring, .share = share};
-    if (frame_ring_create(&ring, r, slots, consumers, consume_frame, retire_frame, &state, trace)) return 1;
-    stage_begin();
-    int lut_computations = 0, status = 0;
-    render_scene last;
-    bool have_last = false;
-    for (int i = base->frame_first; i <= base->frame_last && !stop_requested() && status == 0; ++i) {
-        stage_mark produce_start = stage_mark_now();
-        frame_job *j = calloc(1, sizeof *j);
-        if (!j || sequence_frame_options(base, i, &j->f)) {
-            free(j);
-            status = 1;
-            break;
-        }
-        /* --skip-existing: the progress lines stay in frame order and the counts settled, so the frames before this
-         * one are written (the consumer idle) before a kept frame's line is printed. Only where the files exist. */
-        if (base->skip_existing && sequence_resume_exists(&j->f, i)) {
-            status = frame_ring_settle(&ring);
-            if (status == 0 && sequence_resume_skip(&j->f, i, frame_count(base), state.done + state.skipped + 1,
-                                                    base->frame_last - base->frame_first + 1)) {
-                ++state.skipped;
-                free(j);
-                continue;
-            }
-            if (status) {
-                free(j);
-                break;
-            }
-        }
-        /* What the renderer is given; a change means a host write of the uniform block (ring.drain first). Compared
-         * bytewise (render_scene_of zeroes the padding: no needless drain). */
-        render_scene in;
-        render_scene_of(&j->f, &in);
-        if (!have_last || memcmp(&in, &last, sizeof in)) {
-            /* The uniform block (and maybe pipelines, LUTs) change: no frame in flight may still read them. */
-            if (have_last) frame_ring_drain(&ring);
-            render_scene_set(r, &in);
-            last = in, have_last = true;
-        }
-        j->frame = i, j->seq = ring.submitted;
-        j->luts = sky_renderer_luts_dirty(r);
-        lut_computations += j->luts;
-        /* The view lives in push constants, recorded into this frame's command buffer: j->f outlives the record. */
-        j->f.view.auto_exposure = light_auto_exposure_wanted(&j->f);   /* metered on the GPU, as the serial loop */
-        frame_desc desc = {.view = &j->f.view};
-        status = frame_ring_submit(&ring, &desc, j);
-        stage_add_since(STAGE_PRODUCE, produce_start);
-    }
-    int consumed = frame_ring_finish(&ring);
-    if (status == 0) status = consumed;
-    if (base->timings && status == 0)
-        stage_report(stderr, "sequence", state.done, "frame", ring.consumers, share ? share : threads);
-    if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
-    if (status == 0) sequence_summary_line(base, state.done, state.skipped, lut_computations);
-    return status;
-}
-
-int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render, int slots, FILE *trace)
-{
-    /* The ring pays off from two frames on; one frame (and the tests' VKSKY_FRAMES loop) keeps the serial path. */
-    /* Auto exposure (a photometric PNG) is metered on the GPU inside each frame (sky/meter.h): the ring too. */
-    if (slots >= 2 && sequence_active(base) && base->frame_last > base->frame_first)
-        return sequence_render_ring(base, r, slots, trace);
     return sequence_render_serial(base, r, render);
 }

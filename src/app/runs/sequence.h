@@ -16,10 +16,10 @@
 int sequence_check(options *base);
 
 typedef void (*sequence_render_fn)(sky_renderer *r, const frame_desc *f);
-/* Render the range's frames with r (made for base), writing each frame's outputs; the LUTs are recomputed only when a
- * frame changes their inputs (counted; stderr: a line per frame and a summary in a sequence, not with --quiet). With
- * slots >= 2, a sequence of two frames or more is pipelined (app/runs/frame_ring.h: frame N+1 renders while frame N is
- * written; the same files, bytes and order); trace: the ring's waits (--trace-barriers; NULL: none). `render` is the
- * serial loop's (the tests' VKSKY_FRAMES). 0 ok, 1 failed. */
-int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render, int slots, FILE *trace);
+/* Render the range's frames with r (made for base) one at a time, each by `render` (the tests' VKSKY_FRAMES loop,
+ * --spectral's groups), writing each frame's outputs; the LUTs are recomputed only when a frame changes their inputs
+ * (counted; stderr: a line per frame and a summary in a sequence, not with --quiet). The runs that are hosts of
+ * include/vksky.h render their sequences through app/runs/sequence_host.h (pipelined there); this loop serves what
+ * still calls src/sky: --spectral, and --bench's sequence with --async-luts. 0 ok, 1 failed. */
+int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render);
 #endif

@@ -13,8 +13,6 @@
 #include <limits.h>
 #include <stdlib.h>
 
-bool sequence_host_wanted(const options *o) { return !o->async_luts; }
-
 static void print_message(void *user, vksky_severity severity, const char *message)
 {
     (void)user, (void)severity;
@@ -97,10 +95,13 @@ static int serial_loop(const options *base, host_commands *h, vksky_scene *scene
     return 0;
 }
 
-static int render_serial(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r, FILE *trace)
+static int render_serial(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r,
+                         host_async *async, FILE *trace)
 {
     host_commands h;
-    int status = host_commands_create(&h, ctx) ? 1 : serial_loop(base, &h, scene, r, trace);
+    int status = host_commands_create(&h, ctx);
+    h.async = async, h.frames = host_frames_wanted();
+    if (status == 0) status = serial_loop(base, &h, scene, r, trace);
     host_commands_destroy(&h);
     return status;
 }
@@ -218,11 +219,13 @@ static int render_ring(const options *base, vksky_context *ctx, vksky_scene *sce
     return status;
 }
 
-int sequence_host_render(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r, FILE *trace)
+int sequence_host_render(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r,
+                         host_async *async, FILE *trace)
 {
-    int slots = host_ring_slots_wanted();
-    /* The ring pays off from two frames on; one frame keeps the serial path (as sequence.c's). */
+    /* The ring pays off from two frames on; one frame keeps the serial path, as do the LUTs on the compute queue (one
+     * frame at a time: host_async.h) and the tests' VKSKY_FRAMES loop. */
+    int slots = async || getenv("VKSKY_FRAMES") ? 0 : host_ring_slots_wanted();
     if (slots >= 2 && sequence_active(base) && base->frame_last > base->frame_first)
         return render_ring(base, ctx, scene, r, slots, trace);
-    return render_serial(base, ctx, scene, r, trace);
+    return render_serial(base, ctx, scene, r, async, trace);
 }

@@ -9,13 +9,13 @@
 #include <volk.h>
 #include <vksky.h>
 #include "app/cli/options_struct.h"
+#include "app/runs/host_async.h"
 
-/* Does this run's sequence go through the API (else app/runs/sequence.c renders it)? Not with --async-luts (the LUTs
- * on the CLI's own compute queue). */
-bool sequence_host_wanted(const options *o);
 /* The frames of base's range (or its one frame, --skip-existing) with r, a readback renderer made from `scene` (the
  * command line's, vksky_scene_from_args: its values are set per frame); pipelined through the ring of
- * VKSKY_READBACK_SLOTS slots (default 2; 0 or 1: one frame at a time).
+ * VKSKY_READBACK_SLOTS slots (default 2; 0 or 1: one frame at a time). One frame at a time with `async` (--async-luts:
+ * each frame's LUT passes on the compute queue first; NULL: none) and under the tests' VKSKY_FRAMES loop.
  * trace: --trace-barriers's stream (NULL: none). 0 ok, 1 failed. */
-int sequence_host_render(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r, FILE *trace);
+int sequence_host_render(const options *base, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r,
+                         host_async *async, FILE *trace);
 #endif

@@ -1,28 +1,23 @@
-/* Band rendering and streaming (see tiles.h). */
+/* Band rendering and streaming (see tiles.h), as a host of include/vksky.h: each band is a frame of one renderer
+ * (vksky_frame_band: its first row in the whole image), recorded into the host's command buffers and read back
+ * through the renderer's readback slots, band k+1 rendering while band k is written (app/runs/host_ring.h). No
+ * src/sky or src/lib header (tests/layering_test.sh). */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #endif
 #include "app/runs/tiles.h"
 #include "app/runs/tiles_out.h"
-#include "app/scene/render_values.h"
-#include "app/runs/exr_header.h"
-#include "app/runs/frame_ring.h"
+#include "app/runs/host_ring.h"
 #include "app/scene/light.h"
 #include "app/runs/stop.h"
 #include "app/runs/stage_times.h"
 #include "io/encode_settings.h"
-#include "app/cli/options.h"
-#include "app/cli/options_projection.h"
 #include "app/runs/progress.h"
 #include "io/exr_stream.h"
 #include "io/png_stream.h"
-#include "sky/meter.h"
-#include "sky/projection.h"
-#include "sky/submit.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 /* Vulkan guarantees 4096; every device vksky runs on has 16384 (lavapipe, NVIDIA, AMD, Intel). */
 #define TILES_MAX_ROWS 16384
@@ -48,12 +43,35 @@ int tiles_band_rows(int width, int height, long budget)
 
 bool tiles_wanted(const options *o)
 {
-    return o->view.projection != SKY_PROJECTION_PERSPECTIVE || (long)o->width * o->height > tiles_budget();
+    return o->view.projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE || (long)o->width * o->height > tiles_budget();
 }
 
 bool tiles_in_bands(const options *o)
 {
     return tiles_wanted(o) && tiles_band_rows(o->width, o->height, tiles_budget()) < o->height;
+}
+
+/* A banded render draws each band with one more row above and below it (the image's own edges excepted: the tone
+ * map clamps its taps there, vksky_frame_band), so the tone map's horizon coverage (hdr_upsample.glsl), which reads a
+ * pixel's neighbours, sees the same neighbours as in one whole image: no seam at a band's edge. The band's own rows
+ * start `pad` rows into what was read back. */
+static int band_pad(const options *o) { return tiles_in_bands(o) ? 1 : 0; }
+
+int tiles_frame_rows(const options *o)
+{
+    return tiles_band_rows(o->width, o->height, tiles_budget()) + 2 * band_pad(o);
+}
+
+void tiles_begin_notes(const options *o)
+{
+    long budget = tiles_budget();
+    int band = tiles_band_rows(o->width, o->height, budget), bands = (o->height + band - 1) / band;
+    /* Bloom gathers light from a neighbourhood that crosses band borders: seamless only untiled, so a tiled render
+     * leaves it out (and environment maps never have it: options_projection.c). */
+    if (bands > 1 && o->view.bloom)
+        fprintf(stderr, "vksky: note: bloom is off in a render of %d bands (an image over VKSKY_TILE_PIXELS=%ld "
+                        "pixels); render at most %ld pixels for bloom\n", bands, budget, budget);
+    tiles_note_render_scale(o);
 }
 
 /* What writing a band needs: the outputs and the progress line. */
@@ -64,13 +82,10 @@ typedef struct bands_state {
     int stopped_line;   /* a stop ended the line of a terminal's progress */
     float *band_f32;    /* a band in output units (write_exr_rows), reused; only the writing thread touches it */
     size_t band_cap;    /* its size in pixels */
-    int pad;            /* rows rendered above (and below) each band: the tone map's horizon taps (band_pad) */
+    int pad;            /* rows rendered above (and below) each band (band_pad) */
 } bands_state;
 
-/* A banded render draws each band with one more row above and below it (the image's own edges excepted: the tone
- * map clamps its taps there, view.whole_height), so the tone map's horizon coverage (hdr_upsample.glsl), which
- * reads a pixel's neighbours, sees the same neighbours as in one whole image: no seam at a band's edge. The band's
- * own rows start `pad` rows into what was read back. */
+/* A band's own rows: `pad` rows into what was read back. */
 static frame_ring_pixels band_rows(const bands_state *st, const frame_ring_pixels *px)
 {
     size_t skip = (size_t)st->pad * (size_t)st->o->width * 4;
@@ -106,15 +121,25 @@ static int write_band(bands_state *st, const frame_ring_pixels *rendered, int y,
     return 0;
 }
 
-static int bands_serial(bands_state *st, sky_renderer *r, sky_view *view, int band)
+/* The band that starts at row y: the whole image's view and projection, the band's first row (its pad row above). */
+static host_view band_view(const bands_state *st, const host_view *whole, int y)
+{
+    host_view v = *whole;
+    v.band = true, v.first_row = y - st->pad;
+    return v;
+}
+
+static int bands_serial(bands_state *st, vksky_renderer *r, host_commands *h, const host_view *whole, int band,
+                        FILE *trace)
 {
     int height = st->o->height, status = 0;
     for (int y = 0; y < height && status == 0; y += band) {
-        view->tile_x = 0, view->tile_y = y - st->pad;
-        frame_desc f = {.view = view};
-        sky_renderer_render(r, &f);
-        frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
-        status = write_band(st, &px, y, height - y < band ? height - y : band);
+        host_view v = band_view(st, whole, y);
+        vksky_readback px;
+        if (host_commands_render(h, r, &v, trace, NULL) || vksky_renderer_get_readback_slot(r, 0, &px) != VKSKY_SUCCESS)
+            return 1;
+        frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
+        status = write_band(st, &pixels, y, height - y < band ? height - y : band);
     }
     return status;
 }
@@ -123,18 +148,19 @@ typedef struct band_job {
     int y, rows;
 } band_job;
 
-/* frame_ring_consume_fn: a band's rows, on the ring's thread, in band order. */
+/* host_ring_consume_fn: a band's rows, on the ring's thread, in band order. */
 static int consume_band(void *user, const frame_ring_pixels *px, void *job)
 {
     const band_job *j = job;
     return write_band(user, px, j->y, j->rows);
 }
 
-static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band, int slots)
+static int bands_ring(bands_state *st, vksky_context *ctx, vksky_renderer *r, const host_view *whole, int band,
+                      int slots, FILE *trace)
 {
-    frame_ring ring;
+    host_ring ring;
     /* One consumer: a band's rows go into streams that take them in order. */
-    if (frame_ring_create(&ring, r, slots, 1, consume_band, NULL, st, st->o->trace_barriers ? stdout : NULL)) return 1;
+    if (host_ring_create(&ring, ctx, r, slots, 1, consume_band, NULL, st, trace)) return 1;
     int height = st->o->height, status = 0;
     for (int y = 0; y < height && status == 0 && !stop_requested(); y += band) {
         band_job *j = malloc(sizeof *j);
@@ -144,89 +170,79 @@ static int bands_ring(bands_state *st, sky_renderer *r, sky_view *view, int band
         }
         stage_mark t0 = stage_mark_now();
         *j = (band_job){y, height - y < band ? height - y : band};
-        /* The band's offset is a push constant, recorded into this band's command buffer. */
-        view->tile_x = 0, view->tile_y = y - st->pad;
-        frame_desc f = {.view = view};
-        status = frame_ring_submit(&ring, &f, j);
+        /* The band's first row goes into this band's command buffer (a push constant). */
+        host_view v = band_view(st, whole, y);
+        status = host_ring_submit(&ring, &v, j);
         stage_add_since(STAGE_PRODUCE, t0);
     }
-    int consumed = frame_ring_finish(&ring);
+    int consumed = host_ring_finish(&ring);
     if (status == 0) status = consumed;
     return status || stop_requested() ? 1 : 0;
 }
 
-/* Auto exposure of a banded image, metered on the GPU (sky/meter.h): a first pass over the bands that writes nothing,
- * each band's frame metering only its own rows (not the rows it shares with its neighbours); the host adds the bands'
- * sums of logs (count ln L per band), so the log-average is the whole image's, as one frame's meter would count it. */
-static double tiles_auto_exposure(const bands_state *st, sky_renderer *r, sky_view *view, int band, int height)
+/* Auto exposure of a banded image, metered on the GPU (vksky_auto_exposure): a first pass over the bands that writes
+ * nothing, each band's frame metering only its own rows (not the rows it shares with its neighbours); the host adds the
+ * bands' sums of logs (count ln L per band), so the log-average is the whole image's, as one frame's meter would count
+ * it. The exposure, or NAN (vksky's message printed). */
+static double tiles_auto_exposure(const bands_state *st, vksky_renderer *r, host_commands *h, const host_view *whole,
+                                  int band, FILE *trace)
 {
-    sky_view v = *view;
-    v.auto_exposure = true, v.auto_exposure_ease = 0.0;
+    int height = st->o->height;
     double log_sum = 0.0, count = 0.0;
     for (int y = 0; y < height && !stop_requested(); y += band) {
-        v.tile_x = 0, v.tile_y = y - st->pad;
-        int rows = height - y < band ? height - y : band;
-        frame_desc f = {.view = &v, .meter_first_row = (uint32_t)st->pad, .meter_rows = (uint32_t)rows};
-        sky_renderer_render(r, &f);
-        meter_result m = meter_read(r->ctx, &r->meter, 0);
-        if (m.count > 0.0f) log_sum += (double)m.count * log((double)m.log_average), count += m.count;
+        host_view v = band_view(st, whole, y);
+        v.auto_exposure = true;
+        v.meter_first_row = (uint32_t)st->pad, v.meter_rows = (uint32_t)(height - y < band ? height - y : band);
+        vksky_exposure m;
+        if (host_commands_render(h, r, &v, trace, NULL) || vksky_renderer_get_exposure(r, 0, &m) != VKSKY_SUCCESS)
+            return NAN;
+        if (m.pixel_count > 0.0) log_sum += m.pixel_count * log(m.log_average), count += m.pixel_count;
     }
-    v = *view;
-    light_expose(&v, count > 0.0 ? exp(log_sum / count) : 1e-4);
+    sky_view v = st->o->view;
+    double average = count > 0.0 ? exp(log_sum / count) : 1e-4;
+    light_expose(&v, average);
     if (!st->o->quiet)
         fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered on "
-                        "the GPU in %d band%s)\n", light_auto_ev100(count > 0.0 ? exp(log_sum / count) : 1e-4),
-                count > 0.0 ? exp(log_sum / count) : 1e-4, v.ev100 ? "cd/m2" : "(relative units)", count,
-                (height + band - 1) / band, band < height ? "s" : "");
+                        "the GPU in %d band%s)\n", light_auto_ev100(average), average,
+                v.ev100 ? "cd/m2" : "(relative units)", count, (height + band - 1) / band, band < height ? "s" : "");
     return v.exposure_ev;
 }
 
-int tiles_render(const options *o, gpu_context *ctx)
+int tiles_render(const options *o, vksky_context *ctx, vksky_renderer *r, host_commands *h, FILE *trace)
 {
-    long budget = tiles_budget();
     int width = o->width, height = o->height;
-    int band = tiles_band_rows(width, height, budget);
+    int band = tiles_band_rows(width, height, tiles_budget());
     int bands = (height + band - 1) / band;
-    sky_view view = o->view;
-    /* Bloom gathers light from a neighbourhood that crosses band borders: seamless only untiled, so a tiled render
-     * leaves it out (and environment maps never have it: options_projection.c). */
-    if (bands > 1 && view.bloom) {
-        fprintf(stderr, "vksky: note: bloom is off in a render of %d bands (an image over VKSKY_TILE_PIXELS=%ld "
-                        "pixels); render at most %ld pixels for bloom\n", bands, budget, budget);
-        view.bloom = false;
-    }
-    tiles_note_render_scale(o);
-    view.whole_width = width, view.whole_height = height;
-    /* Pipelined (app/runs/frame_ring.h): band k+1 renders while band k is written. The bands keep their height (a
+    /* Pipelined (app/runs/host_ring.h): band k+1 renders while band k is written. The bands keep their height (a
      * cube or perspective band's pixels depend on it by up to an fp16 ulp, and the files must equal the serial
      * loop's); each slot past the first adds one band's readback buffers (12 bytes a pixel). */
-    int slots = bands > 1 ? frame_ring_slots_wanted() : 0;
+    int slots = bands > 1 ? host_ring_slots_wanted() : 0;
 
     output outs[OPTIONS_MAX_OUTPUTS] = {0};
     if (open_outputs(o, outs) != 0) {
         abort_outputs(o, outs);
         return 1;
     }
-    sky_renderer r;
-    render_scene scene;
-    render_scene_of(o, &scene);
-    render_quality quality = render_quality_of(o);
-    quality.render_scale = 1.0;   /* bands are drawn at full size (a band's rows are its own) */
-    int pad = bands > 1 ? 1 : 0;   /* band_rows */
-    sky_renderer_desc rdesc = render_desc(&quality, &scene);
-    rdesc.width = (uint32_t)width, rdesc.height = (uint32_t)(band + 2 * pad), rdesc.bloom = view.bloom;
-    rdesc.readback = true, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
-    sky_renderer_create(&r, ctx, &rdesc);
-    if (o->trace_passes) gpu_barrier_trace_passes(stdout);
-
     char what[300];
     snprintf(what, sizeof what, "rendering %s (%dx%d, %d bands)", o->output_count ? o->outputs[0] : "", width, height, bands);
     progress prog;
     progress_begin(&prog, stderr, o->quiet || bands < 2, what, height);
-    bands_state st = {o, outs, &prog, 0, NULL, 0, pad};
-    if (light_auto_exposure_wanted(o)) view.exposure_ev = tiles_auto_exposure(&st, &r, &view, band, height);
+    bands_state st = {o, outs, &prog, 0, NULL, 0, band_pad(o)};
+    /* The whole image's view (a perspective band's rays from yaw, pitch and fov) and projection. */
+    host_view whole = {.yaw_deg = o->view.yaw_deg, .pitch_deg = o->view.pitch_deg, .fov_deg = o->view.fov_deg,
+                       .exposure = o->view.exposure_ev, .projection = (vksky_projection)o->view.projection,
+                       .whole_width = (uint32_t)width, .whole_height = (uint32_t)height};
+    int status = 0;
+    if (light_auto_exposure_wanted(o)) {
+        whole.exposure = tiles_auto_exposure(&st, r, h, &whole, band, trace);
+        if (isnan(whole.exposure)) status = 1;
+    }
     stage_begin();
-    int status = slots >= 2 ? bands_ring(&st, &r, &view, band, slots) : bands_serial(&st, &r, &view, band);
+    if (status == 0)
+        status = slots >= 2 ? bands_ring(&st, ctx, r, &whole, band, slots, trace)
+                            : bands_serial(&st, r, h, &whole, band, trace);
+    /* A LUT cache miss: the LUTs the first band computed, into the cache for the next start (every band is done). */
+    if (status == 0 && vksky_renderer_store_luts(r) != VKSKY_SUCCESS) status = 1;
     char err[512];
     stage_mark t0 = stage_mark_now();
     for (int i = 0; i < o->output_count && status == 0; ++i) {
@@ -240,6 +256,5 @@ int tiles_render(const options *o, gpu_context *ctx)
     if (status == 0) progress_end(&prog);
     free(st.band_f32);
     abort_outputs(o, outs);
-    sky_renderer_destroy(&r);
     return status;
 }

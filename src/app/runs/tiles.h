@@ -5,7 +5,8 @@
 #ifndef VKSKY_APP_TILES_H
 #define VKSKY_APP_TILES_H
 #include "app/cli/options_struct.h"
-#include "gpu/context.h"
+#include "app/runs/host_ring.h"
+#include <stdio.h>
 
 /* Pixels a band may hold: VKSKY_TILE_PIXELS, else 8 Mpixel (about 300 MB of images and readback buffers). */
 long tiles_budget(void);
@@ -15,8 +16,15 @@ int tiles_band_rows(int width, int height, long budget);
 bool tiles_wanted(const options *o);
 /* Whether it takes more than one band (else one frame of the whole image: through the API, app/runs/headless_api.c). */
 bool tiles_in_bands(const options *o);
-/* Renders every band and streams each output; 0, or 1 (runtime failure, message printed, no partial file), or
- * 1 when SIGINT/SIGTERM stopped it (between bands; the partial files removed; the caller's stop_status exits
- * 130 / 143). */
-int tiles_render(const options *o, gpu_context *ctx);
+/* The rows of the renderer a render in bands draws with: a band and the pad rows above and below it. */
+int tiles_frame_rows(const options *o);
+/* The notes a render in bands or an environment map prints before its renderer is made: bloom left out of a render in
+ * several bands, a --render-scale ignored. */
+void tiles_begin_notes(const options *o);
+/* Renders every band through include/vksky.h with r (made by app/runs/headless_api.c for o's scene at full size, the
+ * width of the image and tiles_frame_rows rows, no bloom) and streams each output; h: the host's command buffer and
+ * fence for the serial loop and auto exposure's metering pass; trace: --trace-barriers's stream (NULL: none). 0, or 1
+ * (runtime failure, message printed, no partial file), or 1 when SIGINT/SIGTERM stopped it (between bands; the
+ * partial files removed; the caller's stop_status exits 130 / 143). */
+int tiles_render(const options *o, vksky_context *ctx, vksky_renderer *r, host_commands *h, FILE *trace);
 #endif
