@@ -16,7 +16,7 @@
  * --max-error's promise holds on each class, and a CSV row per class and method.
  *
  *   tradeoff_aerial [--size WxH] [--error-size WxH] [--frames N] [--steps N] [--csv FILE] [--emit-table FILE]
- *                   [--classes]
+ *                   [--classes] [--defaults]
  */
 #include "app/quality/ap_trade_table.h"
 #include "reference/ref_atmosphere.h"
@@ -59,13 +59,16 @@ static const view_class classes[] = {
 };
 enum { CLASS_COUNT = sizeof classes / sizeof classes[0] };
 static const view_class *view_now = &classes[0];
+/* --defaults (issue 28 item 7): the march as `vksky --composite` runs it without --max-steps (--steps 32, the
+ * segments' ramp of composite_push_fast: 4 steps at 0 km up to 32 at 40 km), not a fixed count. */
+static bool composite_defaults = false;
 
 static composite_view seed_view(int steps)
 {
     composite_view v = {.km_per_unit = 1.0, .up_axis = 1, .camera = {0.0, view_now->altitude_km, 0.0},
                         .fov_y_deg = 40.0, .sun_azimuth_deg = -60.0, .sun_elevation_deg = view_now->sun_elevation_deg,
-                        .steps = steps, .max_steps = steps, .steps_ramp_km = 100.0, .sample_offset = 0.5,
-                        .step_distribution = 2.0};
+                        .steps = steps, .max_steps = composite_defaults ? 0 : steps, .steps_ramp_km = 100.0,
+                        .sample_offset = 0.5, .step_distribution = 2.0};
     composite_view_orient_yaw_pitch(&v, 95.0, view_now->pitch_deg);
     return v;
 }
@@ -119,6 +122,7 @@ static int measure_error(sky_renderer *r, const model_atmosphere *earth, const c
         return 1;
     }
     composite_push(v, earth->bottom_radius, (uint32_t)ew, (uint32_t)eh, &push);
+    if (composite_defaults) composite_push_fast(v, &push);
     fill_inputs(&c, v);
     sky_composite_render(r, &c, &push, 1);
     double sum = 0.0;
@@ -156,6 +160,7 @@ static void time_config(sky_renderer *r, const model_atmosphere *earth, const co
         exit(1);
     }
     composite_push(v, earth->bottom_radius, (uint32_t)tw, (uint32_t)th, &push);
+    if (composite_defaults) composite_push_fast(v, &push);
     fill_inputs(&c, v);
     for (int i = 0; i < 3; ++i) sky_composite_render(r, &c, &push, 1);   /* warm-up */
     for (int i = 0; i < frames; ++i) {
@@ -178,6 +183,7 @@ int main(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *val = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--classes")) { by_class = true; continue; }
+        if (!strcmp(a, "--defaults")) { composite_defaults = true, steps = 32; continue; }
         if (!val) { fprintf(stderr, "tradeoff_aerial: %s needs a value\n", a); return 2; }
         if (!strcmp(a, "--size") && sscanf(val, "%dx%d", &tw, &th) == 2 && tw > 0 && th > 0) ++i;
         else if (!strcmp(a, "--error-size") && sscanf(val, "%dx%d", &ew, &eh) == 2 && ew > 0 && eh > 0) ++i;

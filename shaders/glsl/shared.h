@@ -82,6 +82,13 @@ VKSKY_STRUCT(CompositePush) {
                                   unit scale and the tilt of the local vertical); w: the camera's world position */
 } VKSKY_END(CompositePush)
 
+/* The composite's sky tiles (composite.comp): 8x8 pixels from the band's first row. The host marks a tile none of
+ * whose pixels shows sky (alpha >= 1 on all of them) by this value in the w of its first pixel's position (the
+ * position's w is otherwise unused): the shader then skips the tile's five sky rays without reading its 64 alphas.
+ * Any other w (1, NaN) marches them. */
+#define VKSKY_COMPOSITE_TILE 8
+#define VKSKY_COMPOSITE_TILE_NO_SKY (-1.0)
+
 /* The composite pass's output: one RGBA32F image of VKSKY_AOV_COUNT bands of `height` rows each, band k the k-th
  * layer (one image: one barrier, one copy). */
 #define VKSKY_AOV_COMPOSITE 0      /* RGBA: beauty * T + rayleigh + mie on geometry, the sky (+ sun disc) elsewhere */

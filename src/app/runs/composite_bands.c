@@ -2,6 +2,7 @@
 #include "app/runs/composite_bands.h"
 #include "app/runs/stop.h"
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,6 +66,16 @@ void band_reader_upload(const band_reader *b, sky_composite *c)
         in[i] = in[i + 1] = in[i + 2] = 0.0f, in[i + 3] = 1.0f;
         in[all + i] = in[all + i + 1] = in[all + i + 2] = NAN, in[all + i + 3] = 1.0f;
     }
+    /* Each sky tile (shared.h) none of whose pixels shows sky (alpha >= 1: the shader's own test), marked in its
+     * first pixel's position w, so that the shader need not read the tile's alphas to skip its sky rays. */
+    const int tile = VKSKY_COMPOSITE_TILE, w = b->width, rows = (int)c->height;
+    for (int ty = 0; ty < rows; ty += tile)
+        for (int tx = 0; tx < w; tx += tile) {
+            bool sky = false;
+            for (int y = ty; y < ty + tile && y < rows && !sky; ++y)
+                for (int x = tx; x < tx + tile && x < w && !sky; ++x) sky = !(in[((size_t)y * w + x) * 4 + 3] >= 1.0f);
+            in[all + ((size_t)ty * w + tx) * 4 + 3] = sky ? 1.0f : (float)VKSKY_COMPOSITE_TILE_NO_SKY;
+        }
 }
 
 int composite_bands_render(band_reader *b, sky_renderer *r, sky_composite *c, CompositePush push, int frames,
