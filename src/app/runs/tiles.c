@@ -14,6 +14,7 @@
 #include "app/cli/options.h"
 #include "app/cli/options_projection.h"
 #include "app/runs/progress.h"
+#include "app/runs/spectral_render.h"
 #include "io/exr_stream.h"
 #include "io/png_stream.h"
 #include "sky/meter.h"
@@ -112,7 +113,8 @@ static int bands_serial(bands_state *st, sky_renderer *r, sky_view *view, int ba
     for (int y = 0; y < height && status == 0; y += band) {
         view->tile_x = 0, view->tile_y = y - st->pad;
         frame_desc f = {.view = view};
-        sky_renderer_render(r, &f);
+        if (st->o->spectral) spectral_render_frame(r, &f);   /* a pass per wavelength group, summed (EXR only) */
+        else sky_renderer_render(r, &f);
         frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
         status = write_band(st, &px, y, height - y < band ? height - y : band);
     }
@@ -200,7 +202,7 @@ int tiles_render(const options *o, gpu_context *ctx)
     /* Pipelined (app/runs/frame_ring.h): band k+1 renders while band k is written. The bands keep their height (a
      * cube or perspective band's pixels depend on it by up to an fp16 ulp, and the files must equal the serial
      * loop's); each slot past the first adds one band's readback buffers (12 bytes a pixel). */
-    int slots = bands > 1 ? frame_ring_slots_wanted() : 0;
+    int slots = bands > 1 && !o->spectral ? frame_ring_slots_wanted() : 0;   /* --spectral: the serial loop */
 
     output outs[OPTIONS_MAX_OUTPUTS] = {0};
     if (open_outputs(o, outs) != 0) {
@@ -217,6 +219,7 @@ int tiles_render(const options *o, gpu_context *ctx)
     rdesc.width = (uint32_t)width, rdesc.height = (uint32_t)(band + 2 * pad), rdesc.bloom = view.bloom;
     rdesc.readback = true, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
     sky_renderer_create(&r, ctx, &rdesc);
+    if (o->spectral) spectral_render_begin(o, spectral_render_plain);
     if (o->trace_passes) gpu_barrier_trace_passes(stdout);
 
     char what[300];
