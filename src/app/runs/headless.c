@@ -239,8 +239,10 @@ static int run_checked(const options *o)
     }
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     /* Environment maps and images over the band budget: rendered in bands, streamed into the files (app/runs/tiles.c). */
-    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o))
-        return finish(&ctx, tiles_render(o, &ctx), o->timings);
+    if (o->bench_frames == 0 && o->output_count > 0 && tiles_wanted(o)) {
+        if (o->spectral) spectral_render_begin(o, spectral_render_plain);   /* each band a pass per group (32g) */
+        return finish(&ctx, tiles_render_with(o, &ctx, o->spectral ? spectral_render_frame : NULL), o->timings);
+    }
 
     sky_renderer r;
     render_scene scene;

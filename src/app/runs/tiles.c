@@ -14,7 +14,6 @@
 #include "app/cli/options.h"
 #include "app/cli/options_projection.h"
 #include "app/runs/progress.h"
-#include "app/runs/spectral_render.h"
 #include "io/exr_stream.h"
 #include "io/png_stream.h"
 #include "sky/meter.h"
@@ -66,6 +65,7 @@ typedef struct bands_state {
     float *band_f32;    /* a band in output units (write_exr_rows), reused; only the writing thread touches it */
     size_t band_cap;    /* its size in pixels */
     int pad;            /* rows rendered above (and below) each band: the tone map's horizon taps (band_pad) */
+    tiles_frame_fn frame;   /* a band's frame (NULL: sky_renderer_render) */
 } bands_state;
 
 /* A banded render draws each band with one more row above and below it (the image's own edges excepted: the tone
@@ -113,7 +113,7 @@ static int bands_serial(bands_state *st, sky_renderer *r, sky_view *view, int ba
     for (int y = 0; y < height && status == 0; y += band) {
         view->tile_x = 0, view->tile_y = y - st->pad;
         frame_desc f = {.view = view};
-        if (st->o->spectral) spectral_render_frame(r, &f);   /* a pass per wavelength group, summed (EXR only) */
+        if (st->frame) st->frame(r, &f);   /* --spectral: a pass per wavelength group, summed (EXR only) */
         else sky_renderer_render(r, &f);
         frame_ring_pixels px = {r->readback_linear.mapped, r->readback_display.mapped};
         status = write_band(st, &px, y, height - y < band ? height - y : band);
@@ -183,7 +183,9 @@ static double tiles_auto_exposure(const bands_state *st, sky_renderer *r, sky_vi
     return v.exposure_ev;
 }
 
-int tiles_render(const options *o, gpu_context *ctx)
+int tiles_render(const options *o, gpu_context *ctx) { return tiles_render_with(o, ctx, NULL); }
+
+int tiles_render_with(const options *o, gpu_context *ctx, tiles_frame_fn frame)
 {
     long budget = tiles_budget();
     int width = o->width, height = o->height;
@@ -202,7 +204,7 @@ int tiles_render(const options *o, gpu_context *ctx)
     /* Pipelined (app/runs/frame_ring.h): band k+1 renders while band k is written. The bands keep their height (a
      * cube or perspective band's pixels depend on it by up to an fp16 ulp, and the files must equal the serial
      * loop's); each slot past the first adds one band's readback buffers (12 bytes a pixel). */
-    int slots = bands > 1 && !o->spectral ? frame_ring_slots_wanted() : 0;   /* --spectral: the serial loop */
+    int slots = bands > 1 && !frame ? frame_ring_slots_wanted() : 0;   /* a frame of the caller's: the serial loop */
 
     output outs[OPTIONS_MAX_OUTPUTS] = {0};
     if (open_outputs(o, outs) != 0) {
@@ -219,14 +221,13 @@ int tiles_render(const options *o, gpu_context *ctx)
     rdesc.width = (uint32_t)width, rdesc.height = (uint32_t)(band + 2 * pad), rdesc.bloom = view.bloom;
     rdesc.readback = true, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
     sky_renderer_create(&r, ctx, &rdesc);
-    if (o->spectral) spectral_render_begin(o, spectral_render_plain);
     if (o->trace_passes) gpu_barrier_trace_passes(stdout);
 
     char what[300];
     snprintf(what, sizeof what, "rendering %s (%dx%d, %d bands)", o->output_count ? o->outputs[0] : "", width, height, bands);
     progress prog;
     progress_begin(&prog, stderr, o->quiet || bands < 2, what, height);
-    bands_state st = {o, outs, &prog, 0, NULL, 0, pad};
+    bands_state st = {o, outs, &prog, 0, NULL, 0, pad, frame};
     if (light_auto_exposure_wanted(o)) view.exposure_ev = tiles_auto_exposure(&st, &r, &view, band, height);
     stage_begin();
     int status = slots >= 2 ? bands_ring(&st, &r, &view, band, slots) : bands_serial(&st, &r, &view, band);

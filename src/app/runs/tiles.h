@@ -6,6 +6,7 @@
 #define VKSKY_APP_TILES_H
 #include "app/cli/options_struct.h"
 #include "gpu/context.h"
+#include "sky/frame.h"
 
 /* Pixels a band may hold: VKSKY_TILE_PIXELS, else 8 Mpixel (about 300 MB of images and readback buffers). */
 long tiles_budget(void);
@@ -19,4 +20,8 @@ bool tiles_in_bands(const options *o);
  * 1 when SIGINT/SIGTERM stopped it (between bands; the partial files removed; the caller's stop_status exits
  * 130 / 143). */
 int tiles_render(const options *o, gpu_context *ctx);
+/* The same with each band's frame drawn by `frame` (NULL: sky_renderer_render; --spectral: spectral_render_frame,
+ * armed by the caller), in the serial band loop. */
+typedef void (*tiles_frame_fn)(sky_renderer *r, const frame_desc *f);
+int tiles_render_with(const options *o, gpu_context *ctx, tiles_frame_fn frame);
 #endif
