@@ -33,8 +33,8 @@ check sunset 4 0.01 0.6 --sun-elevation 2 --sun-azimuth 0 --yaw 0 --pitch 35 --f
 check twilight 8 0.01 0.5 --no-multiscatter --sun-elevation -4 --sun-azimuth 0 --yaw 0 --pitch 35 --fov 60
 check noon 16 0.01 0.5 --no-multiscatter --sun-elevation 60 --sun-azimuth 0 --yaw 180 --pitch 30 --fov 70
 
-# --spectral 0 is the RGB renderer, untouched.
-rgb=(--width 16 --height 9 --sun-elevation 5 --validate)
+# --spectral 0 is the RGB renderer, untouched. The afternoon (sun 20): under auto a sunset renders spectral (32g).
+rgb=(--width 16 --height 9 --sun-elevation 20 --validate)
 "$VKSKY" "${rgb[@]}" --render "$work/rgb.exr" --render "$work/rgb.png" && \
     "$VKSKY" "${rgb[@]}" --spectral 0 --render "$work/rgb0.exr" --render "$work/rgb0.png" || fail "RGB renders"
 # The EXR header records the command line: compare the pixels (every pixel's error exactly 0).
