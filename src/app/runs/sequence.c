@@ -48,7 +48,11 @@ int sequence_frame_options(const options *base, int frame, options *out)
     const char *names[OPTIONS_MAX_ANIMATE];
     double values[OPTIONS_MAX_ANIMATE];
     int count = sequence_frame_values(base, frame, names, values);
-    return options_frame(base, names, values, count, out);
+    int rc = options_frame(base, names, values, count, out);
+    /* The run's colour choice (--quality auto's or --max-color-error's, made after the parse: main.c) is every
+     * frame's: its header records it and names the sun the spectral image holds (32g). */
+    if (rc == 0) out->spectral = base->spectral;
+    return rc;
 }
 
 /* A --render value's file for a frame: the pattern filled in, or a value without one %d as it is. */

@@ -11,10 +11,12 @@
 #include "reference/spectral.h"
 #include "sky/submit.h"
 #include "sky/view_params.h"
+#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <unistd.h>
 
 static struct {
     int wavelengths;
@@ -272,13 +274,21 @@ static unsigned run_classes(const options *o)
 {
     if (!sequence_active(o)) return o->quality_classes;
     unsigned classes = 0;
-    int count = o->frame_count > 0 ? o->frame_count : 1;
-    for (int i = 0; i < count; ++i) {
+    int count = o->frame_count > 0 ? o->frame_count : 1, bad = 0;
+    /* A bad frame is refused later by sequence_check, with its one line: not printed here a first time. */
+    fflush(stderr);
+    int saved = dup(STDERR_FILENO), null = open("/dev/null", O_WRONLY);
+    if (saved >= 0 && null >= 0) dup2(null, STDERR_FILENO);
+    for (int i = 0; i < count && !bad; ++i) {
         options f;
-        if (sequence_frame_options(o, i, &f)) return o->quality_classes;   /* refused later, with its message */
-        classes |= quality_class_bit(f.view.altitude_km, f.view.sun_elevation_deg);
+        bad = sequence_frame_options(o, i, &f);
+        if (!bad) classes |= quality_class_bit(f.view.altitude_km, f.view.sun_elevation_deg);
     }
-    return classes;
+    fflush(stderr);
+    if (saved >= 0 && null >= 0) dup2(saved, STDERR_FILENO);
+    if (saved >= 0) close(saved);
+    if (null >= 0) close(null);
+    return bad ? 0 : classes;
 }
 
 int spectral_auto(options *o, const char *impossible)
@@ -287,7 +297,7 @@ int spectral_auto(options *o, const char *impossible)
     for (int i = 1; i < o->argc; ++i)   /* --spectral 0 given: RGB asked for */
         if (!strcmp(o->argv[i], "--spectral") || !strncmp(o->argv[i], "--spectral=", 11)) return 0;
     /* The window is interactive: it stays RGB (a spectral frame is a pass per group of four wavelengths). */
-    if (o->output_count == 0) return 0;
+    if (o->output_count == 0 && o->bench_frames == 0) return 0;
     /* A sequence gets one choice for the run, from the worst of its frames' classes: its frames share one colour
      * setting as they share one quality preset (no jump in colour from one frame to the next). */
     unsigned classes = run_classes(o);
