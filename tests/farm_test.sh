@@ -137,7 +137,8 @@ wait_job() {
 # A task's state and exit code as scontrol shows them ("COMPLETED 0:0").
 task_state() { scontrol -o show job "$1" 2>/dev/null | sed -n 's/.*JobState=\([A-Z_]*\).* ExitCode=\([0-9:]*\).*/\1 \2/p'; }
 
-SEQ=(--width 320 --height 180 --animate sun-elevation=-3:25 --animate yaw=0:60 --frame-count 40
+# RGB named (--spectral 0): under auto this twilight-to-afternoon run renders spectral (32g, 8 passes a frame).
+SEQ=(--width 320 --height 180 --animate sun-elevation=-3:25 --animate yaw=0:60 --frame-count 40 --spectral 0
      --render 'f_%04d.exr' --render 'f_%04d.png')
 mkdir "$work/whole" "$work/farm" "$work/par"
 (cd "$work/whole" && "$VKSKY" "${SEQ[@]}" 2>"$work/logs/whole.err") || fail "the single-process render failed: $(tail -3 "$work/logs/whole.err")"

@@ -46,8 +46,10 @@ done
 cmp -s frame2.json single_gpu.json || fail "frame 2's scene is not the single render's under the GPU table: $(diff frame2.json single_gpu.json | head -4)"
 
 # 2. --skip-existing.
-SEQ=(--width 48 --height 32 --animate sun-elevation=-2:30 --animate yaw=0:50 --frame-count 6 --render 'f_%03d.exr'
-     --render 'f_%03d.png')
+# RGB named (--spectral 0): under auto this twilight-to-afternoon run renders spectral (32g), whose groups recompute
+# the LUTs in every frame; the LUT count below is the RGB loop's.
+SEQ=(--width 48 --height 32 --animate sun-elevation=-2:30 --animate yaw=0:50 --frame-count 6 --spectral 0
+     --render 'f_%03d.exr' --render 'f_%03d.png')
 mkdir whole resume
 (cd whole && "$VKSKY" "${SEQ[@]}" 2>err) || fail "the whole sequence failed: $(cat whole/err)"
 rm -f whole/err

@@ -50,8 +50,9 @@ COMMON=(--width 40 --height 30 --fov 70 --pitch 15 --quality medium)
 cmp -s g_2.json single.json || fail "frame 2's vksky:scene is not the --dump-scene of the single render"
 
 # 3. LUT recomputations.
+#    RGB named: a sunset under auto renders spectral (32g), a pass per wavelength group, each with its own LUTs.
 "$VKSKY" --width 32 --height 24 --animate yaw=0:90 --animate pitch=0:30 --animate fov=40:80 --animate exposure=-1:1 \
-    --animate sun-elevation=5:25 --frame-count 4 --render 'c_%d.exr' --trace-passes >c.out 2>c.err \
+    --animate sun-elevation=5:25 --frame-count 4 --spectral 0 --render 'c_%d.exr' --trace-passes >c.out 2>c.err \
     || fail "camera animation failed: $(cat c.err)"
 grep -q '^vksky: 4 frames rendered; LUTs computed 1 time$' c.err || fail "camera animation: $(tail -1 c.err); expected 1 computation"
 [ "$(grep -c '^pass transmittance_lut$' c.out)" -eq 1 ] || fail "camera animation traced $(grep -c '^pass transmittance_lut$' c.out) transmittance passes; expected 1"

@@ -4,11 +4,13 @@
  * shows as lightness too; tools/color_error's convention), over pixels at least 1e-4 of the reference's brightest.
  * Prints one line; with limits, exits 1 when the 95th percentile of either is over its limit. */
 #include "io/exr_read.h"
+#include "io/png_io.h"
 #include "reference/metrics.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static void rec709_to_xyz(const float *c, double o[3])
 {
@@ -33,8 +35,47 @@ static int cmp(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* spectral_compare --png TEST.png REF.exr EV100 [MAX_DE]: a PNG against a reference in cd/m2 (issue 32: the spectral
+ * sum's PNG): the reference tone-mapped at EV100 (the multiplier 1 / (1.2 2^EV100), ACES, sRGB, 8 bits:
+ * metrics_tonemap_srgb8, the renderer's law), then CIEDE2000 per pixel between the two 8-bit sRGB images (CIELAB, the
+ * sRGB white), over every pixel. One line; with MAX_DE, exit 1 when the largest is over it. */
+static int compare_png(int argc, char **argv)
+{
+    int w, h, rw, rh;
+    uint8_t *t = NULL;
+    float *r = NULL;
+    char err[512];
+    if (io_read_png(argv[2], &w, &h, &t, err, sizeof err) || io_read_exr(argv[3], "", &rw, &rh, &r, err, sizeof err)) {
+        fprintf(stderr, "spectral_compare: %s\n", err);
+        return 2;
+    }
+    if (w != rw || h != rh) {
+        fprintf(stderr, "spectral_compare: sizes differ (%dx%d, %dx%d)\n", w, h, rw, rh);
+        return 2;
+    }
+    size_t n = (size_t)w * h;
+    unsigned char *ref = malloc(n * 4);
+    metrics_tonemap_srgb8(r, w, h, -log2(1.2) - atof(argv[4]), 2 /* ACES */, ref);
+    double sum = 0.0, worst = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+        double lt[3], lr[3];
+        metrics_srgb8_to_lab(t + 4 * i, lt);
+        metrics_srgb8_to_lab(ref + 4 * i, lr);
+        double d = metrics_ciede2000(lr, lt);
+        d = isfinite(d) ? d : INFINITY;
+        sum += d, worst = fmax(worst, d);
+    }
+    printf("png CIEDE2000 mean %.3f max %.3f (%zu pixels)\n", sum / n, worst, n);
+    int status = argc == 6 && !(worst <= atof(argv[5])) ? 1 : 0;
+    free(ref);
+    free(r);
+    free(t);
+    return status;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc >= 5 && argc <= 6 && !strcmp(argv[1], "--png")) return compare_png(argc, argv);
     if (argc != 3 && argc != 5) {
         fprintf(stderr, "usage: spectral_compare TEST.exr REF.exr [MAX_LUM_P95 MAX_DE_P95]\n");
         return 2;

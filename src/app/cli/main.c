@@ -88,7 +88,7 @@ static int run(options *o, int argc, char **argv)
         printf("vksky: --max-color-error %g: picked --spectral %d (measured worst CIEDE2000 %.2f on the '%s' scene)\n",
                o->max_color_error, n, measured, names);
     }
-    spectral_auto(o, !co.input && !co.aovs);   /* --quality auto's colour: spectral where RGB's is far off */
+    spectral_auto(o, co.input ? "a --composite" : co.aovs ? "--aovs" : NULL);   /* --quality auto's colour: spectral where RGB's is far off */
     if (spectral_render_check(o, "--spectral")) return 2;   /* the GPU's --spectral: EXR renders only */
     /* The composite keeps the lesson's scale (docs/units.md: the layers add up with the render's own units): its
      * header says so (vksky:units). */

@@ -47,7 +47,11 @@ int sequence_frame_options(const options *base, int frame, options *out)
     const char *names[OPTIONS_MAX_ANIMATE];
     double values[OPTIONS_MAX_ANIMATE];
     int count = sequence_frame_values(base, frame, names, values);
-    return options_frame(base, names, values, count, out);
+    int rc = options_frame(base, names, values, count, out);
+    /* The run's colour choice (--quality auto's or --max-color-error's, made after the parse: main.c) is every
+     * frame's: its header records it and names the sun the spectral image holds (32g). */
+    if (rc == 0) out->spectral = base->spectral;
+    return rc;
 }
 
 /* A --render value's file for a frame: the pattern filled in, or a value without one %d as it is. */
@@ -78,8 +82,11 @@ int sequence_choose_quality(options *base)
         if (sequence_frame_options(base, i, &f)) return 2;
         classes |= quality_class_bit(f.view.altitude_km, f.view.sun_elevation_deg);
     }
+    int spectral = base->spectral;   /* --quality auto's or --max-color-error's colour pick (main.c), kept */
     options_release(base);   /* parsed again: a new unresolved copy */
-    return options_parse_for_classes(base, base->argc, base->argv, classes);
+    int rc = options_parse_for_classes(base, base->argc, base->argv, classes);
+    if (rc == 0) base->spectral = spectral;
+    return rc;
 }
 
 int sequence_check(options *base)
@@ -215,7 +222,7 @@ static int sequence_render_serial(const options *base, sky_renderer *r, sequence
         f.view.auto_exposure = light_auto_exposure_wanted(&f);
         frame_desc desc = {.view = &f.view};
         render(r, &desc);
-        if (f.view.auto_exposure && !sequence && !base->quiet) {
+        if (f.view.auto_exposure && !sequence && !base->quiet && !base->spectral) {   /* spectral: metered on the host */
             meter_result m = meter_read(r->ctx, &r->meter, 0);
             fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered "
                             "on the GPU)\n", m.ev100, m.log_average, f.view.ev100 ? "cd/m2" : "(relative units)",

@@ -3,21 +3,39 @@
 #include "app/quality/quality.h"
 #include "app/runs/stop.h"
 #include "app/runs/tiles.h"
+#include "app/runs/sequence_frames.h"
+#include "app/scene/light.h"
 #include "io/half_float.h"
 #include "model/spectrum.h"
+#include "reference/metrics.h"
 #include "reference/spectral.h"
+#include "sky/submit.h"
 #include "sky/view_params.h"
+#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <unistd.h>
 
 static struct {
     int wavelengths;
     bool medium_set;
     spectral_medium medium;
     sequence_render_fn inner;
+    bool display;   /* a PNG among the outputs: the sum tone-mapped on the host (spectral_render_tonemap) */
+    bool quiet;     /* or a sequence: no auto exposure line per frame, as the GPU meter's */
 } job;
+
+static bool ends_with(const char *s, const char *tail);
+
+/* Whether any output is a PNG (the only other format --render writes). */
+static bool wants_display(const options *o)
+{
+    for (int i = 0; i < o->output_count; ++i)
+        if (!ends_with(o->outputs[i], ".exr")) return true;
+    return false;
+}
 
 static bool ends_with(const char *s, const char *tail)
 {
@@ -33,22 +51,29 @@ int spectral_render_check(const options *o, const char *flag)
                         "(3 to 120 with --reference)\n", flag, o->spectral, SPECTRAL_GPU_MAX);
         return 2;
     }
-    if (o->output_count == 0 || o->bench_frames > 0) {
-        fprintf(stderr, "vksky: %s: on the GPU only with --render FILE.exr (not the window, not --bench)\n", flag);
-        return 2;
-    }
-    for (int i = 0; i < o->output_count; ++i)
-        if (!ends_with(o->outputs[i], ".exr")) {
-            fprintf(stderr, "vksky: %s: '%s': on the GPU only .exr (scene-linear) outputs are accepted\n", flag,
-                    o->outputs[i]);
-            return 2;
-        }
-    if (tiles_wanted(o)) {
-        fprintf(stderr, "vksky: %s: not with an environment map (--projection) or an image over the band budget\n",
-                flag);
+    const char *why = spectral_render_unable(o);
+    if (why) {
+        fprintf(stderr, "vksky: %s: %s\n", flag, why);
         return 2;
     }
     return 0;
+}
+
+const char *spectral_render_unable(const options *o)
+{
+    if (o->output_count == 0 || o->bench_frames > 0)
+        return "on the GPU only with --render FILE (.exr or .png; not the window, not --bench)";
+    /* A PNG is the sum tone-mapped on the host (spectral_render_tonemap), which knows a perspective frame's pixels
+     * only; an environment map or a banded image writes its bands as they come, before a whole image exists. */
+    if (wants_display(o) && tiles_wanted(o))
+        return "a .png environment map or banded image: its tone map needs the whole image (write .exr, or one band "
+               "of a perspective frame)";
+    /* An .exr map in one band is the whole image, drawn by the serial loop like a perspective frame. Images in several
+     * bands are rendered through include/vksky.h (app/runs/tiles.c), which has no spectral path yet (issue 25). */
+    if (tiles_in_bands(o))
+        return "an image in several bands (over the band budget, VKSKY_TILE_PIXELS / VKSKY_TILE_ROWS): bands are "
+               "rendered through the library, which has no spectral path yet (render it in one band, or RGB)";
+    return NULL;
 }
 
 void spectral_render_begin(const options *o, sequence_render_fn inner)
@@ -57,7 +82,11 @@ void spectral_render_begin(const options *o, sequence_render_fn inner)
     job.medium_set = o->spectral_medium_set;
     job.medium = o->spectral_medium;
     job.inner = inner;
+    job.display = wants_display(o);
+    job.quiet = o->quiet || sequence_active(o);
 }
+
+void spectral_render_plain(sky_renderer *r, const frame_desc *f) { sky_renderer_render(r, f); }
 
 /* Whether the horizon passes within HORIZON_MARGIN pixels of any pixel of the (perspective) frame: the sign of each
  * pixel centre's elevation sine against the horizon's, over the image grown by the margin on every side. */
@@ -81,31 +110,11 @@ static bool horizon_in_view(const options *o)
     return false;
 }
 
-/* Whether the sun's disc reaches into the (perspective) frame: above the horizon, its direction within the image
- * grown by 4 pixels and the sun's radius (the power disc's support reaches 3 texels past the true disc). */
-static bool sun_in_view(const options *o)
-{
-    double f[3], right[3], up[3], s[3];
-    const double deg = 3.14159265358979323846 / 180.0;
-    sky_view_basis(&o->view, f, right, up);
-    double ty = tan(0.5 * o->view.fov_deg * deg), tx = ty * o->width / o->height;
-    double el = o->view.sun_elevation_deg * deg, az = o->view.sun_azimuth_deg * deg;
-    s[0] = cos(el) * cos(az), s[1] = sin(el), s[2] = cos(el) * sin(az);
-    /* Wholly below the horizon: the planet hides it (the power disc's share above the horizon is its penumbra's). */
-    double horizon = asin(sky_view_horizon_sine(o->view.altitude_km, o->atmosphere.bottom_radius));
-    if (el + o->sun_angular_radius_deg * deg < horizon) return false;
-    double z = s[0] * f[0] + s[1] * f[1] + s[2] * f[2];
-    if (z <= 0.0) return false;
-    double x = (s[0] * right[0] + s[1] * right[1] + s[2] * right[2]) / (z * tx);
-    double y = (s[0] * up[0] + s[1] * up[1] + s[2] * up[2]) / (z * ty);
-    double r = tan(o->sun_angular_radius_deg * deg) / ty;   /* the disc's radius, in y's units */
-    return fabs(x) <= 1.0 + 8.0 / o->width + r * o->height / o->width && fabs(y) <= 1.0 + 8.0 / o->height + r;
-}
-
 bool spectral_render_four_wide(const options *o)
 {
     const char *pack = getenv("VKSKY_SPECTRAL_PACK");
     if (o->spectral <= 0 || (pack && !strcmp(pack, "3"))) return false;
+    if (o->view.projection != VKSKY_PROJECTION_PERSPECTIVE) return false;   /* a map: the horizon is in it */
     if (pack && !strcmp(pack, "4")) return true;
     /* The four-wide image has no horizon resolve (its alpha is a wavelength): a frame with the horizon in it keeps
      * three to a pass, whose tone map anti-aliases the horizon per pixel (issue 26). */
@@ -197,46 +206,125 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
             }
         }
     }
-    /* XYZ -> linear Rec.709 (D65), back into the linear readback the EXR writer takes; alpha 1, the composite's (the
-     * four-wide readback's alpha is the last group's fourth wavelength). */
+    /* XYZ -> linear Rec.709 (D65), back into the linear readback the EXR writer takes; alpha: the composite's with
+     * three to a pass, 1 with four (the four-wide readback's alpha is the last group's fourth wavelength). The sum
+     * is float; the readback is half, in the HDR image's units (light_scale, app/scene/light.h), which keep the
+     * sun's disc under half of half's range in every group and so in their sum (its colour is the sun's). */
+    float *rgb = job.display ? malloc(pixels * 4 * sizeof *rgb) : NULL;
     for (size_t i = 0; i < pixels; ++i) {
-        double in[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, rgb[3];
-        spectrum_xyz_to_rec709(in, rgb);
+        double in[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, out[3];
+        spectrum_xyz_to_rec709(in, out);
         for (int k = 0; k < 3; ++k) {
             /* Out of Rec.709's gamut stays negative, as the reference writes it; half's range bounds it. */
-            double v = rgb[k] < -65504.0 ? -65504.0 : rgb[k] > 65504.0 ? 65504.0 : rgb[k];
+            double v = out[k] < -65504.0 ? -65504.0 : out[k] > 65504.0 ? 65504.0 : out[k];
             px[4 * i + k] = io_float_to_half((float)v);
+            if (rgb) rgb[4 * i + k] = (float)out[k];
         }
-        px[4 * i + 3] = io_float_to_half(1.0f);
+        if (width == 4) px[4 * i + 3] = io_float_to_half(1.0f);
+        if (rgb) rgb[4 * i + 3] = 1.0f;
     }
     free(xyz);
+    if (job.display) {
+        if (!rgb) {
+            fprintf(stderr, "vksky: --spectral: out of memory\n");
+            exit(1);
+        }
+        spectral_render_tonemap(r, f->view, rgb, r->readback_display.mapped);
+        free(rgb);
+    }
     sky_renderer_set_scene(r, &base, sun_radius, &base_features);
 }
 
-int spectral_auto(options *o, bool possible)
+/* The spectral sum's PNG: tone-mapped on the host, where the sum is (the GPU's tone map saw one group at a time).
+ * The same law as the GPU's (metrics_tonemap_srgb8: shaders/glsl/tonemap_ops.glsl's operators and sRGB encode) at
+ * the view's exposure; auto exposure as the GPU's meter computes it (sky/meter.c: the log-average of the luminance
+ * in cd/m2 floored at 1e-4, over the sky's pixels only when the ground is black). No bloom (the spectral path has
+ * none) and no dither (the GPU's +-1 LSB triangular noise). */
+void spectral_render_tonemap(const sky_renderer *r, const sky_view *v, const float *rgb, void *display)
 {
-    if (!o->quality_auto || o->spectral || o->max_color_error > 0.0 || o->reference || !possible) return 0;
+    int w = (int)r->desc.width, h = (int)r->desc.height;
+    double scale = v->ev100 ? v->light_scale : 1.0, ev = v->exposure_ev;
+    if (v->auto_exposure) {
+        bool every_pixel = r->variant.ground;
+        double f[3], right[3], up[3], log_sum = 0.0, count = 0.0;
+        sky_view_basis(v, f, right, up);
+        double ty = tan(0.5 * v->fov_deg * 3.14159265358979323846 / 180.0), tx = ty * w / h;
+        double sin_h = sky_view_horizon_sine(v->altitude_km, r->medium.bottom_radius);
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i) {
+                double x = 2.0 * (i + 0.5) / w - 1.0, y = 1.0 - 2.0 * (j + 0.5) / h, d[3];
+                for (int k = 0; k < 3; ++k) d[k] = f[k] + x * tx * right[k] + y * ty * up[k];
+                if (!every_pixel && d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < sin_h) continue;
+                const float *p = rgb + 4 * ((size_t)j * w + i);
+                double lum = (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / scale;
+                log_sum += log(fmax(lum, 1e-4)), count += 1.0;
+            }
+        double average = count > 0.0 ? exp(log_sum / count) : 1e-4;
+        sky_view exposed = *v;
+        light_expose(&exposed, average);
+        ev = exposed.exposure_ev;
+        if (!job.quiet)
+            fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered "
+                            "on the host: the spectral sum)\n", light_auto_ev100(average), average,
+                    v->ev100 ? "cd/m2" : "(relative units)", count);
+    }
+    /* The tone map's multiplier (sky/view_params.c): photometric 1 / (light_scale 1.2 2^EV100), else 2^EV. */
+    double multiplier = v->ev100 ? 1.0 / (v->light_scale * 1.2 * exp2(ev)) : exp2(ev);
+    metrics_tonemap_srgb8(rgb, w, h, log2(multiplier), v->tonemap, display);
+}
+
+/* The scene classes of the run: a sequence's every frame (all of them, whatever --frame-range renders, so that a
+ * split sequence picks what the whole does: sequence_choose_quality's rule), else the view's. */
+static unsigned run_classes(const options *o)
+{
+    if (!sequence_active(o)) return o->quality_classes;
+    unsigned classes = 0;
+    int count = o->frame_count > 0 ? o->frame_count : 1, bad = 0;
+    /* A bad frame is refused later by sequence_check, with its one line: not printed here a first time. */
+    fflush(stderr);
+    int saved = dup(STDERR_FILENO), null = open("/dev/null", O_WRONLY);
+    if (saved >= 0 && null >= 0) dup2(null, STDERR_FILENO);
+    for (int i = 0; i < count && !bad; ++i) {
+        options f;
+        bad = sequence_frame_options(o, i, &f);
+        if (!bad) classes |= quality_class_bit(f.view.altitude_km, f.view.sun_elevation_deg);
+    }
+    fflush(stderr);
+    if (saved >= 0 && null >= 0) dup2(saved, STDERR_FILENO);
+    if (saved >= 0) close(saved);
+    if (null >= 0) close(null);
+    return bad ? 0 : classes;
+}
+
+int spectral_auto(options *o, const char *impossible)
+{
+    if (!o->quality_auto || o->spectral || o->max_color_error > 0.0 || o->reference) return 0;
     for (int i = 1; i < o->argc; ++i)   /* --spectral 0 given: RGB asked for */
         if (!strcmp(o->argv[i], "--spectral") || !strncmp(o->argv[i], "--spectral=", 11)) return 0;
-    /* A still frame only: a sequence keeps its pipelined RGB frames (spectral runs serially, a pass per group). Not
-     * with the sun's disc in the frame: it carries the sun's power at radiances past half floats' range (an EXR
-     * written as float, docs/units.md), and the spectral sum is read back in half floats. */
-    if (o->output_count == 0 || o->bench_frames > 0 || tiles_wanted(o) || sequence_active(o)) return 0;
-    if (o->sun_disc && sun_in_view(o)) return 0;
-    for (int i = 0; i < o->output_count; ++i)
-        if (!ends_with(o->outputs[i], ".exr")) return 0;
-    unsigned classes = o->quality_classes;
+    /* The window is interactive: it stays RGB (a spectral frame is a pass per group of four wavelengths). */
+    if (o->output_count == 0 && o->bench_frames == 0) return 0;
+    /* A sequence gets one choice for the run, from the worst of its frames' classes: its frames share one colour
+     * setting as they share one quality preset (no jump in colour from one frame to the next). */
+    unsigned classes = run_classes(o);
     double rgb = 0.0, measured;
     for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
         if (classes & (1u << c)) rgb = fmax(rgb, quality_color_error(0, c));
     /* Noon and afternoon (RGB within 2.4) stay RGB: their colour is off by less than the keep threshold, and the
      * fewest wavelengths within the budget there (8) would double the frame's cost for it. */
     if (rgb <= SPECTRAL_AUTO_RGB_KEEP) return 0;
+    char names[96];
+    quality_class_names(classes, names, sizeof names);
+    const char *why = impossible ? impossible : o->bench_frames > 0 ? "--bench (it times RGB frames)"
+                                                                    : spectral_render_unable(o);
+    if (why) {   /* RGB kept where the spectral path cannot render: said, not silent */
+        printf("vksky: --quality auto: RGB's colour on the '%s' scene is within CIEDE2000 %.2f of the spectrum's, "
+               "over %g, but this run stays RGB: the spectral path cannot render %s\n", names, rgb,
+               SPECTRAL_AUTO_RGB_KEEP, why);
+        return 0;
+    }
     int n = spectral_pick(SPECTRAL_AUTO_BUDGET, classes, &measured);
     if (n <= 0) return 0;
     o->spectral = n;
-    char names[96];
-    quality_class_names(classes, names, sizeof names);
     printf("vksky: --quality auto: RGB's colour on the '%s' scene is within CIEDE2000 %.2f of the spectrum's, over %g: "
            "picked --spectral %d (measured worst CIEDE2000 %.2f, budget %g; --spectral 0 keeps RGB)\n",
            names, rgb, SPECTRAL_AUTO_RGB_KEEP, n, measured, SPECTRAL_AUTO_BUDGET);

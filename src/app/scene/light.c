@@ -3,6 +3,7 @@
 #include "io/half_float.h"
 #include "model/spectrum.h"
 #include "reference/ref_atmosphere.h"
+#include "reference/spectral.h"
 #include "sky/projection.h"
 #include "sky/view_params.h"
 #include <math.h>
@@ -51,6 +52,8 @@ double light_scale(const options *o)
     return peak > 0.0 ? fmin(scale, exp2(floor(log2(fit / peak)))) : scale;
 }
 
+static void light_sun_at_camera_spectral(const options *o, bool visible, const double e[3], double out[3]);
+
 void light_sun_at_camera(const options *o, double out[3])
 {
     const model_atmosphere *a = &o->atmosphere;
@@ -59,9 +62,42 @@ void light_sun_at_camera(const options *o, double out[3])
     /* Below the camera's geometric horizon the planet is in the way. */
     double horizon = -sqrt(fmax(0.0, 1.0 - (a->bottom_radius / r) * (a->bottom_radius / r)));
     double t[3] = {0, 0, 0}, e[3];
-    if (mu >= horizon) ref_transmittance(a, h, mu, 2000, t);
     light_sun(o, e);
+    if (o->spectral > 0) {   /* --spectral N: the sun's spectrum through the medium per wavelength, as rendered */
+        light_sun_at_camera_spectral(o, mu >= horizon, e, out);
+        return;
+    }
+    if (mu >= horizon) ref_transmittance(a, h, mu, 2000, t);
     for (int i = 0; i < 3; ++i) out[i] = e[i] * t[i];
+}
+
+/* The spectral path's sun at the camera (app/runs/spectral_render.c, the spectral reference): each of the N bins'
+ * weights (683 times the solar spectrum times the CIE functions over the bin) times the medium's transmittance at
+ * the bin's centre, summed to XYZ, scaled to the configured sun's luminance over the spectrum's own illuminance,
+ * then linear Rec.709: what the spectral image's disc integrates to. */
+static void light_sun_at_camera_spectral(const options *o, bool visible, const double e[3], double out[3])
+{
+    const model_atmosphere *a = &o->atmosphere;
+    double mu = sin(o->view.sun_elevation_deg * 3.14159265358979323846 / 180.0), xyz[3] = {0, 0, 0};
+    spectral_medium medium;
+    if (o->spectral_medium_set) medium = o->spectral_medium;
+    else spectral_medium_from_rgb(a, &medium);
+    int n = o->spectral;
+    for (int g = 0; visible && 3 * g < n; ++g) {
+        double nm[3], sun[3] = {1, 1, 1}, t[3];
+        for (int c = 0; c < 3; ++c) nm[c] = ref_spectral_nm(n, 3 * g + c < n ? 3 * g + c : n - 1);
+        model_atmosphere packed;
+        spectral_medium_pack(&medium, a, nm, sun, &packed);
+        ref_transmittance(&packed, o->view.altitude_km, mu, 2000, t);
+        for (int c = 0; c < 3 && 3 * g + c < n; ++c) {
+            double w[3];
+            ref_spectral_weights(n, 3 * g + c, w);
+            for (int k = 0; k < 3; ++k) xyz[k] += w[k] * t[c];
+        }
+    }
+    double y_sun = 0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2], k = y_sun / spectrum_solar_illuminance_toa();
+    for (int i = 0; i < 3; ++i) xyz[i] *= k;
+    spectrum_xyz_to_rec709(xyz, out);
 }
 
 void light_render_atmosphere(const options *o, model_atmosphere *out)
