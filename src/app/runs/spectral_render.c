@@ -314,8 +314,14 @@ int spectral_auto(options *o, const char *impossible)
     if (rgb <= SPECTRAL_AUTO_RGB_KEEP) return 0;
     char names[96];
     quality_class_names(classes, names, sizeof names);
-    const char *why = impossible ? impossible : o->bench_frames > 0 ? "--bench (it times RGB frames)"
-                                                                    : spectral_render_unable(o);
+    /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group, summed on the host in the
+     * serial loop, and a 720p sunset sequence falls from 60 to under 4 frames/s on an H100 (issue 27's throughput is
+     * the default's; docs/spectral.md). --spectral N asks for it. */
+    const char *why = impossible               ? impossible
+                      : o->bench_frames > 0    ? "--bench (it times RGB frames)"
+                      : sequence_active(o)     ? "a sequence at a sequence's speed (a frame would take a pass per "
+                                                 "wavelength group, in the serial loop: ask with --spectral N)"
+                                               : spectral_render_unable(o);
     if (why) {   /* RGB kept where the spectral path cannot render: said, not silent */
         printf("vksky: --quality auto: RGB's colour on the '%s' scene is within CIEDE2000 %.2f of the spectrum's, "
                "over %g, but this run stays RGB: the spectral path cannot render %s\n", names, rgb,
