@@ -156,6 +156,37 @@ void vksky_scene_destroy(vksky_scene *scene)
     free(scene);
 }
 
+/* The command line's one-line complaints (written to stderr by app/cli and app/scene) captured for the host's
+ * callback: vksky_scene_set_values and vksky_scene_reload. */
+typedef struct captured_stderr {
+    char *text;   /* what was written; the caller frees it */
+    size_t size;
+    FILE *memory, *saved;
+} captured_stderr;
+
+static void capture_begin(captured_stderr *c)
+{
+    c->text = NULL, c->size = 0;
+    c->memory = open_memstream(&c->text, &c->size);
+    c->saved = stderr;
+    if (c->memory) stderr = c->memory;
+}
+
+static void capture_end(captured_stderr *c)
+{
+    if (!c->memory) return;
+    stderr = c->saved;
+    fclose(c->memory);
+}
+
+/* Sends the captured first line, without its "vksky: " prefix, to the callback as an error; returns that text. */
+static const char *capture_report(const captured_stderr *c, vksky_message_fn message, void *message_user)
+{
+    const char *text = c->text && !strncmp(c->text, "vksky: ", 7) ? c->text + 7 : c->text ? c->text : "";
+    lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%.*s", (int)strcspn(text, "\n"), text);
+    return text;
+}
+
 vksky_result vksky_scene_set_values(vksky_scene *scene, uint32_t count, const char *const *flags,
                                     const double *values, vksky_message_fn message, void *message_user)
 {
@@ -178,24 +209,17 @@ vksky_result vksky_scene_set_values(vksky_scene *scene, uint32_t count, const ch
     }
     if (count == 0) return VKSKY_SUCCESS;
     /* The command line's own frame function (values, not text), its one-line complaint captured for the callback. */
-    char *captured = NULL;
-    size_t captured_size = 0;
-    FILE *memory = open_memstream(&captured, &captured_size);
-    FILE *saved = stderr;
-    if (memory) stderr = memory;
+    captured_stderr capture;
+    capture_begin(&capture);
     options f;
     int rc = options_frame(base, flags, values, (int)count, &f);
-    if (memory) {
-        stderr = saved;
-        fclose(memory);
-    }
+    capture_end(&capture);
     if (rc != 0) {
-        const char *text = captured && !strncmp(captured, "vksky: ", 7) ? captured + 7 : captured ? captured : "";
-        lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%.*s", (int)strcspn(text, "\n"), text);
-        free(captured);
+        capture_report(&capture, message, message_user);
+        free(capture.text);
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
-    free(captured);
+    free(capture.text);
     f.unresolved = scene->o.unresolved;   /* kept: the next frame's values are set over it too */
     scene->o = f;
     return VKSKY_SUCCESS;
@@ -243,25 +267,18 @@ vksky_result vksky_scene_reload(vksky_scene *scene, vksky_message_fn message, vo
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
     /* The scene loader's one-line complaint goes to the callback, as vksky_scene_load's (lib_options_parse). */
-    char *captured = NULL;
-    size_t captured_size = 0;
-    FILE *memory = open_memstream(&captured, &captured_size);
-    FILE *saved = stderr;
-    if (memory) stderr = memory;
+    captured_stderr capture;
+    capture_begin(&capture);
     options fresh;
     int rc = options_reload(&scene->o, &fresh);
-    if (memory) {
-        stderr = saved;
-        fclose(memory);
-    }
+    capture_end(&capture);
     if (rc != 0) {
-        const char *text = captured && !strncmp(captured, "vksky: ", 7) ? captured + 7 : captured ? captured : "";
-        lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%.*s", (int)strcspn(text, "\n"), text);
+        const char *text = capture_report(&capture, message, message_user);
         bool io = strstr(text, "cannot read") || strstr(text, "no scene") || strstr(text, "not found");
-        free(captured);
+        free(capture.text);
         return io ? VKSKY_ERROR_IO : VKSKY_ERROR_PARSE;   /* the scene as it was */
     }
-    free(captured);
+    free(capture.text);
     scene->o = fresh;
     return VKSKY_SUCCESS;
 }

@@ -47,12 +47,7 @@ static vksky_readback render(host *h, vksky_renderer *r, const vksky_frame *f)
     host_begin(h);
     vksky_result res = vksky_record(r, h->cmd, f);
     HOST_CHECK(res == VKSKY_SUCCESS, "vksky_record: %s", vksky_result_name(res));
-    HOST_VK(vkEndCommandBuffer(h->cmd));
-    VkCommandBufferSubmitInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &ci};
-    HOST_VK(vkQueueSubmit2(h->queue, 1, &si, h->fence));
-    HOST_VK(vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX));
-    HOST_VK(vkResetFences(h->device, 1, &h->fence));
+    host_end_submit_wait(h);
     vksky_readback px = {0};
     res = vksky_renderer_get_readback(r, &px);
     HOST_CHECK(res == VKSKY_SUCCESS && px.display_rgba8, "vksky_renderer_get_readback: %s", vksky_result_name(res));

@@ -256,6 +256,17 @@ static inline void host_begin(host *h)
     HOST_VK(vkBeginCommandBuffer(h->cmd, &bi));
 }
 
+/* Ends the command buffer host_begin began, submits it alone and waits for it (the tests' one-frame round trip). */
+static inline void host_end_submit_wait(host *h)
+{
+    HOST_VK(vkEndCommandBuffer(h->cmd));
+    VkCommandBufferSubmitInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
+    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &ci};
+    HOST_VK(vkQueueSubmit2(h->queue, 1, &si, h->fence));
+    HOST_VK(vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX));
+    HOST_VK(vkResetFences(h->device, 1, &h->fence));
+}
+
 /* The host's frame: vksky leaves the image ready for a transfer read; the host copies it and waits. */
 static inline vksky_image host_image(const host *h, VkFormat format)
 {

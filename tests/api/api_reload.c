@@ -40,12 +40,7 @@ static uint8_t *render(vksky_context *c, host *h, const vksky_scene *scene)
     host_begin(h);
     res = vksky_record(r, h->cmd, &f);
     HOST_CHECK(res == VKSKY_SUCCESS, "vksky_record: %s", vksky_result_name(res));
-    HOST_VK(vkEndCommandBuffer(h->cmd));
-    VkCommandBufferSubmitInfo ci = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 si = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1, .pCommandBufferInfos = &ci};
-    HOST_VK(vkQueueSubmit2(h->queue, 1, &si, h->fence));
-    HOST_VK(vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX));
-    HOST_VK(vkResetFences(h->device, 1, &h->fence));
+    host_end_submit_wait(h);
     vksky_readback px;
     res = vksky_renderer_get_readback(r, &px);
     HOST_CHECK(res == VKSKY_SUCCESS, "vksky_renderer_get_readback: %s", vksky_result_name(res));
