@@ -27,7 +27,8 @@
  *     absolute values;
  *   - the path tracer's own noise: 4 standard errors.
  * The model (ref_sky_radiance: the multi-scattering approximation of docs/model.md) is printed and held to the
- * same bound widened by its documented twilight error against the path tracer (model_error.md: 5 %). */
+ * same bound widened by its documented error against the path tracer at sun -2 deg (docs/model_error.md: worst
+ * -4.5 %, the zenith -0.5 %): 5 %. */
 #include "model/spectral_medium.h"
 #include "model/spectrum.h"
 #include "reference/path_tracer.h"
@@ -212,8 +213,9 @@ static void medium_build(const afgl *t, medium500 *m, double nm, double radius)
     }
     for (int c = 0; c < 3; ++c)
         a->ozone_absorption[c] *= col_t / col_f, a->mie_absorption[c] *= col_t / col_f;
-    printf("ozone column of the table %.1f DU; the forms had %.2f %% of it (rescaled)\n",
-           col_t * TOP / 12000 * m->o3_peak * 1e5 / 2.6867e16, 100.0 * col_f / col_t);
+    if (nm == NM)
+        printf("ozone column of the table %.1f DU; the forms had %.2f %% of it (rescaled)\n",
+               col_t * TOP / 12000 * m->o3_peak * 1e5 / 2.6867e16, 100.0 * col_f / col_t);
 }
 
 /* Extinction (1/km) and Rayleigh-phase scattering (1/km) at altitude h, either from the tables or from ours. */
