@@ -3,7 +3,8 @@
  * below the horizon (sza 92), computed by MYSTIC (Mayer 2009; Emde et al. 2010, 2016) in spherical geometry with
  * polarisation, in the AFGL U.S. Standard Atmosphere 1976 (Rayleigh + its gases, no aerosol, black ground).
  * tests/data/libradtran_twilight.txt has the published number and the atmosphere's air and ozone profiles;
- * tests/data/README.md the sources and terms; docs/spectral.md the table and the differences.
+ * tests/data/README.md the sources and terms; docs/spectral.md the table and the differences. A second case,
+ * daylight: the POLRADTRAN example (polradtran_daylight, below).
  *
  * What is built here (nothing shared with libRadtran): the medium at 500 nm as one model_atmosphere (all three
  * channels the same wavelength), Rayleigh the Bodhaine et al. 1999 cross section (libRadtran's default too) times
@@ -12,12 +13,12 @@
  * plus two otherwise unused species: an extra Rayleigh-phase species carries the air above 40 km, the (non-
  * scattering) Mie absorption the ozone of the troposphere.
  *
- * The bound is set from the stated differences, not from the result (docs/spectral.md "A published twilight"):
+ * The bound is set from the stated differences, not from the result (docs/spectral.md "A published case: libRadtran"):
  *   - MYSTIC's own noise: libRadtran's regression test accepts 2 % between reruns of this example;
  *   - polarisation: the published I is vector; ours scalar. Single scattering is the same either way (unpolarised
  *     sunlight), the error is in the multiple scattering: neglecting polarisation in Rayleigh atmospheres changes
- *     radiance by up to ~10 % at optical depth 1 and a few % at 0.1-0.25 (Mishchenko, Lacis & Travis 1994, JQSRT 51,
- *     491-510; Kattawar, Plass & Hitzfelder 1976): 3 %;
+ *     radiance by up to ~10 % at optical depth ~1 (Mishchenko, Lacis & Travis 1994, JQSRT 51, 491-510), less in
+ *     thinner ones; taken 3 % here (Rayleigh optical depth 0.14 at 500 nm);
  *   - gases we lack at 500 nm: NO2 (the AFGL column, ~5e15 cm^-2, with ~1.5e-19 cm^2 is tau ~8e-4 vertical, ~0.02
  *     on the grazing paths: ~2 %), O3 cross sections of another source and REPTRAN's band treatment (~1 %), H2O
  *     and O4 (< 0.5 %): 3 %;
