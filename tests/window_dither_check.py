@@ -2,6 +2,7 @@
 """The window's dithered swapchain image against the same frame without the dither (tests/window_dither_test.sh).
 
 usage: window_dither_check.py ON.png AGAIN.png OFF.png
+       window_dither_check.py same A.png B.png ...   (RGB byte-identical: the X server's window against screenshots)
   ON, AGAIN: two runs with the dither (the screenshot: the swapchain image the last frame presented); OFF: --no-dither.
   The region: the sky's smooth gradient above the horizon (rows 5 .. 54 of a 160x100 frame at pitch 20 and fov 75:
   the horizon is near row 74), every channel; the issue's properties (26 item 4):
@@ -56,6 +57,11 @@ def main(on_path, again_path, off_path):
 
 
 if __name__ == "__main__":
+    if len(sys.argv) >= 4 and sys.argv[1] == "same":
+        images = [pixels(p) for p in sys.argv[2:]]
+        same = all(i.shape == images[0].shape and np.array_equal(i, images[0]) for i in images[1:])
+        print(("ok   " if same else "FAIL ") + "the same pixels: " + ", ".join(sys.argv[2:]))
+        sys.exit(0 if same else 1)
     if len(sys.argv) != 4:
         sys.exit(__doc__)
     sys.exit(main(*sys.argv[1:]))
