@@ -21,7 +21,10 @@
  *   tradeoff [--size WxH] [--error-size WxH] [--error-render WxH] [--frames N] [--csv FILE]
  *            [--emit-table FILE] [--cost gpu|cpu] [--configs a,b,...] [--scenes noon,...]
  *            [--device N] [--sun-visibility penumbra|lesson-fade] [--horizon-size WxH]
- *            [--emit-horizon-table FILE]
+ *            [--emit-horizon-table FILE] [--horizon-reference PRESET] [--validate]
+ *   --horizon-reference PRESET: the horizon band's reference (default ultra, the table's); ctest horizon_band uses
+ *     high, whose 128x128 multi-scattering LUT is not minutes of lavapipe's time (issue 26).
+ *   --validate: validation + synchronization validation; any message makes the exit status 1.
  */
 #include "app/runs/cpu_time.h"
 #include "app/quality/quality.h"
@@ -237,7 +240,7 @@ static bool wanted(const char *list, const char *name)
 
 /* --emit-horizon-table: the horizon-band error of every configuration on every scene, nothing else. */
 static int emit_horizon_table(gpu_context *ctx, const char *path, const char *configs, const char *scenes, int w, int h,
-                              const model_atmosphere *a)
+                              const model_atmosphere *a, const quality_config *reference)
 {
     FILE *t = fopen(path, "w");
     if (!t) { fprintf(stderr, "tradeoff: cannot write %s\n", path); return 1; }
@@ -250,7 +253,7 @@ static int emit_horizon_table(gpu_context *ctx, const char *path, const char *co
                "static const quality_horizon quality_horizon_table[] = {\n");
     for (int s = 0; s < QUALITY_SCENE_COUNT; ++s) {
         if (!wanted(scenes, quality_scenes[s].name)) continue;
-        float *ref = horizon_frame(ctx, &quality_presets[3], &quality_scenes[s], w, h, a, SUN_RADIUS);
+        float *ref = horizon_frame(ctx, reference, &quality_scenes[s], w, h, a, SUN_RADIUS);
         for (int c = 0; c < 4 + quality_sweep_count; ++c) {
             const quality_config *q = c < 4 ? &quality_presets[c] : &quality_sweep[c - 4];
             if (!wanted(configs, q->name) || q->mode == SKY_CHOICE_FILL) continue;
@@ -266,17 +269,21 @@ static int emit_horizon_table(gpu_context *ctx, const char *path, const char *co
     fprintf(t, "};\nstatic const int quality_horizon_table_count =\n"
                "    (int)(sizeof quality_horizon_table / sizeof quality_horizon_table[0]);\n");
     fclose(t);
+    unsigned messages = gpu_validation_message_count();
     gpu_context_destroy(ctx);
-    return 0;
+    if (messages) fprintf(stderr, "tradeoff: %u validation messages\n", messages);
+    return messages ? 1 : 0;
 }
 
 int main(int argc, char **argv)
 {
     int tw = 1920, th = 1080, ew = 96, eh = 54, rw = 0, rh = 0, frames = 30, device = -1, hw = 480, hh = 270;
     const char *csv = "tradeoff.csv", *table = NULL, *configs = NULL, *scenes = NULL, *horizon_table = NULL;
-    bool cost_cpu = false, lesson = false;
+    bool cost_cpu = false, lesson = false, validate = false;
+    const quality_config *horizon_ref = &quality_presets[3];
     for (int i = 1; i < argc; ++i) {
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--validate")) { validate = true; continue; }
         if (!v) { fprintf(stderr, "tradeoff: %s needs a value\n", a); return 2; }
         if (!strcmp(a, "--size") && !parse_size(v, &tw, &th)) ++i;
         else if (!strcmp(a, "--error-size") && !parse_size(v, &ew, &eh)) ++i;
@@ -290,12 +297,13 @@ int main(int argc, char **argv)
         else if (!strcmp(a, "--device")) device = atoi(v), ++i;
         else if (!strcmp(a, "--horizon-size") && !parse_size(v, &hw, &hh)) ++i;
         else if (!strcmp(a, "--emit-horizon-table")) horizon_table = v, ++i;
+        else if (!strcmp(a, "--horizon-reference") && quality_preset(v)) horizon_ref = quality_preset(v), ++i;
         else if (!strcmp(a, "--sun-visibility") && (!strcmp(v, "penumbra") || !strcmp(v, "lesson-fade")))
             lesson = !strcmp(v, "lesson-fade"), ++i;
         else { fprintf(stderr, "tradeoff: bad argument %s %s\n", a, v); return 2; }
     }
     gpu_context ctx;
-    gpu_context_desc desc = {.device_index = device};
+    gpu_context_desc desc = {.device_index = device, .validation = validate};
     if (gpu_context_create(&ctx, &desc) != 0) return 1;
     if (rw == 0) rw = ew, rh = eh;
     if (rw < ew || rh < eh) { fprintf(stderr, "tradeoff: --error-render %dx%d is smaller than the %dx%d grid\n", rw, rh, ew, eh); return 2; }
@@ -306,7 +314,7 @@ int main(int argc, char **argv)
     model_atmosphere_earth(&a);
     if (lesson) a.sun_visibility = MODEL_SUN_VISIBILITY_LESSON_FADE;
     int nconf = 4 + quality_sweep_count;
-    if (horizon_table) return emit_horizon_table(&ctx, horizon_table, configs, scenes, hw, hh, &a);
+    if (horizon_table) return emit_horizon_table(&ctx, horizon_table, configs, scenes, hw, hh, &a, horizon_ref);
     row *rows = calloc((size_t)nconf * QUALITY_SCENE_COUNT, sizeof *rows);
     int count = 0;
     float *refs[QUALITY_SCENE_COUNT];
@@ -338,7 +346,7 @@ int main(int argc, char **argv)
             r->horizon.max = r->horizon.mean = NAN;
             if (q->mode != SKY_CHOICE_FILL) {
                 if (!horizon_refs[s])
-                    horizon_refs[s] = horizon_frame(&ctx, &quality_presets[3], &quality_scenes[s], hw, hh, &a, SUN_RADIUS);
+                    horizon_refs[s] = horizon_frame(&ctx, horizon_ref, &quality_scenes[s], hw, hh, &a, SUN_RADIUS);
                 float *lum = horizon_frame(&ctx, q, &quality_scenes[s], hw, hh, &a, SUN_RADIUS);
                 r->horizon = horizon_band_error(lum, horizon_refs[s], &quality_scenes[s], hw, hh, &a, SUN_RADIUS);
                 free(lum);

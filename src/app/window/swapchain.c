@@ -7,9 +7,13 @@
 
 #include "app/window/swapchain.h"
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 /* An 8-bit sRGB format lets the hardware encode; a UNORM one makes the spine tell the tone map to encode sRGB
- * itself (frame.c checks the format). Anything else: the surface's first format. */
+ * itself (frame.c checks the format). Anything else: the surface's first format. VKSKY_SWAPCHAIN_UNORM=1 (a test
+ * knob: ctest window_dither) prefers the UNORM formats, so that the tone map's own encoding, and its dither on the
+ * encoded value, reach a swapchain too. */
 VkSurfaceFormatKHR swapchain_choose_format(const gpu_context *ctx, VkSurfaceKHR surface)
 {
     VkSurfaceFormatKHR formats[64];
@@ -17,7 +21,9 @@ VkSurfaceFormatKHR swapchain_choose_format(const gpu_context *ctx, VkSurfaceKHR 
     VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(ctx->physical, surface, &n, formats));
     static const VkFormat preferred[] = {VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_R8G8B8A8_SRGB, VK_FORMAT_B8G8R8A8_UNORM,
                                          VK_FORMAT_R8G8B8A8_UNORM};
-    for (size_t p = 0; p < sizeof preferred / sizeof preferred[0]; ++p)
+    const char *unorm = getenv("VKSKY_SWAPCHAIN_UNORM");
+    size_t first = unorm && !strcmp(unorm, "1") ? 2 : 0;
+    for (size_t p = first; p < sizeof preferred / sizeof preferred[0]; ++p)
         for (uint32_t i = 0; i < n; ++i)
             if (formats[i].format == preferred[p] && formats[i].colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR)
                 return formats[i];

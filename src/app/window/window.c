@@ -524,6 +524,7 @@ static void print_summary(app *a)
     }
     printf("sun_elevation %.3f\n", a->view.sun_elevation_deg);
     printf("camera altitude_km %.6f yaw %.3f pitch %.3f\n", a->view.altitude_km, a->view.yaw_deg, a->view.pitch_deg);
+    printf("swapchain_format %d\n", (int)a->sc.format.format);   /* VkFormat: 50/44 B8G8R8A8 SRGB/UNORM (window_dither) */
 }
 
 int window_run(const options *o)
