@@ -43,8 +43,11 @@ extern "C" {
  *    vksky_context_set_device_features, vksky_auto_exposure + vksky_renderer_get_exposure,
  *    vksky_context_set_cache_directory + vksky_renderer_store_luts; vksky_frame_band (projections, bands);
  *    readback slots (vksky_readback_target), vksky_scene_set_values, vksky_renderer_scene_changes, vksky_renderer_luts_stale (sequences);
- *    vksky_renderer_get_stats (--timings); vksky_scene_reload (F5). */
-#define VKSKY_ABI_VERSION 2u
+ *    vksky_renderer_get_stats (--timings); vksky_scene_reload (F5).
+ * 3: the window's frame extensions: vksky_frame_display (tone map, bloom), vksky_frame_place (altitude, sun),
+ *    vksky_frame_timer + vksky_renderer_get_slot_timings, vksky_frame_capture + vksky_renderer_get_capture,
+ *    vksky_frame_swapchain (a swapchain image's barriers). */
+#define VKSKY_ABI_VERSION 3u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
 
@@ -261,7 +264,13 @@ typedef enum vksky_structure_type {
     VKSKY_STRUCTURE_TYPE_FRAME_VIEW = 3,       /* vksky_frame_view, from vksky_frame.next */
     VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE = 4,    /* vksky_auto_exposure, from vksky_frame.next */
     VKSKY_STRUCTURE_TYPE_FRAME_BAND = 5,       /* vksky_frame_band, from vksky_frame.next */
-    VKSKY_STRUCTURE_TYPE_READBACK_TARGET = 16  /* vksky_readback_target, from vksky_frame.next (sequences) */
+    VKSKY_STRUCTURE_TYPE_READBACK_TARGET = 16, /* vksky_readback_target, from vksky_frame.next (sequences) */
+    /* ABI 3, from vksky_frame.next (an interactive window's frames): */
+    VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY = 17,   /* vksky_frame_display */
+    VKSKY_STRUCTURE_TYPE_FRAME_PLACE = 18,     /* vksky_frame_place */
+    VKSKY_STRUCTURE_TYPE_FRAME_TIMER = 19,     /* vksky_frame_timer */
+    VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE = 20,   /* vksky_frame_capture */
+    VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN = 21  /* vksky_frame_swapchain */
 } vksky_structure_type;
 typedef struct vksky_chain {   /* the head every extension struct starts with: to walk a chain */
     vksky_structure_type type;
@@ -538,6 +547,73 @@ VKSKY_API vksky_result vksky_renderer_get_stats(const vksky_renderer *renderer, 
  * COMPUTE_SHADER). No allocation, no submission, no wait. docs/library.md, docs/synchronization.md §10. */
 VKSKY_API vksky_result vksky_record_luts(vksky_renderer *renderer, VkCommandBuffer compute_cmd, bool force,
                                          bool *recorded);
+
+/* ---- ABI 3: an interactive window's frames (the command line's window is this API's host) ----------------------
+ * Each is chained from vksky_frame.next, DISPLAY into the host's image (no readback config) only. */
+
+/* The tone map's operator (the window's keys 1, 2, 3; the command line's --tonemap). */
+typedef enum vksky_tonemap {
+    VKSKY_TONEMAP_OPERATOR_CLAMP = 0,
+    VKSKY_TONEMAP_OPERATOR_REINHARD = 1,
+    VKSKY_TONEMAP_OPERATOR_ACES = 2
+} vksky_tonemap;
+/* This frame's tone map operator and bloom switch, instead of the scene's (the window's B key). Bloom on needs a
+ * renderer created with desc.bloom (its chain allocated); off skips the chain's passes. No pipeline is rebuilt. */
+typedef struct vksky_frame_display {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY */
+    const void *next;
+    vksky_tonemap tonemap;
+    bool bloom;
+} vksky_frame_display;
+
+/* Where the camera of a vksky_frame_view is (required beside it): its altitude above the ground and the sun in the
+ * camera's local frame (azimuth 0 along the view's yaw 0), instead of the scene's. A fly camera over a round planet
+ * keeps these per frame; the rays are the command line's for the same values, bit for bit. */
+typedef struct vksky_frame_place {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_PLACE */
+    const void *next;
+    double altitude_km;            /* >= 0 */
+    double sun_azimuth_deg;        /* -720..720 */
+    double sun_elevation_deg;      /* -90..90 */
+} vksky_frame_place;
+
+/* GPU timers per frame in flight: this frame's pass timestamps go to timer `slot` (< VKSKY_TIMER_SLOTS, the host's
+ * frame slot), so frame N's times can be read (vksky_renderer_get_slot_timings) after frame N+1 was recorded into
+ * another slot. A slot's query pool is made the first time a frame names it. */
+#define VKSKY_TIMER_SLOTS 4u
+typedef struct vksky_frame_timer {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_TIMER */
+    const void *next;
+    uint32_t slot;
+} vksky_frame_timer;
+/* The passes' GPU times of the last frame recorded with timer `slot`, once the host waited for its command buffer
+ * (as vksky_renderer_get_timings). *count 0: no frame recorded with that slot since the last read, or a read before
+ * (each frame's times are read once). */
+VKSKY_API vksky_result vksky_renderer_get_slot_timings(vksky_renderer *renderer, uint32_t slot, vksky_pass_timing *out,
+                                                       uint32_t capacity, uint32_t *count);
+
+/* A screenshot: after the tone map, this frame's colour image (frame.color: 4 bytes a pixel, its format's byte
+ * order, usage TRANSFER_SRC) is copied into the renderer's capture buffer (made at the first such frame, width x
+ * height x 4 bytes), made available to HOST_READ; then the image goes to color.after (or presentation). Traced as
+ * display.write_to_capture and capture.to_host. vksky_renderer_get_capture gives the bytes after the host waited. */
+typedef struct vksky_frame_capture {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE */
+    const void *next;
+} vksky_frame_capture;
+/* The last captured frame's bytes (display_rgba8: the colour image's bytes as they are, e.g. BGRA for a B8G8R8A8
+ * swapchain; linear_rgba16f NULL); valid until the next captured frame or a resize. VKSKY_ERROR_INVALID_ARGUMENT:
+ * nothing captured. */
+VKSKY_API vksky_result vksky_renderer_get_capture(vksky_renderer *renderer, vksky_readback *out);
+
+/* frame.color is a swapchain image: acquired before (the host's submission waits for the acquire semaphore at
+ * COLOR_ATTACHMENT_OUTPUT, the image's contents not needed) and presented after (the host's submission signals its
+ * semaphore at ALL_COMMANDS): color.before and color.after are ignored, the layouts are UNDEFINED and
+ * PRESENT_SRC_KHR, and the barriers carry the window's names, display.to_attachment and display.to_present
+ * (docs/synchronization.md), instead of host.color.*. */
+typedef struct vksky_frame_swapchain {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN */
+    const void *next;
+} vksky_frame_swapchain;
 
 #ifdef __cplusplus
 }

@@ -61,41 +61,45 @@ vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const 
     return VKSKY_SUCCESS;
 }
 
-vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view,
-                             const vksky_auto_exposure **exposure, const vksky_frame_band **band,
-                             const vksky_readback_target **target)
+vksky_result lib_frame_chain(const vksky_context *c, const void *next, lib_frame_ext *ext)
 {
-    *view = NULL, *exposure = NULL, *band = NULL, *target = NULL;
+    /* The frame's types in the order of lib_frame_ext's fields; seen[k]: the struct of KNOWN[k], once. */
+    static const vksky_structure_type KNOWN[] = {
+        VKSKY_STRUCTURE_TYPE_FRAME_VIEW, VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, VKSKY_STRUCTURE_TYPE_FRAME_BAND,
+        VKSKY_STRUCTURE_TYPE_READBACK_TARGET, VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY, VKSKY_STRUCTURE_TYPE_FRAME_PLACE,
+        VKSKY_STRUCTURE_TYPE_FRAME_TIMER, VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE, VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN};
+    enum { N = sizeof KNOWN / sizeof KNOWN[0] };
+    const void *seen[N] = {0};
     for (int depth = 0; next; ++depth) {
         const vksky_chain *link = next;
-        bool known = link->type == VKSKY_STRUCTURE_TYPE_FRAME_VIEW || link->type == VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE ||
-                     link->type == VKSKY_STRUCTURE_TYPE_FRAME_BAND || link->type == VKSKY_STRUCTURE_TYPE_READBACK_TARGET;
-        bool twice = (link->type == VKSKY_STRUCTURE_TYPE_FRAME_VIEW && *view) ||
-                     (link->type == VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE && *exposure) ||
-                     (link->type == VKSKY_STRUCTURE_TYPE_FRAME_BAND && *band) ||
-                     (link->type == VKSKY_STRUCTURE_TYPE_READBACK_TARGET && *target);
-        if (depth >= 16 || !known || twice) {
+        int k = 0;
+        while (k < N && KNOWN[k] != link->type) ++k;
+        bool twice = k < N && seen[k];
+        if (depth >= 16 || k == N || twice) {
             lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                         "vksky_record: frame.next: structure type %d %s (accepted here: VKSKY_STRUCTURE_TYPE_FRAME_VIEW, "
                         "VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, VKSKY_STRUCTURE_TYPE_FRAME_BAND, "
-                        "VKSKY_STRUCTURE_TYPE_READBACK_TARGET, each once)", (int)link->type,
+                        "VKSKY_STRUCTURE_TYPE_READBACK_TARGET, VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY, "
+                        "VKSKY_STRUCTURE_TYPE_FRAME_PLACE, VKSKY_STRUCTURE_TYPE_FRAME_TIMER, "
+                        "VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE, VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN, each once)",
+                        (int)link->type,
                         depth >= 16 ? "past 16 links (a loop?)" : twice ? "twice" : "is unknown to this library or not a frame's");
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
-        if (link->type == VKSKY_STRUCTURE_TYPE_FRAME_VIEW) *view = next;
-        else if (link->type == VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE) *exposure = next;
-        else if (link->type == VKSKY_STRUCTURE_TYPE_FRAME_BAND) *band = next;
-        else *target = next;
+        seen[k] = next;
         next = link->next;
     }
-    const vksky_auto_exposure *e = *exposure;
+    *ext = (lib_frame_ext){.view = seen[0], .exposure = seen[1], .band = seen[2], .target = seen[3],
+                           .display = seen[4], .place = seen[5], .timer = seen[6], .capture = seen[7],
+                           .swapchain = seen[8]};
+    const vksky_auto_exposure *e = ext->exposure;
     if (e && (e->slot >= VKSKY_AUTO_EXPOSURE_SLOTS || !(e->ease >= 0.0 && e->ease <= 1e6))) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                     "vksky_record: vksky_auto_exposure: slot %u, ease %g; accepted slot 0..%u, ease 0..1 (or more: none)",
                     e->slot, e->ease, VKSKY_AUTO_EXPOSURE_SLOTS - 1);
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
-    const vksky_frame_view *v = *view;
+    const vksky_frame_view *v = ext->view;
     if (v && !(v->yaw_deg >= -360.0 && v->yaw_deg <= 360.0 && v->pitch_deg >= -90.0 && v->pitch_deg <= 90.0 &&
                v->fov_deg >= 1.0 && v->fov_deg <= 170.0)) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,

@@ -258,11 +258,14 @@ static vksky_result apply_band(const vksky_renderer *renderer, const vksky_frame
 
 static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, const vksky_frame *frame)
 {
-    const vksky_frame_view *given = NULL;
-    const vksky_auto_exposure *metered = NULL;
-    const vksky_frame_band *band = NULL;
-    const vksky_readback_target *readback_target = NULL;
-    vksky_result chain = lib_frame_chain(renderer->ctx, frame->next, &given, &metered, &band, &readback_target);
+    lib_frame_ext ext;
+    vksky_result chain = lib_frame_chain(renderer->ctx, frame->next, &ext);
+    if (chain != VKSKY_SUCCESS) return chain;
+    const vksky_frame_view *given = ext.view;
+    const vksky_auto_exposure *metered = ext.exposure;
+    const vksky_frame_band *band = ext.band;
+    const vksky_readback_target *readback_target = ext.target;
+    chain = lib_window_check(renderer, &ext);   /* the window's values: DISPLAY into the host's image only */
     if (chain != VKSKY_SUCCESS) return chain;
     vksky_context *c = renderer->ctx;
     sky_view v = renderer->o.view;
@@ -343,6 +346,9 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
                            .host_before = image_use(img->before), .host_after = image_use(img->after)};
     frame_desc f = {.view = &v, .force_luts = frame->force_luts, .target = &target, .meter_slot = slot,
                     .meter_first_row = band ? band->meter_first_row : 0, .meter_rows = band ? band->meter_rows : 0};
+    /* ABI 3, the window's values (api_window.c): tone map, bloom, place, timer slot, capture, swapchain uses. */
+    vksky_result res = lib_window_apply(renderer, &ext, &v, &f, &target);
+    if (res != VKSKY_SUCCESS) return res;
     return record_trapped(renderer, cmd, &f, false);
 }
 

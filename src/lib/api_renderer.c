@@ -191,6 +191,7 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
 void vksky_renderer_destroy(vksky_renderer *renderer)
 {
     if (!renderer) return;
+    lib_window_destroy(renderer, true);
     lib_readback_slots_destroy(renderer);
     host_frame_destroy(&renderer->hf, &renderer->r);
     sky_renderer_destroy(&renderer->r);
@@ -325,6 +326,7 @@ vksky_result vksky_renderer_resize(vksky_renderer *renderer, uint32_t width, uin
         return lib_result_from_vk(trap.result);
     }
     gpu_trap_arm(&trap);
+    lib_window_destroy(renderer, false);    /* the capture buffer of the old size (the timers stay) */
     lib_readback_slots_destroy(renderer);   /* new sizes: one slot again, the renderer's own (remade) */
     sky_renderer_resize(&renderer->r, width, height);
     lib_readback_slots_init(renderer);

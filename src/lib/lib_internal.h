@@ -44,7 +44,25 @@ struct vksky_renderer {
     uint32_t slot_count;
     gpu_buffer slot_linear[VKSKY_READBACK_SLOTS_MAX], slot_display[VKSKY_READBACK_SLOTS_MAX];
     lib_render_inputs applied;     /* what the GPU reads of the scene, as last set (vksky_renderer_scene_changes) */
+    /* ABI 3 (api_window.c): the timers of frames in flight (made at a slot's first frame) and the capture buffer */
+    gpu_timer timers[VKSKY_TIMER_SLOTS];
+    bool timer_made[VKSKY_TIMER_SLOTS], timer_unread[VKSKY_TIMER_SLOTS];
+    gpu_buffer capture;            /* size 0: none made */
+    bool captured;                 /* a frame was captured since the buffer was made */
 };
+
+/* A frame's `next` chain, each struct or NULL (lib_frame_chain). */
+typedef struct lib_frame_ext {
+    const vksky_frame_view *view;
+    const vksky_auto_exposure *exposure;
+    const vksky_frame_band *band;
+    const vksky_readback_target *target;
+    const vksky_frame_display *display;   /* ABI 3 */
+    const vksky_frame_place *place;
+    const vksky_frame_timer *timer;
+    const vksky_frame_capture *capture;
+    const vksky_frame_swapchain *swapchain;
+} lib_frame_ext;
 
 /* The context's trace bound to this thread for the length of a call (no trace of its own: the process-wide streams
  * stay, the CLI's and the drop probe's); returns what lib_trace_end restores. */
@@ -56,9 +74,13 @@ vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const 
                                 bool *readback);
 /* A frame's `next` chain checked (types known, in place, once): the view (vksky_frame_view), the auto exposure and
  * the band (vksky_frame_band: its ranges are the renderer's, checked by vksky_record), each or NULL. */
-vksky_result lib_frame_chain(const vksky_context *c, const void *next, const vksky_frame_view **view,
-                             const vksky_auto_exposure **exposure, const vksky_frame_band **band,
-                             const vksky_readback_target **target);
+vksky_result lib_frame_chain(const vksky_context *c, const void *next, lib_frame_ext *ext);
+/* ABI 3's window extensions (api_window.c): checked against the renderer and applied to the frame's view and target
+ * (its timer, capture buffer, swapchain uses); the timers and capture buffer made at first use. */
+vksky_result lib_window_check(const vksky_renderer *r, const lib_frame_ext *ext);
+vksky_result lib_window_apply(vksky_renderer *r, const lib_frame_ext *ext, sky_view *v, frame_desc *f,
+                              frame_target *target);
+void lib_window_destroy(vksky_renderer *r, bool timers);   /* the capture buffer, and the timers (destroy) */
 struct quality_config;
 void lib_quality_from_config(const vksky_quality_config *q, struct quality_config *out);
 /* One message line to the callback (NULL: dropped). */

@@ -9,8 +9,8 @@ double sky_renderer_render(sky_renderer *r, const frame_desc *f);
 /* The same with the LUT passes on the context's compute queue (--async-luts; sky/async_luts.c): called by
  * sky_renderer_render when the context has one. */
 double sky_renderer_render_async(sky_renderer *r, const frame_desc *f);
-/* Its two halves, for a caller with its own graphics submission (the window): the LUT passes recorded and submitted
- * on the compute queue when stale (or `force`), returning their command buffer (free it from ctx->compute_pool once
+/* Its two halves (the window, once their other caller, is a host of include/vksky.h now): the LUT passes recorded
+ * and submitted on the compute queue when stale (or `force`), returning their command buffer (free it from ctx->compute_pool once
  * the frame that waited for it is done) or VK_NULL_HANDLE; then the frame's semaphores: `signal` (graphics_done, the
  * next value) and, returned as the count 0 or 1, `wait` (compute_done at the LUT readers' stages) when `waits_luts`. */
 VkCommandBuffer sky_renderer_submit_luts_async(sky_renderer *r, bool force);

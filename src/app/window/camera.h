@@ -6,7 +6,7 @@
  * moves (parallel transport: no pole, no sudden twist). */
 #ifndef VKSKY_APP_CAMERA_H
 #define VKSKY_APP_CAMERA_H
-#include "sky/view_params.h"
+#include "app/cli/options_struct.h"   /* sky_view, the view values a frame is made of */
 
 #define CAMERA_MIN_ALTITUDE_KM 0.0005     /* never inside the planet: half a metre above the ground */
 #define CAMERA_SPEED_KM_S 0.2

@@ -6,20 +6,21 @@
  * after vkQueuePresentKHR, and the only moment we know that wait is over is when the same image is acquired
  * again, so the semaphore must follow the image, not the frame slot. The submit waits on the acquire semaphore
  * at COLOR_ATTACHMENT_OUTPUT: the LUT, sky and bloom passes do not touch the swapchain image and may run before
- * the presentation engine lets go of it; the spine's first barrier on the image (usage GPU_USAGE_ACQUIRED)
- * starts from that same stage, so its layout transition is chained after the wait. The spine ends with the
- * barrier to PRESENT_SRC, and the submit signals the image's semaphore at ALL_COMMANDS so that the tone map's
- * writes, the optional screenshot copy and that layout transition all happen before presentation.
+ * the presentation engine lets go of it; the spine's first barrier on the image (usage GPU_USAGE_ACQUIRED, which
+ * vksky_frame_swapchain asks for) starts from that same stage, so its layout transition is chained after the wait.
+ * The spine ends with the barrier to PRESENT_SRC, and the submit signals the image's semaphore at ALL_COMMANDS so
+ * that the tone map's writes, the optional screenshot copy and that layout transition all happen before
+ * presentation.
  *
  * Swapchain life: recreated (with oldSwapchain) when the framebuffer size changes, or acquire/present say
  * OUT_OF_DATE or SUBOPTIMAL; no frame is drawn while the window is minimised (we sleep in glfwWaitEvents). The
  * old images' semaphores outlive their presents through VK_EXT_swapchain_maintenance1's present fences where the
  * device has them, else through vkDeviceWaitIdle() (swapchain.c; docs/synchronization.md §6).
  *
- * The window in three files: this one (the loop, frames in flight, screenshot, title, setup), swapchain.c (the
- * swapchain's life) and window_input.c (the controls); their shared state is app/window/window_app.h. */
+ * The window in four files: this one (the loop, frames in flight, screenshot, title, setup), window_api.c (its calls
+ * of include/vksky.h: the device adopted, the scene, one vksky_record per frame), swapchain.c (the swapchain's life)
+ * and window_input.c (the controls); their shared state is app/window/window_app.h. */
 #include "app/runs/startup.h"
-#include "app/scene/render_values.h"
 #include "app/runs/cpu_time.h"
 #include "app/scene/light.h"
 #include "app/window/window_app.h"
@@ -27,8 +28,6 @@
 #include "app/runs/stop.h"
 #include "io/atomic_file.h"
 #include "io/png_io.h"
-#include "sky/frame.h"
-#include "sky/submit.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -69,7 +68,8 @@ static void swapchain_recreate(app *a)
         glfwWaitEventsTimeout(0.05);
         return;
     }
-    sky_renderer_resize(&a->renderer, a->sc.extent.width, a->sc.extent.height);
+    window_api_check(vksky_renderer_resize(a->renderer, a->sc.extent.width, a->sc.extent.height),
+                     "vksky_renderer_resize");
     a->swapchain_dirty = false;
 }
 
@@ -89,7 +89,6 @@ static void frames_create(app *a)
         VK_CHECK(vkAllocateCommandBuffers(ctx->device, &ainfo, &f->cmd));
         VK_CHECK(vkCreateFence(ctx->device, &finfo, NULL, &f->done));
         VK_CHECK(vkCreateSemaphore(ctx->device, &sinfo, NULL, &f->acquired));
-        gpu_timer_create(ctx, &f->timer);
         char name[48];
         snprintf(name, sizeof name, "frame %d commands", i);
         gpu_set_name(ctx, VK_OBJECT_TYPE_COMMAND_BUFFER, (uint64_t)(uintptr_t)f->cmd, name);
@@ -106,33 +105,31 @@ static void frames_destroy(app *a)
         frame_slot *f = &a->frames[i];
         vkDestroyFence(a->ctx.device, f->done, NULL);
         vkDestroySemaphore(a->ctx.device, f->acquired, NULL);
-        gpu_timer_destroy(&a->ctx, &f->timer);
         vkFreeCommandBuffers(a->ctx.device, a->ctx.command_pool, 1, &f->cmd);
     }
 }
 
-/* After the slot's fence: its timestamps are final. The frame's GPU time is the sum of its passes. */
-static void read_timer(app *a, frame_slot *f)
+/* After the slot's fence: its timestamps are final (vksky_frame_timer: the slot's timer, read once). The frame's GPU
+ * time is the sum of its passes. */
+static void read_timer(app *a)
 {
-    if (!f->timer_unread) return;
-    f->timer_unread = false;
-    double ms[GPU_TIMER_MAX], sum = 0.0;
-    uint32_t n = gpu_timer_read(&a->ctx, &f->timer, ms);
-    for (uint32_t i = 0; i < n; ++i) sum += ms[i];
-    if (n == 0) return;
+    vksky_pass_timing t[32];
+    uint32_t n = 0;
+    double sum = 0.0;
+    if (vksky_renderer_get_slot_timings(a->renderer, a->slot, t, 32, &n) != VKSKY_SUCCESS || n == 0) return;
+    for (uint32_t i = 0; i < n && i < 32; ++i) sum += t[i].gpu_ms;
     a->st.gpu_ms_sum += sum, a->st.gpu_samples++;
     a->st.gpu_ms_total += sum, a->st.gpu_samples_total++;
 }
 
-/* Record the frame into the slot's command buffer: the spine does all of it, ending on the PRESENT barrier. */
-static void record(app *a, frame_slot *f, uint32_t image, gpu_buffer *capture)
+/* Record the frame into the slot's command buffer through vksky_record: the frame's values as extension structs
+ * (app/window/window_api.c), the spine ending on the PRESENT barrier. */
+static void record(app *a, frame_slot *f, uint32_t image, bool capture)
 {
     VK_CHECK(vkResetCommandBuffer(f->cmd, 0));
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     VK_CHECK(vkBeginCommandBuffer(f->cmd, &binfo));
-    frame_target target = {a->sc.images[image], a->sc.views[image], a->sc.extent, GPU_USAGE_ACQUIRED,
-                           GPU_USAGE_PRESENT, .capture = capture};
     /* The renderer's own images (HDR, bloom mips, LUTs) are shared by both frames in flight. That is safe
      * without per-frame copies: both frames go to one queue, and a pipeline barrier's source scope covers
      * every command submitted before it on that queue, earlier submissions included. So the spine's first
@@ -143,23 +140,14 @@ static void record(app *a, frame_slot *f, uint32_t image, gpu_buffer *capture)
      * barrier (capture.to_host) ctest host_read_barriers checks (the guide's tables keep the first frame only). */
     const char *tc = getenv("VKSKY_TRACE_CAPTURE");
     bool trace = a->o->trace_barriers && (!a->traced || (capture && tc && !strcmp(tc, "1")));
-    if (trace) {
-        gpu_barrier_trace(stdout);
-        if (a->traced) gpu_barrier_trace_commands();   /* the capture frame: a command buffer of its own */
-    }
+    window_api_trace(a, trace);
     /* --async-luts: the LUT passes (when stale) go to the compute queue first; submit() makes this frame wait for
-     * them. The slot's fence was waited for, so the frame that waited for its last LUT build is done, and so is that
-     * build. */
-    if (a->ctx.compute_queue) {
-        if (f->luts) vkFreeCommandBuffers(a->ctx.device, a->ctx.compute_pool, 1, &f->luts);
-        f->luts = sky_renderer_submit_luts_async(&a->renderer, false);
-    }
-    /* Auto exposure: the GPU meters this frame and its tone map reads the result (slot: the frame slot's). */
-    a->view.auto_exposure = a->auto_exposure;
-    a->view.auto_exposure_ease = a->exposure_ease;
-    frame_record(&a->renderer, f->cmd, &(frame_desc){.view = &a->view, .target = &target, .timer = &f->timer,
-                                                     .meter_slot = (uint32_t)a->slot});
-    if (trace) gpu_barrier_trace(NULL), a->traced = true;
+     * them. A LUT build happens at the first frame, or after F5 or a resize waited for the device. */
+    f->luts_wait = false;
+    if (a->async.device && host_async_luts(&a->async, a->renderer, false, &f->luts_wait)) exit(1);
+    window_api_record(a, f->cmd, image, capture);
+    if (trace) a->traced = true;
+    window_api_trace(a, false);
     VK_CHECK(vkEndCommandBuffer(f->cmd));
 }
 
@@ -177,16 +165,14 @@ static void submit(app *a, frame_slot *f, uint32_t image)
      * next LUT build waits for (docs/synchronization.md §10). */
     VkSemaphoreSubmitInfo waits[2] = {wait}, signals[2] = {signal};
     uint32_t wait_count = 1, signal_count = 1;
-    if (a->ctx.compute_queue)
-        wait_count += sky_async_frame_semaphores(&a->ctx, f->luts != VK_NULL_HANDLE, &waits[1], &signals[1]),
-            signal_count = 2;
+    if (a->async.device)
+        wait_count += host_async_frame(&a->async, f->luts_wait, &waits[1], &signals[1]), signal_count = 2;
     VkSubmitInfo2 info = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = wait_count,
                           .pWaitSemaphoreInfos = waits, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cmd,
                           .signalSemaphoreInfoCount = signal_count, .pSignalSemaphoreInfos = signals};
     /* Reset only now that a submit follows for sure: a reset fence nobody signals would hang the next wait. */
     VK_CHECK(vkResetFences(a->ctx.device, 1, &f->done));
     VK_CHECK(vkQueueSubmit2(a->ctx.queue, 1, &info, f->done));
-    f->timer_unread = true;
 }
 
 static void present(app *a, uint32_t image)
@@ -208,16 +194,18 @@ static void present(app *a, uint32_t image)
 
 /* One frame: wait for the slot, acquire, record, submit, present. Returns false when nothing was submitted
  * (acquire said OUT_OF_DATE: no image, no semaphore signal, the fence left signalled for the retry). */
-static bool draw_frame(app *a, gpu_buffer *capture)
+static bool draw_frame(app *a, bool capture)
 {
     frame_slot *f = &a->frames[a->slot];
     /* The slot's previous submission is done: its command buffer, semaphore and timestamps are free. */
     VK_CHECK(vkWaitForFences(a->ctx.device, 1, &f->done, VK_TRUE, UINT64_MAX));
-    read_timer(a, f);
+    read_timer(a);
     /* Its meter's result (a frame or two late): the EV100 the title shows and the +/- keys step from. A slot never
      * metered counts no pixels. */
-    meter_result m = meter_read(&a->ctx, &a->renderer.meter, (uint32_t)a->slot);
-    if (a->auto_exposure && m.count > 0.0f) a->view.exposure_ev = a->view.ev100 ? m.ev100 : -log2(1.2) - m.ev100;
+    vksky_exposure m = {0};
+    if (vksky_renderer_get_exposure(a->renderer, a->slot, &m) == VKSKY_SUCCESS && a->auto_exposure &&
+        m.pixel_count > 0.0)
+        a->view.exposure_ev = a->view.ev100 ? m.ev100 : -log2(1.2) - m.ev100;
     uint32_t image = 0;
     VkResult r = vkAcquireNextImageKHR(a->ctx.device, a->sc.handle, UINT64_MAX, f->acquired, VK_NULL_HANDLE, &image);
     if (r == VK_ERROR_OUT_OF_DATE_KHR) {
@@ -246,23 +234,26 @@ static bool format_is_rgba8(VkFormat f)
            f == VK_FORMAT_A8B8G8R8_SRGB_PACK32 || f == VK_FORMAT_A8B8G8R8_UNORM_PACK32;
 }
 
-/* The last frame again, with the spine copying the swapchain image into a host buffer; after its fence the
- * pixels are written as PNG. Both sRGB and UNORM swapchains hold sRGB-encoded bytes (the tone map encodes for
- * UNORM), so the PNG is tagged sRGB either way. Returns false if the frame could not be drawn yet. */
+/* The last frame again, with the spine copying the swapchain image into the renderer's capture buffer
+ * (vksky_frame_capture); after its fence the pixels are written as PNG. Both sRGB and UNORM swapchains hold
+ * sRGB-encoded bytes (the tone map encodes for UNORM), so the PNG is tagged sRGB either way. Returns false if the
+ * frame could not be drawn yet. */
 static bool draw_screenshot_frame(app *a)
 {
     VkExtent2D e = a->sc.extent;
-    gpu_buffer buf;
-    gpu_buffer_create(&a->ctx, &buf, "screenshot", (VkDeviceSize)e.width * e.height * 4,
-                      VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     frame_slot *f = &a->frames[a->slot];
-    if (!draw_frame(a, &buf)) {
-        gpu_buffer_destroy(&a->ctx, &buf);
-        return false;
-    }
+    if (!draw_frame(a, true)) return false;
     VK_CHECK(vkWaitForFences(a->ctx.device, 1, &f->done, VK_TRUE, UINT64_MAX));
-    gpu_buffer_invalidate(&a->ctx, &buf);
-    uint8_t *px = buf.mapped;
+    vksky_readback shot;
+    window_api_check(vksky_renderer_get_capture(a->renderer, &shot), "vksky_renderer_get_capture");
+    size_t bytes = (size_t)e.width * e.height * 4;
+    uint8_t *px = malloc(bytes);
+    if (!px) {
+        fprintf(stderr, "vksky: --screenshot: out of memory\n");
+        a->status = 1;
+        return true;
+    }
+    memcpy(px, shot.display_rgba8, bytes);
     if (format_is_bgra(a->sc.format.format))
         for (size_t i = 0; i < (size_t)e.width * e.height; ++i) {
             uint8_t t = px[4 * i];
@@ -273,7 +264,7 @@ static bool draw_screenshot_frame(app *a)
         fprintf(stderr, "vksky: --screenshot: %s\n", err);
         a->status = 1;
     }
-    gpu_buffer_destroy(&a->ctx, &buf);
+    free(px);
     return true;
 }
 
@@ -402,7 +393,7 @@ static void run_loop(app *a)
             if (draw_screenshot_frame(a)) break;
             continue;
         }
-        if (draw_frame(a, NULL)) update_title(a, now);
+        if (draw_frame(a, false)) update_title(a, now);
         test_hook(a);
         test_f5(a);
     }
@@ -478,14 +469,9 @@ static int start_rendering(app *a)
         return 1;
     }
     frames_create(a);
-    /* The bloom chain is always allocated so B can toggle it; --no-bloom only starts with it off. */
-    render_scene scene;
-    render_scene_of(o, &scene);
-    render_quality quality = render_quality_of(o);
-    sky_renderer_desc rdesc = render_desc(&quality, &scene);
-    rdesc.width = a->sc.extent.width, rdesc.height = a->sc.extent.height, rdesc.bloom = true;
-    rdesc.external_display = true, rdesc.display_format = a->sc.format.format;
-    sky_renderer_create(&a->renderer, &a->ctx, &rdesc);
+    /* The device adopted by a vksky context, the command line's scene, the renderer (app/window/window_api.c). */
+    int rc = window_api_open(a);
+    if (rc != 0) return rc;
     a->view = o->view;
     /* Photometric units without --exposure: auto exposure, metered on the GPU in every frame (the first included). */
     a->auto_exposure = o->view.ev100 && (o->auto_exposure || !o->exposure_given);
@@ -498,7 +484,7 @@ static void shut_down(app *a)
 {
     if (a->ctx.device) {
         vkDeviceWaitIdle(a->ctx.device);
-        if (a->renderer.ctx) sky_renderer_destroy(&a->renderer);
+        window_api_close(a);
         if (a->frames[0].done) frames_destroy(a);
         swapchain_destroy(&a->sc, &a->ctx);
     }

@@ -1,8 +1,6 @@
 /* The window's input: the controls table, key presses (toggles, steps, F5 reload), mouse capture and look, and
  * the held keys polled once a frame into the fly camera and the sun. */
 #include "app/window/window_app.h"
-#include "app/scene/render_values.h"
-#include "app/scene/light.h"
 #include <math.h>
 #include <string.h>
 
@@ -45,32 +43,38 @@ static const char *tonemap_name(int t)
 
 /* Discrete keys (toggles, steps) act on the press; held keys are polled once a frame in window_input_read. */
 /* F5: reload the scene file's medium and features through the scene loader, the command line's flags over them again
- * as the values the start-up parse kept (options_reload: no second parse of the command line). The
- * renderer recomputes only what changed: the LUTs when their inputs' hash changed, the pipelines when the variant
- * changed. The camera and the sun stay where the user put them. A broken file leaves the current scene (its one-line
- * error is printed). */
+ * as the values the start-up parse kept (vksky_scene_reload: no second parse of the command line), then
+ * vksky_renderer_set_scene. The renderer recomputes only what changed: the LUTs when their inputs' hash changed, the
+ * pipelines when the variant changed. The camera and the sun stay where the user put them. A broken file leaves the
+ * current scene (its one-line error is printed). */
+static void print_reload_error(void *user, vksky_severity severity, const char *message)
+{
+    (void)user, (void)severity;
+    fprintf(stderr, "vksky: %s\n", message);
+}
+
 void window_input_reload(app *a)
 {
     if (!a->o->scene_path) {
         printf("F5: no --scene file to reload\n");
         return;
     }
-    options fresh;
-    if (options_reload(a->o, &fresh) != 0) return;
+    if (vksky_scene_reload(a->scene, print_reload_error, NULL) != VKSKY_SUCCESS) return;
     /* The atmosphere uniform buffer is shared by the frames in flight: wait for them before rewriting it. */
     vkDeviceWaitIdle(a->ctx.device);
-    sky_variant before = a->renderer.variant;
-    render_scene scene;
-    render_scene_of(&fresh, &scene);
-    render_scene_set(&a->renderer, &scene);
-    if (fresh.atmosphere.bottom_radius != a->cam.ground_radius_km) {
+    vksky_renderer_stats before, after;
+    vksky_renderer_get_stats(a->renderer, &before);
+    window_api_check(vksky_renderer_set_scene(a->renderer, a->scene), "vksky_renderer_set_scene");
+    vksky_renderer_get_stats(a->renderer, &after);
+    double ground_km = vksky_scene_ground_radius_m(a->scene) / 1000.0;
+    if (ground_km != a->cam.ground_radius_km) {
         /* Another planet: the camera keeps its altitude, heading and sun over the new ground. */
         camera_to_view(&a->cam, &a->view);
-        camera_init(&a->cam, &a->view, fresh.atmosphere.bottom_radius);
+        camera_init(&a->cam, &a->view, ground_km);
     }
     printf("scene reloaded: %s (LUTs %s, pipelines %s)\n", a->o->scene_path,
-           sky_renderer_luts_dirty(&a->renderer) ? "recomputed" : "kept",
-           memcmp(&before, &a->renderer.variant, sizeof before) ? "rebuilt" : "kept");
+           vksky_renderer_luts_stale(a->renderer) ? "recomputed" : "kept",
+           after.variant_builds != before.variant_builds ? "rebuilt" : "kept");
     fflush(stdout);
 }
 
