@@ -19,6 +19,7 @@ cases=(
   "cubemap|--projection cubemap --width 40 --sun-elevation 41 --sun-azimuth 37"
   "cubemap|--projection cubemap --width 150 --sun-elevation 62 --sun-azimuth 300 --sky-mode skyview"
   "fisheye|--projection fisheye --width 64 --sun-elevation 25 --sun-azimuth 130"
+  "fisheye|--projection fisheye --width 64 --sun-elevation 40 --sun-azimuth 130 --altitude 10"
   "fisheye|--projection fisheye --width 210 --sun-elevation 55.5 --sun-azimuth 10 --sky-mode skyview"
   "perspective|--width 96 --height 54 --fov 60 --yaw 92 --pitch 28 --sun-elevation 30.2 --sun-azimuth 90"
   "perspective|--width 240 --height 135 --fov 8 --yaw 44.7 --pitch 20.1 --sun-elevation 20 --sun-azimuth 45 --sky-mode skyview"
