@@ -164,6 +164,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
         status = sequence_host_render(o, ctx, scene, r, h.async, o->trace_barriers ? stdout : NULL);
     else status = render_and_write(o, &h, r);
 done:
+    if (startup_keep_for_exit(o, status)) return status;   /* one image, validation off: the exit frees it (startup.h) */
     host_commands_destroy(&h);
     host_async_destroy(&async);
     vksky_renderer_destroy(r);

@@ -1,5 +1,6 @@
 /* The pipeline cache's directory and the --timings report (see app/runs/startup.h). */
 #include "app/runs/startup.h"
+#include "app/runs/sequence_frames.h"
 #include "gpu/pipeline_cache.h"
 #include "io/atomic_file.h"
 #include "sky/shaders.h"
@@ -21,7 +22,7 @@ static struct {
     double main_at, before_main, context_at, setup_at;
     double instance, device, cache_open, cache_close, pipelines;
     int variant_builds, lut_cache;
-    bool cache_used, instance_reused;
+    bool cache_used, instance_reused, kept;
     double frame_begin, frame_end, frame, gpu_luts, gpu_readback, gpu_total;
     bool gpu_timed, frame_done, outputs_done;
     double outputs, outputs_at, commit_before, write;
@@ -55,6 +56,20 @@ void startup_begin(void)
 {
     t.main_at = now_ms();
     t.before_main = since_exec_ms();
+}
+
+bool startup_keep_for_exit(const options *o, int status)
+{
+#ifdef VKSKY_SANITIZE
+    (void)o, (void)status;
+    return false;   /* a sanitizer build: LeakSanitizer checks every run, so everything is destroyed */
+#else
+    const char *env = getenv("VKSKY_TEARDOWN");
+    bool full = env && env[0] && strcmp(env, "0") != 0;
+    t.kept = !full && status == 0 && !o->validate && o->output_count > 0 && o->bench_frames == 0 &&
+             !sequence_active(o) && !o->skip_existing && !o->async_luts;
+    return t.kept;
+#endif
 }
 
 void startup_open_cache(gpu_context *ctx, const options *o)
@@ -166,8 +181,8 @@ void startup_report(FILE *out)
     if (t.gpu_timed) fprintf(out, "  readback   %8.2f  (GPU copy to host memory, inside the frame)\n", t.gpu_readback);
     fprintf(out, "  encode     %8.1f  (pixels to file bytes)\n", t.outputs - t.write);
     fprintf(out, "  write      %8.1f  (fsync, close, rename)\n", t.write);
-    fprintf(out, "  teardown   %8.1f  (after the files: pipeline cache saved %.1f, renderer, device and instance "
-                 "destroyed)\n", end - t.outputs_at, t.cache_close);
+    fprintf(out, "  teardown   %8.1f  (after the files: pipeline cache saved %.1f; renderer, device and instance %s)\n",
+            end - t.outputs_at, t.cache_close, t.kept ? "left to the exit (validation off)" : "destroyed");
     fprintf(out, "  total      %8.1f  (process start to this report: the sum of the lines above but LUTs and "
                  "readback)\n", total);
 }

@@ -8,6 +8,14 @@
 /* The moment the process began its work (main's first line): the report's total counts from here. */
 void startup_begin(void);
 
+/* Whether a finished run (status 0) may leave its renderer, device and instance to the process's exit instead of
+ * destroying them: one image from the command line (no sequence, --bench or --async-luts) with validation off, where
+ * the OS frees the memory and the kernel driver the device when the process ends, and the files and caches are
+ * already written. The validation path (--validate, VKSKY_VALIDATION=1) and sanitizer builds destroy everything, so the
+ * layer's object tracking and LeakSanitizer still see a clean teardown; VKSKY_TEARDOWN=1 asks for it too (an A/B of
+ * the cut: tools/first_image.sh). */
+bool startup_keep_for_exit(const options *o, int status);
+
 /* The pipeline cache for ctx: $XDG_CACHE_HOME/vksky or ~/.cache/vksky, none with --no-cache (or without either
  * variable). Pair with startup_close_cache before the context goes. */
 void startup_open_cache(gpu_context *ctx, const options *o);
