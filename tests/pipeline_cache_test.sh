@@ -7,8 +7,9 @@
 #     the same image, and the file replaced by a good one. A file from another build: replaced without a note.
 #  3. An unwritable cache directory: the render succeeds (one note); --no-cache writes nothing; a relative
 #     XDG_CACHE_HOME is ignored (~/.cache); runs started together leave one good file and no temporary files.
-#  4. --timings names every stage, its stages add up to its total and the total is the run's wall time; Mars builds its pipeline variant once (the renderer used to build it three times)
-#     and computes each of its LUTs once.
+#  4. --timings names every stage, its stages add up to its total and the total is the run's wall time; Mars builds
+#     its pipeline variant once (the renderer used to build it three times) and computes each of its LUTs once.
+#  5. Without validation one image leaves its device to the exit, still saves the cache, writes the same bytes.
 set -u
 VKSKY=${1:?usage: pipeline_cache_test.sh VKSKY}
 export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
@@ -152,6 +153,22 @@ awk -v t="$total" '$1 ~ /^(exec|options|probe|instance|device|cache|pipelines|se
     fail "--timings' stages do not add up to its total: $(cat mars.err)"
 awk -v t="$total" -v w="$wall" 'BEGIN {exit !(t <= w + 11 && t >= w - (0.1 * w + 200))}' ||
     fail "--timings' total $total ms is not the process's wall time ($wall ms seen from outside): $(cat mars.err)"
+
+# 5. One image without validation leaves its renderer, device and instance to the exit (startup_keep_for_exit):
+#    the run still succeeds, still saves the pipeline cache (a fresh directory gets a whole file), and writes the same
+#    bytes as the full teardown (VKSKY_TEARDOWN=1). The runs above (validated) destroyed everything.
+for mode in kept full; do
+    td=0; [ "$mode" = full ] && td=1
+    XDG_CACHE_HOME="$work/xdg_$mode" VKSKY_VALIDATION=0 VKSKY_TEARDOWN=$td "$VKSKY" "${ARGS[@]}" --render "one.exr" \
+        --timings >"$mode.out" 2>"$mode.err" || fail "$mode teardown: exit $?: $(cat "$mode.err")"
+    cp one.exr "$mode.exr"
+    kept_files=("$work/xdg_$mode"/vksky/pipelines-*.bin)
+    [ -f "${kept_files[0]}" ] && [ "$(check "${kept_files[0]}")" = ok ] ||
+        fail "$mode teardown: no whole pipeline cache file saved: $(ls "$work/xdg_$mode/vksky" 2>&1)"
+done
+grep -q 'left to the exit' kept.err || fail "no validation: the teardown was not left to the exit: $(grep teardown kept.err)"
+grep -q 'instance destroyed' full.err || fail "VKSKY_TEARDOWN=1: not destroyed: $(grep teardown full.err)"
+cmp -s kept.exr full.exr || fail "the kept and the full teardown wrote different bytes"
 
 [ "$fails" -eq 0 ] && echo "pipeline cache: all checks passed"
 exit $((fails > 0))
