@@ -5,7 +5,8 @@
 #include "app/cli/options_struct.h"
 #include "gpu/context.h"
 
-/* The moment the process began its work (main's first line): the report's total counts from here. */
+/* main's first line: the moment, and how long the process ran before it (the loader; the report's exec line). The
+ * report's total counts from the process's start. */
 void startup_begin(void);
 
 /* Whether a finished run (status 0) may leave its renderer, device and instance to the process's exit instead of
@@ -31,8 +32,8 @@ void startup_frame_end_values(double pipelines_ms, int variant_builds, int lut_c
                               const double *ms, uint32_t n);
 void startup_outputs_done(void);
 
-/* --timings: the breakdown on `out` (instance, device, pipelines, LUTs, frame, readback, encode, write), if a
- * first image was rendered (else the context's two figures); after startup_close_cache (the cache's save is part
- * of the run's cost). */
+/* --timings: the breakdown on `out` (exec, options, probe, instance, device, cache, pipelines, setup, LUTs, frame,
+ * readback, encode, write, teardown: the lines but LUTs and readback add up to the total), if a first image was
+ * rendered (else the context's two figures); last, after the teardown (the cache's save is part of the run's cost). */
 void startup_report(FILE *out);
 #endif
