@@ -4,8 +4,8 @@
  *    byte minus the one before plus 128), for even and odd lengths;
  *  - a compressed chunk inflates with zlib (not libdeflate) and, un-predicted by the spec's inverse, gives back the
  *    packed bytes; data that does not compress (noise, one byte) is stored raw, as every reader expects;
- *  - on a sky-like chunk libdeflate at level 6 is within 10 % of zlib's level 6 (what OpenEXR 3.1 writes; on a
- *    rendered 720p float frame libdeflate's is 3.7 % larger): a wrong level or a stored stream would miss it;
+ *  - the default level (unset) writes level 4's stream, not level 6's (OpenEXR 3.2's default), and on a sky-like
+ *    chunk is within 10 % of zlib's level 4: a wrong level or a stored stream would miss it;
  *  - whole files (float and half, ZIP and ZIPS, zlib levels 1 and 9) written with 1, 3 and 8 threads are the same
  *    bytes, and OpenEXRCore (zlib inflating) reads back the pixels of the same image written uncompressed;
  *  - the streamed writer (one pool over every band) fed bands of 5, 16 and 37 rows with 1 and 4 threads writes the
@@ -137,14 +137,27 @@ static void check_chunks(void)
           "zlib cannot inflate the chunk (%lu of %zu bytes)", (unsigned long)got, n);
     spec_unpredict(back, inflated, n);
     CHECK(memcmp(back, raw, n) == 0, "the chunk does not round-trip");
-    /* zlib level 6 on the same predicted bytes: what OpenEXR 3.1 would store. */
+    /* The default (-1, unset) is level 4, OpenEXR 3.2's EXR_DEFAULT_ZLIB_COMPRESS_LEVEL: the same stream as asking
+     * for 4, and a different one from 6 (else the default would not be 4). */
+    exr_encode_pipeline_t enc4, enc6;
+    struct libdeflate_compressor *c4 = io_exr_deflate_alloc(4), *c6 = io_exr_deflate_alloc(6);
+    CHECK(deflate_raw(&enc4, c4, raw, n) == EXR_ERR_SUCCESS && deflate_raw(&enc6, c6, raw, n) == EXR_ERR_SUCCESS,
+          "sky chunk at 4 and 6");
+    CHECK(enc4.compressed_bytes == enc.compressed_bytes &&
+              !memcmp(enc4.compressed_buffer, enc.compressed_buffer, enc.compressed_bytes),
+          "the default level's chunk differs from level 4's");
+    CHECK(enc6.compressed_bytes != enc4.compressed_bytes ||
+              memcmp(enc6.compressed_buffer, enc4.compressed_buffer, enc4.compressed_bytes),
+          "levels 4 and 6 wrote the same chunk: the level is not applied");
+    /* zlib at the same level on the same predicted bytes (what OpenEXR 3.1 would store at zip:4): within 10 %. */
     uint8_t *pred = malloc(n), *z = malloc(compressBound((uLong)n));
     spec_predict(pred, raw, n);
     uLongf zn = compressBound((uLong)n);
-    CHECK(compress2(z, &zn, pred, (uLong)n, 6) == Z_OK, "zlib compress2");
-    CHECK((double)enc.compressed_bytes <= 1.10 * (double)zn, "libdeflate 6: %zu bytes, zlib 6: %lu",
+    CHECK(compress2(z, &zn, pred, (uLong)n, 4) == Z_OK, "zlib compress2");
+    CHECK((double)enc.compressed_bytes <= 1.10 * (double)zn, "libdeflate 4: %zu bytes, zlib 4: %lu",
           (size_t)enc.compressed_bytes, (unsigned long)zn);
-    free_pipe(&enc);
+    free_pipe(&enc), free_pipe(&enc4), free_pipe(&enc6);
+    io_exr_deflate_free(c4), io_exr_deflate_free(c6);
     /* Noise and a single byte: stored raw (compressed_bytes == packed_bytes, the same bytes). */
     for (size_t i = 0; i < n; ++i) raw[i] = (uint8_t)next_rand();
     CHECK(deflate_raw(&enc, c, raw, n) == EXR_ERR_SUCCESS, "noise chunk");
@@ -223,7 +236,7 @@ static void check_files(void)
     char err[512], ref[600], path[600], first[600];
     static const struct { int comp, level; const char *name; } cases[] = {
         {EXR_COMPRESSION_ZIP, 0, "zip"}, {EXR_COMPRESSION_ZIPS, 0, "zips"}, {EXR_COMPRESSION_ZIP, 1, "zip1"},
-        {EXR_COMPRESSION_ZIP, 9, "zip9"}};
+        {EXR_COMPRESSION_ZIP, 9, "zip9"}, {EXR_COMPRESSION_ZIP, 4, "zip4"}};
     static const int threads[] = {1, 3, 8};
     for (int store_float = 0; store_float < 2; ++store_float) {
         snprintf(ref, sizeof ref, "%s/none%d.exr", dir, store_float);
@@ -238,6 +251,11 @@ static void check_files(void)
                 CHECK(same_pixels(path, ref, w, h), "%s: pixels differ from the uncompressed file", path);
                 CHECK(same_file(path, first), "%s: bytes differ from 1 thread's", path);
             }
+        /* No level asked for is zip:4 (the default level), byte for byte. */
+        char dflt[600];
+        snprintf(dflt, sizeof dflt, "%s/zip_%d_1.exr", dir, store_float);
+        snprintf(path, sizeof path, "%s/zip4_%d_1.exr", dir, store_float);
+        CHECK(same_file(dflt, path), "zip (default level) and zip:4 differ");
         /* Streamed: one pool over every band; bytes the same for every band size and thread count. */
         static const int bands[] = {5, 16, 37};
         for (size_t b = 0; b < 3; ++b)

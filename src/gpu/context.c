@@ -315,6 +315,21 @@ static void park(const gpu_context *probe)
     if (!registered) release_parked();
 }
 
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+/* The probe's wall ms (--timings): its instance (volk's loader load included), then the enumeration; 0 if none ran. */
+static double probe_instance_ms, probe_pick_ms;
+
+void gpu_probe_times(double *instance_ms, double *enumerate_ms)
+{
+    *instance_ms = probe_instance_ms, *enumerate_ms = probe_pick_ms;
+}
+
 int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
 {
     /* With a context alive (the window re-reading its scene file), name its device: a second instance would
@@ -334,8 +349,11 @@ int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
     }
     gpu_context ctx = {0};
     gpu_context_desc desc = {.device_index = device_index};
+    double start = now_ms();
     if (create_instance(&ctx, &desc, false) != 0) return -1;
+    double made = now_ms();
     int picked = pick_device(&ctx, device_index, true);
+    probe_instance_ms = made - start, probe_pick_ms = now_ms() - made;
     if (picked == 0) {
         VkPhysicalDeviceProperties p;
         vkGetPhysicalDeviceProperties(ctx.physical, &p);
@@ -344,13 +362,6 @@ int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
     park(&ctx);
     probed = true, probed_index = device_index, probed_result = picked == 0 ? 0 : -1, probed_type = *type;
     return probed_result;
-}
-
-static double now_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
 }
 
 int gpu_context_create(gpu_context *ctx, const gpu_context_desc *desc)

@@ -4,10 +4,15 @@
 #ifndef VKSKY_IO_ENCODE_SETTINGS_H
 #define VKSKY_IO_ENCODE_SETTINGS_H
 
+/* The ZIP/ZIPS deflate level when none is asked for: OpenEXR 3.2's default (EXR_DEFAULT_ZLIB_COMPRESS_LEVEL, chosen
+ * upstream as the better speed/size trade-off), not 3.1's zlib 6: a 720p sky frame 1.05x the bytes in ~0.6 of the
+ * time (docs/performance.md). */
+#define IO_EXR_DEFAULT_ZIP_LEVEL 4
+
 typedef struct io_encode_settings {
     int threads;          /* EXR chunk compression threads; 0: the cores available to the process */
     int exr_compression;  /* an exr_compression_t (openexr.h); EXR_COMPRESSION_ZIP by default */
-    int zip_level;        /* zlib level 1..9 for ZIP and ZIPS; 0: zlib's default (6) */
+    int zip_level;        /* deflate level 1..9 for ZIP and ZIPS; 0: IO_EXR_DEFAULT_ZIP_LEVEL */
 } io_encode_settings;
 
 void io_encode_settings_set(const io_encode_settings *s);

@@ -90,6 +90,7 @@ exr_result_t io_exr_compress_no_expand(exr_encode_pipeline_t *enc)
 
 exr_result_t io_exr_apply_compression_level(exr_context_t ctxt, int part)
 {
+    /* Always set, so that no path falls back to the library's own default (OpenEXR 3.1's zlib 6). */
     int level = io_encode_settings_get().zip_level;
-    return level > 0 ? exr_set_zip_compression_level(ctxt, part, level) : EXR_ERR_SUCCESS;
+    return exr_set_zip_compression_level(ctxt, part, level > 0 ? level : IO_EXR_DEFAULT_ZIP_LEVEL);
 }

@@ -1,5 +1,6 @@
 /* vksky image I/O: ZIP / ZIPS chunks through libdeflate (exr_deflate.h). */
 #include "io/exr_deflate.h"
+#include "io/encode_settings.h"
 
 #include <libdeflate.h>
 #include <stdint.h>
@@ -7,8 +8,8 @@
 
 struct libdeflate_compressor *io_exr_deflate_alloc(int exr_zip_level)
 {
-    /* -1 (unset) is zlib's Z_DEFAULT_COMPRESSION, 6: the level the files were written at before libdeflate. */
-    int level = exr_zip_level < 0 ? 6 : exr_zip_level > 12 ? 12 : exr_zip_level;
+    /* -1 (unset): our default, OpenEXR 3.2's (EXR_DEFAULT_ZLIB_COMPRESS_LEVEL, 4); 3.1 used zlib's 6. */
+    int level = exr_zip_level < 0 ? IO_EXR_DEFAULT_ZIP_LEVEL : exr_zip_level > 12 ? 12 : exr_zip_level;
     return libdeflate_alloc_compressor(level);
 }
 

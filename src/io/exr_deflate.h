@@ -12,8 +12,8 @@
 
 struct libdeflate_compressor;
 
-/* The compressor for an OpenEXR part's zip level (exr_get_zip_compression_level: -1 means the library's default,
- * zlib's 6, the level 3.1 writes with). One per thread: a compressor is not shareable. NULL when out of memory. */
+/* The compressor for an OpenEXR part's zip level (exr_get_zip_compression_level: -1, unset: IO_EXR_DEFAULT_ZIP_LEVEL,
+ * 4, OpenEXR 3.2's default; 3.1 writes zlib 6). One per thread: a compressor is not shareable. NULL when out of memory. */
 struct libdeflate_compressor *io_exr_deflate_alloc(int exr_zip_level);
 void io_exr_deflate_free(struct libdeflate_compressor *c);
 

@@ -99,7 +99,7 @@ typedef struct options {
     /* throughput (issue 27): app/cli/options_throughput.c */
     int threads;                                /* --threads N: EXR encode threads (0: the cores available) */
     int exr_compression;                        /* --exr-compression: exr_compression_t + 1 (0: not given, ZIP) */
-    int zip_level;                              /* --exr-compression zip:N: zlib level (0: zlib's default, 6) */
+    int zip_level;                              /* --exr-compression zip:N: deflate level (0: the default, 4) */
     int argc;                                   /* the command line: a frame's options re-parse it, EXRs record it */
     char **argv;
     /* physical light (issue 32): app/scene/light.c */

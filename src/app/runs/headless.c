@@ -115,11 +115,11 @@ static int bench_sequence(const options *o, sky_renderer *r)
 
 /* The end of every run: the context goes, any validation message fails the run, and a stop asked for by a signal
  * gives its exit status (stop.h). */
-static int finish(gpu_context *ctx, int status, bool timings)
+static int finish(gpu_context *ctx, int status, bool timings, bool keep)
 {
     startup_outputs_done();
     startup_close_cache(ctx);
-    gpu_context_destroy(ctx);
+    if (!keep) gpu_context_destroy(ctx);   /* keep: one image, validation off, left to the exit (startup.h) */
     if (timings) startup_report(stderr);
     unsigned messages = gpu_validation_message_count();
     if (messages) {
@@ -192,7 +192,8 @@ static int run_checked(const options *o)
         vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
                                              .vulkan_memory_model = ctx.memory_model_device_scope,
                                              .vulkan_memory_model_device_scope = ctx.memory_model_device_scope};
-        return finish(&ctx, headless_api_render(o, &device, &enabled, gpu_cache_dir(&ctx)), o->timings);
+        int status = headless_api_render(o, &device, &enabled, gpu_cache_dir(&ctx));
+        return finish(&ctx, status, o->timings, startup_keep_for_exit(o, status));
     }
     if (o->trace_barriers) gpu_barrier_trace(stdout);
 
@@ -222,5 +223,5 @@ static int run_checked(const options *o)
         status = sequence_render(o, &r, o->spectral ? spectral_render_frame : render_frames);
     }
     sky_renderer_destroy(&r);
-    return finish(&ctx, status, o->timings);
+    return finish(&ctx, status, o->timings, false);
 }

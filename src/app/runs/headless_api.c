@@ -85,9 +85,15 @@ static int render_and_write(const options *o, host_commands *h, vksky_renderer *
     vksky_readback px;
     if (status != 0 || vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
     /* A map stopped (Ctrl-C, TERM) while it rendered: no file, as a banded render stops (stop_status says so). */
-    if (view->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE) return stop_requested() ? 1 : write_map(o, &px);
-    frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
-    return sequence_write_frame(o, &pixels, o->frame_first, false);
+    int rc;
+    if (view->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE) {
+        rc = stop_requested() ? 1 : write_map(o, &px);
+    } else {
+        frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
+        rc = sequence_write_frame(o, &pixels, o->frame_first, false);
+    }
+    startup_outputs_done();   /* --timings: the files are done; what follows is teardown */
+    return rc;
 }
 
 int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled,
@@ -158,6 +164,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
         status = sequence_host_render(o, ctx, scene, r, h.async, o->trace_barriers ? stdout : NULL);
     else status = render_and_write(o, &h, r);
 done:
+    if (startup_keep_for_exit(o, status)) return status;   /* one image, validation off: the exit frees it (startup.h) */
     host_commands_destroy(&h);
     host_async_destroy(&async);
     vksky_renderer_destroy(r);

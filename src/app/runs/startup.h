@@ -5,8 +5,17 @@
 #include "app/cli/options_struct.h"
 #include "gpu/context.h"
 
-/* The moment the process began its work (main's first line): the report's total counts from here. */
+/* main's first line: the moment, and how long the process ran before it (the loader; the report's exec line). The
+ * report's total counts from the process's start. */
 void startup_begin(void);
+
+/* Whether a finished run (status 0) may leave its renderer, device and instance to the process's exit instead of
+ * destroying them: one image from the command line (no sequence, --bench or --async-luts) with validation off, where
+ * the OS frees the memory and the kernel driver the device when the process ends, and the files and caches are
+ * already written. The validation path (--validate, VKSKY_VALIDATION=1) and sanitizer builds destroy everything, so the
+ * layer's object tracking and LeakSanitizer still see a clean teardown; VKSKY_TEARDOWN=1 asks for it too (an A/B of
+ * the cut: tools/first_image.sh). */
+bool startup_keep_for_exit(const options *o, int status);
 
 /* The pipeline cache for ctx: $XDG_CACHE_HOME/vksky or ~/.cache/vksky, none with --no-cache (or without either
  * variable). Pair with startup_close_cache before the context goes. */
@@ -23,8 +32,8 @@ void startup_frame_end_values(double pipelines_ms, int variant_builds, int lut_c
                               const double *ms, uint32_t n);
 void startup_outputs_done(void);
 
-/* --timings: the breakdown on `out` (instance, device, pipelines, LUTs, frame, readback, encode, write), if a
- * first image was rendered (else the context's two figures); after startup_close_cache (the cache's save is part
- * of the run's cost). */
+/* --timings: the breakdown on `out` (exec, options, probe, instance, device, cache, pipelines, setup, LUTs, frame,
+ * readback, encode, write, teardown: the lines but LUTs and readback add up to the total), if a first image was
+ * rendered (else the context's two figures); last, after the teardown (the cache's save is part of the run's cost). */
 void startup_report(FILE *out);
 #endif
