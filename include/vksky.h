@@ -105,6 +105,14 @@ typedef struct vksky_device_requirements {
     bool synchronization2, dynamic_rendering;       /* required */
     bool maintenance4;                              /* required (VkPhysicalDeviceVulkan13Features.maintenance4) */
     bool vulkan_memory_model, vulkan_memory_model_device_scope;   /* optional: used when enabled */
+    /* ABI 2: the VkPhysicalDeviceLimits vksky's pipelines need, where they exceed Vulkan 1.3's required minimums (or
+     * may grow past them). vksky_context_create / _create_own refuse a device below one (VKSKY_ERROR_UNSUPPORTED,
+     * a message naming the limit, the device's value and the need). The shared memory is the single-pass bloom's:
+     * a device with less runs the per-level chain instead (an info message), and needs only the LUT passes'. */
+    uint32_t max_compute_work_group_invocations;      /* 256: the exposure meter's 16 x 16 workgroups (spec: 128) */
+    uint32_t max_per_stage_descriptor_storage_images; /* 9: the single-pass bloom's counters + 8 mips (spec: 4) */
+    uint32_t max_compute_shared_memory_size;          /* 24,260 bytes with the single pass (spec: 16,384) */
+    uint32_t max_push_constants_size;                 /* 128 bytes (spec: 128) */
 } vksky_device_requirements;
 VKSKY_API void vksky_get_device_requirements(vksky_device_requirements *out);
 

@@ -11,6 +11,7 @@
 #include "app/runs/stop.h"
 #include "app/runs/tiles.h"
 #include "io/encode_settings.h"
+#include "sky/limits.h"
 #include "sky/submit.h"
 #include "gpu/pipeline_cache.h"
 #include <stdlib.h>
@@ -176,6 +177,10 @@ static int run_checked(const options *o)
                                                                                     : GPU_ASYNC_ON};
     int rc = gpu_context_create(&ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
+    if (sky_limits_report(&ctx) != 0) {   /* a limit under the pipelines' need: the line, exit 1 */
+        gpu_context_destroy(&ctx);
+        return 1;
+    }
     startup_open_cache(&ctx, o);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
     if (api_host_wanted(o)) {

@@ -28,6 +28,7 @@
 #include "io/atomic_file.h"
 #include "io/png_io.h"
 #include "sky/frame.h"
+#include "sky/limits.h"
 #include "sky/submit.h"
 #include <math.h>
 #include <stdlib.h>
@@ -452,6 +453,7 @@ static int open_device(app *a)
         desc.async_compute = one_queue && !strcmp(one_queue, "1") ? GPU_ASYNC_ONE_QUEUE : GPU_ASYNC_ON;
     int rc = gpu_context_create(&a->ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
+    if (sky_limits_report(&a->ctx) != 0) return 1;   /* a limit under the pipelines' need (sky/limits.h) */
     startup_open_cache(&a->ctx, a->o);
     VK_CHECK(glfwCreateWindowSurface(a->ctx.instance, a->window, NULL, &a->surface));
     VkBool32 supported = VK_FALSE;
