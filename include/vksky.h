@@ -43,7 +43,8 @@ extern "C" {
  *    vksky_context_set_device_features, vksky_auto_exposure + vksky_renderer_get_exposure,
  *    vksky_context_set_cache_directory + vksky_renderer_store_luts; vksky_frame_band (projections, bands);
  *    readback slots (vksky_readback_target), vksky_scene_set_values, vksky_renderer_scene_changes, vksky_renderer_luts_stale (sequences);
- *    vksky_renderer_get_stats (--timings); vksky_scene_reload (F5). */
+ *    vksky_renderer_get_stats (--timings); vksky_scene_reload (F5); vksky_context_set_debug_utils (names, labels);
+ *    vksky_device_requirements' limits. */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -122,6 +123,15 @@ VKSKY_API vksky_result vksky_context_create(const vksky_context_desc *desc, vksk
  * does). The required ones must be true. Call before creating renderers; a context vksky made knows its own. */
 VKSKY_API vksky_result vksky_context_set_device_features(vksky_context *context,
                                                          const vksky_device_requirements *enabled);
+
+/* ABI 2: the host enabled VK_EXT_debug_utils on its instance (an instance cannot be asked): vksky then names the
+ * objects it makes ("vksky.transmittance_lut", "vksky.sky_pipeline", ...) and labels what it records: a
+ * "vksky.record" label around each vksky_record ("vksky.record_luts" around vksky_record_luts) holding one label per
+ * pass ("transmittance", "sky", "tonemap", ... as the trace names them), for RenderDoc or Nsight in the host's
+ * frame. Off by default: without this call vksky makes no VK_EXT_debug_utils call at all. Call before the first
+ * renderer (names are given at creation). A context vksky made names its objects whenever its instance has the
+ * extension; `enabled` false turns that off. */
+VKSKY_API vksky_result vksky_context_set_debug_utils(vksky_context *context, bool enabled);
 
 /* vksky makes its own instance and device (the command-line tool, the window, tests). */
 typedef struct vksky_own_device_desc {

@@ -84,6 +84,27 @@ vksky_result vksky_context_set_device_features(vksky_context *context, const vks
     return check_limits(context, "vksky_context_set_device_features") == 0 ? VKSKY_SUCCESS : VKSKY_ERROR_UNSUPPORTED;
 }
 
+vksky_result vksky_context_set_debug_utils(vksky_context *context, bool enabled)
+{
+    if (!context) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (context->renderers > 0) {
+        lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_set_debug_utils: before the first renderer (its objects are named at creation)");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    /* The host's word for its instance; vksky's own instance: only where it enabled the extension. The functions
+     * come through the host's vkGetInstanceProcAddr (gpu/context_adopt.c); without them nothing is called. */
+    bool available = context->gpu.owns_device ? context->own_debug_utils : true;
+    if (enabled && (!available || !vkSetDebugUtilsObjectNameEXT || !vkCmdBeginDebugUtilsLabelEXT ||
+                    !vkCmdEndDebugUtilsLabelEXT)) {
+        lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_set_debug_utils: the instance's VK_EXT_debug_utils functions are missing");
+        return VKSKY_ERROR_UNSUPPORTED;
+    }
+    context->gpu.debug_utils = enabled;
+    return VKSKY_SUCCESS;
+}
+
 vksky_result vksky_context_create_own(const vksky_own_device_desc *desc, vksky_context **out)
 {
     if (out) *out = NULL;
@@ -117,6 +138,7 @@ vksky_result vksky_context_create_own(const vksky_own_device_desc *desc, vksky_c
         free(c);
         return rc == -2 ? VKSKY_ERROR_INVALID_ARGUMENT : VKSKY_ERROR_UNSUPPORTED;
     }
+    c->own_debug_utils = c->gpu.debug_utils;
     if (check_limits(c, "vksky_context_create_own") != 0) {
         gpu_context_destroy(&c->gpu);
         free(c);
