@@ -44,6 +44,7 @@ extern "C" {
  *    vksky_context_set_cache_directory + vksky_renderer_store_luts; vksky_frame_band (projections, bands);
  *    readback slots (vksky_readback_target), vksky_scene_set_values, vksky_renderer_scene_changes, vksky_renderer_luts_stale (sequences);
  *    vksky_renderer_get_stats (--timings); vksky_scene_reload (F5); vksky_context_set_debug_utils (names, labels);
+ *    vksky_renderer_get_lut_timings (--bench --async-luts);
  *    vksky_device_requirements' limits. */
 #define VKSKY_ABI_VERSION 2u
 VKSKY_API uint32_t vksky_abi_version(void);
@@ -528,6 +529,13 @@ typedef struct vksky_pass_timing {
 } vksky_pass_timing;
 VKSKY_API vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
                                                   uint32_t *count);
+/* ABI 2, the LUTs on an async compute queue: GPU time per LUT pass of the last vksky_record_luts that recorded them
+ * (timestamps written into the compute command buffer, on the compute queue's own timer), read as
+ * vksky_renderer_get_timings reads the frame's: after that command buffer completed, before the next
+ * vksky_record_luts. VKSKY_ERROR_INVALID_ARGUMENT: the context has no compute queue; VKSKY_ERROR_UNSUPPORTED: no
+ * timestamps. */
+VKSKY_API vksky_result vksky_renderer_get_lut_timings(vksky_renderer *renderer, vksky_pass_timing *out,
+                                                      uint32_t capacity, uint32_t *count);
 
 /* What making the renderer cost and what its LUT cache did (ABI 2: the command line's --timings): wall milliseconds
  * spent making pipelines and resources (creation and variant rebuilds), the times the pipelines were built, and the
