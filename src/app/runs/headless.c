@@ -136,13 +136,13 @@ static int run_checked(const options *o);
  * perspective frame to files, sequences and --skip-existing (app/runs/sequence_host.c), --async-luts (the LUTs on the
  * compute queue: app/runs/host_async.c), the tests' VKSKY_FRAMES loop, --timings, --bench with --render or alone (a
  * perspective frame into the host's own image) and with --async-luts (app/runs/bench_host.c), environment maps and
- * images in bands (app/runs/tiles.c). --bench alone of an environment map, --bench of an image over the band budget,
- * a frame with no output (its traces) and --spectral still call src/sky here. */
+ * images in bands (app/runs/tiles.c; a --bench frame is whole, as before). --bench alone of an environment map (a band
+ * needs a readback renderer), a frame with no output (its traces) and --spectral still call src/sky here. */
 static bool api_host_wanted(const options *o)
 {
     bool bench_alone = o->output_count == 0 && o->bench_frames > 0;   /* into the host's image: a perspective */
     return (o->output_count > 0 || (bench_alone && o->view.projection == VKSKY_PROJECTION_TYPE_PERSPECTIVE)) &&
-           (o->bench_frames == 0 || !tiles_in_bands(o)) && !o->spectral;
+           !o->spectral;
 }
 
 int headless_run(const options *given)
