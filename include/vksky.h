@@ -464,8 +464,8 @@ typedef enum vksky_projection {
     VKSKY_PROJECTION_TYPE_FISHEYE = 3   /* the upper hemisphere, equidistant, zenith at the centre, north up, east left, W x W */
 } vksky_projection;
 
-/* A band of a larger image, or an environment map, chained from vksky_frame.next (DISPLAY with a readback config;
- * the command line's banded renders): the frame is rows first_row .. first_row + height - 1 of a whole image of
+/* A band of a larger image, or an environment map, chained from vksky_frame.next (DISPLAY: with a readback config,
+ * the command line's banded renders; or into the host's image, as `vksky --bench` of a map does): the frame is rows first_row .. first_row + height - 1 of a whole image of
  * whole_height rows (the renderer's width and height are the band's; whole_width must be the renderer's width), in
  * `projection`, so each pixel gets the direction it has in the whole image and the bands put together equal one
  * frame of the whole image. first_row may be negative and a band may reach below the image: such rows are drawn only

@@ -8,7 +8,8 @@
 #    positive number, the async run's frame_luts line marked "async";
 #  - a LUT-rebuilding frame's wall time above a steady frame's (lavapipe's timestamps bound nothing: no GPU figure is
 #    compared);
-#  - --bench --render of an environment map over the band budget (VKSKY_TILE_PIXELS): a whole frame, as before;
+#  - --bench of an environment map over the band budget (VKSKY_TILE_PIXELS), alone and with --render: a whole frame,
+#    as before;
 #  - no file written (a --bench of one frame writes none).
 # Usage: bench_api_test.sh path/to/vksky
 set -u
@@ -52,10 +53,14 @@ check alone ""
 (cd "$work" && VKSKY_ASYNC_ONE_QUEUE=1 "$VKSKY" "${A[@]}" --async-luts >"$work/async.out" 2>"$work/async.err") ||
     fail "--bench --async-luts exited $?"
 check async async
-# An environment map over the band budget with --render (its frame whole, the map's one band: a readback renderer).
-(cd "$work" && VKSKY_TILE_PIXELS=1000 "$VKSKY" "${A[@]}" --projection equirect --width 64 --render map.exr \
-    >"$work/map.out" 2>"$work/map.err") || fail "--bench of a map over the band budget exited $?"
+# An environment map over the band budget, alone (the map's one band into the host's image) and with --render (a
+# readback renderer): whole frames, as before.
+(cd "$work" && VKSKY_TILE_PIXELS=1000 "$VKSKY" "${A[@]}" --projection cubemap --width 16 \
+    >"$work/map.out" 2>"$work/map.err") || fail "--bench of a map exited $?"
 check map ""
+(cd "$work" && VKSKY_TILE_PIXELS=1000 "$VKSKY" "${A[@]}" --projection equirect --width 64 --render map.exr \
+    >"$work/maprender.out" 2>"$work/maprender.err") || fail "--bench --render of a map over the band budget exited $?"
+check maprender ""
 [ -z "$(find "$work" -name '*.png' -o -name '*.exr')" ] || fail "a file was written"
 
 [ "$fails" -eq 0 ] || exit 1
