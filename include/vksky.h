@@ -46,7 +46,8 @@ extern "C" {
  *    vksky_renderer_get_stats (--timings); vksky_scene_reload (F5).
  * 3: the window's frame extensions: vksky_frame_display (tone map, bloom), vksky_frame_place (altitude, sun),
  *    vksky_frame_timer + vksky_renderer_get_slot_timings, vksky_frame_capture + vksky_renderer_get_capture,
- *    vksky_frame_swapchain (a swapchain image's barriers). */
+ *    vksky_frame_swapchain (a swapchain image's barriers); vksky_context_set_debug_utils (names, labels);
+ *    vksky_renderer_get_lut_timings (--bench --async-luts); vksky_device_requirements' limits. */
 #define VKSKY_ABI_VERSION 3u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -108,6 +109,14 @@ typedef struct vksky_device_requirements {
     bool synchronization2, dynamic_rendering;       /* required */
     bool maintenance4;                              /* required (VkPhysicalDeviceVulkan13Features.maintenance4) */
     bool vulkan_memory_model, vulkan_memory_model_device_scope;   /* optional: used when enabled */
+    /* ABI 2: the VkPhysicalDeviceLimits vksky's pipelines need, where they exceed Vulkan 1.3's required minimums (or
+     * may grow past them). vksky_context_create / _create_own refuse a device below one (VKSKY_ERROR_UNSUPPORTED,
+     * a message naming the limit, the device's value and the need). The shared memory is the single-pass bloom's:
+     * a device with less runs the per-level chain instead (an info message), and needs only the LUT passes'. */
+    uint32_t max_compute_work_group_invocations;      /* 256: the exposure meter's 16 x 16 workgroups (spec: 128) */
+    uint32_t max_per_stage_descriptor_storage_images; /* 9: the single-pass bloom's counters + 8 mips (spec: 4) */
+    uint32_t max_compute_shared_memory_size;          /* 24,260 bytes with the single pass (spec: 16,384) */
+    uint32_t max_push_constants_size;                 /* 128 bytes (spec: 128) */
 } vksky_device_requirements;
 VKSKY_API void vksky_get_device_requirements(vksky_device_requirements *out);
 
@@ -117,6 +126,15 @@ VKSKY_API vksky_result vksky_context_create(const vksky_context_desc *desc, vksk
  * does). The required ones must be true. Call before creating renderers; a context vksky made knows its own. */
 VKSKY_API vksky_result vksky_context_set_device_features(vksky_context *context,
                                                          const vksky_device_requirements *enabled);
+
+/* ABI 2: the host enabled VK_EXT_debug_utils on its instance (an instance cannot be asked): vksky then names the
+ * objects it makes ("vksky.transmittance_lut", "vksky.sky_pipeline", ...) and labels what it records: a
+ * "vksky.record" label around each vksky_record ("vksky.record_luts" around vksky_record_luts) holding one label per
+ * pass ("transmittance", "sky", "tonemap", ... as the trace names them), for RenderDoc or Nsight in the host's
+ * frame. Off by default: without this call vksky makes no VK_EXT_debug_utils call at all. Call before the first
+ * renderer (names are given at creation). A context vksky made names its objects whenever its instance has the
+ * extension; `enabled` false turns that off. */
+VKSKY_API vksky_result vksky_context_set_debug_utils(vksky_context *context, bool enabled);
 
 /* vksky makes its own instance and device (the command-line tool, the window, tests). */
 typedef struct vksky_own_device_desc {
@@ -454,8 +472,8 @@ typedef enum vksky_projection {
     VKSKY_PROJECTION_TYPE_FISHEYE = 3   /* the upper hemisphere, equidistant, zenith at the centre, north up, east left, W x W */
 } vksky_projection;
 
-/* A band of a larger image, or an environment map, chained from vksky_frame.next (DISPLAY with a readback config;
- * the command line's banded renders): the frame is rows first_row .. first_row + height - 1 of a whole image of
+/* A band of a larger image, or an environment map, chained from vksky_frame.next (DISPLAY: with a readback config,
+ * the command line's banded renders; or into the host's image, as `vksky --bench` of a map does): the frame is rows first_row .. first_row + height - 1 of a whole image of
  * whole_height rows (the renderer's width and height are the band's; whole_width must be the renderer's width), in
  * `projection`, so each pixel gets the direction it has in the whole image and the bands put together equal one
  * frame of the whole image. first_row may be negative and a band may reach below the image: such rows are drawn only
@@ -519,6 +537,13 @@ typedef struct vksky_pass_timing {
 } vksky_pass_timing;
 VKSKY_API vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
                                                   uint32_t *count);
+/* ABI 2, the LUTs on an async compute queue: GPU time per LUT pass of the last vksky_record_luts that recorded them
+ * (timestamps written into the compute command buffer, on the compute queue's own timer), read as
+ * vksky_renderer_get_timings reads the frame's: after that command buffer completed, before the next
+ * vksky_record_luts. VKSKY_ERROR_INVALID_ARGUMENT: the context has no compute queue; VKSKY_ERROR_UNSUPPORTED: no
+ * timestamps. */
+VKSKY_API vksky_result vksky_renderer_get_lut_timings(vksky_renderer *renderer, vksky_pass_timing *out,
+                                                      uint32_t capacity, uint32_t *count);
 
 /* What making the renderer cost and what its LUT cache did (ABI 2: the command line's --timings): wall milliseconds
  * spent making pipelines and resources (creation and variant rebuilds), the times the pipelines were built, and the

@@ -534,32 +534,6 @@ void gpu_context_destroy(gpu_context *ctx)
     *ctx = (gpu_context){0};
 }
 
-void gpu_set_name(const gpu_context *ctx, VkObjectType type, uint64_t handle, const char *name)
-{
-    if (!ctx->debug_utils || !vkSetDebugUtilsObjectNameEXT) return;
-    VkDebugUtilsObjectNameInfoEXT info = {
-        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT,
-        .objectType = type,
-        .objectHandle = handle,
-        .pObjectName = name,
-    };
-    vkSetDebugUtilsObjectNameEXT(ctx->device, &info);
-}
-
-void gpu_label_begin(const gpu_context *ctx, VkCommandBuffer cmd, const char *name)
-{
-    gpu_barrier_trace_pass(name);
-    if (!ctx->debug_utils || !vkCmdBeginDebugUtilsLabelEXT) return;
-    VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = name};
-    vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
-}
-
-void gpu_label_end(const gpu_context *ctx, VkCommandBuffer cmd)
-{
-    if (!ctx->debug_utils || !vkCmdEndDebugUtilsLabelEXT) return;
-    vkCmdEndDebugUtilsLabelEXT(cmd);
-}
-
 VkCommandBuffer gpu_begin_commands(const gpu_context *ctx)
 {
     gpu_barrier_trace_commands();

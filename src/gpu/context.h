@@ -106,9 +106,13 @@ void gpu_probe_times(double *instance_ms, double *enumerate_ms);
 /* Messages the validation layer reported so far (every one is also printed to stderr). */
 unsigned gpu_validation_message_count(void);
 
+/* The object's name (VK_EXT_debug_utils, when ctx->debug_utils), as "vksky." + name in lower case, '_' for spaces. */
 void gpu_set_name(const gpu_context *ctx, VkObjectType type, uint64_t handle, const char *name);
 void gpu_label_begin(const gpu_context *ctx, VkCommandBuffer cmd, const char *name);
 void gpu_label_end(const gpu_context *ctx, VkCommandBuffer cmd);
+/* A label around several passes (the API's "vksky.record" around a vksky_record), closed by gpu_label_end: no trace
+ * line (the passes inside print theirs). */
+void gpu_label_group_begin(const gpu_context *ctx, VkCommandBuffer cmd, const char *name);
 
 /* One-shot command buffer: begin, then submit and wait for a fence. */
 VkCommandBuffer gpu_begin_commands(const gpu_context *ctx);

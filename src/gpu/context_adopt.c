@@ -1,6 +1,8 @@
 /* The host's device adopted (gpu_context_adopt), and what every context shares: the allocation callbacks by device,
- * the count of live contexts. See gpu/context.h. */
+ * the count of live contexts, the debug names and labels. See gpu/context.h. */
 #include "gpu/context.h"
+#include "gpu/barrier.h"
+#include <stdio.h>
 #include <pthread.h>
 
 /* Contexts of a process are few (a host's device or two, the tests' pairs): a small table, behind a lock because
@@ -131,4 +133,58 @@ void gpu_context_release(gpu_context *ctx)
     }
     gpu_allocator_register(ctx->device, NULL);
     *ctx = (gpu_context){0};
+}
+
+/* "vksky." and the name in lower case, each run of other characters one '_' ("transmittance LUT" ->
+ * "vksky.transmittance_lut"): in a host's frame capture vksky's objects are told from the host's at a glance. */
+static void vksky_object_name(const char *name, char *out, size_t size)
+{
+    size_t n = (size_t)snprintf(out, size, "vksky.");
+    bool gap = false;
+    for (const char *c = name; *c && n + 2 < size; ++c) {
+        bool keep = (*c >= 'a' && *c <= 'z') || (*c >= '0' && *c <= '9') || (*c >= 'A' && *c <= 'Z') || *c == '.';
+        if (!keep) {
+            gap = true;
+            continue;
+        }
+        if (gap && out[n - 1] != '.') out[n++] = '_';
+        gap = false;
+        out[n++] = (*c >= 'A' && *c <= 'Z') ? (char)(*c - 'A' + 'a') : *c;
+    }
+    out[n] = '\0';
+}
+
+void gpu_set_name(const gpu_context *ctx, VkObjectType type, uint64_t handle, const char *name)
+{
+    if (!ctx->debug_utils || !vkSetDebugUtilsObjectNameEXT) return;
+    char full[128];
+    vksky_object_name(name, full, sizeof full);
+    VkDebugUtilsObjectNameInfoEXT info = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT,
+        .objectType = type,
+        .objectHandle = handle,
+        .pObjectName = full,
+    };
+    vkSetDebugUtilsObjectNameEXT(ctx->device, &info);
+}
+
+void gpu_label_begin(const gpu_context *ctx, VkCommandBuffer cmd, const char *name)
+{
+    gpu_barrier_trace_pass(name);
+    if (!ctx->debug_utils || !vkCmdBeginDebugUtilsLabelEXT) return;
+    VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = name};
+    vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
+}
+
+void gpu_label_group_begin(const gpu_context *ctx, VkCommandBuffer cmd, const char *name)
+{
+    if (!ctx->debug_utils || !vkCmdBeginDebugUtilsLabelEXT) return;
+    VkDebugUtilsLabelEXT label = {.sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT, .pLabelName = name};
+    vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
+}
+
+void gpu_label_end(const gpu_context *ctx, VkCommandBuffer cmd)
+{
+    if (!ctx->debug_utils || !vkCmdEndDebugUtilsLabelEXT) return;
+    vkCmdEndDebugUtilsLabelEXT(cmd);
 }

@@ -1,13 +1,29 @@
 /* Contexts: the host's device adopted, or vksky's own (include/vksky.h). */
 #include "lib/lib_internal.h"
 #include "gpu/pipeline_cache.h"
+#include "sky/limits.h"
 #include <stdlib.h>
 
 void vksky_get_device_requirements(vksky_device_requirements *out)
 {
     if (!out) return;
+    sky_limit_needs n;
+    sky_limits_needed(true, &n);   /* the shared memory of the single pass, the most vksky uses */
     *out = (vksky_device_requirements){.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
-                                       .vulkan_memory_model = true, .vulkan_memory_model_device_scope = true};
+                                       .vulkan_memory_model = true, .vulkan_memory_model_device_scope = true,
+                                       .max_compute_work_group_invocations = n.compute_work_group_invocations,
+                                       .max_per_stage_descriptor_storage_images = n.per_stage_storage_images,
+                                       .max_compute_shared_memory_size = n.compute_shared_memory,
+                                       .max_push_constants_size = n.push_constants};
+}
+
+/* The device's limits against the pipelines' needs (sky/limits.h): 0, or the line to the callback and -1. */
+static int check_limits(vksky_context *c, const char *call)
+{
+    char why[256];
+    if (sky_limits_apply(&c->gpu, why, sizeof why) == 0) return 0;
+    lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR, "%s: %s", call, why);
+    return -1;
 }
 
 vksky_result vksky_context_create(const vksky_context_desc *desc, vksky_context **out)
@@ -39,6 +55,11 @@ vksky_result vksky_context_create(const vksky_context_desc *desc, vksky_context 
         free(c);
         return r == VK_ERROR_INITIALIZATION_FAILED ? VKSKY_ERROR_UNSUPPORTED : lib_result_from_vk(r);
     }
+    if (check_limits(c, "vksky_context_create") != 0) {
+        gpu_context_release(&c->gpu);
+        free(c);
+        return VKSKY_ERROR_UNSUPPORTED;
+    }
     *out = c;
     return VKSKY_SUCCESS;
 }
@@ -59,6 +80,28 @@ vksky_result vksky_context_set_device_features(vksky_context *context, const vks
     }
     /* bloom_spd.comp's coherent device-scope accesses need both (gpu/context.h). */
     context->gpu.memory_model_device_scope = enabled->vulkan_memory_model && enabled->vulkan_memory_model_device_scope;
+    /* The single pass only where its shared memory fits (else the per-level chain, an info line). */
+    return check_limits(context, "vksky_context_set_device_features") == 0 ? VKSKY_SUCCESS : VKSKY_ERROR_UNSUPPORTED;
+}
+
+vksky_result vksky_context_set_debug_utils(vksky_context *context, bool enabled)
+{
+    if (!context) return VKSKY_ERROR_INVALID_ARGUMENT;
+    if (context->renderers > 0) {
+        lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_set_debug_utils: before the first renderer (its objects are named at creation)");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    /* The host's word for its instance; vksky's own instance: only where it enabled the extension. The functions
+     * come through the host's vkGetInstanceProcAddr (gpu/context_adopt.c); without them nothing is called. */
+    bool available = context->gpu.owns_device ? context->own_debug_utils : true;
+    if (enabled && (!available || !vkSetDebugUtilsObjectNameEXT || !vkCmdBeginDebugUtilsLabelEXT ||
+                    !vkCmdEndDebugUtilsLabelEXT)) {
+        lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_context_set_debug_utils: the instance's VK_EXT_debug_utils functions are missing");
+        return VKSKY_ERROR_UNSUPPORTED;
+    }
+    context->gpu.debug_utils = enabled;
     return VKSKY_SUCCESS;
 }
 
@@ -94,6 +137,12 @@ vksky_result vksky_context_create_own(const vksky_own_device_desc *desc, vksky_c
     if (rc != 0) {
         free(c);
         return rc == -2 ? VKSKY_ERROR_INVALID_ARGUMENT : VKSKY_ERROR_UNSUPPORTED;
+    }
+    c->own_debug_utils = c->gpu.debug_utils;
+    if (check_limits(c, "vksky_context_create_own") != 0) {
+        gpu_context_destroy(&c->gpu);
+        free(c);
+        return VKSKY_ERROR_UNSUPPORTED;
     }
     *out = c;
     return VKSKY_SUCCESS;

@@ -151,12 +151,11 @@ vksky_result vksky_quality_config_preset(const char *preset, vksky_quality_confi
     return VKSKY_SUCCESS;
 }
 
-vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
-                                        uint32_t *count)
+/* A timer's last recorded results as the API's entries (the frame's timer, or the compute queue's LUT timer). */
+static vksky_result read_timer(vksky_renderer *renderer, gpu_timer *t, vksky_pass_timing *out, uint32_t capacity,
+                               uint32_t *count)
 {
-    if (!renderer || !count || (capacity && !out)) return VKSKY_ERROR_INVALID_ARGUMENT;
     *count = 0;
-    gpu_timer *t = &renderer->r.timer;
     if (!t->enabled) return VKSKY_ERROR_UNSUPPORTED;
     double ms[GPU_TIMER_MAX];
     gpu_trap trap;
@@ -170,4 +169,25 @@ vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_tim
     for (uint32_t i = 0; i < n && i < capacity; ++i) out[i] = (vksky_pass_timing){t->names[i], ms[i]};
     *count = n;
     return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
+                                        uint32_t *count)
+{
+    if (!renderer || !count || (capacity && !out)) return VKSKY_ERROR_INVALID_ARGUMENT;
+    return read_timer(renderer, &renderer->r.timer, out, capacity, count);
+}
+
+vksky_result vksky_renderer_get_lut_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
+                                            uint32_t *count)
+{
+    if (!renderer || !count || (capacity && !out)) return VKSKY_ERROR_INVALID_ARGUMENT;
+    *count = 0;
+    if (!renderer->ctx->gpu.compute_queue) {
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_renderer_get_lut_timings: the context has no compute queue (vksky_get_timings has the LUT "
+                    "passes of a frame that built them)");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    return read_timer(renderer, &renderer->r.lut_timer, out, capacity, count);
 }

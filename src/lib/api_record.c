@@ -209,8 +209,11 @@ vksky_result vksky_record_luts(vksky_renderer *renderer, VkCommandBuffer compute
         return lib_result_from_vk(trap.result);
     }
     gpu_trap_arm(&trap);
-    /* The LUT passes and their last barriers (the releases to the graphics family when the families differ). */
+    /* The LUT passes and their last barriers (the releases to the graphics family when the families differ), under
+     * one label in the host's capture (vksky_context_set_debug_utils). */
+    gpu_label_group_begin(&c->gpu, compute_cmd, "vksky.record_luts");
     frame_record_luts_compute(&renderer->r, compute_cmd);
+    gpu_label_end(&c->gpu, compute_cmd);
     renderer->r.lut_acquire_pending = gpu_async_other_family(&c->gpu);
     gpu_trap_arm(NULL);
     lib_trace_end(was);
@@ -222,7 +225,10 @@ vksky_result vksky_record(vksky_renderer *renderer, VkCommandBuffer cmd, const v
 {
     if (!renderer || !cmd || !frame) return VKSKY_ERROR_INVALID_ARGUMENT;
     const gpu_trace_sink *was = lib_trace_begin(renderer->ctx);   /* the lines go to this context's trace */
+    /* The frame's passes (each labelled by the spine) under one label in the host's capture. */
+    gpu_label_group_begin(&renderer->ctx->gpu, cmd, "vksky.record");
     vksky_result res = record_frame(renderer, cmd, frame);
+    gpu_label_end(&renderer->ctx->gpu, cmd);
     lib_trace_end(was);
     return res;
 }

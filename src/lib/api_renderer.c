@@ -82,6 +82,13 @@ static vksky_result check_desc(vksky_context *c, const vksky_renderer_desc *d)
                     "vksky_renderer_create: size %ux%u; expected 1..16384 each", d->width, d->height);
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
+    uint32_t max_2d = c->gpu.props.limits.maxImageDimension2D;   /* the renderer's images are the output's size */
+    if (sized && (d->width > max_2d || d->height > max_2d)) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_renderer_create: size %ux%u; the device's maxImageDimension2D is %u", d->width, d->height,
+                    max_2d);
+        return VKSKY_ERROR_UNSUPPORTED;
+    }
     if (d->output == VKSKY_OUTPUT_SCENE_LINEAR) {
         /* The pass reads and writes the host's HDR image as a storage image (sky/host_frame.c). */
         VkFormatProperties fp;

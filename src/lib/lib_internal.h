@@ -17,6 +17,7 @@ struct vksky_context {
     void *message_user;
     int renderers;                 /* alive: the context's destroy refuses to pull the device from under them */
     gpu_trace_sink trace;          /* vksky_context_set_trace: bound while a call on the context records */
+    bool own_debug_utils;          /* vksky's own instance has VK_EXT_debug_utils (vksky_context_set_debug_utils) */
 };
 
 struct vksky_scene {

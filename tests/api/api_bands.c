@@ -123,6 +123,36 @@ int main(int argc, char **argv)
                m->height, BAND, worst);
         HOST_CHECK(worst <= 1, "%s: the API's bands differ from the CLI's map by %d of 255", m->projection, worst);
 
+        /* The whole map as one band into the host's own image (a renderer without readback: `vksky --bench` of a map),
+         * copied out by the host: the CLI's map too. */
+        {
+            host t;
+            host_from_context(&t, c);
+            host_create_target(&t, m->width, m->height, VK_FORMAT_R8G8B8A8_SRGB);
+            vksky_renderer_desc d = host_readback_desc(NULL, scene, m->width, m->height, false);
+            vksky_renderer *own = host_renderer(c, &d);
+            vksky_frame_band whole_band = {.type = VKSKY_STRUCTURE_TYPE_FRAME_BAND, .projection = m->type,
+                                           .whole_width = m->width, .whole_height = m->height};
+            vksky_frame f = {.next = &whole_band, .exposure = 12.0, .color = host_image(&t, VK_FORMAT_R8G8B8A8_SRGB)};
+            host_begin(&t);
+            vksky_result res = vksky_record(own, t.cmd, &f);
+            HOST_CHECK(res == VKSKY_SUCCESS, "vksky_record into the host's image: %s", vksky_result_name(res));
+            host_copy(&t);
+            host_end_submit_wait(&t);
+            const uint8_t *px = t.mapped;
+            int worst_own = 0;
+            for (size_t i = 0; i < 4 * (size_t)m->width * m->height; ++i) {
+                int dd = abs((int)px[i] - (int)want[i]);
+                if (dd > worst_own) worst_own = dd;
+            }
+            printf("%s %ux%u as one band into the host's image: vs vksky --render: max %d of 255\n", m->projection,
+                   m->width, m->height, worst_own);
+            HOST_CHECK(worst_own <= 1, "%s: the band into the host's image differs from the CLI's map by %d of 255",
+                       m->projection, worst_own);
+            vksky_renderer_destroy(own);
+            host_destroy_target(&t);
+        }
+
         /* Auto exposure: the bands' own rows, added by the host, against one band of the whole image. */
         render_bands(&h, banded, m, true, got, &log_sum, &count);
         vksky_renderer *whole = band_renderer(c, scene, m->width, m->height);

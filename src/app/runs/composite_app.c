@@ -8,6 +8,7 @@
 #include "app/runs/exr_header.h"
 #include "app/runs/startup.h"
 #include "app/runs/stop.h"
+#include "sky/limits.h"
 #include "io/exr_layers.h"
 #include "io/exr_read.h"
 #include "io/atomic_file.h"
@@ -96,6 +97,7 @@ static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32
     gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
     int rc = gpu_context_create(ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
+    if (sky_limits_report(ctx) != 0) return 1;   /* a limit under the pipelines' need (sky/limits.h) */
     startup_open_cache(ctx, o);
     if (o->trace_barriers) gpu_barrier_trace(stdout);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));

@@ -1,8 +1,5 @@
 #include "app/runs/headless.h"
 #include "app/scene/render_values.h"
-#include "app/scene/light.h"
-#include "app/runs/bench_report.h"
-#include "app/runs/cpu_time.h"
 #include "app/runs/headless_api.h"
 #include "app/runs/sequence.h"
 #include "app/runs/sequence_host.h"
@@ -11,49 +8,12 @@
 #include "app/runs/stop.h"
 #include "app/runs/tiles.h"
 #include "io/encode_settings.h"
+#include "sky/limits.h"
 #include "sky/submit.h"
 #include "gpu/pipeline_cache.h"
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-
-/* Per-pass GPU medians, then the frame: the benchmark's output format (app/runs/bench_report.h). */
-static void bench(const options *o, sky_renderer *r)
-{
-    int n = o->bench_frames;
-    double ms[GPU_TIMER_MAX];
-    bench_figures b;
-    if (bench_figures_begin(&b, n)) n = 0;
-    /* Warm-up: lavapipe compiles shaders at first use; GPUs ramp their clocks. Auto exposure (--auto-exposure, or a
-     * photometric PNG among the outputs): the frames meter on the GPU, and the meter's passes are timed too. */
-    sky_view view = o->view;
-    view.auto_exposure = o->auto_exposure || light_auto_exposure_wanted(o);
-    frame_desc f = {.view = &view};
-    for (int i = 0; i < 3 && n && !stop_requested(); ++i) sky_renderer_render(r, &f);
-
-    /* LUT passes, measured on their own (a frame recomputes them only when the atmosphere changes). */
-    frame_desc with_luts = {.view = &view, .force_luts = true};
-    /* With --async-luts the LUT passes are timed on the compute queue's own timer. The wall time of these frames
-     * (each rebuilds the LUTs, as an animated sun does) is tools/async_bench.sh's figure. */
-    gpu_timer *lt = r->ctx->compute_queue ? &r->lut_timer : &r->timer;
-    for (int i = 0; i < n && !stop_requested(); ++i) {
-        b.luts_wall[i] = sky_renderer_render(r, &with_luts);
-        uint32_t c = gpu_timer_read(r->ctx, lt, ms);
-        for (uint32_t k = 0; k < c; ++k) bench_figures_lut_pass(&b, i, lt->names[k], ms[k]);
-    }
-    /* Steady-state frames. The process's CPU time over them too: on a CPU device (lavapipe) that is the frame's
-     * work whatever else the machine runs, where wall and timestamp times grow with the machine's load. */
-    b.cpu_start = process_cpu_ms();
-    for (int i = 0; i < n && !stop_requested(); ++i) {
-        b.wall[i] = sky_renderer_render(r, &f);
-        uint32_t c = gpu_timer_read(r->ctx, &r->timer, ms);
-        for (uint32_t k = 0; k < c; ++k) bench_figures_pass(&b, i, r->timer.names[k], ms[k]);
-    }
-    b.timed = r->timer.enabled, b.multiscatter = r->variant.multiscatter;
-    b.async = r->ctx->compute_queue != VK_NULL_HANDLE;
-    bench_report_print(&b, stop_requested() ? 0 : n);   /* the graceful stop: no figures from a cut-short run */
-    bench_figures_end(&b);
-}
 
 /* VKSKY_FRAMES=N (tests): N frames recorded back to back into one command buffer, the LUTs recomputed in every
  * frame after the first; the last frame is written. Barriers order work across submissions to one queue just as
@@ -96,23 +56,6 @@ static void render_frames(sky_renderer *r, const frame_desc *f)
     startup_frame_end(r);
 }
 
-/* --bench with --render and a sequence (issue 27): the frames to disk, timed from the first frame's submit to the
- * last file (the renderer is warm: bench() ran first). Frames per second to disk, and the process's CPU time per
- * frame (on a CPU device, lavapipe, that is the work whatever else the machine runs). */
-static int bench_sequence(const options *o, sky_renderer *r)
-{
-    struct timespec t0, t1;
-    clock_gettime(CLOCK_MONOTONIC, &t0);
-    double cpu_start = process_cpu_ms();
-    int status = sequence_render(o, r, render_frames);
-    clock_gettime(CLOCK_MONOTONIC, &t1);
-    double s = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-    int frames = o->frame_last - o->frame_first + 1;
-    if (status == 0)
-        bench_report_sequence(frames, o->output_count, s, process_cpu_ms() - cpu_start, 0, io_encode_threads());
-    return status;
-}
-
 /* The end of every run: the context goes, any validation message fails the run, and a stop asked for by a signal
  * gives its exit status (stop.h). */
 static int finish(gpu_context *ctx, int status, bool timings, bool keep)
@@ -133,13 +76,13 @@ static int run_checked(const options *o);
 
 /* The runs that go through the public API as its host (app/runs/headless_api.c; docs/library.md's status): one
  * perspective frame to files, sequences and --skip-existing (app/runs/sequence_host.c), --async-luts (the LUTs on the
- * compute queue: app/runs/host_async.c), the tests' VKSKY_FRAMES loop, --timings, --bench with --render
- * (app/runs/bench_host.c), environment maps and images in bands (app/runs/tiles.c). --bench alone or with
- * --async-luts, and --spectral, still call src/sky here. */
+ * compute queue: app/runs/host_async.c), the tests' VKSKY_FRAMES loop, --timings, --bench with --render or alone (the
+ * frame into the host's own image) and with --async-luts (app/runs/bench_host.c), environment maps and
+ * images in bands (app/runs/tiles.c; a --bench frame is whole, as before). A frame with no output (its traces) and
+ * --spectral still call src/sky here. */
 static bool api_host_wanted(const options *o)
 {
-    return o->output_count > 0 && (o->bench_frames == 0 || !o->async_luts) &&
-           (o->bench_frames == 0 || !tiles_in_bands(o)) && !o->spectral;
+    return (o->output_count > 0 || o->bench_frames > 0) && !o->spectral;   /* --bench alone: into the host's image */
 }
 
 int headless_run(const options *given)
@@ -176,6 +119,10 @@ static int run_checked(const options *o)
                                                                                     : GPU_ASYNC_ON};
     int rc = gpu_context_create(&ctx, &desc);
     if (rc != 0) return rc == -2 ? 2 : 1;
+    if (sky_limits_report(&ctx) != 0) {   /* a limit under the pipelines' need: the line, exit 1 */
+        gpu_context_destroy(&ctx);
+        return 1;
+    }
     startup_open_cache(&ctx, o);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
     if (api_host_wanted(o)) {
@@ -211,11 +158,6 @@ static int run_checked(const options *o)
     int status = 0;
     if (stop_requested()) {
         /* Stopped while the device and the renderer were made: nothing to render. */
-    } else if (o->bench_frames > 0) {
-        gpu_barrier_trace(NULL);
-        bench(o, &r);
-        if (o->output_count > 0 && sequence_active(o) && !stop_requested())
-            status = bench_sequence(o, &r);   /* --async-luts: one frame at a time, its LUTs on the compute queue */
     } else {
         /* A frame with no output (its traces), or --spectral: each frame once per wavelength group, combined on the
          * host before it is written (the serial loop). */

@@ -134,8 +134,9 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     free(argv);
     if (made != VKSKY_SUCCESS) goto done;
     vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
+    /* --bench without outputs: no readback, the frame writes the host's own image (app/runs/bench_host.c). */
     vksky_renderer_desc rd = {
-        .abi_version = VKSKY_ABI_VERSION, .next = &readback, .output = VKSKY_OUTPUT_DISPLAY,
+        .abi_version = VKSKY_ABI_VERSION, .next = o->output_count > 0 ? &readback : NULL, .output = VKSKY_OUTPUT_DISPLAY,
         .width = (uint32_t)o->width, .height = (uint32_t)(banded ? tiles_frame_rows(o) : o->height),
         .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = "scene", .bloom = o->view.bloom && !banded,
         .units = o->units == OPTIONS_UNITS_RELATIVE ? VKSKY_UNITS_RELATIVE : VKSKY_UNITS_PHOTOMETRIC, .scene = scene};
@@ -157,7 +158,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     } else if (o->bench_frames > 0) {
         /* --bench: no barrier trace over its frames (the pass trace stays, as the CLI's own bench keeps it). */
         vksky_context_set_trace(ctx, o->trace_passes ? VKSKY_TRACE_PASSES : 0u, print_trace, NULL);
-        status = bench_host_run(o, ctx, scene, r);
+        status = bench_host_run(o, ctx, scene, r, h.async);
     } else if (banded) {
         status = tiles_render(o, ctx, r, &h, o->trace_barriers ? stdout : NULL);
     } else if (sequence_active(o) || o->skip_existing)

@@ -35,13 +35,16 @@ int host_record(vksky_renderer *r, VkCommandBuffer cmd, const host_view *v, uint
                             .projection = v->projection, .whole_width = v->whole_width,
                             .whole_height = v->whole_height, .first_row = v->first_row,
                             .meter_first_row = v->meter_first_row, .meter_rows = v->meter_rows};
-    /* The slot's pair of readback buffers; auto exposure's result beside it (one per frame in flight). */
-    vksky_readback_target target = {.type = VKSKY_STRUCTURE_TYPE_READBACK_TARGET,
-                                    .next = is_map || v->band ? (const void *)&map : (const void *)&given,
-                                    .slot = slot, .follows_frame = v->follows_frame};
-    vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, .next = &target, .slot = slot};
-    vksky_frame frame = {.next = v->auto_exposure ? (const void *)&metered : (const void *)&target,
-                         .exposure = v->exposure, .force_luts = v->force_luts};
+    const void *placed = is_map || v->band ? (const void *)&map : (const void *)&given;
+    /* The slot's pair of readback buffers; auto exposure's result beside it (one per frame in flight). The host's own
+     * image instead (v->target): no readback. */
+    vksky_readback_target target = {.type = VKSKY_STRUCTURE_TYPE_READBACK_TARGET, .next = placed, .slot = slot,
+                                    .follows_frame = v->follows_frame};
+    const void *head = v->target ? placed : (const void *)&target;
+    vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, .next = head, .slot = slot};
+    vksky_frame frame = {.next = v->auto_exposure ? (const void *)&metered : head, .exposure = v->exposure,
+                         .force_luts = v->force_luts};
+    if (v->target) frame.color = *v->target;
     return vksky_record(r, cmd, &frame) == VKSKY_SUCCESS ? 0 : 1;
 }
 

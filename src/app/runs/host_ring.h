@@ -36,10 +36,13 @@ typedef struct host_view {
     int32_t first_row;
     uint32_t meter_first_row, meter_rows;
     bool follows_frame;          /* an earlier frame was recorded into the same command buffer (VKSKY_FRAMES) */
+    /* The host's own image the frame writes (frame.color: a renderer without readback, --bench without --render),
+     * or NULL: the pixels into a readback slot. */
+    const vksky_image *target;
 } host_view;
 
-/* Records one frame of `v` into cmd (begun): its pixels into readback slot `slot`, auto exposure's result in meter slot
- * `slot`. 0, or 1 (vksky's message printed). */
+/* Records one frame of `v` into cmd (begun): its pixels into readback slot `slot` (or v->target), auto exposure's
+ * result in meter slot `slot`. 0, or 1 (vksky's message printed). */
 int host_record(vksky_renderer *r, VkCommandBuffer cmd, const host_view *v, uint32_t slot);
 
 /* One frame at a time: the host's command buffer and fence, the frame recorded into it, submitted and waited for. */
