@@ -139,7 +139,7 @@ static int run_checked(const options *o)
         vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
                                              .vulkan_memory_model = ctx.memory_model_device_scope,
                                              .vulkan_memory_model_device_scope = ctx.memory_model_device_scope};
-        int status = headless_api_render(o, &device, &enabled, gpu_cache_dir(&ctx));
+        int status = headless_api_render(o, &device, &enabled, ctx.debug_utils, gpu_cache_dir(&ctx));
         return finish(&ctx, status, o->timings, startup_keep_for_exit(o, status));
     }
     if (o->trace_barriers) gpu_barrier_trace(stdout);

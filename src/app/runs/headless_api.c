@@ -97,13 +97,16 @@ static int render_and_write(const options *o, host_commands *h, vksky_renderer *
 }
 
 int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled,
-                        const char *cache_dir)
+                        bool debug_utils, const char *cache_dir)
 {
     vksky_context_desc cd = *device;
     cd.message = print_message;
     vksky_context *ctx = NULL;
     if (vksky_context_create(&cd, &ctx) != VKSKY_SUCCESS) return 1;
+    /* Names and labels where the CLI's instance enabled VK_EXT_debug_utils (always under --validate), so validation
+     * messages and captures name vksky's objects as the src/sky path did. */
     if (vksky_context_set_device_features(ctx, enabled) != VKSKY_SUCCESS ||
+        vksky_context_set_debug_utils(ctx, debug_utils) != VKSKY_SUCCESS ||
         vksky_context_set_cache_directory(ctx, cache_dir) != VKSKY_SUCCESS) {
         vksky_context_destroy(ctx);
         return 1;

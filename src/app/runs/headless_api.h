@@ -15,5 +15,6 @@
  * or 1 for a runtime failure (the line printed). */
 /* cache_dir: the CLI's cache directory (the LUT cache beside its pipeline cache), or NULL (--no-cache). */
 int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled,
+                        bool debug_utils,
                         const char *cache_dir);
 #endif

@@ -47,6 +47,7 @@ int window_api_open(app *a)
                                          .vulkan_memory_model_device_scope = g->memory_model_device_scope};
     if (vksky_context_create(&cd, &a->api) != VKSKY_SUCCESS ||
         vksky_context_set_device_features(a->api, &enabled) != VKSKY_SUCCESS ||
+        vksky_context_set_debug_utils(a->api, g->debug_utils) != VKSKY_SUCCESS ||   /* names, labels (captures) */
         vksky_context_set_cache_directory(a->api, gpu_cache_dir(g)) != VKSKY_SUCCESS)
         return 1;
     /* The scene, view settings and quality of the command line the window was started with (the same parser). */
