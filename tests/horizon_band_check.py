@@ -4,6 +4,12 @@ tests/horizon_band_test.sh runs it).
 
 usage: horizon_band_check.py band FRAME.exr REFERENCE.exr ALTITUDE_KM PITCH_DEG FOV_DEG YAW_DEG SUN_ELEV_DEG SUN_AZ_DEG
          prints "max mean count" of the relative luminance error over the band.
+       horizon_band_check.py photometric WORK
+         the sunset view in photometric units (tools/horizon_band_photometric.sh renders WORK's frames): for each
+         configuration (cpu; high at render scale 0.5) the band max of the frame with the sun's disc is within
+         1.01 x that of the same configuration with --no-sun-disc (each against the reference of its own kind) plus
+         0.5 %: the disc adds nothing to the band beyond the sky's own error. Also prints the band max of the disc-free
+         frame plus the reference's own disc (the frame's disc drawn at the output's scale): what a fix can reach.
        horizon_band_check.py suite WORK QUALITY_HORIZON_TABLE.h TRADEOFF_TABLE.h
          the frames horizon_band_test.sh rendered in WORK: for every configuration and view,
          (a) the band max is within the bound the shipped table (src/app/quality/quality_horizon_table.h) states for
@@ -125,7 +131,31 @@ def suite(work, shipped_path, tradeoff_path):
     return fails
 
 
+def photometric(work):
+    """The photometric sunset: the sun's disc must not reach the band beyond the exclusion (issue 26, 26e)."""
+    scene = VIEWS["sunset"][1:]
+    fails = 0
+    ref, ref_nodisc = oiio.ImageBuf(f"{work}/ref.exr"), oiio.ImageBuf(f"{work}/ref_nodisc.exr")
+    disc = ref.get_pixels(oiio.FLOAT) - ref_nodisc.get_pixels(oiio.FLOAT)   # the reference's disc, per output pixel
+    for c in ("cpu", "high05"):
+        mx, mean, n = band_error(f"{work}/{c}.exr", f"{work}/ref.exr", *scene)
+        sky, sky_mean, _ = band_error(f"{work}/{c}_nodisc.exr", f"{work}/ref_nodisc.exr", *scene)
+        own = oiio.ImageBuf(f"{work}/{c}_nodisc.exr")
+        fixed = oiio.ImageBuf(own.spec())
+        fixed.set_pixels(oiio.ROI(), (own.get_pixels(oiio.FLOAT) + disc).astype(np.float32))
+        fixed.write(f"{work}/{c}_disc_at_output.exr")
+        reach, _, _ = band_error(f"{work}/{c}_disc_at_output.exr", f"{work}/ref.exr", *scene)
+        ok = mx <= 1.01 * sky + 0.005
+        print(("ok   " if ok else "FAIL ") + f"{c:6s} sunset photometric: band max {100 * mx:8.3f} % (mean "
+              f"{100 * mean:6.3f} %, {n} px); without the disc {100 * sky:.3f} % (mean {100 * sky_mean:.3f} %); "
+              f"its sky plus the disc at the output's scale {100 * reach:.3f} %")
+        fails += not ok
+    return fails
+
+
 if __name__ == "__main__":
+    if len(sys.argv) == 3 and sys.argv[1] == "photometric":
+        sys.exit(1 if photometric(sys.argv[2]) else 0)
     if len(sys.argv) == 5 and sys.argv[1] == "suite":
         sys.exit(1 if suite(*sys.argv[2:5]) else 0)
     if len(sys.argv) != 10 or sys.argv[1] != "band":
