@@ -19,9 +19,20 @@ struct vksky_context {
     gpu_trace_sink trace;          /* vksky_context_set_trace: bound while a call on the context records */
 };
 
+/* A spectral group's medium (vksky_scene_spectral_group, api_spectral.c): what the GPU reads instead of the scene's
+ * RGB medium. The sun is set where the renderer lights the scene (lib_render_inputs_of): each channel the base's sun
+ * luminance in the renderer's units, so that the group's image has the RGB image's magnitudes. */
+typedef struct lib_spectral_group {
+    uint32_t per_pass;             /* 0: an RGB scene; 3 or 4 wavelengths a pass */
+    model_atmosphere medium;       /* the first three wavelengths' coefficients as the three channels */
+    sky_fourth fourth;             /* per_pass 4: the fourth wavelength's (the four-wide build) */
+    double ground_albedo[4];       /* the RGB albedo's law at each wavelength */
+} lib_spectral_group;
+
 struct vksky_scene {
     options o;                     /* the scene loader's result on the CLI's defaults: medium, features, sun, units */
     bool from_args;                /* vksky_scene_from_args: o holds a command line's resolved quality too */
+    lib_spectral_group group;      /* ABI 3: a spectral group's scene (per_pass > 0) */
 };
 
 /* What recorded frames read of a scene (the uniform block's medium and sun, the features that pick pipelines):
@@ -44,6 +55,7 @@ struct vksky_renderer {
     uint32_t slot_count;
     gpu_buffer slot_linear[VKSKY_READBACK_SLOTS_MAX], slot_display[VKSKY_READBACK_SLOTS_MAX];
     lib_render_inputs applied;     /* what the GPU reads of the scene, as last set (vksky_renderer_scene_changes) */
+    uint32_t per_pass;             /* ABI 3: made with a spectral group's scene: 3 or 4 (the four-wide build), else 0 */
 };
 
 /* The context's trace bound to this thread for the length of a call (no trace of its own: the process-wide streams
@@ -81,5 +93,5 @@ void lib_readback_slots_destroy(vksky_renderer *r);
 void lib_readback_select(vksky_renderer *r, uint32_t slot);
 /* A scene's options as a renderer of these options would take them (set_scene), and what the GPU reads of them. */
 void lib_scene_for_renderer(const vksky_renderer *r, const vksky_scene *scene, options *o);
-void lib_render_inputs_of(const options *o, lib_render_inputs *out);
+void lib_render_inputs_of(const options *o, const lib_spectral_group *group, lib_render_inputs *out);
 #endif
