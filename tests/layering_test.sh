@@ -126,6 +126,7 @@ api_hosts+=(app/runs/sequence_host.c app/runs/sequence_host.h app/runs/host_ring
                                                                                   # the readback ring, --bench (25h)
 api_hosts+=(app/runs/tiles.c app/runs/tiles.h app/runs/bench_report.c app/runs/bench_report.h   # bands, --bench's report,
            app/runs/host_async.c app/runs/host_async.h)                                       # --async-luts (25i)
+api_hosts+=(app/runs/spectral_host.c app/runs/spectral_host.h)   # --spectral N of one image (25s)
 for f in "${api_hosts[@]}"; do
   [ -f "$f" ] || { echo "layering: $f: listed as an API host but missing"; fail=1; continue; }
   door=$(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"(sky|lib)/' "$f")

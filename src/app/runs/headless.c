@@ -8,6 +8,7 @@
 #include "app/runs/sequence_host.h"
 #include "app/runs/startup.h"
 #include "app/runs/spectral_render.h"
+#include "app/runs/spectral_host.h"
 #include "app/runs/stop.h"
 #include "app/runs/tiles.h"
 #include "io/encode_settings.h"
@@ -139,7 +140,7 @@ static int run_checked(const options *o);
 static bool api_host_wanted(const options *o)
 {
     return o->output_count > 0 && (o->bench_frames == 0 || !o->async_luts) &&
-           (o->bench_frames == 0 || !tiles_in_bands(o)) && !o->spectral;
+           (o->bench_frames == 0 || !tiles_in_bands(o)) && (!o->spectral || spectral_host_wanted(o));
 }
 
 int headless_run(const options *given)

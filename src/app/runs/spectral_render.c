@@ -242,14 +242,19 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
  * none) and no dither (the GPU's +-1 LSB triangular noise). */
 void spectral_render_tonemap(const sky_renderer *r, const sky_view *v, const float *rgb, void *display)
 {
-    int w = (int)r->desc.width, h = (int)r->desc.height;
+    spectral_render_tonemap_image(v, (int)r->desc.width, (int)r->desc.height, r->variant.ground,
+                                  r->medium.bottom_radius, rgb, display);
+}
+
+void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius,
+                                   const float *rgb, void *display)
+{
     double scale = v->ev100 ? v->light_scale : 1.0, ev = v->exposure_ev;
     if (v->auto_exposure) {
-        bool every_pixel = r->variant.ground;
         double f[3], right[3], up[3], log_sum = 0.0, count = 0.0;
         sky_view_basis(v, f, right, up);
         double ty = tan(0.5 * v->fov_deg * 3.14159265358979323846 / 180.0), tx = ty * w / h;
-        double sin_h = sky_view_horizon_sine(v->altitude_km, r->medium.bottom_radius);
+        double sin_h = sky_view_horizon_sine(v->altitude_km, bottom_radius);
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i) {
                 double x = 2.0 * (i + 0.5) / w - 1.0, y = 1.0 - 2.0 * (j + 0.5) / h, d[3];

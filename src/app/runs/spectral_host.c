@@ -1,0 +1,180 @@
+/* --spectral N of one image through include/vksky.h (spectral_host.h). */
+#include "app/runs/spectral_host.h"
+#include "app/runs/sequence_frames.h"
+#include "app/runs/spectral_render.h"
+#include "app/runs/tiles.h"
+#include "app/scene/light.h"
+#include "io/half_float.h"
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#define GROUPS_MAX (VKSKY_SPECTRAL_MAX / 3 + 1)
+
+bool spectral_host_wanted(const options *o)
+{
+    return o->spectral > 0 && o->output_count > 0 && o->bench_frames == 0 && !sequence_active(o) &&
+           !o->skip_existing && !tiles_in_bands(o) && !o->async_luts;
+}
+
+void spectral_image_release(spectral_image *img)
+{
+    free(img->linear);
+    free(img->display);
+    *img = (spectral_image){0};
+}
+
+static bool wants_png(const options *o)
+{
+    for (int i = 0; i < o->output_count; ++i) {
+        size_t n = strlen(o->outputs[i]);
+        if (n < 4 || strcasecmp(o->outputs[i] + n - 4, ".exr")) return true;
+    }
+    return false;
+}
+
+/* Every group's renderer, made and recorded: the groups' frames in one command buffer, one submission, one wait. */
+typedef struct groups {
+    uint32_t count, per_pass;
+    vksky_scene *scene[GROUPS_MAX];
+    vksky_renderer *r[GROUPS_MAX];
+    double weights[GROUPS_MAX][4][3];
+} groups;
+
+static void groups_destroy(groups *g)
+{
+    for (uint32_t k = 0; k < g->count; ++k) vksky_renderer_destroy(g->r[k]), vksky_scene_destroy(g->scene[k]);
+}
+
+static int groups_create(groups *g, const options *o, vksky_context *ctx, const vksky_scene *scene)
+{
+    /* Four to a pass unless the horizon is in a perspective frame (its resolve needs the composite's alpha). */
+    g->per_pass = spectral_render_four_wide(o) ? 4u : 3u;
+    uint32_t count = vksky_spectral_group_count((uint32_t)o->spectral, g->per_pass);
+    if (count == 0 || count > GROUPS_MAX) {
+        fprintf(stderr, "vksky: --spectral %d: not a count the GPU takes\n", o->spectral);
+        return 1;
+    }
+    vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
+    for (uint32_t k = 0; k < count; ++k) {
+        if (vksky_scene_spectral_group(scene, (uint32_t)o->spectral, g->per_pass, k, &g->scene[k], g->weights[k],
+                                       NULL) != VKSKY_SUCCESS)
+            return 1;
+        g->count = k + 1;
+        vksky_renderer_desc rd = {
+            .abi_version = VKSKY_ABI_VERSION, .next = &readback, .output = VKSKY_OUTPUT_DISPLAY,
+            .width = (uint32_t)o->width, .height = (uint32_t)o->height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
+            .quality = "scene", .bloom = o->view.bloom,
+            .units = o->units == OPTIONS_UNITS_RELATIVE ? VKSKY_UNITS_RELATIVE : VKSKY_UNITS_PHOTOMETRIC,
+            .scene = g->scene[k]};
+        if (vksky_renderer_create(ctx, &rd, &g->r[k]) != VKSKY_SUCCESS) return 1;
+    }
+    return 0;
+}
+
+static int groups_render(groups *g, const options *o, host_commands *h)
+{
+    const sky_view *view = &o->view;
+    /* The groups' own tone maps are not used (the sum is tone-mapped on the host): no meter on the GPU. */
+    host_view v = {.yaw_deg = view->yaw_deg, .pitch_deg = view->pitch_deg, .fov_deg = view->fov_deg,
+                   .exposure = view->exposure_ev, .projection = (vksky_projection)view->projection,
+                   .whole_width = (uint32_t)o->width, .whole_height = (uint32_t)o->height};
+    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    if (o->trace_barriers) fputs("commands\n", stdout);   /* the host's command buffer, as the CLI's trace names one */
+    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
+    for (uint32_t k = 0; k < g->count; ++k)
+        if (host_record(g->r[k], h->cmd, &v, 0) != 0) return 1;
+    if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
+    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
+    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
+                           .pCommandBufferInfos = &cinfo};
+    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
+    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
+    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
+    if (vr != VK_SUCCESS) {
+        fprintf(stderr, "vksky: the spectral frame's submission failed (VkResult %d)\n", (int)vr);
+        return 1;
+    }
+    /* A LUT cache miss: each group's LUTs into the cache for the next start (a hit or none: nothing). */
+    for (uint32_t k = 0; k < g->count; ++k)
+        if (vksky_renderer_store_luts(g->r[k]) != VKSKY_SUCCESS) return 1;
+    return 0;
+}
+
+/* The groups' readbacks summed into XYZ, group by group, pixel by pixel, channel by channel (the serial loop's order:
+ * the bytes do not depend on anything else), then XYZ -> linear Rec.709 into out. */
+static int groups_sum(const groups *g, const options *o, spectral_image *out)
+{
+    size_t pixels = (size_t)o->width * o->height;
+    float *xyz = calloc(pixels * 3, sizeof *xyz);
+    out->linear = malloc(pixels * 4 * sizeof *out->linear);
+    bool png = wants_png(o);
+    float *rgb = png ? malloc(pixels * 4 * sizeof *rgb) : NULL;
+    if (png) out->display = malloc(pixels * 4);
+    if (!xyz || !out->linear || (png && (!rgb || !out->display))) {
+        fprintf(stderr, "vksky: --spectral: out of memory\n");
+        free(xyz), free(rgb);
+        return 1;
+    }
+    const uint16_t *last = NULL;
+    for (uint32_t k = 0; k < g->count; ++k) {
+        vksky_readback px;
+        if (vksky_renderer_get_readback(g->r[k], &px) != VKSKY_SUCCESS) {
+            free(xyz), free(rgb);
+            return 1;
+        }
+        const double(*m)[3] = g->weights[k];
+        for (size_t i = 0; i < pixels; ++i) {
+            const uint16_t *p = px.linear_rgba16f + 4 * i;
+            for (uint32_t c = 0; c < g->per_pass; ++c) {
+                float v = io_half_to_float(p[c]);
+                for (int q = 0; q < 3; ++q) xyz[3 * i + q] += (float)(m[c][q] * v);
+            }
+        }
+        last = px.linear_rgba16f;
+    }
+    /* Alpha: the composite's with three to a pass (the last group's, as the serial loop leaves it), 1 with four (the
+     * four-wide readback's alpha is a wavelength). Out of Rec.709's gamut stays negative; half's range bounds it. */
+    for (size_t i = 0; i < pixels; ++i) {
+        double in[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, rec[3];
+        vksky_spectral_xyz_to_rec709(in, rec);
+        for (int q = 0; q < 3; ++q) {
+            double v = rec[q] < -65504.0 ? -65504.0 : rec[q] > 65504.0 ? 65504.0 : rec[q];
+            out->linear[4 * i + q] = io_float_to_half((float)v);
+            if (rgb) rgb[4 * i + q] = (float)rec[q];
+        }
+        out->linear[4 * i + 3] = g->per_pass == 4 ? io_float_to_half(1.0f) : last[4 * i + 3];
+        if (rgb) rgb[4 * i + 3] = 1.0f;
+    }
+    free(xyz);
+    if (png) {
+        /* The meter counts the ground's pixels where the last group lights a ground (the serial loop's renderer). */
+        bool ground = false;
+        for (uint32_t c = 0; c < 3; ++c) {
+            vksky_spectral_coefficients k;
+            if (vksky_scene_spectral_coefficients(g->scene[g->count - 1], c, &k) == VKSKY_SUCCESS && k.ground_albedo != 0.0)
+                ground = true;
+        }
+        sky_view view = o->view;   /* auto exposure where a PNG is written and no exposure was given (light.h) */
+        view.auto_exposure = light_auto_exposure_wanted(o);
+        spectral_render_tonemap_image(&view, o->width, o->height, ground, o->atmosphere.bottom_radius, rgb,
+                                      out->display);
+        free(rgb);
+    }
+    return 0;
+}
+
+int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h,
+                         spectral_image *out)
+{
+    *out = (spectral_image){0};
+    spectral_render_begin(o, NULL);   /* the host tone map's quiet setting */
+    groups g = {0};
+    int status = groups_create(&g, o, ctx, scene);
+    if (status == 0) status = groups_render(&g, o, h);
+    if (status == 0) status = groups_sum(&g, o, out);
+    groups_destroy(&g);
+    if (status) spectral_image_release(out);
+    return status;
+}
