@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # tools/compare_spectral.sh OLD_VKSKY NEW_VKSKY: --spectral renders of two builds compared (issue 25s: the spectral
 # path moved onto include/vksky.h must give the serial loop's pixels): EXRs by their pixels, bit for bit (OpenImageIO),
-# PNGs byte for byte. Stills with 8 and 24 wavelengths (four and three to a pass), a map in one band, a PNG with auto
-# exposure, a 3-frame sequence. Validation on. Exit 0: all identical; 1: some differ (listed); 2: usage.
+# PNGs byte for byte. Stills with 8, 12 and 24 wavelengths (four and three to a pass), a map in one band, PNGs with auto
+# exposure, sequences (the sun, the view and a medium animated; a frame range). Validation on. Exit 0: all identical; 1: some differ (listed); 2: usage.
 set -u
 OLD=${1:?usage: compare_spectral.sh OLD_VKSKY NEW_VKSKY}
 NEW=${2:?usage: compare_spectral.sh OLD_VKSKY NEW_VKSKY}
@@ -18,6 +18,8 @@ cases=(
   "map|--render FILE.exr --projection equirect --width 64 --spectral 8"
   "mars|--render FILE.exr --render FILE.png ${size[*]} --scene mars --spectral 8 --pitch 30"
   "seq|--render FILE_%d.exr --render FILE_%d.png ${size[*]} --spectral 8 --frame-count 3 --animate sun-elevation=-2:20"
+  "seq_yaw|--render FILE_%d.exr ${size[*]} --spectral 12 --pitch 30 --frame-count 3 --animate yaw=0:90 --animate mie-scale=1:3"
+  "seq_range|--render FILE_%d.exr --render FILE_%d.png ${size[*]} --spectral 24 --frame-count 4 --frame-range 1:2 --animate sun-elevation=1:6"
 )
 fail=0
 for c in "${cases[@]}"; do

@@ -149,8 +149,11 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     vksky_result made = vksky_scene_from_args(argc, argv, print_message, NULL, &scene);
     free(argv);
     if (made != VKSKY_SUCCESS) goto done;
-    if (o->spectral) {   /* one image (spectral_host_wanted): no renderer of the scene's own RGB medium */
-        if (host_commands_create(&h, ctx) == 0) status = stop_requested() ? 0 : render_spectral(o, ctx, scene, &h);
+    if (o->spectral) {   /* spectral_host_wanted: a renderer per wavelength group, none of the RGB medium */
+        if (host_commands_create(&h, ctx) == 0)
+            status = stop_requested()                               ? 0
+                     : sequence_active(o) || o->skip_existing       ? spectral_host_sequence(o, ctx, scene, &h)
+                                                                    : render_spectral(o, ctx, scene, &h);
         goto done;
     }
     vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};

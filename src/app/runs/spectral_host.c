@@ -1,10 +1,13 @@
 /* --spectral N of one image through include/vksky.h (spectral_host.h). */
 #include "app/runs/spectral_host.h"
 #include "app/runs/sequence_frames.h"
+#include "app/runs/sequence_resume.h"
+#include "app/runs/stop.h"
 #include "app/runs/spectral_render.h"
 #include "app/runs/tiles.h"
 #include "app/scene/light.h"
 #include "io/half_float.h"
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -13,8 +16,7 @@
 
 bool spectral_host_wanted(const options *o)
 {
-    return o->spectral > 0 && o->output_count > 0 && o->bench_frames == 0 && !sequence_active(o) &&
-           !o->skip_existing && !tiles_in_bands(o) && !o->async_luts;
+    return o->spectral > 0 && o->output_count > 0 && o->bench_frames == 0 && !tiles_in_bands(o) && !o->async_luts;
 }
 
 void spectral_image_release(spectral_image *img)
@@ -44,6 +46,24 @@ typedef struct groups {
 static void groups_destroy(groups *g)
 {
     for (uint32_t k = 0; k < g->count; ++k) vksky_renderer_destroy(g->r[k]), vksky_scene_destroy(g->scene[k]);
+}
+
+/* Frame scenes: the groups derived again from the scene as the frame's values left it (a medium may be animated), each
+ * renderer given its own (vksky_renderer_set_scene keeps what did not change: a moved sun recomputes no medium LUT).
+ * *luts: whether any group's next frame computes the LUTs. */
+static int groups_set_scene(groups *g, const options *o, const vksky_scene *scene, bool *luts)
+{
+    *luts = false;
+    for (uint32_t k = 0; k < g->count; ++k) {
+        vksky_scene_destroy(g->scene[k]);
+        g->scene[k] = NULL;
+        if (vksky_scene_spectral_group(scene, (uint32_t)o->spectral, g->per_pass, k, &g->scene[k], g->weights[k],
+                                       NULL) != VKSKY_SUCCESS ||
+            vksky_renderer_set_scene(g->r[k], g->scene[k]) != VKSKY_SUCCESS)
+            return 1;
+        *luts = *luts || vksky_renderer_luts_stale(g->r[k]);
+    }
+    return 0;
 }
 
 static int groups_create(groups *g, const options *o, vksky_context *ctx, const vksky_scene *scene)
@@ -106,6 +126,7 @@ static int groups_render(groups *g, const options *o, host_commands *h)
  * the bytes do not depend on anything else), then XYZ -> linear Rec.709 into out. */
 static int groups_sum(const groups *g, const options *o, spectral_image *out)
 {
+    *out = (spectral_image){0};
     size_t pixels = (size_t)o->width * o->height;
     float *xyz = calloc(pixels * 3, sizeof *xyz);
     out->linear = malloc(pixels * 4 * sizeof *out->linear);
@@ -163,6 +184,59 @@ static int groups_sum(const groups *g, const options *o, spectral_image *out)
         free(rgb);
     }
     return 0;
+}
+
+static void print_message(void *user, vksky_severity severity, const char *message)
+{
+    (void)user, (void)severity;
+    fprintf(stderr, "vksky: %s\n", message);
+}
+
+/* A sequence (or --skip-existing) one frame at a time, as the serial loop of app/runs/sequence.c: its lines and files. */
+static int render_sequence(const options *base, vksky_context *ctx, vksky_scene *scene, host_commands *h, groups *g)
+{
+    bool sequence = sequence_active(base);
+    int count = base->frame_count > 0 ? base->frame_count : 1, done = 0, skipped = 0, lut_computations = 0;
+    int range = base->frame_last - base->frame_first + 1;
+    (void)ctx;
+    for (int i = base->frame_first; i <= base->frame_last && !stop_requested(); ++i) {   /* stop: between frames */
+        options f;
+        if (sequence_frame_options(base, i, &f)) return 1;   /* parsed before (sequence_check): not expected */
+        if (base->skip_existing && sequence_resume_skip(&f, i, count, done + skipped + 1, range)) {
+            ++skipped;
+            continue;
+        }
+        const char *names[OPTIONS_MAX_ANIMATE];
+        double values[OPTIONS_MAX_ANIMATE];
+        int n = sequence_frame_values(base, i, names, values);
+        bool luts = false;
+        if (vksky_scene_set_values(scene, (uint32_t)n, names, values, print_message, NULL) != VKSKY_SUCCESS ||
+            groups_set_scene(g, base, scene, &luts) || groups_render(g, &f, h))
+            return 1;
+        lut_computations += luts;
+        spectral_image img;
+        if (groups_sum(g, &f, &img)) return 1;
+        frame_ring_pixels px = {img.linear, img.display};
+        char path[PATH_MAX];
+        int rc = sequence_write_outputs(&f, &px, i, sequence, path);
+        spectral_image_release(&img);
+        if (rc != 0) return 1;
+        ++done;
+        if (sequence) sequence_frame_line(base, i, done + skipped, path, luts);
+    }
+    if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
+    if (sequence) sequence_summary_line(base, done, skipped, lut_computations);
+    return 0;
+}
+
+int spectral_host_sequence(const options *o, vksky_context *ctx, vksky_scene *scene, host_commands *h)
+{
+    spectral_render_begin(o, NULL);   /* the host tone map's quiet setting (a sequence: no exposure line) */
+    groups g = {0};
+    int status = groups_create(&g, o, ctx, scene);
+    if (status == 0) status = render_sequence(o, ctx, scene, h, &g);
+    groups_destroy(&g);
+    return status;
 }
 
 int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h,

@@ -10,8 +10,8 @@
 #include "app/cli/options_struct.h"
 #include "app/runs/host_ring.h"
 
-/* Whether o's spectral render goes through here: one image (no sequence, no --skip-existing, one band, no --bench).
- * The others still run the serial loop (app/runs/spectral_render.c). */
+/* Whether o's spectral render goes through here: one image or a sequence's frames in one band each, no --bench, no
+ * --async-luts. Images in several bands and --async-luts still run the serial loop (app/runs/spectral_render.c). */
 bool spectral_host_wanted(const options *o);
 
 /* The image's pixels, the host's own (free them with spectral_image_release). display: NULL without a PNG output. */
@@ -25,4 +25,7 @@ void spectral_image_release(spectral_image *img);
  * buffer. 0, or 1 (the line printed). */
 int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h,
                          spectral_image *out);
+/* A sequence (or --skip-existing), frame by frame (each frame's groups in one submission), as the serial loop of
+ * app/runs/sequence.c writes it: files, progress and summary lines. `scene` takes each frame's values. 0, or 1. */
+int spectral_host_sequence(const options *o, vksky_context *ctx, vksky_scene *scene, host_commands *h);
 #endif
