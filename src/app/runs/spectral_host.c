@@ -38,6 +38,10 @@ static bool wants_png(const options *o)
 /* Every group's renderer, made and recorded: the groups' frames in one command buffer, one submission, one wait. */
 typedef struct groups {
     uint32_t count, per_pass;
+    /* One renderer for every group, given each group's scene in turn (a still: one set of pipelines to make, which
+     * a CPU device compiles per renderer), else a renderer per group (a sequence: each keeps its LUTs, and a frame's
+     * groups go in one submission). */
+    bool shared;
     vksky_scene *scene[GROUPS_MAX];
     vksky_renderer *r[GROUPS_MAX];
     double weights[GROUPS_MAX][4][3];
@@ -59,15 +63,16 @@ static int groups_set_scene(groups *g, const options *o, const vksky_scene *scen
         g->scene[k] = NULL;
         if (vksky_scene_spectral_group(scene, (uint32_t)o->spectral, g->per_pass, k, &g->scene[k], g->weights[k],
                                        NULL) != VKSKY_SUCCESS ||
-            vksky_renderer_set_scene(g->r[k], g->scene[k]) != VKSKY_SUCCESS)
+            (!g->shared && vksky_renderer_set_scene(g->r[k], g->scene[k]) != VKSKY_SUCCESS))
             return 1;
         *luts = *luts || vksky_renderer_luts_stale(g->r[k]);
     }
     return 0;
 }
 
-static int groups_create(groups *g, const options *o, vksky_context *ctx, const vksky_scene *scene)
+static int groups_create(groups *g, const options *o, vksky_context *ctx, const vksky_scene *scene, bool shared)
 {
+    g->shared = shared;
     /* Four to a pass unless the horizon is in a perspective frame (its resolve needs the composite's alpha). */
     g->per_pass = spectral_render_four_wide(o) ? 4u : 3u;
     uint32_t count = vksky_spectral_group_count((uint32_t)o->spectral, g->per_pass);
@@ -81,6 +86,7 @@ static int groups_create(groups *g, const options *o, vksky_context *ctx, const 
                                        NULL) != VKSKY_SUCCESS)
             return 1;
         g->count = k + 1;
+        if (shared && k > 0) continue;
         vksky_renderer_desc rd = {
             .abi_version = VKSKY_ABI_VERSION, .next = &readback, .output = VKSKY_OUTPUT_DISPLAY,
             .width = (uint32_t)o->width, .height = (uint32_t)o->height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
@@ -92,7 +98,8 @@ static int groups_create(groups *g, const options *o, vksky_context *ctx, const 
     return 0;
 }
 
-static int groups_render(groups *g, const options *o, host_commands *h)
+/* The frames of renderers rs[0 .. n-1] in one command buffer, one submission, one wait. */
+static int render_list(vksky_renderer *const *rs, uint32_t n, const options *o, host_commands *h)
 {
     const sky_view *view = &o->view;
     /* The groups' own tone maps are not used (the sum is tone-mapped on the host): no meter on the GPU. */
@@ -103,8 +110,8 @@ static int groups_render(groups *g, const options *o, host_commands *h)
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     if (o->trace_barriers) fputs("commands\n", stdout);   /* the host's command buffer, as the CLI's trace names one */
     if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
-    for (uint32_t k = 0; k < g->count; ++k)
-        if (host_record(g->r[k], h->cmd, &v, 0) != 0) return 1;
+    for (uint32_t k = 0; k < n; ++k)
+        if (host_record(rs[k], h->cmd, &v, 0) != 0) return 1;
     if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
     VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
     VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
@@ -116,15 +123,33 @@ static int groups_render(groups *g, const options *o, host_commands *h)
         fprintf(stderr, "vksky: the spectral frame's submission failed (VkResult %d)\n", (int)vr);
         return 1;
     }
-    /* A LUT cache miss: each group's LUTs into the cache for the next start (a hit or none: nothing). */
-    for (uint32_t k = 0; k < g->count; ++k)
-        if (vksky_renderer_store_luts(g->r[k]) != VKSKY_SUCCESS) return 1;
+    /* A LUT cache miss: the LUTs computed, into the cache for the next start (a hit or none: nothing). */
+    for (uint32_t k = 0; k < n; ++k)
+        if (vksky_renderer_store_luts(rs[k]) != VKSKY_SUCCESS) return 1;
     return 0;
 }
 
-/* The groups' readbacks summed into XYZ, group by group, pixel by pixel, channel by channel (the serial loop's order:
- * the bytes do not depend on anything else), then XYZ -> linear Rec.709 into out. */
-static int groups_sum(const groups *g, const options *o, spectral_image *out)
+/* Group k's readback (renderer r's last frame) into the XYZ sum: pixel by pixel, channel by channel, groups in
+ * order (the serial loop's order: the bytes depend on nothing else). *alpha: the readback's linear image. */
+static int accumulate(const groups *g, uint32_t k, vksky_renderer *r, float *xyz, size_t pixels,
+                      const uint16_t **alpha)
+{
+    vksky_readback px;
+    if (vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
+    const double(*m)[3] = g->weights[k];
+    for (size_t i = 0; i < pixels; ++i) {
+        const uint16_t *p = px.linear_rgba16f + 4 * i;
+        for (uint32_t c = 0; c < g->per_pass; ++c) {
+            float v = io_half_to_float(p[c]);
+            for (int q = 0; q < 3; ++q) xyz[3 * i + q] += (float)(m[c][q] * v);
+        }
+    }
+    *alpha = px.linear_rgba16f;
+    return 0;
+}
+
+/* A frame: every group rendered and summed into XYZ, then XYZ -> linear Rec.709 into out (and the PNG's tone map). */
+static int groups_frame(groups *g, const options *o, host_commands *h, spectral_image *out)
 {
     *out = (spectral_image){0};
     size_t pixels = (size_t)o->width * o->height;
@@ -139,21 +164,18 @@ static int groups_sum(const groups *g, const options *o, spectral_image *out)
         return 1;
     }
     const uint16_t *last = NULL;
-    for (uint32_t k = 0; k < g->count; ++k) {
-        vksky_readback px;
-        if (vksky_renderer_get_readback(g->r[k], &px) != VKSKY_SUCCESS) {
-            free(xyz), free(rgb);
-            return 1;
-        }
-        const double(*m)[3] = g->weights[k];
-        for (size_t i = 0; i < pixels; ++i) {
-            const uint16_t *p = px.linear_rgba16f + 4 * i;
-            for (uint32_t c = 0; c < g->per_pass; ++c) {
-                float v = io_half_to_float(p[c]);
-                for (int q = 0; q < 3; ++q) xyz[3 * i + q] += (float)(m[c][q] * v);
-            }
-        }
-        last = px.linear_rgba16f;
+    int status = 0;
+    if (g->shared) {
+        for (uint32_t k = 0; k < g->count && status == 0 && !stop_requested(); ++k)
+            status = vksky_renderer_set_scene(g->r[0], g->scene[k]) != VKSKY_SUCCESS || render_list(g->r, 1, o, h) ||
+                     accumulate(g, k, g->r[0], xyz, pixels, &last);
+    } else {
+        status = render_list(g->r, g->count, o, h);
+        for (uint32_t k = 0; k < g->count && status == 0; ++k) status = accumulate(g, k, g->r[k], xyz, pixels, &last);
+    }
+    if (status != 0 || stop_requested()) {
+        free(xyz), free(rgb);
+        return 1;
     }
     /* Alpha: the composite's with three to a pass (the last group's, as the serial loop leaves it), 1 with four (the
      * four-wide readback's alpha is a wavelength). Out of Rec.709's gamut stays negative; half's range bounds it. */
@@ -174,7 +196,8 @@ static int groups_sum(const groups *g, const options *o, spectral_image *out)
         bool ground = false;
         for (uint32_t c = 0; c < 3; ++c) {
             vksky_spectral_coefficients k;
-            if (vksky_scene_spectral_coefficients(g->scene[g->count - 1], c, &k) == VKSKY_SUCCESS && k.ground_albedo != 0.0)
+            if (vksky_scene_spectral_coefficients(g->scene[g->count - 1], c, &k) == VKSKY_SUCCESS &&
+                k.ground_albedo != 0.0)
                 ground = true;
         }
         sky_view view = o->view;   /* auto exposure where a PNG is written and no exposure was given (light.h) */
@@ -211,11 +234,14 @@ static int render_sequence(const options *base, vksky_context *ctx, vksky_scene 
         int n = sequence_frame_values(base, i, names, values);
         bool luts = false;
         if (vksky_scene_set_values(scene, (uint32_t)n, names, values, print_message, NULL) != VKSKY_SUCCESS ||
-            groups_set_scene(g, base, scene, &luts) || groups_render(g, &f, h))
+            groups_set_scene(g, base, scene, &luts))
             return 1;
         lut_computations += luts;
         spectral_image img;
-        if (groups_sum(g, &f, &img)) return 1;
+        if (groups_frame(g, &f, h, &img)) {
+            spectral_image_release(&img);
+            return 1;
+        }
         frame_ring_pixels px = {img.linear, img.display};
         char path[PATH_MAX];
         int rc = sequence_write_outputs(&f, &px, i, sequence, path);
@@ -233,7 +259,7 @@ int spectral_host_sequence(const options *o, vksky_context *ctx, vksky_scene *sc
 {
     spectral_render_begin(o, NULL);   /* the host tone map's quiet setting (a sequence: no exposure line) */
     groups g = {0};
-    int status = groups_create(&g, o, ctx, scene);
+    int status = groups_create(&g, o, ctx, scene, false);
     if (status == 0) status = render_sequence(o, ctx, scene, h, &g);
     groups_destroy(&g);
     return status;
@@ -245,9 +271,8 @@ int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene
     *out = (spectral_image){0};
     spectral_render_begin(o, NULL);   /* the host tone map's quiet setting */
     groups g = {0};
-    int status = groups_create(&g, o, ctx, scene);
-    if (status == 0) status = groups_render(&g, o, h);
-    if (status == 0) status = groups_sum(&g, o, out);
+    int status = groups_create(&g, o, ctx, scene, true);
+    if (status == 0) status = groups_frame(&g, o, h, out);
     groups_destroy(&g);
     if (status) spectral_image_release(out);
     return status;
