@@ -2,7 +2,8 @@
 # tools/compare_spectral.sh OLD_VKSKY NEW_VKSKY: --spectral renders of two builds compared (issue 25s: the spectral
 # path moved onto include/vksky.h must give the serial loop's pixels): EXRs by their pixels, bit for bit (OpenImageIO),
 # PNGs byte for byte. Stills with 8, 12 and 24 wavelengths (four and three to a pass), a map in one band, PNGs with auto
-# exposure, sequences (the sun, the view and a medium animated; a frame range). Validation on. Exit 0: all identical; 1: some differ (listed); 2: usage.
+# exposure, sequences (the sun, the view and a medium animated; a frame range), on one renderer for every group and on
+# a renderer per group (VKSKY_SPECTRAL_SHARED=0, a GPU's choice). Validation on. Exit 0: all identical; 1: some differ (listed); 2: usage.
 set -u
 OLD=${1:?usage: compare_spectral.sh OLD_VKSKY NEW_VKSKY}
 NEW=${2:?usage: compare_spectral.sh OLD_VKSKY NEW_VKSKY}
@@ -19,6 +20,8 @@ cases=(
   "mars|--render FILE.exr --render FILE.png ${size[*]} --scene mars --spectral 8 --pitch 30"
   "seq|--render FILE_%d.exr --render FILE_%d.png ${size[*]} --spectral 8 --frame-count 3 --animate sun-elevation=-2:20"
   "seq_yaw|--render FILE_%d.exr ${size[*]} --spectral 12 --pitch 30 --frame-count 3 --animate yaw=0:90 --animate mie-scale=1:3"
+  "seq_groups|VKSKY_SPECTRAL_SHARED=0 --render FILE_%d.exr --render FILE_%d.png ${size[*]} --spectral 8 --frame-count 3 --animate sun-elevation=-2:20"
+  "seq_yaw_groups|VKSKY_SPECTRAL_SHARED=0 --render FILE_%d.exr ${size[*]} --spectral 12 --pitch 30 --frame-count 3 --animate yaw=0:90 --animate mie-scale=1:3"
   "seq_range|--render FILE_%d.exr --render FILE_%d.png ${size[*]} --spectral 24 --frame-count 4 --frame-range 1:2 --animate sun-elevation=1:6"
 )
 fail=0
@@ -28,7 +31,8 @@ for c in "${cases[@]}"; do
     bin=$OLD; [ $tag = new ] && bin=$NEW
     mkdir -p "$work/$tag"
     # shellcheck disable=SC2086 # the argument list is word-split on purpose
-    "$bin" --validate ${args//FILE/$work/$tag/$name} >"$work/$tag/$name.stdout" 2>"$work/$tag/$name.raw"
+    env=(); case $args in VKSKY_*) env=("${args%% *}"); args=${args#* } ;; esac   # a leading VAR=VALUE: the run's
+    env "${env[@]}" "$bin" --validate ${args//FILE/$work/$tag/$name} >"$work/$tag/$name.stdout" 2>"$work/$tag/$name.raw"
     echo $? >"$work/$tag/$name.status"
     sed "s|$work/$tag/||g" "$work/$tag/$name.raw" >"$work/$tag/$name.stderr" && rm "$work/$tag/$name.raw"
   done

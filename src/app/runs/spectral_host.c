@@ -65,7 +65,11 @@ static int groups_set_scene(groups *g, const options *o, const vksky_scene *scen
                                        NULL) != VKSKY_SUCCESS ||
             (!g->shared && vksky_renderer_set_scene(g->r[k], g->scene[k]) != VKSKY_SUCCESS))
             return 1;
-        *luts = *luts || vksky_renderer_luts_stale(g->r[k]);
+        if (!g->shared) *luts = *luts || vksky_renderer_luts_stale(g->r[k]);
+    }
+    if (g->shared) {   /* one renderer: each group's medium computes its LUTs again, unless there is one group */
+        if (g->count == 1 && vksky_renderer_set_scene(g->r[0], g->scene[0]) != VKSKY_SUCCESS) return 1;
+        *luts = g->count > 1 || vksky_renderer_luts_stale(g->r[0]);
     }
     return 0;
 }
@@ -255,11 +259,26 @@ static int render_sequence(const options *base, vksky_context *ctx, vksky_scene 
     return 0;
 }
 
+/* A sequence's renderers: one per group on a GPU (each keeps its LUTs; a frame's groups in one submission), one for
+ * all on a CPU device (lavapipe compiles every renderer's pipelines, 1.3 s of CPU a 960x540 run for 24 wavelengths,
+ * and runs the groups' passes one after another either way: the frame costs the same). VKSKY_SPECTRAL_SHARED=0 or 1
+ * chooses (tests: both paths on one device). */
+static bool sequence_shared(const vksky_context *ctx)
+{
+    const char *env = getenv("VKSKY_SPECTRAL_SHARED");
+    if (env && (!strcmp(env, "0") || !strcmp(env, "1"))) return env[0] == '1';
+    vksky_context_handles k;
+    vksky_context_get_handles(ctx, &k);
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(k.physical_device, &p);
+    return p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
 int spectral_host_sequence(const options *o, vksky_context *ctx, vksky_scene *scene, host_commands *h)
 {
     spectral_render_begin(o, NULL);   /* the host tone map's quiet setting (a sequence: no exposure line) */
     groups g = {0};
-    int status = groups_create(&g, o, ctx, scene, false);
+    int status = groups_create(&g, o, ctx, scene, sequence_shared(ctx));
     if (status == 0) status = render_sequence(o, ctx, scene, h, &g);
     groups_destroy(&g);
     return status;
