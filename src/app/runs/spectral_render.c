@@ -68,11 +68,12 @@ const char *spectral_render_unable(const options *o)
     if (wants_display(o) && tiles_wanted(o))
         return "a .png environment map or banded image: its tone map needs the whole image (write .exr, or one band "
                "of a perspective frame)";
-    /* An .exr map in one band is the whole image, drawn by the serial loop like a perspective frame. Images in several
-     * bands are rendered through include/vksky.h (app/runs/tiles.c), which has no spectral path yet (issue 25). */
+    /* An .exr map in one band is the whole image, drawn through include/vksky.h like a perspective frame
+     * (app/runs/spectral_host.c). Images in several bands (app/runs/tiles.c) have no spectral path yet: tiles.c renders
+     * one renderer's bands, and a spectral band would need every group's (issue 25s, not done). */
     if (tiles_in_bands(o))
         return "an image in several bands (over the band budget, VKSKY_TILE_PIXELS / VKSKY_TILE_ROWS): bands are "
-               "rendered through the library, which has no spectral path yet (render it in one band, or RGB)";
+               "rendered band by band, which has no spectral path yet (render it in one band, or RGB)";
     return NULL;
 }
 
@@ -319,13 +320,15 @@ int spectral_auto(options *o, const char *impossible)
     if (rgb <= SPECTRAL_AUTO_RGB_KEEP) return 0;
     char names[96];
     quality_class_names(classes, names, sizeof names);
-    /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group, summed on the host in the
-     * serial loop, and a 720p sunset sequence falls from 60 to under 4 frames/s on an H100 (issue 27's throughput is
-     * the default's; docs/spectral.md). --spectral N asks for it. */
+    /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group, summed on the host. The
+     * serial loop made a 720p sunset sequence fall from 60 to under 4 frames/s on an H100; through the API
+     * (app/runs/spectral_host.c, issue 25s) a 960x540 frame of 24 wavelengths still costs 3.5x an RGB frame's CPU on
+     * lavapipe (0.45 s against 0.13), so issue 27's throughput stays the default's (docs/spectral.md). --spectral N
+     * asks for it. */
     const char *why = impossible               ? impossible
                       : o->bench_frames > 0    ? "--bench (it times RGB frames)"
                       : sequence_active(o)     ? "a sequence at a sequence's speed (a frame would take a pass per "
-                                                 "wavelength group, in the serial loop: ask with --spectral N)"
+                                                 "wavelength group: ask with --spectral N)"
                                                : spectral_render_unable(o);
     if (why) {   /* RGB kept where the spectral path cannot render: said, not silent */
         printf("vksky: --quality auto: RGB's colour on the '%s' scene is within CIEDE2000 %.2f of the spectrum's, "
