@@ -98,7 +98,7 @@ static int write_image(const options *o, const vksky_readback *px)
     return sequence_write_frame(o, &pixels, o->frame_first, false);
 }
 
-/* --spectral N of one image: a renderer per wavelength group, the sum on the host (app/runs/spectral_host.c). */
+/* --spectral N of one image: the wavelength groups rendered and summed on the host (app/runs/spectral_host.c). */
 static int render_spectral(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h)
 {
     spectral_image img;

@@ -4,6 +4,7 @@
 #include "app/runs/sequence_resume.h"
 #include "app/runs/stop.h"
 #include "app/runs/spectral_render.h"
+#include "app/runs/startup.h"
 #include "app/runs/tiles.h"
 #include "app/scene/light.h"
 #include "io/half_float.h"
@@ -291,7 +292,9 @@ int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene
     spectral_render_begin(o, NULL);   /* the host tone map's quiet setting */
     groups g = {0};
     int status = groups_create(&g, o, ctx, scene, true);
+    startup_frame_begin();   /* --timings: the first image (its renderer's figures, its last group's passes) */
     if (status == 0) status = groups_frame(&g, o, h, out);
+    if (status == 0 && o->timings) host_timings_frame_end(g.r[0]);
     groups_destroy(&g);
     if (status) spectral_image_release(out);
     return status;
