@@ -47,7 +47,9 @@ extern "C" {
  * 3: the window's frame extensions: vksky_frame_display (tone map, bloom), vksky_frame_place (altitude, sun),
  *    vksky_frame_timer + vksky_renderer_get_slot_timings, vksky_frame_capture + vksky_renderer_get_capture,
  *    vksky_frame_swapchain (a swapchain image's barriers); vksky_context_set_debug_utils (names, labels);
- *    vksky_renderer_get_lut_timings (--bench --async-luts); vksky_device_requirements' limits. */
+ *    vksky_renderer_get_lut_timings (--bench --async-luts); vksky_device_requirements' limits;
+ *    spectral groups as scenes (vksky_scene_spectral_group, vksky_scene_spectral_coefficients,
+ *    vksky_spectral_group_count, vksky_spectral_xyz_to_rec709): the command line's --spectral N through the API. */
 #define VKSKY_ABI_VERSION 3u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -225,6 +227,41 @@ VKSKY_API double vksky_scene_ground_radius_m(const vksky_scene *scene);
 VKSKY_API double vksky_scene_atmosphere_top_m(const vksky_scene *scene);
 /* The sun's illuminance at the top of the atmosphere in the scene's units (lux with VKSKY_UNITS_PHOTOMETRIC). */
 VKSKY_API double vksky_scene_sun_illuminance(const vksky_scene *scene);
+
+/* ---- Spectral frames (ABI 3) ----------------------------------------------------------------------------------
+ * The command line's --spectral N as values (docs/spectral.md): N wavelengths, the centres of N bins of equal width
+ * over 360-830 nm, rendered `per_pass` at a time (3, or 4 with the four-wide build) as the channels of an ordinary
+ * frame. Group g of a scene is a scene of its own whose medium is the scene's spectral medium (its RGB coefficients
+ * as laws of the wavelength, or its file's "spectral" section) at the group's wavelengths, each channel's sun the
+ * scene's sun luminance, the ground's albedo the RGB albedo's law there. A host makes one renderer per group (each
+ * keeps its LUTs: moving the sun with vksky_scene_set_sun on the group scenes recomputes what moving it in RGB does),
+ * reads back each group's scene-linear image (vksky_readback_config) and sums, pixel by pixel, channel c's value
+ * times xyz_weights[c] into CIE XYZ; vksky_spectral_xyz_to_rec709 turns the sum into linear Rec.709 (D65) in the RGB
+ * image's units (negative out of Rec.709's gamut). A channel past the last wavelength repeats it with weight 0.
+ * A renderer created with a group scene of four a pass is the four-wide build (no bloom; the readback's alpha is the
+ * fourth wavelength) and takes only such scenes in vksky_renderer_set_scene; one of three a pass, or RGB, takes none of
+ * four. A group scene is not split again (VKSKY_ERROR_INVALID_ARGUMENT); after a change of the scene's medium derive
+ * its groups again. */
+#define VKSKY_SPECTRAL_MIN 3u
+#define VKSKY_SPECTRAL_MAX 48u
+/* Groups of `per_pass` (3 or 4) for `wavelengths` (VKSKY_SPECTRAL_MIN..MAX); 0 for values out of range. */
+VKSKY_API uint32_t vksky_spectral_group_count(uint32_t wavelengths, uint32_t per_pass);
+/* Group `group` of the scene as a new scene (*group_scene, destroyed by the host), each channel's XYZ per unit of its
+ * image in xyz_weights[c] (channels past per_pass: 0) and its wavelength in nm[c] (NULL: not wanted; 0 past
+ * per_pass). */
+VKSKY_API vksky_result vksky_scene_spectral_group(const vksky_scene *scene, uint32_t wavelengths, uint32_t per_pass,
+                                                  uint32_t group, vksky_scene **group_scene,
+                                                  double xyz_weights[4][3], double nm[4]);
+/* What a group scene's channel renders (1/km at density 1; the albedo): for hosts and tests. Not a group scene, or a
+ * channel past its per_pass: VKSKY_ERROR_INVALID_ARGUMENT. */
+typedef struct vksky_spectral_coefficients {
+    double rayleigh_scattering, mie_scattering, mie_absorption, ozone_absorption;
+    double ground_albedo;
+} vksky_spectral_coefficients;
+VKSKY_API vksky_result vksky_scene_spectral_coefficients(const vksky_scene *scene, uint32_t channel,
+                                                         vksky_spectral_coefficients *out);
+/* CIE 1931 XYZ to linear Rec.709 / sRGB primaries (D65), the matrix the command line's spectral frames use. */
+VKSKY_API void vksky_spectral_xyz_to_rec709(const double xyz[3], double rgb[3]);
 
 /* The LUT cache (ABI 2): a directory where vksky keeps the LUTs that depend only on the medium (transmittance,
  * multi-scattering, a lit ground's irradiance), keyed by the medium, the LUT sizes, the build and the device, so that

@@ -7,7 +7,8 @@
 #
 # Files go to a scratch directory (removed at the end); one line per measurement on stdout:
 #   case <name> frames <n> wall_s <s> frames_per_s <f> bytes_per_frame <b> [peak_mb <m>]
-# SEQ_FRAMES (default 120) sets the sequences' length; QUICK=1 runs only the headline cases; GOALS=1 only the issue 27
+# SEQ_FRAMES (default 120) sets the sequences' length; QUICK=1 runs only the headline cases; SPECTRAL=1 only the
+# spectral sequence (issue 25s, spectral_720p); GOALS=1 only the issue 27
 # goal cases with their stage breakdowns (--timings) and the 720p compression table (about 3 minutes on the H100
 # host; see "Goals" at the end). PNG cases (issue 27):
 # sequences and a 16384x8192 equirect with the default threads against --threads 1, and build/tests/test_png_parallel
@@ -53,6 +54,24 @@ nproc_all=$(nproc)
 echo "host cores $nproc_all"
 "$V" --list-devices | head -3
 "$V" --width 16 --height 16 --render "$scratch/warm.exr" >/dev/null 2>&1   # driver and shader caches warm
+
+# Issue 25s: the spectral sequence (24 wavelengths, the sun -6 -> 30) through include/vksky.h: a renderer per
+# wavelength group keeping its LUTs, each frame's groups in one submission, the sum on the host. First a validated
+# check (any validation line fails it), then the goal case with the RGB case beside it; the baseline (main's serial
+# loop: 3.7 frames/s on the H100, docs/perf/h100-2026-11-28-h) in the same run when given. SPECTRAL=1: only these.
+spectral_cases() {
+    mkdir -p "$scratch/sp"
+    (cd "$scratch/sp" && "$V" --width 320 --height 180 --animate sun-elevation=-6:30 --frame-count 3 --spectral 24 \
+        --quiet --validate --render s%02d.exr 2>serr)
+    echo "check spectral_sequence rc $? validation_lines $(grep -ci validation "$scratch/sp/serr")"
+    seq_case spectral_720p "$V" 1280 720 exr 24 --spectral 24 --timings
+    seq_case spectral_720p_rgb "$V" 1280 720 exr 24
+    [ -n "$BASE" ] && seq_case base_spectral_720p "$BASE" 1280 720 exr 24 --spectral 24
+}
+if [ "${SPECTRAL:-0}" = 1 ]; then
+    spectral_cases
+    exit 0
+fi
 
 # Goals (issue 27, helper 27e): frames encoding at once (the ring's consumer threads: VKSKY_ENCODE_FRAMES, default
 # one per 4 cores, at most 3) against one frame at a time, with where the time goes (--timings: wall and CPU ms per
@@ -105,6 +124,7 @@ if [ "${GOALS:-0}" = 1 ]; then
         measure base_equirect_16384 1 "$BASE" --projection equirect --width 16384 --render "$scratch/o/e.exr" --quiet
         for i in 1 2 3; do measure "base_first_1080p_exr_$i" 1 "$BASE" --width 1920 --height 1080 --render "$scratch/o/a.exr"; done
     fi
+    spectral_cases
     "$V" --width 1280 --height 720 --render "$scratch/f720.exr" --render "$scratch/p720.png" --quiet
     d=$(dirname "$(readlink -f "$V")")
     [ -x "$d/tests/test_exr_deflate" ] && "$d/tests/test_exr_deflate" bench "$scratch/f720.exr" 7 | sed 's/^/exr_deflate_bench /'

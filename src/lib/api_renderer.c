@@ -112,19 +112,22 @@ static vksky_result check_desc(vksky_context *c, const vksky_renderer_desc *d)
 }
 
 /* Creates r->r for r->o; Vulkan failures come back through the trap, with everything made so far destroyed. */
-static vksky_result build(vksky_renderer *r)
+static vksky_result build(vksky_renderer *r, const lib_spectral_group *group)
 {
     const options *o = &r->o;
-    model_atmosphere lit;   /* the sun in the HDR image's units (app/scene/light.h) */
-    light_render_atmosphere(o, &lit);
-    sky_features features = options_features(o);
+    lib_render_inputs in;   /* the sun in the HDR image's units (app/scene/light.h); a spectral group's medium */
+    lib_render_inputs_of(o, group, &in);
+    model_atmosphere lit = in.lit;
+    sky_features features = in.features;
+    /* A group of four wavelengths a pass: the four-wide build for the renderer's life (no bloom there). */
+    bool spectral4 = r->per_pass == 4;
     /* LUTS_ONLY and SCENE_LINEAR need none of the frame's own images: a 1 x 1 frame the renderer never draws. */
     bool luts_only = r->desc.output != VKSKY_OUTPUT_DISPLAY;
     /* With a readback config the frame's own display image and its scene-linear composite are kept and read back
      * (the command-line tool's headless frame); else the tone map writes the host's image. */
     sky_renderer_desc rdesc = {
         .width = luts_only ? 1 : (uint32_t)o->width, .height = luts_only ? 1 : (uint32_t)o->height,
-        .bloom = o->view.bloom, .readback = r->readback, .external_display = !luts_only && !r->readback,
+        .bloom = o->view.bloom && !spectral4, .spectral4 = spectral4, .readback = r->readback, .external_display = !luts_only && !r->readback,
         .display_format = luts_only ? VK_FORMAT_R8G8B8A8_SRGB : r->desc.target_format,
         .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
         .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample, .bloom_quarter = o->bloom_quarter,
@@ -181,15 +184,17 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
     r->scene_quality = !explicit_quality && desc->max_error == 0.0 && desc->quality && !strcmp(desc->quality, "scene");
     res = renderer_options(context, desc, scene ? scene : earth, explicit_quality, &r->o);
     vksky_scene_destroy(earth);
+    const lib_spectral_group *group = scene ? &scene->group : NULL;
+    r->per_pass = group ? group->per_pass : 0;
     const gpu_trace_sink *was = lib_trace_begin(context);   /* the uploads' commands and barriers */
-    if (res == VKSKY_SUCCESS) res = build(r);
+    if (res == VKSKY_SUCCESS) res = build(r, group);
     lib_trace_end(was);
     if (res != VKSKY_SUCCESS) {
         free(r);
         return res;
     }
     lib_readback_slots_init(r);
-    lib_render_inputs_of(&r->o, &r->applied);
+    lib_render_inputs_of(&r->o, group, &r->applied);
     context->renderers++;
     *out = r;
     return VKSKY_SUCCESS;
@@ -239,12 +244,28 @@ void lib_scene_for_renderer(const vksky_renderer *r, const vksky_scene *scene, o
     light_finish(o);
 }
 
-void lib_render_inputs_of(const options *o, lib_render_inputs *out)
+void lib_render_inputs_of(const options *o, const lib_spectral_group *group, lib_render_inputs *out)
 {
     memset(out, 0, sizeof *out);
     light_render_atmosphere(o, &out->lit);
     out->sun_radius_rad = options_sun_radius_rad(o);
     out->features = options_features(o);
+    if (!group || !group->per_pass) return;
+    /* A spectral group: every channel's sun is the scene's sun luminance in the HDR image's units, so that the
+     * group's image has the RGB image's magnitudes (half floats keep their precision at twilight); the weights of
+     * vksky_scene_spectral_group divide it out again with the solar spectrum's own illuminance. */
+    const double *e = out->lit.sun_illuminance;
+    double sun_y = 0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2];
+    out->lit = group->medium;
+    for (int c = 0; c < 3; ++c) {
+        out->lit.sun_illuminance[c] = sun_y;
+        out->features.ground_albedo[c] = group->ground_albedo[c];
+    }
+    if (group->per_pass == 4) {
+        out->features.fourth = group->fourth;
+        out->features.fourth.sun_illuminance = sun_y;
+        out->features.fourth.ground_albedo = group->ground_albedo[3];
+    }
 }
 
 bool vksky_renderer_scene_changes(const vksky_renderer *renderer, const vksky_scene *scene)
@@ -253,7 +274,7 @@ bool vksky_renderer_scene_changes(const vksky_renderer *renderer, const vksky_sc
     options o;
     lib_scene_for_renderer(renderer, scene, &o);
     lib_render_inputs in;
-    lib_render_inputs_of(&o, &in);
+    lib_render_inputs_of(&o, &scene->group, &in);
     return memcmp(&in, &renderer->applied, sizeof in) != 0;
 }
 
@@ -264,10 +285,19 @@ bool vksky_renderer_luts_stale(const vksky_renderer *renderer)
 
 static vksky_result set_scene(vksky_renderer *renderer, const vksky_scene *scene)
 {
+    if ((scene->group.per_pass == 4) != (renderer->per_pass == 4)) {
+        /* The four-wide build is other SPIR-V and another composite, chosen at creation. */
+        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_renderer_set_scene: a scene of %s on a renderer made for %s (the four-wide build is chosen "
+                    "by the scene the renderer is created with)",
+                    scene->group.per_pass == 4 ? "four wavelengths a pass" : "three channels a pass",
+                    renderer->per_pass == 4 ? "four wavelengths a pass" : "three channels a pass");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
     options o;
     lib_scene_for_renderer(renderer, scene, &o);
     lib_render_inputs in;
-    lib_render_inputs_of(&o, &in);
+    lib_render_inputs_of(&o, &scene->group, &in);
     if (!memcmp(&in, &renderer->applied, sizeof in)) {
         /* Nothing recorded frames read changes (the sun's place and the view go into each frame's recording): no
          * write, so frames may still be pending (vksky_renderer_scene_changes). */

@@ -20,9 +20,20 @@ struct vksky_context {
     bool own_debug_utils;          /* vksky's own instance has VK_EXT_debug_utils (vksky_context_set_debug_utils) */
 };
 
+/* A spectral group's medium (vksky_scene_spectral_group, api_spectral.c): what the GPU reads instead of the scene's
+ * RGB medium. The sun is set where the renderer lights the scene (lib_render_inputs_of): each channel the base's sun
+ * luminance in the renderer's units, so that the group's image has the RGB image's magnitudes. */
+typedef struct lib_spectral_group {
+    uint32_t per_pass;             /* 0: an RGB scene; 3 or 4 wavelengths a pass */
+    model_atmosphere medium;       /* the first three wavelengths' coefficients as the three channels */
+    sky_fourth fourth;             /* per_pass 4: the fourth wavelength's (the four-wide build) */
+    double ground_albedo[4];       /* the RGB albedo's law at each wavelength */
+} lib_spectral_group;
+
 struct vksky_scene {
     options o;                     /* the scene loader's result on the CLI's defaults: medium, features, sun, units */
     bool from_args;                /* vksky_scene_from_args: o holds a command line's resolved quality too */
+    lib_spectral_group group;      /* ABI 3: a spectral group's scene (per_pass > 0) */
 };
 
 /* What recorded frames read of a scene (the uniform block's medium and sun, the features that pick pipelines):
@@ -50,6 +61,7 @@ struct vksky_renderer {
     bool timer_made[VKSKY_TIMER_SLOTS], timer_unread[VKSKY_TIMER_SLOTS];
     gpu_buffer capture;            /* size 0: none made */
     bool captured;                 /* a frame was captured since the buffer was made */
+    uint32_t per_pass;             /* ABI 3: made with a spectral group's scene: 3 or 4 (the four-wide build), else 0 */
 };
 
 /* A frame's `next` chain, each struct or NULL (lib_frame_chain). */
@@ -104,5 +116,5 @@ void lib_readback_slots_destroy(vksky_renderer *r);
 void lib_readback_select(vksky_renderer *r, uint32_t slot);
 /* A scene's options as a renderer of these options would take them (set_scene), and what the GPU reads of them. */
 void lib_scene_for_renderer(const vksky_renderer *r, const vksky_scene *scene, options *o);
-void lib_render_inputs_of(const options *o, lib_render_inputs *out);
+void lib_render_inputs_of(const options *o, const lib_spectral_group *group, lib_render_inputs *out);
 #endif

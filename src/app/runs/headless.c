@@ -5,6 +5,7 @@
 #include "app/runs/sequence_host.h"
 #include "app/runs/startup.h"
 #include "app/runs/spectral_render.h"
+#include "app/runs/spectral_host.h"
 #include "app/runs/stop.h"
 #include "app/runs/tiles.h"
 #include "io/encode_settings.h"
@@ -82,7 +83,7 @@ static int run_checked(const options *o);
  * --spectral still call src/sky here. */
 static bool api_host_wanted(const options *o)
 {
-    return (o->output_count > 0 || o->bench_frames > 0) && !o->spectral;   /* --bench alone: into the host's image */
+    return (o->output_count > 0 || o->bench_frames > 0) && (!o->spectral || spectral_host_wanted(o));   /* --bench alone: into the host's image */
 }
 
 int headless_run(const options *given)

@@ -7,6 +7,7 @@
 #include "app/runs/sequence_frames.h"
 #include "app/runs/sequence_host.h"
 #include "app/runs/host_ring.h"
+#include "app/runs/spectral_host.h"
 #include "app/runs/startup.h"
 #include "app/runs/stop.h"
 #include "app/runs/tiles.h"
@@ -64,6 +65,8 @@ static int write_map(const options *o, const vksky_readback *px)
     return status;
 }
 
+static int write_image(const options *o, const vksky_readback *px);
+
 static int render_and_write(const options *o, host_commands *h, vksky_renderer *r)
 {
     const sky_view *view = &o->view;
@@ -84,16 +87,35 @@ static int render_and_write(const options *o, host_commands *h, vksky_renderer *
     if (status == 0 && o->timings) host_timings_frame_end(r);
     vksky_readback px;
     if (status != 0 || vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
+    return write_image(o, &px);
+}
+
+static int write_image(const options *o, const vksky_readback *px)
+{
     /* A map stopped (Ctrl-C, TERM) while it rendered: no file, as a banded render stops (stop_status says so). */
     int rc;
-    if (view->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE) {
-        rc = stop_requested() ? 1 : write_map(o, &px);
+    if (o->view.projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE) {
+        rc = stop_requested() ? 1 : write_map(o, px);
     } else {
-        frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
+        frame_ring_pixels pixels = {px->linear_rgba16f, px->display_rgba8};
         rc = sequence_write_frame(o, &pixels, o->frame_first, false);
     }
     startup_outputs_done();   /* --timings: the files are done; what follows is teardown */
     return rc;
+}
+
+/* --spectral N of one image: the wavelength groups rendered and summed on the host (app/runs/spectral_host.c). */
+static int render_spectral(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h)
+{
+    spectral_image img;
+    int status = spectral_host_render(o, ctx, scene, h, &img);
+    if (status == 0) {
+        vksky_readback px = {.linear_rgba16f = img.linear, .display_rgba8 = img.display, .width = (uint32_t)o->width,
+                             .height = (uint32_t)o->height};
+        status = write_image(o, &px);
+    }
+    spectral_image_release(&img);
+    return status;
 }
 
 int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled,
@@ -136,6 +158,13 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     vksky_result made = vksky_scene_from_args(argc, argv, print_message, NULL, &scene);
     free(argv);
     if (made != VKSKY_SUCCESS) goto done;
+    if (o->spectral) {   /* spectral_host_wanted: a renderer per wavelength group, none of the RGB medium */
+        if (host_commands_create(&h, ctx) == 0)
+            status = stop_requested()                               ? 0
+                     : sequence_active(o) || o->skip_existing       ? spectral_host_sequence(o, ctx, scene, &h)
+                                                                    : render_spectral(o, ctx, scene, &h);
+        goto done;
+    }
     vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
     /* --bench without outputs: no readback, the frame writes the host's own image (app/runs/bench_host.c). */
     vksky_renderer_desc rd = {

@@ -68,11 +68,12 @@ const char *spectral_render_unable(const options *o)
     if (wants_display(o) && tiles_wanted(o))
         return "a .png environment map or banded image: its tone map needs the whole image (write .exr, or one band "
                "of a perspective frame)";
-    /* An .exr map in one band is the whole image, drawn by the serial loop like a perspective frame. Images in several
-     * bands are rendered through include/vksky.h (app/runs/tiles.c), which has no spectral path yet (issue 25). */
+    /* An .exr map in one band is the whole image, drawn through include/vksky.h like a perspective frame
+     * (app/runs/spectral_host.c). Images in several bands (app/runs/tiles.c) have no spectral path yet: tiles.c renders
+     * one renderer's bands, and a spectral band would need every group's (issue 25s, not done). */
     if (tiles_in_bands(o))
         return "an image in several bands (over the band budget, VKSKY_TILE_PIXELS / VKSKY_TILE_ROWS): bands are "
-               "rendered through the library, which has no spectral path yet (render it in one band, or RGB)";
+               "rendered band by band, which has no spectral path yet (render it in one band, or RGB)";
     return NULL;
 }
 
@@ -242,14 +243,19 @@ void spectral_render_frame(sky_renderer *r, const frame_desc *f)
  * none) and no dither (the GPU's +-1 LSB triangular noise). */
 void spectral_render_tonemap(const sky_renderer *r, const sky_view *v, const float *rgb, void *display)
 {
-    int w = (int)r->desc.width, h = (int)r->desc.height;
+    spectral_render_tonemap_image(v, (int)r->desc.width, (int)r->desc.height, r->variant.ground,
+                                  r->medium.bottom_radius, rgb, display);
+}
+
+void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius,
+                                   const float *rgb, void *display)
+{
     double scale = v->ev100 ? v->light_scale : 1.0, ev = v->exposure_ev;
     if (v->auto_exposure) {
-        bool every_pixel = r->variant.ground;
         double f[3], right[3], up[3], log_sum = 0.0, count = 0.0;
         sky_view_basis(v, f, right, up);
         double ty = tan(0.5 * v->fov_deg * 3.14159265358979323846 / 180.0), tx = ty * w / h;
-        double sin_h = sky_view_horizon_sine(v->altitude_km, r->medium.bottom_radius);
+        double sin_h = sky_view_horizon_sine(v->altitude_km, bottom_radius);
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i) {
                 double x = 2.0 * (i + 0.5) / w - 1.0, y = 1.0 - 2.0 * (j + 0.5) / h, d[3];
@@ -314,13 +320,15 @@ int spectral_auto(options *o, const char *impossible)
     if (rgb <= SPECTRAL_AUTO_RGB_KEEP) return 0;
     char names[96];
     quality_class_names(classes, names, sizeof names);
-    /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group, summed on the host in the
-     * serial loop, and a 720p sunset sequence falls from 60 to under 4 frames/s on an H100 (issue 27's throughput is
-     * the default's; docs/spectral.md). --spectral N asks for it. */
+    /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group, summed on the host. The
+     * serial loop made a 720p sunset sequence fall from 60 to under 4 frames/s on an H100; through the API
+     * (app/runs/spectral_host.c, issue 25s) a 960x540 frame of 24 wavelengths still costs 3.5x an RGB frame's CPU on
+     * lavapipe (0.45 s against 0.13), so issue 27's throughput stays the default's (docs/spectral.md). --spectral N
+     * asks for it. */
     const char *why = impossible               ? impossible
                       : o->bench_frames > 0    ? "--bench (it times RGB frames)"
                       : sequence_active(o)     ? "a sequence at a sequence's speed (a frame would take a pass per "
-                                                 "wavelength group, in the serial loop: ask with --spectral N)"
+                                                 "wavelength group: ask with --spectral N)"
                                                : spectral_render_unable(o);
     if (why) {   /* RGB kept where the spectral path cannot render: said, not silent */
         printf("vksky: --quality auto: RGB's colour on the '%s' scene is within CIEDE2000 %.2f of the spectrum's, "

@@ -51,5 +51,9 @@ int spectral_auto(options *o, const char *impossible);
  * (RGBA8 sRGB) at v's exposure, or metered on the host under v->auto_exposure (one stderr line unless quiet):
  * the GPU tone map's law without bloom or dither (docs/spectral.md). */
 void spectral_render_tonemap(const sky_renderer *r, const sky_view *v, const float *rgb, void *display);
+/* The same for an image of w x h (a host of include/vksky.h: app/runs/spectral_host.c): every_pixel, whether the
+ * meter counts the ground's pixels too (a lit ground); bottom_radius, the planet's (km). */
+void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius,
+                                   const float *rgb, void *display);
 
 #endif

@@ -1,0 +1,301 @@
+/* --spectral N of one image through include/vksky.h (spectral_host.h). */
+#include "app/runs/spectral_host.h"
+#include "app/runs/sequence_frames.h"
+#include "app/runs/sequence_resume.h"
+#include "app/runs/stop.h"
+#include "app/runs/spectral_render.h"
+#include "app/runs/startup.h"
+#include "app/runs/tiles.h"
+#include "app/scene/light.h"
+#include "io/half_float.h"
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#define GROUPS_MAX (VKSKY_SPECTRAL_MAX / 3 + 1)
+
+bool spectral_host_wanted(const options *o)
+{
+    return o->spectral > 0 && o->output_count > 0 && o->bench_frames == 0 && !tiles_in_bands(o) && !o->async_luts;
+}
+
+void spectral_image_release(spectral_image *img)
+{
+    free(img->linear);
+    free(img->display);
+    *img = (spectral_image){0};
+}
+
+static bool wants_png(const options *o)
+{
+    for (int i = 0; i < o->output_count; ++i) {
+        size_t n = strlen(o->outputs[i]);
+        if (n < 4 || strcasecmp(o->outputs[i] + n - 4, ".exr")) return true;
+    }
+    return false;
+}
+
+/* Every group's renderer, made and recorded: the groups' frames in one command buffer, one submission, one wait. */
+typedef struct groups {
+    uint32_t count, per_pass;
+    /* One renderer for every group, given each group's scene in turn (a still: one set of pipelines to make, which
+     * a CPU device compiles per renderer), else a renderer per group (a sequence: each keeps its LUTs, and a frame's
+     * groups go in one submission). */
+    bool shared;
+    vksky_scene *scene[GROUPS_MAX];
+    vksky_renderer *r[GROUPS_MAX];
+    double weights[GROUPS_MAX][4][3];
+} groups;
+
+static void groups_destroy(groups *g)
+{
+    for (uint32_t k = 0; k < g->count; ++k) vksky_renderer_destroy(g->r[k]), vksky_scene_destroy(g->scene[k]);
+}
+
+/* Frame scenes: the groups derived again from the scene as the frame's values left it (a medium may be animated), each
+ * renderer given its own (vksky_renderer_set_scene keeps what did not change: a moved sun recomputes no medium LUT).
+ * *luts: whether any group's next frame computes the LUTs. */
+static int groups_set_scene(groups *g, const options *o, const vksky_scene *scene, bool *luts)
+{
+    *luts = false;
+    for (uint32_t k = 0; k < g->count; ++k) {
+        vksky_scene_destroy(g->scene[k]);
+        g->scene[k] = NULL;
+        if (vksky_scene_spectral_group(scene, (uint32_t)o->spectral, g->per_pass, k, &g->scene[k], g->weights[k],
+                                       NULL) != VKSKY_SUCCESS ||
+            (!g->shared && vksky_renderer_set_scene(g->r[k], g->scene[k]) != VKSKY_SUCCESS))
+            return 1;
+        if (!g->shared) *luts = *luts || vksky_renderer_luts_stale(g->r[k]);
+    }
+    if (g->shared) {   /* one renderer: each group's medium computes its LUTs again, unless there is one group */
+        if (g->count == 1 && vksky_renderer_set_scene(g->r[0], g->scene[0]) != VKSKY_SUCCESS) return 1;
+        *luts = g->count > 1 || vksky_renderer_luts_stale(g->r[0]);
+    }
+    return 0;
+}
+
+static int groups_create(groups *g, const options *o, vksky_context *ctx, const vksky_scene *scene, bool shared)
+{
+    g->shared = shared;
+    /* Four to a pass unless the horizon is in a perspective frame (its resolve needs the composite's alpha). */
+    g->per_pass = spectral_render_four_wide(o) ? 4u : 3u;
+    uint32_t count = vksky_spectral_group_count((uint32_t)o->spectral, g->per_pass);
+    if (count == 0 || count > GROUPS_MAX) {
+        fprintf(stderr, "vksky: --spectral %d: not a count the GPU takes\n", o->spectral);
+        return 1;
+    }
+    vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
+    for (uint32_t k = 0; k < count; ++k) {
+        if (vksky_scene_spectral_group(scene, (uint32_t)o->spectral, g->per_pass, k, &g->scene[k], g->weights[k],
+                                       NULL) != VKSKY_SUCCESS)
+            return 1;
+        g->count = k + 1;
+        if (shared && k > 0) continue;
+        vksky_renderer_desc rd = {
+            .abi_version = VKSKY_ABI_VERSION, .next = &readback, .output = VKSKY_OUTPUT_DISPLAY,
+            .width = (uint32_t)o->width, .height = (uint32_t)o->height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
+            .quality = "scene", .bloom = o->view.bloom,
+            .units = o->units == OPTIONS_UNITS_RELATIVE ? VKSKY_UNITS_RELATIVE : VKSKY_UNITS_PHOTOMETRIC,
+            .scene = g->scene[k]};
+        if (vksky_renderer_create(ctx, &rd, &g->r[k]) != VKSKY_SUCCESS) return 1;
+    }
+    return 0;
+}
+
+/* The frames of renderers rs[0 .. n-1] in one command buffer, one submission, one wait. */
+static int render_list(vksky_renderer *const *rs, uint32_t n, const options *o, host_commands *h)
+{
+    const sky_view *view = &o->view;
+    /* The groups' own tone maps are not used (the sum is tone-mapped on the host): no meter on the GPU. */
+    host_view v = {.yaw_deg = view->yaw_deg, .pitch_deg = view->pitch_deg, .fov_deg = view->fov_deg,
+                   .exposure = view->exposure_ev, .projection = (vksky_projection)view->projection,
+                   .whole_width = (uint32_t)o->width, .whole_height = (uint32_t)o->height};
+    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    if (o->trace_barriers) fputs("commands\n", stdout);   /* the host's command buffer, as the CLI's trace names one */
+    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
+    for (uint32_t k = 0; k < n; ++k)
+        if (host_record(rs[k], h->cmd, &v, 0) != 0) return 1;
+    if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
+    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
+    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
+                           .pCommandBufferInfos = &cinfo};
+    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
+    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
+    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
+    if (vr != VK_SUCCESS) {
+        fprintf(stderr, "vksky: the spectral frame's submission failed (VkResult %d)\n", (int)vr);
+        return 1;
+    }
+    /* A LUT cache miss: the LUTs computed, into the cache for the next start (a hit or none: nothing). */
+    for (uint32_t k = 0; k < n; ++k)
+        if (vksky_renderer_store_luts(rs[k]) != VKSKY_SUCCESS) return 1;
+    return 0;
+}
+
+/* Group k's readback (renderer r's last frame) into the XYZ sum: pixel by pixel, channel by channel, groups in
+ * order (the serial loop's order: the bytes depend on nothing else). *alpha: the readback's linear image. */
+static int accumulate(const groups *g, uint32_t k, vksky_renderer *r, float *xyz, size_t pixels,
+                      const uint16_t **alpha)
+{
+    vksky_readback px;
+    if (vksky_renderer_get_readback(r, &px) != VKSKY_SUCCESS) return 1;
+    const double(*m)[3] = g->weights[k];
+    for (size_t i = 0; i < pixels; ++i) {
+        const uint16_t *p = px.linear_rgba16f + 4 * i;
+        for (uint32_t c = 0; c < g->per_pass; ++c) {
+            float v = io_half_to_float(p[c]);
+            for (int q = 0; q < 3; ++q) xyz[3 * i + q] += (float)(m[c][q] * v);
+        }
+    }
+    *alpha = px.linear_rgba16f;
+    return 0;
+}
+
+/* A frame: every group rendered and summed into XYZ, then XYZ -> linear Rec.709 into out (and the PNG's tone map). */
+static int groups_frame(groups *g, const options *o, host_commands *h, spectral_image *out)
+{
+    *out = (spectral_image){0};
+    size_t pixels = (size_t)o->width * o->height;
+    float *xyz = calloc(pixels * 3, sizeof *xyz);
+    out->linear = malloc(pixels * 4 * sizeof *out->linear);
+    bool png = wants_png(o);
+    float *rgb = png ? malloc(pixels * 4 * sizeof *rgb) : NULL;
+    if (png) out->display = malloc(pixels * 4);
+    if (!xyz || !out->linear || (png && (!rgb || !out->display))) {
+        fprintf(stderr, "vksky: --spectral: out of memory\n");
+        free(xyz), free(rgb);
+        return 1;
+    }
+    const uint16_t *last = NULL;
+    int status = 0;
+    if (g->shared) {
+        for (uint32_t k = 0; k < g->count && status == 0 && !stop_requested(); ++k)
+            status = vksky_renderer_set_scene(g->r[0], g->scene[k]) != VKSKY_SUCCESS || render_list(g->r, 1, o, h) ||
+                     accumulate(g, k, g->r[0], xyz, pixels, &last);
+    } else {
+        status = render_list(g->r, g->count, o, h);
+        for (uint32_t k = 0; k < g->count && status == 0; ++k) status = accumulate(g, k, g->r[k], xyz, pixels, &last);
+    }
+    if (status != 0 || stop_requested()) {
+        free(xyz), free(rgb);
+        return 1;
+    }
+    /* Alpha: the composite's with three to a pass (the last group's, as the serial loop leaves it), 1 with four (the
+     * four-wide readback's alpha is a wavelength). Out of Rec.709's gamut stays negative; half's range bounds it. */
+    for (size_t i = 0; i < pixels; ++i) {
+        double in[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, rec[3];
+        vksky_spectral_xyz_to_rec709(in, rec);
+        for (int q = 0; q < 3; ++q) {
+            double v = rec[q] < -65504.0 ? -65504.0 : rec[q] > 65504.0 ? 65504.0 : rec[q];
+            out->linear[4 * i + q] = io_float_to_half((float)v);
+            if (rgb) rgb[4 * i + q] = (float)rec[q];
+        }
+        out->linear[4 * i + 3] = g->per_pass == 4 ? io_float_to_half(1.0f) : last[4 * i + 3];
+        if (rgb) rgb[4 * i + 3] = 1.0f;
+    }
+    free(xyz);
+    if (png) {
+        /* The meter counts the ground's pixels where the last group lights a ground (the serial loop's renderer). */
+        bool ground = false;
+        for (uint32_t c = 0; c < 3; ++c) {
+            vksky_spectral_coefficients k;
+            if (vksky_scene_spectral_coefficients(g->scene[g->count - 1], c, &k) == VKSKY_SUCCESS &&
+                k.ground_albedo != 0.0)
+                ground = true;
+        }
+        sky_view view = o->view;   /* auto exposure where a PNG is written and no exposure was given (light.h) */
+        view.auto_exposure = light_auto_exposure_wanted(o);
+        spectral_render_tonemap_image(&view, o->width, o->height, ground, o->atmosphere.bottom_radius, rgb,
+                                      out->display);
+        free(rgb);
+    }
+    return 0;
+}
+
+static void print_message(void *user, vksky_severity severity, const char *message)
+{
+    (void)user, (void)severity;
+    fprintf(stderr, "vksky: %s\n", message);
+}
+
+/* A sequence (or --skip-existing) one frame at a time, as the serial loop of app/runs/sequence.c: its lines and files. */
+static int render_sequence(const options *base, vksky_context *ctx, vksky_scene *scene, host_commands *h, groups *g)
+{
+    bool sequence = sequence_active(base);
+    int count = base->frame_count > 0 ? base->frame_count : 1, done = 0, skipped = 0, lut_computations = 0;
+    int range = base->frame_last - base->frame_first + 1;
+    (void)ctx;
+    for (int i = base->frame_first; i <= base->frame_last && !stop_requested(); ++i) {   /* stop: between frames */
+        options f;
+        if (sequence_frame_options(base, i, &f)) return 1;   /* parsed before (sequence_check): not expected */
+        if (base->skip_existing && sequence_resume_skip(&f, i, count, done + skipped + 1, range)) {
+            ++skipped;
+            continue;
+        }
+        const char *names[OPTIONS_MAX_ANIMATE];
+        double values[OPTIONS_MAX_ANIMATE];
+        int n = sequence_frame_values(base, i, names, values);
+        bool luts = false;
+        if (vksky_scene_set_values(scene, (uint32_t)n, names, values, print_message, NULL) != VKSKY_SUCCESS ||
+            groups_set_scene(g, base, scene, &luts))
+            return 1;
+        lut_computations += luts;
+        spectral_image img;
+        if (groups_frame(g, &f, h, &img)) {
+            spectral_image_release(&img);
+            return 1;
+        }
+        frame_ring_pixels px = {img.linear, img.display};
+        char path[PATH_MAX];
+        int rc = sequence_write_outputs(&f, &px, i, sequence, path);
+        spectral_image_release(&img);
+        if (rc != 0) return 1;
+        ++done;
+        if (sequence) sequence_frame_line(base, i, done + skipped, path, luts);
+    }
+    if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
+    if (sequence) sequence_summary_line(base, done, skipped, lut_computations);
+    return 0;
+}
+
+/* A sequence's renderers: one per group on a GPU (each keeps its LUTs; a frame's groups in one submission), one for
+ * all on a CPU device (lavapipe compiles every renderer's pipelines, 1.3 s of CPU a 960x540 run for 24 wavelengths,
+ * and runs the groups' passes one after another either way: the frame costs the same). VKSKY_SPECTRAL_SHARED=0 or 1
+ * chooses (tests: both paths on one device). */
+static bool sequence_shared(const vksky_context *ctx)
+{
+    const char *env = getenv("VKSKY_SPECTRAL_SHARED");
+    if (env && (!strcmp(env, "0") || !strcmp(env, "1"))) return env[0] == '1';
+    vksky_context_handles k;
+    vksky_context_get_handles(ctx, &k);
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(k.physical_device, &p);
+    return p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
+int spectral_host_sequence(const options *o, vksky_context *ctx, vksky_scene *scene, host_commands *h)
+{
+    spectral_render_begin(o, NULL);   /* the host tone map's quiet setting (a sequence: no exposure line) */
+    groups g = {0};
+    int status = groups_create(&g, o, ctx, scene, sequence_shared(ctx));
+    if (status == 0) status = render_sequence(o, ctx, scene, h, &g);
+    groups_destroy(&g);
+    return status;
+}
+
+int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h,
+                         spectral_image *out)
+{
+    *out = (spectral_image){0};
+    spectral_render_begin(o, NULL);   /* the host tone map's quiet setting */
+    groups g = {0};
+    int status = groups_create(&g, o, ctx, scene, true);
+    startup_frame_begin();   /* --timings: the first image (its renderer's figures, its last group's passes) */
+    if (status == 0) status = groups_frame(&g, o, h, out);
+    if (status == 0 && o->timings) host_timings_frame_end(g.r[0]);
+    groups_destroy(&g);
+    if (status) spectral_image_release(out);
+    return status;
+}
