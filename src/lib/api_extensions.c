@@ -151,13 +151,9 @@ vksky_result vksky_quality_config_preset(const char *preset, vksky_quality_confi
     return VKSKY_SUCCESS;
 }
 
-vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
-                                        uint32_t *count)
+vksky_result lib_timings_read(vksky_renderer *renderer, gpu_timer *t, vksky_pass_timing *out, uint32_t capacity,
+                              uint32_t *count)
 {
-    if (!renderer || !count || (capacity && !out)) return VKSKY_ERROR_INVALID_ARGUMENT;
-    *count = 0;
-    gpu_timer *t = &renderer->r.timer;
-    if (!t->enabled) return VKSKY_ERROR_UNSUPPORTED;
     double ms[GPU_TIMER_MAX];
     gpu_trap trap;
     if (setjmp(trap.jump)) {
@@ -170,4 +166,14 @@ vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_tim
     for (uint32_t i = 0; i < n && i < capacity; ++i) out[i] = (vksky_pass_timing){t->names[i], ms[i]};
     *count = n;
     return VKSKY_SUCCESS;
+}
+
+vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
+                                        uint32_t *count)
+{
+    if (!renderer || !count || (capacity && !out)) return VKSKY_ERROR_INVALID_ARGUMENT;
+    *count = 0;
+    gpu_timer *t = &renderer->r.timer;
+    if (!t->enabled) return VKSKY_ERROR_UNSUPPORTED;
+    return lib_timings_read(renderer, t, out, capacity, count);
 }
