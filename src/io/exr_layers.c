@@ -149,12 +149,8 @@ int io_exr_write_layers_half(const char *path, int width, int height, const io_e
     int fd = io_atomic_open(path, tmp, sizeof tmp, err, err_size);
     if (fd < 0) return -1;
 
-    io_exr_out_stream stream = {fd, 0};   /* written through exr_common.c's callbacks, as exr_write.c's */
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = io_exr_error_handler;
-    init.user_data = &stream;
-    init.write_fn = io_exr_fd_write;
-    init.destroy_fn = io_exr_fd_destroy;
+    io_exr_out_stream stream = {fd, 0};   /* written through exr_common.c's callbacks, as the streams' */
+    exr_context_initializer_t init = io_exr_fd_initializer(&stream);
 
     exr_context_t ctxt = NULL;
     exr_result_t rc;
