@@ -130,6 +130,7 @@ api_hosts+=(app/window/window.c app/window/window.h app/window/window_app.h app/
             app/window/window_input.c app/window/window_input.h app/window/camera.c app/window/camera.h   # (25m)
             app/window/swapchain.c app/window/swapchain.h)
 api_hosts+=(app/runs/spectral_host.c app/runs/spectral_host.h)   # --spectral N of one image (25s)
+api_hosts+=(app/runs/host_print.h)   # the hosts' message and trace callbacks (25o)
 for f in "${api_hosts[@]}"; do
   [ -f "$f" ] || { echo "layering: $f: listed as an API host but missing"; fail=1; continue; }
   door=$(grep -nE '^[[:space:]]*#[[:space:]]*include[[:space:]]*"(sky|lib)/' "$f")

@@ -11,9 +11,12 @@
 #  5. `--scene FRAME.exr` renders the same pixels (Earth with an angle sun, Mars, a date sun animated over fractional
 #     seconds).
 #  6. Bad values: one line on stderr, exit 2, no file.
+#  7. --max-error in a sequence reports the pick its frames render with (issue 25): the printed configuration's knobs,
+#     from its definition (QUALITY_KNOBS), are what every frame's header records; --quiet prints nothing.
 set -u
-VKSKY=${1:?usage: sequences_test.sh VKSKY EXR_PIXELS}
+VKSKY=${1:?usage: sequences_test.sh VKSKY EXR_PIXELS QUALITY_KNOBS}
 PIX=${2:?}
+KNOBS=${3:?}
 export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -102,6 +105,27 @@ for i in 0 1 2; do
     "$PIX" same "drt_$i.exr" "d_$i.exr" || fail "--scene d_$i.exr renders other pixels"
 done
 grep -q 'capDate (type string): "2026:06:21 05:' <(exrheader d_0.exr) || fail "d_0.exr has no capDate"
+
+# 7. --max-error's pick in a sequence: the frames' (the pick for every scene class they pass through: a sunset here,
+# whose pick is not the default afternoon view's), not the un-animated base view's.
+PICK=(--max-error 0.01 --animate sun-elevation=5:3 --frame-count 3 --width 48 --height 27 --render 'p_%d.exr')
+"$VKSKY" "${PICK[@]}" >pick.out 2>pick.err || fail "--max-error sequence failed: $(cat pick.err)"
+picked=$(sed -n "s/^vksky: --max-error 0.01: picked '\([^']*\)' for frames 0-2 .*/\1/p" pick.out)
+[ "$(grep -c "picked '" pick.out)" -eq 1 ] && [ -n "$picked" ] ||
+    fail "--max-error sequence: expected one 'picked ... for frames 0-2' line on stdout: $(cat pick.out)"
+if [ -n "$picked" ] && "$KNOBS" "$picked" >want.knobs; then
+    for i in 0 1 2; do
+        "$PIX" attr "p_$i.exr" vksky:scene | sed -n '/"quality":/,/}/p' >scene.q || fail "p_$i.exr: no vksky:scene"
+        while read -r key want; do
+            got=$(sed -n "s/^[[:space:]]*\"$key\":[[:space:]]*//p" scene.q | tr -d '[]",')
+            [ "$got" = "$want" ] || fail "--max-error printed '$picked' ($key $want); p_$i.exr's header records $key '$got'"
+        done <want.knobs
+    done
+else
+    fail "--max-error printed '$picked', which names no configuration"
+fi
+"$VKSKY" "${PICK[@]}" --quiet >quiet.out 2>quiet.err || fail "--max-error sequence --quiet failed: $(cat quiet.err)"
+[ ! -s quiet.out ] || fail "--quiet still printed on stdout: $(cat quiet.out)"
 
 # 6. Bad values: one line, exit 2, no file.
 bad() {   # bad WHAT ARGS...

@@ -23,6 +23,7 @@
 #include "io/exr_stream.h"
 #include "io/exr_write.h"
 #include "check.h"
+#include "file_bench.h"
 
 #include <errno.h>
 #include <libdeflate.h>
@@ -169,28 +170,6 @@ static void check_chunks(void)
     io_exr_deflate_free(c);
 }
 
-static uint8_t *slurp(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    uint8_t *b = malloc((size_t)len + 1);
-    *n = fread(b, 1, (size_t)len, f);
-    fclose(f);
-    return b;
-}
-
-static bool same_file(const char *a, const char *b)
-{
-    size_t na = 0, nb = 0;
-    uint8_t *x = slurp(a, &na), *y = slurp(b, &nb);
-    bool same = x && y && na == nb && memcmp(x, y, na) == 0;
-    free(x), free(y);
-    return same;
-}
-
 static void settings(int compression, int level, int threads)
 {
     io_encode_settings s = {.threads = threads, .exr_compression = compression, .zip_level = level};
@@ -297,19 +276,6 @@ static void check_write_failure(void)
     free(px);
 }
 
-static double thread_cpu_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* CPU seconds (median of `repeats`) and bytes to compress every 16-row chunk of `rgba`, float channels: zlib's
  * compress2 or libdeflate at `level`, the predictor included (both writers run it). */
 static void bench_one(const float *rgba, int w, int h, int level, bool use_zlib, int repeats, double *s, size_t *bytes)
@@ -322,7 +288,7 @@ static void bench_one(const float *rgba, int w, int h, int level, bool use_zlib,
         for (int y = 0; y < h; y += 16) {
             size_t n = 0;
             uint8_t *raw = pack_chunk(rgba, w, y, h - y < 16 ? h - y : 16, &n);
-            double t0 = thread_cpu_s();
+            double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
             if (use_zlib) {
                 uint8_t *pred = malloc(n), *z = malloc(compressBound((uLong)n));
                 uLongf zn = compressBound((uLong)n);
@@ -336,7 +302,7 @@ static void bench_one(const float *rgba, int w, int h, int level, bool use_zlib,
                 *bytes += enc.compressed_bytes;
                 free_pipe(&enc);
             }
-            sum += thread_cpu_s() - t0;
+            sum += clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
             free(raw);
         }
         t[r] = sum;
@@ -370,9 +336,9 @@ static int bench(const char *file, int repeats)
         for (int y = 0; y < h; y += 16) {
             size_t n = 0;
             uint8_t *raw = pack_chunk(rgba, w, y, h - y < 16 ? h - y : 16, &n), *pred = malloc(n);
-            double t0 = thread_cpu_s();
+            double t0 = clock_s(CLOCK_THREAD_CPUTIME_ID);
             io_exr_zip_predict(pred, raw, n);
-            t[r] += thread_cpu_s() - t0;
+            t[r] += clock_s(CLOCK_THREAD_CPUTIME_ID) - t0;
             free(raw), free(pred);
         }
     }

@@ -14,6 +14,7 @@
 #include "io/png_io.h"
 #include "io/png_stream.h"
 #include "check.h"
+#include "file_bench.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -44,28 +45,6 @@ static uint8_t *make_image(int w, int h)
             p[3] = y > h * 3 / 4 ? 255 : (uint8_t)(x * 7);
         }
     return px;
-}
-
-static uint8_t *slurp(const char *path, size_t *n)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    fseek(f, 0, SEEK_END);
-    long len = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    uint8_t *b = malloc((size_t)len + 1);
-    *n = fread(b, 1, (size_t)len, f);
-    fclose(f);
-    return b;
-}
-
-static bool same_file(const char *a, const char *b)
-{
-    size_t na = 0, nb = 0;
-    uint8_t *x = slurp(a, &na), *y = slurp(b, &nb);
-    bool same = x && y && na == nb && memcmp(x, y, na) == 0;
-    free(x), free(y);
-    return same;
 }
 
 /* libpng alone, as png_io.c sets it up: RGBA8, sRGB chunk, default compression and filters. */
@@ -193,19 +172,6 @@ static void check_size(int w, int h, bool parallel_expected)
     int rc = system(cmd);
     CHECK(rc == 0, "%dx%d: OpenImageIO (idiff) sees a difference from libpng's file (status %d)", w, h, rc);
     free(px);
-}
-
-static double clock_s(clockid_t id)
-{
-    struct timespec t;
-    clock_gettime(id, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 static int bench(int w, int h, int repeats)

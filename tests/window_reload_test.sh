@@ -30,14 +30,9 @@ if [ "${2:-}" = "--inside-xvfb" ]; then
     exit 0
 fi
 
-for tool in xvfb-run compare; do
-    command -v $tool >/dev/null || { echo "window_reload_test: $tool not installed; skipped"; exit 77; }
-done
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
-t0=$(date +%s)
+# shellcheck source=lib/x_setup.sh
+source "$(dirname "$SELF")/lib/x_setup.sh"
+x_setup window_reload_test xvfb-run compare
 scene_src="$(dirname "$SELF")/../scenes/earth-clear.json"
 # The scene says the EV100 too (the flag keeps it in every case; the file's lesson exposure would be stops).
 sed 's/"exposure_ev": 0,/"exposure_ev100": 12,/' "$scene_src" >"$work/scene.json"

@@ -108,14 +108,9 @@ if [ "${3:-}" = "--inside-xvfb" ]; then
     exit 0
 fi
 
-for tool in xvfb-run xdotool; do
-    command -v $tool >/dev/null || { echo "window_soak: $tool not installed; skipped"; exit 77; }
-done
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
-t0=$(date +%s)
+# shellcheck source=lib/x_setup.sh
+source "$(dirname "$SELF")/lib/x_setup.sh"
+x_setup window_soak xvfb-run xdotool
 timeout 300 "$HERE/xvfb_run.sh" 1280x1024x24 "$SELF" "$VKSKY" "$SEED" --inside-xvfb "$work"
 f=$(cat "$work/fails" 2>/dev/null || echo 1)
 [ "$f" -eq 0 ] || fail "$f failure(s) inside Xvfb"

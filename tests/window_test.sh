@@ -56,13 +56,9 @@ if [ "${2:-}" = "--keys-inside-xvfb" ]; then
     exit 0
 fi
 
-for tool in xvfb-run xdotool convert; do
-    command -v $tool >/dev/null || { echo "window_test: $tool not installed; skipped"; exit 77; }
-done
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-fails=0
-fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+# shellcheck source=lib/x_setup.sh
+source "$(dirname "$SELF")/lib/x_setup.sh"
+x_setup window_test xvfb-run xdotool convert
 # A fresh server per run; 24-bit depth (xvfb-run's default depth of 8 has no Vulkan surface formats).
 xvfb() { timeout 240 "$(dirname "$SELF")/xvfb_run.sh" 1280x1024x24 "$@"; }
 # expect_clean "what" rc stderr-file: exit 0 and not a word about validation on stderr.

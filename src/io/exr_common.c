@@ -69,6 +69,16 @@ void io_exr_fd_destroy(exr_const_context_t ctxt, void *userdata, int failed)
     (void)failed; /* the fd is owned and closed by the writer */
 }
 
+exr_context_initializer_t io_exr_fd_initializer(io_exr_out_stream *out)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = io_exr_error_handler;
+    init.user_data = out;
+    init.write_fn = io_exr_fd_write;
+    init.destroy_fn = io_exr_fd_destroy;
+    return init;
+}
+
 /* OpenEXRCore 3.1.x keeps a ZIP-compressed chunk whose compressed size is exactly equal to the raw size, but
    every reader (Core and the C++ library) treats packed_size == unpacked_size as "stored uncompressed", so such a
    chunk would read back as garbage (reproducible with small 4-channel chunks). Wrap the library's compressor and

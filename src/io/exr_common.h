@@ -50,6 +50,8 @@ typedef struct io_exr_out_stream {
 int64_t io_exr_fd_write(exr_const_context_t ctxt, void *userdata, const void *buffer, uint64_t sz, uint64_t offset,
                         exr_stream_error_func_ptr_t error_cb);
 void io_exr_fd_destroy(exr_const_context_t ctxt, void *userdata, int failed);
+/* A writer's context initializer: io_exr_error_handler's messages, the callbacks above writing into out's fd. */
+exr_context_initializer_t io_exr_fd_initializer(io_exr_out_stream *out);
 
 /* The zlib level of the process's settings (encode_settings.h) onto a part being written (nothing if default). */
 exr_result_t io_exr_apply_compression_level(exr_context_t ctxt, int part);

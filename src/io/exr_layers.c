@@ -27,40 +27,6 @@
 
 #include <openexr.h>
 
-typedef struct out_stream {
-    int fd;
-    int err_no; /* errno of the first failed write, 0 if none */
-} out_stream;
-
-static int64_t stream_write(exr_const_context_t ctxt, void *userdata, const void *buffer, uint64_t sz,
-                            uint64_t offset, exr_stream_error_func_ptr_t error_cb)
-{
-    out_stream *s = (out_stream *)userdata;
-    const uint8_t *p = (const uint8_t *)buffer;
-    uint64_t done = 0;
-    while (done < sz) {
-        uint64_t want = sz - done;
-        if (want > (uint64_t)1 << 30) want = (uint64_t)1 << 30;
-        ssize_t n = pwrite(s->fd, p + done, (size_t)want, (off_t)(offset + done));
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) {
-            int e = (n < 0) ? errno : EIO;
-            if (!s->err_no) s->err_no = e;
-            if (error_cb) error_cb(ctxt, EXR_ERR_WRITE_IO, "write failed: %s", strerror(e));
-            return -1;
-        }
-        done += (uint64_t)n;
-    }
-    return (int64_t)sz;
-}
-
-static void stream_destroy(exr_const_context_t ctxt, void *userdata, int failed)
-{
-    (void)ctxt;
-    (void)userdata;
-    (void)failed; /* the fd is owned and closed by the writer */
-}
-
 /* A chunk that compression does not make smaller is stored raw: io_exr_compress_no_expand (exr_common.c says
    why), applied to every chunk by io_exr_encode_chunks. */
 
@@ -183,12 +149,8 @@ int io_exr_write_layers_half(const char *path, int width, int height, const io_e
     int fd = io_atomic_open(path, tmp, sizeof tmp, err, err_size);
     if (fd < 0) return -1;
 
-    out_stream stream = {fd, 0};
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = io_exr_error_handler;
-    init.user_data = &stream;
-    init.write_fn = stream_write;
-    init.destroy_fn = stream_destroy;
+    io_exr_out_stream stream = {fd, 0};   /* written through exr_common.c's callbacks, as the streams' */
+    exr_context_initializer_t init = io_exr_fd_initializer(&stream);
 
     exr_context_t ctxt = NULL;
     exr_result_t rc;

@@ -91,11 +91,7 @@ io_exr_layers_stream *io_exr_layers_stream_open(const char *path, int width, int
         return NULL;
     }
     s->out = (io_exr_out_stream){s->fd, 0};
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = io_exr_error_handler;
-    init.user_data = &s->out;
-    init.write_fn = io_exr_fd_write;
-    init.destroy_fn = io_exr_fd_destroy;
+    exr_context_initializer_t init = io_exr_fd_initializer(&s->out);
     io_exr_clear_msg();
     const char *stage = "start";
     exr_result_t rc = exr_start_write(&s->ctxt, s->tmp, EXR_WRITE_FILE_DIRECTLY, &init);

@@ -152,8 +152,8 @@ vksky_result vksky_quality_config_preset(const char *preset, vksky_quality_confi
 }
 
 /* A timer's last recorded results as the API's entries (the frame's timer, or the compute queue's LUT timer). */
-static vksky_result read_timer(vksky_renderer *renderer, gpu_timer *t, vksky_pass_timing *out, uint32_t capacity,
-                               uint32_t *count)
+vksky_result lib_timings_read(vksky_renderer *renderer, gpu_timer *t, vksky_pass_timing *out, uint32_t capacity,
+                              uint32_t *count)
 {
     *count = 0;
     if (!t->enabled) return VKSKY_ERROR_UNSUPPORTED;
@@ -175,7 +175,7 @@ vksky_result vksky_renderer_get_timings(vksky_renderer *renderer, vksky_pass_tim
                                         uint32_t *count)
 {
     if (!renderer || !count || (capacity && !out)) return VKSKY_ERROR_INVALID_ARGUMENT;
-    return read_timer(renderer, &renderer->r.timer, out, capacity, count);
+    return lib_timings_read(renderer, &renderer->r.timer, out, capacity, count);
 }
 
 vksky_result vksky_renderer_get_lut_timings(vksky_renderer *renderer, vksky_pass_timing *out, uint32_t capacity,
@@ -189,5 +189,5 @@ vksky_result vksky_renderer_get_lut_timings(vksky_renderer *renderer, vksky_pass
                     "passes of a frame that built them)");
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
-    return read_timer(renderer, &renderer->r.lut_timer, out, capacity, count);
+    return lib_timings_read(renderer, &renderer->r.lut_timer, out, capacity, count);
 }

@@ -70,6 +70,14 @@ static vksky_scene *scene_new(void)
     return s;
 }
 
+/* A scene file that did not load (vksky_scene_load, vksky_scene_reload): the loader's own words tell an unreadable or
+ * unknown file from a malformed one. */
+static vksky_result load_failure(const char *why)
+{
+    return strstr(why, "cannot read") || strstr(why, "no scene") || strstr(why, "not found") ? VKSKY_ERROR_IO
+                                                                                             : VKSKY_ERROR_PARSE;
+}
+
 vksky_result vksky_scene_create_earth(vksky_scene **out)
 {
     if (!out) return VKSKY_ERROR_INVALID_ARGUMENT;
@@ -99,9 +107,7 @@ vksky_result vksky_scene_load(const char *path_or_name, vksky_message_fn message
     if (lib_options_load(path_or_name, &s->o, why, sizeof why) != 0) {
         lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%s", why);
         free(s);
-        /* The loader's own words tell an unreadable or unknown file from a malformed one. */
-        return strstr(why, "cannot read") || strstr(why, "no scene") || strstr(why, "not found") ? VKSKY_ERROR_IO
-                                                                                                 : VKSKY_ERROR_PARSE;
+        return load_failure(why);
     }
     *out = s;
     return VKSKY_SUCCESS;
@@ -273,10 +279,9 @@ vksky_result vksky_scene_reload(vksky_scene *scene, vksky_message_fn message, vo
     int rc = options_reload(&scene->o, &fresh);
     capture_end(&capture);
     if (rc != 0) {
-        const char *text = capture_report(&capture, message, message_user);
-        bool io = strstr(text, "cannot read") || strstr(text, "no scene") || strstr(text, "not found");
+        vksky_result failed = load_failure(capture_report(&capture, message, message_user));
         free(capture.text);
-        return io ? VKSKY_ERROR_IO : VKSKY_ERROR_PARSE;   /* the scene as it was */
+        return failed;   /* the scene as it was */
     }
     free(capture.text);
     scene->o = fresh;

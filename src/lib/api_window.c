@@ -92,19 +92,9 @@ vksky_result vksky_renderer_get_slot_timings(vksky_renderer *renderer, uint32_t 
     if (!renderer->timer_made[slot] || !renderer->timer_unread[slot]) return VKSKY_SUCCESS;
     gpu_timer *t = &renderer->timers[slot];
     if (!t->enabled) return VKSKY_ERROR_UNSUPPORTED;
-    double ms[GPU_TIMER_MAX];
-    gpu_trap trap;
-    if (setjmp(trap.jump)) {
-        lib_message(renderer->ctx->message, renderer->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
-        return lib_result_from_vk(trap.result);
-    }
-    gpu_trap_arm(&trap);
-    uint32_t n = gpu_timer_read(&renderer->ctx->gpu, t, ms);
-    gpu_trap_arm(NULL);
-    renderer->timer_unread[slot] = false;
-    for (uint32_t i = 0; i < n && i < capacity; ++i) out[i] = (vksky_pass_timing){t->names[i], ms[i]};
-    *count = n;
-    return VKSKY_SUCCESS;
+    vksky_result res = lib_timings_read(renderer, t, out, capacity, count);
+    if (res == VKSKY_SUCCESS) renderer->timer_unread[slot] = false;   /* a failed read leaves it to read again */
+    return res;
 }
 
 vksky_result vksky_renderer_get_capture(vksky_renderer *renderer, vksky_readback *out)

@@ -117,4 +117,8 @@ void lib_readback_select(vksky_renderer *r, uint32_t slot);
 /* A scene's options as a renderer of these options would take them (set_scene), and what the GPU reads of them. */
 void lib_scene_for_renderer(const vksky_renderer *r, const vksky_scene *scene, options *o);
 void lib_render_inputs_of(const options *o, const lib_spectral_group *group, lib_render_inputs *out);
+/* Timer t's last frame read into out (the whole frame's timings, *count of them; up to capacity written), a device
+ * error reported to the context's callback: the renderer's own timer and a window slot's (api_extensions.c). */
+vksky_result lib_timings_read(vksky_renderer *renderer, gpu_timer *t, vksky_pass_timing *out, uint32_t capacity,
+                              uint32_t *count);
 #endif

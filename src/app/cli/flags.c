@@ -11,7 +11,7 @@ const flag flags_table[] = {
     {"--width", ARG_INT, 1, 16384, "N      image width in pixels (default 1280)"},
     {"--height", ARG_INT, 1, 16384, "N      image height in pixels (default 720)"},
     {"--projection", ARG_STRING, 0, 0, "P perspective | equirect | cubemap | fisheye: camera view, 2:1 latitude-longitude map, OpenEXR cube (face = --width), all-sky fisheye (default perspective)"},
-    {"--quiet", ARG_NONE, 0, 0, "         no progress report and no per-frame lines on stderr"},
+    {"--quiet", ARG_NONE, 0, 0, "         no progress report and no per-frame lines on stderr, no --max-error pick on stdout"},
     {"--sun-elevation", ARG_DOUBLE, -90, 90, "DEG   sun elevation above the horizon (default 20)"},
     {"--sun-azimuth", ARG_DOUBLE, -360, 360, "DEG   sun azimuth, clockwise seen from above: with --yaw 0 as north, 90 is east (default 0)"},
     {"--date", ARG_STRING, 0, 0, "YYYY-MM-DD  the sun by date and place (NREL SPA): local date; needs --time, --latitude, --longitude; not with --sun-elevation/--sun-azimuth"},

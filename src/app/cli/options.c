@@ -492,15 +492,22 @@ static int resolve(options *o, unsigned quality_classes, bool report)
         options_release(o);
         return 2;
     }
-    /* The --max-error choice, reported only now: every flag has been read and accepted. */
-    if (!report) picked = NULL;   /* a reload: reported at start-up */
-    if (picked && !quality_classes)   /* once: not again for each frame of a sequence */
+    /* The --max-error choice, reported only now: every flag has been read and accepted. An animated sequence's
+     * frames render with the pick for every scene class they pass through (sequence_choose_quality parses again with
+     * those classes), not with this base view's: that parse reports it, with the frames it serves. --quiet: none. */
+    bool frames_pick = o->animate_count > 0 && !o->dump_scene;   /* --dump-scene: no frames, the base is all */
+    if (!report || o->quiet || (quality_classes != 0) != frames_pick) picked = NULL;
+    if (picked && frames_pick)
+        fprintf(stdout, "vksky: --max-error %g: picked '%s' for frames %d-%d (measured mean relative luminance error "
+                "%.3g at worst on the frames' '%s' scenes)\n", o->max_error, picked->name, o->frame_first, o->frame_last,
+                picked_error, picked_scene);
+    else if (picked)
         fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);
     /* Issue 32: --max-error's promise is the luminance; the colour of the RGB renderer it picks for is measured too
      * (quality_color_table.h), and said beside the pick unless --max-color-error chooses the wavelengths. */
-    if (picked && !quality_classes && o->max_color_error <= 0.0 && !o->spectral) {
+    if (picked && o->max_color_error <= 0.0 && !o->spectral) {
         double de = 0.0;
         for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
             if (o->quality_classes & (1u << c)) de = fmax(de, quality_color_error(0, c));
@@ -510,7 +517,7 @@ static int resolve(options *o, unsigned quality_classes, bool report)
     }
     /* Issue 31: a promise from a table measured with other shaders or knobs is an estimate, and says so, beside the
      * pick (the same stream: a run that parses cleanly keeps stderr empty, docs/robustness.md). */
-    const char *estimate = picked && !quality_classes ? quality_table_estimate(picked_cpu) : NULL;
+    const char *estimate = picked ? quality_table_estimate(picked_cpu) : NULL;
     if (estimate)
         fprintf(o->dump_scene ? stderr : stdout, "vksky: note: --max-error: the %s table's rows are estimates (%s)\n",
                 picked_cpu ? "CPU device" : "GPU", estimate);

@@ -8,6 +8,7 @@
 #include "app/runs/sequence_host.h"
 #include "app/runs/host_ring.h"
 #include "app/runs/spectral_host.h"
+#include "app/runs/host_print.h"
 #include "app/runs/startup.h"
 #include "app/runs/stop.h"
 #include "app/runs/tiles.h"
@@ -16,20 +17,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-static void print_message(void *user, vksky_severity severity, const char *message)
-{
-    (void)user, (void)severity;
-    fprintf(stderr, "vksky: %s\n", message);
-}
-
-/* --trace-barriers / --trace-passes: the context's trace lines, on stdout as the CLI prints them. */
-static void print_trace(void *user, const char *line)
-{
-    (void)user;
-    fputs(line, stdout);
-    fputc('\n', stdout);
-}
 
 /* Auto exposure's figures, as the command line prints them (the GPU metered the frame that was just rendered). */
 static int print_metered(const options *o, const sky_view *view, const vksky_renderer *r)
@@ -122,7 +109,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
                         bool debug_utils, const char *cache_dir)
 {
     vksky_context_desc cd = *device;
-    cd.message = print_message;
+    cd.message = host_print_message;
     vksky_context *ctx = NULL;
     if (vksky_context_create(&cd, &ctx) != VKSKY_SUCCESS) return 1;
     /* Names and labels where the CLI's instance enabled VK_EXT_debug_utils (always under --validate), so validation
@@ -134,7 +121,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
         return 1;
     }
     /* The barrier trace covers the renderer's creation (its uploads); the pass trace starts with the frames. */
-    if (o->trace_barriers) vksky_context_set_trace(ctx, VKSKY_TRACE_BARRIERS, print_trace, NULL);
+    if (o->trace_barriers) vksky_context_set_trace(ctx, VKSKY_TRACE_BARRIERS, host_print_trace, NULL);
     vksky_scene *scene = NULL;
     vksky_renderer *r = NULL;
     int status = 1;
@@ -155,7 +142,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
         argv[argc++] = "--render-scale=1";
     }
     argv[argc] = NULL;
-    vksky_result made = vksky_scene_from_args(argc, argv, print_message, NULL, &scene);
+    vksky_result made = vksky_scene_from_args(argc, argv, host_print_message, NULL, &scene);
     free(argv);
     if (made != VKSKY_SUCCESS) goto done;
     if (o->spectral) {   /* spectral_host_wanted: a renderer per wavelength group, none of the RGB medium */
@@ -175,7 +162,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     if (vksky_renderer_create(ctx, &rd, &r) != VKSKY_SUCCESS) goto done;
     if (o->trace_passes)
         vksky_context_set_trace(ctx, (o->trace_barriers ? VKSKY_TRACE_BARRIERS : 0u) | VKSKY_TRACE_PASSES,
-                                print_trace, NULL);
+                                host_print_trace, NULL);
     if (host_commands_create(&h, ctx)) goto done;
     /* --async-luts: the LUT passes on the compute queue the device was made with (app/runs/host_async.h). */
     if (o->async_luts) {
@@ -189,7 +176,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
         status = 0;
     } else if (o->bench_frames > 0) {
         /* --bench: no barrier trace over its frames (the pass trace stays, as the CLI's own bench keeps it). */
-        vksky_context_set_trace(ctx, o->trace_passes ? VKSKY_TRACE_PASSES : 0u, print_trace, NULL);
+        vksky_context_set_trace(ctx, o->trace_passes ? VKSKY_TRACE_PASSES : 0u, host_print_trace, NULL);
         status = bench_host_run(o, ctx, scene, r, h.async);
     } else if (banded) {
         status = tiles_render(o, ctx, r, &h, o->trace_barriers ? stdout : NULL);

@@ -2,6 +2,7 @@
  * app/runs/sequence.c's (their lines, order and files), over the public API. */
 #include "app/runs/sequence_host.h"
 #include "app/runs/host_ring.h"
+#include "app/runs/host_print.h"
 #include "app/runs/sequence_frames.h"
 #include "app/runs/sequence_resume.h"
 #include "app/runs/stage_times.h"
@@ -12,12 +13,6 @@
 #include "io/encode_settings.h"
 #include <limits.h>
 #include <stdlib.h>
-
-static void print_message(void *user, vksky_severity severity, const char *message)
-{
-    (void)user, (void)severity;
-    fprintf(stderr, "vksky: %s\n", message);
-}
 
 static int frame_count(const options *o) { return o->frame_count > 0 ? o->frame_count : 1; }
 
@@ -30,7 +25,7 @@ static int set_frame_scene(const options *base, int i, vksky_scene *scene, vksky
     const char *names[OPTIONS_MAX_ANIMATE];
     double values[OPTIONS_MAX_ANIMATE];
     int n = sequence_frame_values(base, i, names, values);
-    if (vksky_scene_set_values(scene, (uint32_t)n, names, values, print_message, NULL) != VKSKY_SUCCESS) return 1;
+    if (vksky_scene_set_values(scene, (uint32_t)n, names, values, host_print_message, NULL) != VKSKY_SUCCESS) return 1;
     if (ring && !first && vksky_renderer_scene_changes(r, scene)) host_ring_drain(ring);
     if (vksky_renderer_set_scene(r, scene) != VKSKY_SUCCESS) return 1;
     *luts = vksky_renderer_luts_stale(r);

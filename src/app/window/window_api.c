@@ -6,22 +6,9 @@
  * uses as a swapchain's, so its barriers keep the window's names (display.to_attachment, display.to_present). No
  * src/sky or src/lib header (tests/layering_test.sh). */
 #include "app/window/window_app.h"
+#include "app/runs/host_print.h"
 #include "gpu/pipeline_cache.h"
 #include <stdlib.h>
-
-static void print_message(void *user, vksky_severity severity, const char *message)
-{
-    (void)user, (void)severity;
-    fprintf(stderr, "vksky: %s\n", message);
-}
-
-/* --trace-barriers: the context's lines on stdout, as the command line prints its own. */
-static void print_trace(void *user, const char *line)
-{
-    (void)user;
-    fputs(line, stdout);
-    fputc('\n', stdout);
-}
 
 void window_api_check(vksky_result r, const char *what)
 {
@@ -37,7 +24,7 @@ int window_api_open(app *a)
     vksky_context_desc cd = {
         .abi_version = VKSKY_ABI_VERSION, .get_instance_proc_addr = vkGetInstanceProcAddr, .instance = g->instance,
         .physical_device = g->physical, .device = g->device, .queue_family = g->queue_family, .queue_index = 0,
-        .pipeline_cache = g->pipeline_cache, .message = print_message,
+        .pipeline_cache = g->pipeline_cache, .message = host_print_message,
         /* --async-luts: the compute queue the device was made with (the main queue under VKSKY_ASYNC_ONE_QUEUE=1). */
         .compute_queue = g->compute_queue != VK_NULL_HANDLE, .compute_queue_family = g->compute_family,
         .compute_queue_index = g->compute_index};
@@ -51,7 +38,7 @@ int window_api_open(app *a)
         vksky_context_set_cache_directory(a->api, gpu_cache_dir(g)) != VKSKY_SUCCESS)
         return 1;
     /* The scene, view settings and quality of the command line the window was started with (the same parser). */
-    if (vksky_scene_from_args(o->argc, o->argv, print_message, NULL, &a->scene) != VKSKY_SUCCESS) return 1;
+    if (vksky_scene_from_args(o->argc, o->argv, host_print_message, NULL, &a->scene) != VKSKY_SUCCESS) return 1;
     /* The bloom chain is always allocated so B can toggle it; --no-bloom only starts with it off (a->view.bloom). */
     vksky_renderer_desc rd = {
         .abi_version = VKSKY_ABI_VERSION, .output = VKSKY_OUTPUT_DISPLAY, .width = a->sc.extent.width,
@@ -74,8 +61,8 @@ void window_api_close(app *a)
 void window_api_trace(app *a, bool on)
 {
     /* The screenshot's frame traced after the first (VKSKY_TRACE_CAPTURE=1): a command buffer of its own. */
-    if (on && a->traced) print_trace(NULL, "commands");
-    vksky_context_set_trace(a->api, on ? VKSKY_TRACE_BARRIERS : 0u, on ? print_trace : NULL, NULL);
+    if (on && a->traced) host_print_trace(NULL, "commands");
+    vksky_context_set_trace(a->api, on ? VKSKY_TRACE_BARRIERS : 0u, on ? host_print_trace : NULL, NULL);
     if (a->async.device) a->async.trace = on ? stdout : NULL;   /* its LUT submission's semaphore lines */
 }
 

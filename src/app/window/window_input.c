@@ -1,6 +1,7 @@
 /* The window's input: the controls table, key presses (toggles, steps, F5 reload), mouse capture and look, and
  * the held keys polled once a frame into the fly camera and the sun. */
 #include "app/window/window_app.h"
+#include "app/runs/host_print.h"
 #include <math.h>
 #include <string.h>
 
@@ -47,19 +48,13 @@ static const char *tonemap_name(int t)
  * vksky_renderer_set_scene. The renderer recomputes only what changed: the LUTs when their inputs' hash changed, the
  * pipelines when the variant changed. The camera and the sun stay where the user put them. A broken file leaves the
  * current scene (its one-line error is printed). */
-static void print_reload_error(void *user, vksky_severity severity, const char *message)
-{
-    (void)user, (void)severity;
-    fprintf(stderr, "vksky: %s\n", message);
-}
-
 void window_input_reload(app *a)
 {
     if (!a->o->scene_path) {
         printf("F5: no --scene file to reload\n");
         return;
     }
-    if (vksky_scene_reload(a->scene, print_reload_error, NULL) != VKSKY_SUCCESS) return;
+    if (vksky_scene_reload(a->scene, host_print_message, NULL) != VKSKY_SUCCESS) return;
     /* The atmosphere uniform buffer is shared by the frames in flight: wait for them before rewriting it. */
     vkDeviceWaitIdle(a->ctx.device);
     vksky_renderer_stats before, after;

@@ -1,0 +1,22 @@
+/* The command line's callbacks for include/vksky.h's messages and trace lines, shared by its API hosts (the headless
+ * run, the sequence, the window): a message as one "vksky: ..." line on stderr, a trace line on stdout, as the CLI
+ * prints its own. Header-only: each host passes their addresses to the API. */
+#ifndef VKSKY_APP_RUNS_HOST_PRINT_H
+#define VKSKY_APP_RUNS_HOST_PRINT_H
+#include <vksky.h>
+#include <stdio.h>
+
+static inline void host_print_message(void *user, vksky_severity severity, const char *message)
+{
+    (void)user, (void)severity;
+    fprintf(stderr, "vksky: %s\n", message);
+}
+
+/* --trace-barriers / --trace-passes: the context's trace lines. */
+static inline void host_print_trace(void *user, const char *line)
+{
+    (void)user;
+    fputs(line, stdout);
+    fputc('\n', stdout);
+}
+#endif
