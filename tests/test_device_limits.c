@@ -8,6 +8,7 @@
 #include "sky/limits.h"
 #include "gpu/context.h"
 #include <stdio.h>
+#include "check.h"
 #include <string.h>
 
 #include "ap_volume_comp.h"
@@ -42,16 +43,6 @@
 #include "transmittance_lut_f32_s4_comp.h"
 #include "transmittance_lut_s4_comp.h"
 
-static int failures;
-#define CHECK(cond, ...)                                                                                 \
-    do {                                                                                                 \
-        if (!(cond)) {                                                                                   \
-            ++failures;                                                                                  \
-            fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__);                                         \
-            fprintf(stderr, __VA_ARGS__);                                                                \
-            fputc('\n', stderr);                                                                         \
-        }                                                                                                \
-    } while (0)
 
 #define MODULE(name) {#name, name, sizeof name / 4}
 static const struct { const char *name; const uint32_t *words; size_t count; } modules[] = {
@@ -210,7 +201,7 @@ int main(void)
            real->maxComputeSharedMemorySize, real->maxPushConstantsSize);
     CHECK(sky_limits_apply(&ctx, why, sizeof why) == 0, "%s refused: \"%s\"", ctx.props.deviceName, why);
     gpu_context_destroy(&ctx);
-    if (failures) return 1;
+    if (check_failures) return 1;
     printf("device limits: ok\n");
     return 0;
 }

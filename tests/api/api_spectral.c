@@ -12,18 +12,9 @@
 #include "model/spectrum.h"
 #include <math.h>
 #include <stdio.h>
+#include "../check.h"
 #include <string.h>
 
-static int failures;
-#define CHECK(cond, ...)                                                                                      \
-    do {                                                                                                      \
-        if (!(cond)) {                                                                                        \
-            ++failures;                                                                                       \
-            fprintf(stderr, "FAIL %s:%d: %s: ", __FILE__, __LINE__, #cond);                                   \
-            fprintf(stderr, __VA_ARGS__);                                                                     \
-            fputc('\n', stderr);                                                                              \
-        }                                                                                                     \
-    } while (0)
 
 /* 683 * integral of E(l) cmf(l) over [a, b], the trapezoid rule on steps of at most 0.01 nm. */
 static void integral(double a, double b, double out[3])
@@ -162,7 +153,7 @@ int main(void)
     for (int c = 0; c < 3; ++c) CHECK(fabs(rgb[c] - 1.0) < 2e-3, "D65 white -> channel %d = %.5f", c, rgb[c]);
     vksky_scene_destroy(earth);
     vksky_scene_destroy(lit);
-    if (failures) fprintf(stderr, "api_spectral: %d failures\n", failures);
+    if (check_failures) fprintf(stderr, "api_spectral: %d check_failures\n", check_failures);
     else printf("api_spectral: ok\n");
-    return failures ? 1 : 0;
+    return check_failures ? 1 : 0;
 }
