@@ -47,8 +47,9 @@ if [ "${3:-}" = "--inside-xvfb" ]; then
     export XDG_CACHE_HOME="$work/xdg"
     for height in 9 8; do
         sed -E "s/\"scale_height_km\": (8|9)\b/\"scale_height_km\": $height/" "$work/scene.json" >"$work/warm.json"
-        "$VKSKY" --quiet --scene "$work/warm.json" "${EXTRA_FLAGS[@]}" --width 32 --height 18 --render "$work/warm.png" \
-            >/dev/null 2>&1 || fail "warming the LUT cache ($height km) failed"
+        "$VKSKY" --validate --quiet --scene "$work/warm.json" "${EXTRA_FLAGS[@]}" --width 32 --height 18 --render "$work/warm.png" \
+            >"$work/warm.log" 2>&1 || fail "warming the LUT cache ($height km) failed: $(tail -c 300 "$work/warm.log")"
+        ! grep -qi validation "$work/warm.log" || fail "validation messages warming the LUT cache: $(head -c 600 "$work/warm.log")"
     done
     VKSKY_TEST_REPORT=1 stdbuf -oL "$VKSKY" --validate --frames 100000000 --width 320 --height 180 \
         --scene "$work/scene.json" "${EXTRA_FLAGS[@]}" >"$work/out" 2>"$work/err" &
