@@ -109,6 +109,7 @@ int main(int argc, char **argv)
     startup_begin();
     options o = {0};
     int rc = run(&o, argc, argv);
+    startup_exit(rc);   /* one image left to the exit: no atexit handlers (startup.h) */
     options_release(&o);
     return rc;
 }

@@ -72,6 +72,13 @@ bool startup_keep_for_exit(const options *o, int status)
 #endif
 }
 
+void startup_exit(int status)
+{
+    if (!t.kept) return;
+    fflush(NULL);
+    _exit(status);
+}
+
 void startup_open_cache(gpu_context *ctx, const options *o)
 {
     t.instance = ctx->instance_ms, t.device = ctx->device_ms, t.instance_reused = ctx->instance_reused;
