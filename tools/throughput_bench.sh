@@ -16,6 +16,9 @@
 set -u
 V=${1:?usage: throughput_bench.sh VKSKY [BASELINE_VKSKY] [OUT_DIR]}
 BASE=${2:-}
+# Absolute paths: some cases run from a scratch directory of their own (cd), where a relative path would not resolve.
+V=$(readlink -f "$V")
+[ -n "$BASE" ] && BASE=$(readlink -f "$BASE")
 scratch=$(mktemp -d "${3:-${TMPDIR:-/tmp}}/vksky_tp.XXXXXX")
 trap 'rm -rf "$scratch"' EXIT
 N=${SEQ_FRAMES:-120}

@@ -293,16 +293,54 @@ static void print_message(void *user, vksky_severity severity, const char *messa
     fprintf(stderr, "vksky: %s\n", message);
 }
 
-/* A sequence (or --skip-existing) one frame at a time, as the serial loop of app/runs/sequence.c: its lines and files. */
+/* A frame's files, written on a thread of their own while the next frame renders and sums (issue 27: on the render
+ * thread the write was a serial half of every spectral frame). One frame at a time: the next hand-over first joins
+ * the frame before, so files are written and lines printed in the frames' order, as the serial loop did. */
+typedef struct frame_write {
+    const options *base;
+    options f;
+    spectral_image img;
+    int index, done;
+    bool sequence, luts, pending;
+    int status;
+    pthread_t tid;
+} frame_write;
+
+static void *write_frame(void *arg)
+{
+    frame_write *w = arg;
+    frame_ring_pixels px = {w->img.linear, w->img.display};
+    char path[PATH_MAX];
+    w->status = sequence_write_outputs(&w->f, &px, w->index, w->sequence, path);
+    if (w->status == 0 && w->sequence) sequence_frame_line(w->base, w->index, w->done, path, w->luts);
+    spectral_image_release(&w->img);
+    return NULL;
+}
+
+/* Waits for the frame being written, if any: its status (0 when none). */
+static int write_join(frame_write *w)
+{
+    if (!w->pending) return 0;
+    pthread_join(w->tid, NULL);
+    w->pending = false;
+    return w->status;
+}
+
+/* A sequence (or --skip-existing) one frame at a time, as the serial loop of app/runs/sequence.c: its lines and files,
+ * each frame's files written while the next renders. */
 static int render_sequence(const options *base, vksky_context *ctx, vksky_scene *scene, host_commands *h, groups *g)
 {
     bool sequence = sequence_active(base);
     int count = base->frame_count > 0 ? base->frame_count : 1, done = 0, skipped = 0, lut_computations = 0;
-    int range = base->frame_last - base->frame_first + 1;
+    int range = base->frame_last - base->frame_first + 1, status = 0;
+    frame_write w = {.base = base, .sequence = sequence};
     (void)ctx;
-    for (int i = base->frame_first; i <= base->frame_last && !stop_requested(); ++i) {   /* stop: between frames */
+    for (int i = base->frame_first; i <= base->frame_last && !stop_requested() && !status; ++i) {   /* stop: between frames */
         options f;
-        if (sequence_frame_options(base, i, &f)) return 1;   /* parsed before (sequence_check): not expected */
+        if (sequence_frame_options(base, i, &f)) {   /* parsed before (sequence_check): not expected */
+            status = 1;
+            break;
+        }
         if (base->skip_existing && sequence_resume_skip(&f, i, count, done + skipped + 1, range)) {
             ++skipped;
             continue;
@@ -312,22 +350,29 @@ static int render_sequence(const options *base, vksky_context *ctx, vksky_scene 
         int n = sequence_frame_values(base, i, names, values);
         bool luts = false;
         if (vksky_scene_set_values(scene, (uint32_t)n, names, values, print_message, NULL) != VKSKY_SUCCESS ||
-            groups_set_scene(g, base, scene, &luts))
-            return 1;
+            groups_set_scene(g, base, scene, &luts)) {
+            status = 1;
+            break;
+        }
         lut_computations += luts;
         spectral_image img;
         if (groups_frame(g, &f, h, &img)) {
             spectral_image_release(&img);
-            return 1;
+            status = 1;
+            break;
         }
-        frame_ring_pixels px = {img.linear, img.display};
-        char path[PATH_MAX];
-        int rc = sequence_write_outputs(&f, &px, i, sequence, path);
-        spectral_image_release(&img);
-        if (rc != 0) return 1;
+        if ((status = write_join(&w)) != 0) {   /* the frame before is written (its line printed) */
+            spectral_image_release(&img);
+            break;
+        }
         ++done;
-        if (sequence) sequence_frame_line(base, i, done + skipped, path, luts);
+        w.f = f, w.img = img, w.index = i, w.done = done + skipped, w.luts = luts;
+        if (pthread_create(&w.tid, NULL, write_frame, &w) == 0) w.pending = true;
+        else write_frame(&w);   /* no thread: written here */
+        status = w.pending ? 0 : w.status;
     }
+    int last = write_join(&w);
+    if (status || last) return 1;
     if (stop_requested()) return 1;   /* frames already written are whole and stay; stop_status says the rest */
     if (sequence) sequence_summary_line(base, done, skipped, lut_computations);
     return 0;
