@@ -320,11 +320,11 @@ int spectral_auto(options *o, const char *impossible)
     if (rgb <= SPECTRAL_AUTO_RGB_KEEP) return 0;
     char names[96];
     quality_class_names(classes, names, sizeof names);
-    /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group, summed on the host. The
-     * serial loop made a 720p sunset sequence fall from 60 to under 4 frames/s on an H100; through the API
-     * (app/runs/spectral_host.c, issue 25s) a 960x540 frame of 24 wavelengths still costs 3.5x an RGB frame's CPU on
-     * lavapipe (0.45 s against 0.13), so issue 27's throughput stays the default's (docs/spectral.md). --spectral N
-     * asks for it. */
+    /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group, summed on the host. With the
+     * sum on the encode threads and the write beside the next frame (app/runs/spectral_host.c), a 720p sunset
+     * sequence of 24 wavelengths runs at 22-28 frames/s on an H100 against 45-48 in RGB, and a 960x540 frame costs
+     * 3.5x an RGB frame's CPU on lavapipe (0.45 s against 0.13), so issue 27's throughput stays the default's
+     * (docs/spectral.md). --spectral N asks for it. */
     const char *why = impossible               ? impossible
                       : o->bench_frames > 0    ? "--bench (it times RGB frames)"
                       : sequence_active(o)     ? "a sequence at a sequence's speed (a frame would take a pass per "
