@@ -42,6 +42,28 @@ rgb=(--width 16 --height 9 --sun-elevation 20 --validate)
 grep -q "max 0.000 %;.*max 0.000 (" "$work/same" || fail "--spectral 0 changed the EXR's pixels: $(cat "$work/same")"
 cmp -s "$work/rgb.png" "$work/rgb0.png" || fail "--spectral 0 changed the PNG"
 
+# Images in several bands (27j): each band's groups summed on the host, the bands streamed by tiles.c. A map and a
+# perspective frame with the horizon in it, in bands of a few rows (VKSKY_TILE_ROWS), against the same image drawn in
+# one band: every pixel equal (the bands keep their height and the sum is per pixel), validation-clean.
+bands() {
+    local name=$1 rows=$2; shift 2
+    "$VKSKY" "$@" --validate --render "$work/$name.one.exr" 2>"$work/err" ||
+        { fail "$name: one band: exit $? ($(cat "$work/err"))"; return; }
+    VKSKY_TILE_ROWS=$rows "$VKSKY" "$@" --validate --quiet --render "$work/$name.bands.exr" 2>"$work/err" ||
+        { fail "$name: in bands: exit $? ($(cat "$work/err"))"; return; }
+    [ ! -s "$work/err" ] || fail "$name: in bands wrote to stderr: $(cat "$work/err")"
+    "$COMPARE" "$work/$name.bands.exr" "$work/$name.one.exr" >"$work/same" || fail "$name: compare"
+    grep -q "max 0.000 %;.*max 0.000 (" "$work/same" || fail "$name: bands differ from one band: $(cat "$work/same")"
+}
+bands equirect 7 --projection equirect --width 64 --spectral 8 --sun-elevation 3
+bands perspective 5 --width 40 --height 24 --pitch 0 --fov 50 --spectral 4 --sun-elevation 1
+# A sequence draws whole frames: one over the band budget is refused (one line, exit 2, no file).
+VKSKY_TILE_ROWS=4 "$VKSKY" --projection equirect --width 16 --spectral 8 --animate sun-elevation=0:5 --frame-count 2 \
+    --render "$work/seqband%02d.exr" 2>"$work/err"
+rc=$?
+{ [ $rc -eq 2 ] && [ "$(wc -l <"$work/err")" -eq 1 ] && grep -q "several bands" "$work/err" &&
+    ! ls "$work"/seqband* >/dev/null 2>&1; } || fail "a spectral sequence in bands: exit $rc, $(cat "$work/err")"
+
 # --max-color-error: a pick whose measured worst CIEDE2000 keeps the promise, rendered validation-clean.
 "$VKSKY" --width 8 --height 8 --sun-elevation 60 --max-color-error 1 --validate --render "$work/pick.exr" \
     >"$work/pick" 2>"$work/err" || fail "--max-color-error 1 at noon: exit $? ($(cat "$work/err"))"

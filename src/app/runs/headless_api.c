@@ -149,6 +149,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
         if (host_commands_create(&h, ctx) == 0)
             status = stop_requested()                               ? 0
                      : sequence_active(o) || o->skip_existing       ? spectral_host_sequence(o, ctx, scene, &h)
+                     : banded                                       ? spectral_host_bands(o, ctx, scene, &h)
                                                                     : render_spectral(o, ctx, scene, &h);
         goto done;
     }

@@ -19,7 +19,7 @@
 
 bool spectral_host_wanted(const options *o)
 {
-    return o->spectral > 0 && o->output_count > 0 && o->bench_frames == 0 && !tiles_in_bands(o) && !o->async_luts;
+    return o->spectral > 0 && o->output_count > 0 && o->bench_frames == 0 && !o->async_luts;
 }
 
 void spectral_image_release(spectral_image *img)
@@ -77,7 +77,8 @@ static int groups_set_scene(groups *g, const options *o, const vksky_scene *scen
     return 0;
 }
 
-static int groups_create(groups *g, const options *o, vksky_context *ctx, const vksky_scene *scene, bool shared)
+static int groups_create(groups *g, const options *o, vksky_context *ctx, const vksky_scene *scene, bool shared,
+                         int height)
 {
     g->shared = shared;
     /* Four to a pass unless the horizon is in a perspective frame (its resolve needs the composite's alpha). */
@@ -96,8 +97,8 @@ static int groups_create(groups *g, const options *o, vksky_context *ctx, const 
         if (shared && k > 0) continue;
         vksky_renderer_desc rd = {
             .abi_version = VKSKY_ABI_VERSION, .next = &readback, .output = VKSKY_OUTPUT_DISPLAY,
-            .width = (uint32_t)o->width, .height = (uint32_t)o->height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
-            .quality = "scene", .bloom = o->view.bloom,
+            .width = (uint32_t)o->width, .height = (uint32_t)height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
+            .quality = "scene", .bloom = o->view.bloom && height == o->height,   /* bands: no bloom (tiles.c) */
             .units = o->units == OPTIONS_UNITS_RELATIVE ? VKSKY_UNITS_RELATIVE : VKSKY_UNITS_PHOTOMETRIC,
             .scene = g->scene[k]};
         if (vksky_renderer_create(ctx, &rd, &g->r[k]) != VKSKY_SUCCESS) return 1;
@@ -105,14 +106,21 @@ static int groups_create(groups *g, const options *o, vksky_context *ctx, const 
     return 0;
 }
 
-/* The frames of renderers rs[0 .. n-1] in one command buffer, one submission, one wait. */
-static int render_list(vksky_renderer *const *rs, uint32_t n, const options *o, host_commands *h)
+/* The whole image's view of o (a band's: its own first row, tiles.c). */
+static host_view whole_view(const options *o)
 {
     const sky_view *view = &o->view;
     /* The groups' own tone maps are not used (the sum is tone-mapped on the host): no meter on the GPU. */
-    host_view v = {.yaw_deg = view->yaw_deg, .pitch_deg = view->pitch_deg, .fov_deg = view->fov_deg,
-                   .exposure = view->exposure_ev, .projection = (vksky_projection)view->projection,
-                   .whole_width = (uint32_t)o->width, .whole_height = (uint32_t)o->height};
+    return (host_view){.yaw_deg = view->yaw_deg, .pitch_deg = view->pitch_deg, .fov_deg = view->fov_deg,
+                       .exposure = view->exposure_ev, .projection = (vksky_projection)view->projection,
+                       .whole_width = (uint32_t)o->width, .whole_height = (uint32_t)o->height};
+}
+
+/* The frames of renderers rs[0 .. n-1] of view v in one command buffer, one submission, one wait. */
+static int render_list(vksky_renderer *const *rs, uint32_t n, const options *o, const host_view *view,
+                       host_commands *h)
+{
+    host_view v = *view;
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     if (o->trace_barriers) fputs("commands\n", stdout);   /* the host's command buffer, as the CLI's trace names one */
@@ -244,6 +252,7 @@ static int accumulate(const groups *g, uint32_t first, uint32_t count, vksky_ren
 static int groups_frame(groups *g, const options *o, host_commands *h, spectral_image *out)
 {
     *out = (spectral_image){0};
+    host_view v = whole_view(o);
     size_t pixels = (size_t)o->width * o->height;
     float *xyz = calloc(pixels * 3, sizeof *xyz);
     out->linear = malloc(pixels * 4 * sizeof *out->linear);
@@ -258,10 +267,10 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
     int status = 0;
     if (g->shared) {   /* one renderer: each group summed before the next one's frame overwrites its readback */
         for (uint32_t k = 0; k < g->count && status == 0 && !stop_requested(); ++k)
-            status = vksky_renderer_set_scene(g->r[0], g->scene[k]) != VKSKY_SUCCESS || render_list(g->r, 1, o, h) ||
+            status = vksky_renderer_set_scene(g->r[0], g->scene[k]) != VKSKY_SUCCESS || render_list(g->r, 1, o, &v, h) ||
                      accumulate(g, k, 1, g->r, xyz, pixels, k + 1 == g->count, out, rgb);
     } else {
-        status = render_list(g->r, g->count, o, h) ||
+        status = render_list(g->r, g->count, o, &v, h) ||
                  accumulate(g, 0, g->count, g->r, xyz, pixels, true, out, rgb);
     }
     if (status != 0 || stop_requested()) {
@@ -397,7 +406,7 @@ int spectral_host_sequence(const options *o, vksky_context *ctx, vksky_scene *sc
 {
     spectral_render_begin(o, NULL);   /* the host tone map's quiet setting (a sequence: no exposure line) */
     groups g = {0};
-    int status = groups_create(&g, o, ctx, scene, sequence_shared(ctx));
+    int status = groups_create(&g, o, ctx, scene, sequence_shared(ctx), o->height);
     if (status == 0) status = render_sequence(o, ctx, scene, h, &g);
     groups_destroy(&g);
     return status;
@@ -409,11 +418,53 @@ int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene
     *out = (spectral_image){0};
     spectral_render_begin(o, NULL);   /* the host tone map's quiet setting */
     groups g = {0};
-    int status = groups_create(&g, o, ctx, scene, true);
+    int status = groups_create(&g, o, ctx, scene, true, o->height);
     startup_frame_begin();   /* --timings: the first image (its renderer's figures, its last group's passes) */
     if (status == 0) status = groups_frame(&g, o, h, out);
     if (status == 0 && o->timings) host_timings_frame_end(g.r[0]);
     groups_destroy(&g);
     if (status) spectral_image_release(out);
+    return status;
+}
+
+/* An image in several bands (app/runs/tiles.c draws them through tiles_render_drawn): a renderer per group of the
+ * band's size, each keeping its LUTs from band to band, every group of a band in one submission, the sum on the encode
+ * threads into the band's linear image (.exr only: a .png in bands is refused, spectral_render_unable). */
+typedef struct band_draw {
+    const options *o;
+    groups *g;
+    host_commands *h;
+    size_t pixels;      /* a band's, pad rows included */
+    float *xyz;
+    spectral_image img;
+} band_draw;
+
+static int draw_band(void *user, const host_view *v, frame_ring_pixels *out)
+{
+    band_draw *d = user;
+    memset(d->xyz, 0, d->pixels * 3 * sizeof *d->xyz);
+    if (render_list(d->g->r, d->g->count, d->o, v, d->h) ||
+        accumulate(d->g, 0, d->g->count, d->g->r, d->xyz, d->pixels, true, &d->img, NULL))
+        return 1;
+    *out = (frame_ring_pixels){d->img.linear, NULL};
+    return 0;
+}
+
+int spectral_host_bands(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h)
+{
+    spectral_render_begin(o, NULL);
+    groups g = {0};
+    int rows = tiles_frame_rows(o), status = groups_create(&g, o, ctx, scene, false, rows);
+    band_draw d = {.o = o, .g = &g, .h = h, .pixels = (size_t)o->width * (size_t)rows};
+    d.xyz = malloc(d.pixels * 3 * sizeof *d.xyz);
+    d.img.linear = malloc(d.pixels * 4 * sizeof *d.img.linear);
+    if (status == 0 && (!d.xyz || !d.img.linear)) {
+        fprintf(stderr, "vksky: --spectral: out of memory\n");
+        status = 1;
+    }
+    if (status == 0) status = tiles_render_drawn(o, draw_band, &d);
+    free(d.xyz);
+    spectral_image_release(&d.img);
+    groups_destroy(&g);
     return status;
 }

@@ -28,4 +28,7 @@ int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene
 /* A sequence (or --skip-existing), frame by frame (each frame's groups in one submission), as the serial loop of
  * app/runs/sequence.c writes it: files, progress and summary lines. `scene` takes each frame's values. 0, or 1. */
 int spectral_host_sequence(const options *o, vksky_context *ctx, vksky_scene *scene, host_commands *h);
+/* An .exr image in several bands (tiles_in_bands): a renderer per group of tiles_frame_rows rows, every band's groups
+ * in one submission and summed on the encode threads, the bands streamed by app/runs/tiles.c. 0, or 1. */
+int spectral_host_bands(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h);
 #endif

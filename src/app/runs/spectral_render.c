@@ -68,12 +68,11 @@ const char *spectral_render_unable(const options *o)
     if (wants_display(o) && tiles_wanted(o))
         return "a .png environment map or banded image: its tone map needs the whole image (write .exr, or one band "
                "of a perspective frame)";
-    /* An .exr map in one band is the whole image, drawn through include/vksky.h like a perspective frame
-     * (app/runs/spectral_host.c). Images in several bands (app/runs/tiles.c) have no spectral path yet: tiles.c renders
-     * one renderer's bands, and a spectral band would need every group's (issue 25s, not done). */
-    if (tiles_in_bands(o))
-        return "an image in several bands (over the band budget, VKSKY_TILE_PIXELS / VKSKY_TILE_ROWS): bands are "
-               "rendered band by band, which has no spectral path yet (render it in one band, or RGB)";
+    /* An .exr map or image, in one band or several, goes through include/vksky.h (app/runs/spectral_host.c; several
+     * bands through tiles.c's tiles_render_drawn). A sequence draws whole frames: not one in several bands. */
+    if (tiles_in_bands(o) && sequence_active(o))
+        return "a sequence of images in several bands (over the band budget, VKSKY_TILE_PIXELS / VKSKY_TILE_ROWS): a "
+               "spectral sequence draws whole frames (render each frame alone, or RGB)";
     return NULL;
 }
 

@@ -129,16 +129,31 @@ static host_view band_view(const bands_state *st, const host_view *whole, int y)
     return v;
 }
 
-static int bands_serial(bands_state *st, vksky_renderer *r, host_commands *h, const host_view *whole, int band,
-                        FILE *trace)
+/* The RGB renderer's band (tiles_draw_fn): its frame, read back in slot 0. */
+typedef struct renderer_draw {
+    vksky_renderer *r;
+    host_commands *h;
+    FILE *trace;
+} renderer_draw;
+
+static int draw_renderer(void *user, const host_view *v, frame_ring_pixels *out)
+{
+    renderer_draw *d = user;
+    vksky_readback px;
+    if (host_commands_render(d->h, d->r, v, d->trace, NULL) ||
+        vksky_renderer_get_readback_slot(d->r, 0, &px) != VKSKY_SUCCESS)
+        return 1;
+    *out = (frame_ring_pixels){px.linear_rgba16f, px.display_rgba8};
+    return 0;
+}
+
+static int bands_serial(bands_state *st, tiles_draw_fn draw, void *user, const host_view *whole, int band)
 {
     int height = st->o->height, status = 0;
     for (int y = 0; y < height && status == 0; y += band) {
         host_view v = band_view(st, whole, y);
-        vksky_readback px;
-        if (host_commands_render(h, r, &v, trace, NULL) || vksky_renderer_get_readback_slot(r, 0, &px) != VKSKY_SUCCESS)
-            return 1;
-        frame_ring_pixels pixels = {px.linear_rgba16f, px.display_rgba8};
+        frame_ring_pixels pixels;
+        if (draw(user, &v, &pixels)) return 1;
         status = write_band(st, &pixels, y, height - y < band ? height - y : band);
     }
     return status;
@@ -208,7 +223,9 @@ static double tiles_auto_exposure(const bands_state *st, vksky_renderer *r, host
     return v.exposure_ev;
 }
 
-int tiles_render(const options *o, vksky_context *ctx, vksky_renderer *r, host_commands *h, FILE *trace)
+/* tiles_render's body: r (the RGB renderer, pipelined where it pays) or draw (serial). */
+static int render_bands(const options *o, vksky_context *ctx, vksky_renderer *r, host_commands *h, FILE *trace,
+                        tiles_draw_fn draw, void *user)
 {
     int width = o->width, height = o->height;
     int band = tiles_band_rows(width, height, tiles_budget());
@@ -216,7 +233,9 @@ int tiles_render(const options *o, vksky_context *ctx, vksky_renderer *r, host_c
     /* Pipelined (app/runs/host_ring.h): band k+1 renders while band k is written. The bands keep their height (a
      * cube or perspective band's pixels depend on it by up to an fp16 ulp, and the files must equal the serial
      * loop's); each slot past the first adds one band's readback buffers (12 bytes a pixel). */
-    int slots = bands > 1 ? host_ring_slots_wanted() : 0;
+    int slots = bands > 1 && r ? host_ring_slots_wanted() : 0;
+    renderer_draw own = {r, h, trace};
+    if (!draw) draw = draw_renderer, user = &own;
 
     output outs[OPTIONS_MAX_OUTPUTS] = {0};
     if (open_outputs(o, outs) != 0) {
@@ -233,16 +252,16 @@ int tiles_render(const options *o, vksky_context *ctx, vksky_renderer *r, host_c
                        .exposure = o->view.exposure_ev, .projection = (vksky_projection)o->view.projection,
                        .whole_width = (uint32_t)width, .whole_height = (uint32_t)height};
     int status = 0;
-    if (light_auto_exposure_wanted(o)) {
+    if (r && light_auto_exposure_wanted(o)) {
         whole.exposure = tiles_auto_exposure(&st, r, h, &whole, band, trace);
         if (isnan(whole.exposure)) status = 1;
     }
     stage_begin();
     if (status == 0)
         status = slots >= 2 ? bands_ring(&st, ctx, r, &whole, band, slots, trace)
-                            : bands_serial(&st, r, h, &whole, band, trace);
+                            : bands_serial(&st, draw, user, &whole, band);
     /* A LUT cache miss: the LUTs the first band computed, into the cache for the next start (every band is done). */
-    if (status == 0 && vksky_renderer_store_luts(r) != VKSKY_SUCCESS) status = 1;
+    if (status == 0 && r && vksky_renderer_store_luts(r) != VKSKY_SUCCESS) status = 1;
     char err[512];
     stage_mark t0 = stage_mark_now();
     for (int i = 0; i < o->output_count && status == 0; ++i) {
@@ -257,4 +276,14 @@ int tiles_render(const options *o, vksky_context *ctx, vksky_renderer *r, host_c
     free(st.band_f32);
     abort_outputs(o, outs);
     return status;
+}
+
+int tiles_render(const options *o, vksky_context *ctx, vksky_renderer *r, host_commands *h, FILE *trace)
+{
+    return render_bands(o, ctx, r, h, trace, NULL, NULL);
+}
+
+int tiles_render_drawn(const options *o, tiles_draw_fn draw, void *user)
+{
+    return render_bands(o, NULL, NULL, NULL, NULL, draw, user);
 }

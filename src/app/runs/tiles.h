@@ -27,4 +27,11 @@ void tiles_begin_notes(const options *o);
  * (runtime failure, message printed, no partial file), or 1 when SIGINT/SIGTERM stopped it (between bands; the
  * partial files removed; the caller's stop_status exits 130 / 143). */
 int tiles_render(const options *o, vksky_context *ctx, vksky_renderer *r, host_commands *h, FILE *trace);
+
+/* The same bands drawn by someone else (app/runs/spectral_host.c: the wavelength groups summed): `draw` fills *out
+ * with the band of view v (v->first_row, tiles_frame_rows(o) rows read back, pad rows included) and returns 0, or 1
+ * with its message printed; its pixels stay valid until the next call. One band at a time, written in order; no
+ * auto exposure (a .png in bands is refused before: spectral_render_unable). 0, or 1. */
+typedef int (*tiles_draw_fn)(void *user, const host_view *v, frame_ring_pixels *out);
+int tiles_render_drawn(const options *o, tiles_draw_fn draw, void *user);
 #endif
