@@ -11,6 +11,10 @@ VKSKY=${1:?usage: sun_disc_power_test.sh VKSKY}
 HERE=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+# The LUT cache on in the test's own directory: the checks are not about the LUT passes (tests/lib/own_lut_cache.sh).
+# shellcheck source=lib/own_lut_cache.sh
+source "$(dirname "$0")/lib/own_lut_cache.sh"
+own_lut_cache "$work"
 fails=0
 # case: projection | flags (the sun, size, view)
 cases=(

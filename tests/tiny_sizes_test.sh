@@ -20,6 +20,10 @@ VKSKY=${1:?usage: tiny_sizes_test.sh path/to/vksky path/to/exr_probe}
 PROBE=${2:?usage: tiny_sizes_test.sh path/to/vksky path/to/exr_probe}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+# The LUT cache on in the test's own directory: the checks are about sizes, not LUTs (tests/lib/own_lut_cache.sh).
+# shellcheck source=lib/own_lut_cache.sh
+source "$(dirname "$0")/lib/own_lut_cache.sh"
+own_lut_cache "$work"
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 TOL=0.08
