@@ -2,6 +2,9 @@
    is checked against the file's real size before the library allocates for it: the chunk table, each chunk's
    packed bytes, each chunk's unpacked bytes. */
 #include "io/exr_read_internal.h"
+#include "io/exr_deflate.h"
+
+#include <libdeflate.h>
 
 #include <stdint.h>
 #include <stdio.h>
@@ -17,7 +20,25 @@ typedef struct unpack_target {
     int x0, y0;         /* chunk origin in the data window */
     int row0, rows;     /* the rows of the data window `out` holds (out's row 0 is row0) */
     const int *slot_of; /* [count]: the decoder channel feeding output slot k */
+    struct libdeflate_decompressor *inflater; /* ZIP / ZIPS chunks: libdeflate instead of the library's zlib */
+    unsigned char *scratch;                   /* the inflated, still predicted bytes (unpacked size) */
+    size_t scratch_size;
 } unpack_target;
+
+/* The decompress step of a ZIP / ZIPS chunk: libdeflate (issue 28: zlib's inflate was a fifth of a composite's CPU). */
+static exr_result_t inflate_zip(exr_decode_pipeline_t *dec)
+{
+    const unpack_target *t = (const unpack_target *)dec->decoding_user_data;
+    if (!t) return EXR_ERR_INVALID_ARGUMENT;
+    return io_exr_inflate_chunk(dec, t->inflater, t->scratch, t->scratch_size);
+}
+
+/* 1 unless VKSKY_EXR_ZLIB_INFLATE=1 asks for OpenEXRCore's own inflate (tests compare the two). */
+static int use_libdeflate(void)
+{
+    const char *v = getenv("VKSKY_EXR_ZLIB_INFLATE");
+    return !(v && v[0] && v[0] != '0');
+}
 
 static float load_value(const uint8_t *s, int type)
 {
@@ -125,13 +146,24 @@ static int read_chunk(exr_context_t ctxt, const io_exr_src *src, int part, const
                 ci->user_bytes_per_element = (int16_t)sizeof(float);
             }
         }
-        unpack_target target = {out, width, count, x0, y0, row0, rows, slots};
+        unpack_target target = {out, width, count, x0, y0, row0, rows, slots, NULL, NULL, 0};
         rc = exr_decoding_choose_default_routines(ctxt, part, &dec);
+        int zip = cinfo->compression == EXR_COMPRESSION_ZIP || cinfo->compression == EXR_COMPRESSION_ZIPS;
+        if (rc == EXR_ERR_SUCCESS && zip && dec.decompress_fn && use_libdeflate() &&
+            cinfo->packed_size != cinfo->unpacked_size) {
+            target.inflater = libdeflate_alloc_decompressor();
+            target.scratch_size = (size_t)cinfo->unpacked_size;
+            target.scratch = (unsigned char *)malloc(target.scratch_size ? target.scratch_size : 1);
+            if (!target.inflater || !target.scratch) rc = EXR_ERR_OUT_OF_MEMORY;
+            dec.decompress_fn = inflate_zip;
+        }
         if (rc == EXR_ERR_SUCCESS) {
             dec.decoding_user_data = &target;
             dec.unpack_and_convert_fn = unpack_to_float;
             rc = exr_decoding_run(ctxt, part, &dec);
         }
+        if (target.inflater) libdeflate_free_decompressor(target.inflater);
+        free(target.scratch);
     }
     exr_decoding_destroy(ctxt, &dec);
     if (slots != slot_of) free(slots);
