@@ -69,6 +69,7 @@ float io_half_to_float(uint16_t hv)
  *  - half -> float: F16C quiets signalling NaNs, io_half_to_float keeps the payload as is, so a group of four that
  *    holds a NaN goes through the scalar path (NaNs are rare in images). */
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <cpuid.h>
 #include <immintrin.h>
 #define IO_HALF_HAVE_F16C 1
 
@@ -119,8 +120,16 @@ static int have_f16c(void)
 {
     static int cached = -1; /* benign race: every thread computes the same answer */
     if (cached < 0) {
-        __builtin_cpu_init();
-        cached = __builtin_cpu_supports("f16c") ? 1 : 0;
+        /* cpuid rather than __builtin_cpu_supports("f16c"), which clang 14 does not know. F16C is VEX-encoded: it
+         * also needs the OS to save the AVX state (OSXSAVE and XCR0's SSE and AVX bits). */
+        unsigned a = 0, b = 0, c = 0, d = 0;
+        int ok = __get_cpuid(1, &a, &b, &c, &d) && (c & (1u << 29)) && (c & (1u << 28)) && (c & (1u << 27));
+        if (ok) {
+            unsigned lo, hi;
+            __asm__ volatile("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+            ok = (lo & 6u) == 6u;
+        }
+        cached = ok;
     }
     return cached;
 }
