@@ -2,7 +2,7 @@
 # Issue 28: EXR chunks inflated by libdeflate give pixels bit-identical to OpenEXRCore's own decode, for files written
 # by OpenImageIO (oiiotool) in every lossless compression vksky reads (NONE, RLE, ZIPS, ZIP, PIZ), HALF and FLOAT,
 # and for OpenEXR's own test image stripes.exr (PIZ) and its ZIP / ZIPS re-encodings. vksky-written ZIP files are
-# read the same way by the composite tests (composite_fast compares with pixels computed independently).
+# read through the same path by the composite tests.
 # Usage: exr_inflate_test.sh EXR_INFLATE_CHECK DATA_DIR
 set -eu
 check=$1 data=$2
