@@ -10,7 +10,7 @@
 #define IO_EXR_DEFAULT_ZIP_LEVEL 4
 
 typedef struct io_encode_settings {
-    int threads;          /* EXR chunk compression threads; 0: the cores available to the process */
+    int threads;          /* EXR chunk compression (and, issue 28, decoding) threads; 0: the cores available */
     int exr_compression;  /* an exr_compression_t (openexr.h); EXR_COMPRESSION_ZIP by default */
     int zip_level;        /* deflate level 1..9 for ZIP and ZIPS; 0: IO_EXR_DEFAULT_ZIP_LEVEL */
 } io_encode_settings;

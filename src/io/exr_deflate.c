@@ -64,3 +64,35 @@ exr_result_t io_exr_deflate_chunk(exr_encode_pipeline_t *enc, struct libdeflate_
     enc->compressed_bytes = out;
     return EXR_ERR_SUCCESS;
 }
+
+void io_exr_zip_unpredict(unsigned char *out, unsigned char *pred, size_t n)
+{
+    if (n == 0) return;
+    /* Undo the differences in place (forwards: the byte before is already restored), then re-interleave. */
+    for (size_t i = 1; i < n; ++i) pred[i] = (unsigned char)(pred[i - 1] + pred[i] - 128u);
+    size_t pairs = n / 2, half = (n + 1) / 2;
+    const unsigned char *t1 = pred, *t2 = pred + half;
+    for (size_t i = 0; i < pairs; ++i) {
+        out[2 * i] = t1[i];
+        out[2 * i + 1] = t2[i];
+    }
+    if (n & 1) out[n - 1] = t1[pairs];
+}
+
+exr_result_t io_exr_inflate_chunk(exr_decode_pipeline_t *dec, struct libdeflate_decompressor *d, unsigned char *scratch,
+                                  size_t scratch_size)
+{
+    size_t packed = (size_t)dec->chunk.packed_size, unpacked = (size_t)dec->chunk.unpacked_size;
+    if (packed == 0) return EXR_ERR_SUCCESS;
+    if (!dec->packed_buffer || !dec->unpacked_buffer) return EXR_ERR_INVALID_ARGUMENT;
+    if (packed == unpacked) { /* stored raw: the writer's chunk did not get smaller */
+        if (dec->unpacked_buffer != dec->packed_buffer) memcpy(dec->unpacked_buffer, dec->packed_buffer, unpacked);
+        return EXR_ERR_SUCCESS;
+    }
+    if (!d || !scratch || scratch_size < unpacked) return EXR_ERR_INVALID_ARGUMENT;
+    size_t got = 0;
+    enum libdeflate_result r = libdeflate_zlib_decompress(d, dec->packed_buffer, packed, scratch, unpacked, &got);
+    if (r != LIBDEFLATE_SUCCESS || got != unpacked) return EXR_ERR_CORRUPT_CHUNK;
+    io_exr_zip_unpredict(dec->unpacked_buffer, scratch, unpacked);
+    return EXR_ERR_SUCCESS;
+}

@@ -11,6 +11,7 @@
 #include <openexr.h>
 
 struct libdeflate_compressor;
+struct libdeflate_decompressor;
 
 /* The compressor for an OpenEXR part's zip level (exr_get_zip_compression_level: -1, unset: IO_EXR_DEFAULT_ZIP_LEVEL,
  * 4, OpenEXR 3.2's default; 3.1 writes zlib 6). One per thread: a compressor is not shareable. NULL when out of memory. */
@@ -24,4 +25,13 @@ exr_result_t io_exr_deflate_chunk(exr_encode_pipeline_t *enc, struct libdeflate_
 
 /* The file format's predictor alone: `n` packed bytes into `out` (n bytes), as the compress step does (tests). */
 void io_exr_zip_predict(unsigned char *out, const unsigned char *raw, size_t n);
+
+/* Reading (issue 28): the decompress step of a ZIP or ZIPS chunk, dec->packed_buffer into dec->unpacked_buffer (both
+ * set up by the pipeline before its decompress step), inflated by libdeflate into `scratch` (at least the chunk's
+ * unpacked size; the caller's) and un-predicted. A stored-raw chunk (packed size == unpacked size) is copied, as
+ * OpenEXRCore does. EXR_ERR_CORRUPT_CHUNK when the stream is bad or inflates to another size. */
+exr_result_t io_exr_inflate_chunk(exr_decode_pipeline_t *dec, struct libdeflate_decompressor *d, unsigned char *scratch,
+                                  size_t scratch_size);
+/* The predictor undone: `pred` (n bytes, overwritten) into `out` (n bytes); the inverse of io_exr_zip_predict. */
+void io_exr_zip_unpredict(unsigned char *out, unsigned char *pred, size_t n);
 #endif

@@ -67,7 +67,7 @@ static void feed_channel(exr_coding_channel_info_t *ci, const io_exr_write_layer
         ci->user_line_stride = width * L->channels * (int32_t)sizeof(uint16_t);
     } else {
         size_t n = (size_t)rows * (size_t)width;
-        for (size_t i = 0; i < n; ++i) scratch[i] = io_float_to_half(L->f32[first + i * (size_t)L->channels]);
+        io_floats_to_halves(scratch, L->f32 + first, n, (size_t)L->channels);
         ci->encode_from_ptr = (const uint8_t *)scratch;
         ci->user_pixel_stride = (int32_t)sizeof(uint16_t);
         ci->user_line_stride = width * (int32_t)sizeof(uint16_t);

@@ -172,7 +172,7 @@ static exr_result_t feed_band_chunk(void *user, exr_encode_pipeline_t *enc, int 
         size_t at = (size_t)(y - f->first) * (size_t)s->width * (size_t)stride + (size_t)c;
         size_t n = (size_t)rows * (size_t)s->width;
         uint16_t *dst = chunk + (size_t)ch * (size_t)s->lines_per_chunk * (size_t)s->width;
-        for (size_t i = 0; i < n; ++i) dst[i] = io_float_to_half(L->pixels[at + i * (size_t)stride]);
+        io_floats_to_halves(dst, L->pixels + at, n, (size_t)stride);
         ci->encode_from_ptr = (const uint8_t *)dst;
         ci->user_pixel_stride = (int32_t)sizeof(uint16_t);
         ci->user_line_stride = s->width * (int32_t)sizeof(uint16_t);

@@ -2,6 +2,13 @@
    is checked against the file's real size before the library allocates for it: the chunk table, each chunk's
    packed bytes, each chunk's unpacked bytes. */
 #include "io/exr_read_internal.h"
+#include "io/exr_deflate.h"
+
+#include "io/encode_settings.h"
+
+#include <libdeflate.h>
+#include <pthread.h>
+#include <stdatomic.h>
 
 #include <stdint.h>
 #include <stdio.h>
@@ -17,7 +24,25 @@ typedef struct unpack_target {
     int x0, y0;         /* chunk origin in the data window */
     int row0, rows;     /* the rows of the data window `out` holds (out's row 0 is row0) */
     const int *slot_of; /* [count]: the decoder channel feeding output slot k */
+    struct libdeflate_decompressor *inflater; /* ZIP / ZIPS chunks: libdeflate instead of the library's zlib */
+    unsigned char *scratch;                   /* the inflated, still predicted bytes (unpacked size) */
+    size_t scratch_size;
 } unpack_target;
+
+/* The decompress step of a ZIP / ZIPS chunk: libdeflate (issue 28: zlib's inflate was a fifth of a composite's CPU). */
+static exr_result_t inflate_zip(exr_decode_pipeline_t *dec)
+{
+    const unpack_target *t = (const unpack_target *)dec->decoding_user_data;
+    if (!t) return EXR_ERR_INVALID_ARGUMENT;
+    return io_exr_inflate_chunk(dec, t->inflater, t->scratch, t->scratch_size);
+}
+
+/* 1 unless VKSKY_EXR_ZLIB_INFLATE=1 asks for OpenEXRCore's own inflate (tests compare the two). */
+static int use_libdeflate(void)
+{
+    const char *v = getenv("VKSKY_EXR_ZLIB_INFLATE");
+    return !(v && v[0] && v[0] != '0');
+}
 
 static float load_value(const uint8_t *s, int type)
 {
@@ -125,13 +150,24 @@ static int read_chunk(exr_context_t ctxt, const io_exr_src *src, int part, const
                 ci->user_bytes_per_element = (int16_t)sizeof(float);
             }
         }
-        unpack_target target = {out, width, count, x0, y0, row0, rows, slots};
+        unpack_target target = {out, width, count, x0, y0, row0, rows, slots, NULL, NULL, 0};
         rc = exr_decoding_choose_default_routines(ctxt, part, &dec);
+        int zip = cinfo->compression == EXR_COMPRESSION_ZIP || cinfo->compression == EXR_COMPRESSION_ZIPS;
+        if (rc == EXR_ERR_SUCCESS && zip && dec.decompress_fn && use_libdeflate() &&
+            cinfo->packed_size != cinfo->unpacked_size) {
+            target.inflater = libdeflate_alloc_decompressor();
+            target.scratch_size = (size_t)cinfo->unpacked_size;
+            target.scratch = (unsigned char *)malloc(target.scratch_size ? target.scratch_size : 1);
+            if (!target.inflater || !target.scratch) rc = EXR_ERR_OUT_OF_MEMORY;
+            dec.decompress_fn = inflate_zip;
+        }
         if (rc == EXR_ERR_SUCCESS) {
             dec.decoding_user_data = &target;
             dec.unpack_and_convert_fn = unpack_to_float;
             rc = exr_decoding_run(ctxt, part, &dec);
         }
+        if (target.inflater) libdeflate_free_decompressor(target.inflater);
+        free(target.scratch);
     }
     exr_decoding_destroy(ctxt, &dec);
     if (slots != slot_of) free(slots);
@@ -152,6 +188,132 @@ static int read_chunk(exr_context_t ctxt, const io_exr_src *src, int part, const
 
 /* Reads every wanted channel of `part` (want[k] = its index in the part's channel list, or -1), rows [row0, row0 +
    rows) of it: only the chunks that hold them. */
+typedef struct part_job {
+    exr_context_t ctxt;
+    const io_exr_src *src;
+    int part;
+    exr_storage_t storage;
+    exr_attr_box2i_t dw;
+    int step_x, step_y, nx, cy0;
+    int width, height, row0, rows;
+    float *out;
+    int count;
+    const int *want;
+} part_job;
+
+/* Chunk `idx` of the band (row-major over its chunk rows); 0, or -1 + err. Safe on worker threads: OpenEXRCore
+   reads a context from several threads, the file source reads with pread, and chunks write disjoint pixels. */
+static int part_chunk(const part_job *j, int idx, char *err, size_t err_size)
+{
+    exr_context_t ctxt = j->ctxt;
+    const io_exr_src *src = j->src;
+    int part = j->part, width = j->width, height = j->height, row0 = j->row0, rows = j->rows, count = j->count;
+    exr_storage_t storage = j->storage;
+    exr_attr_box2i_t dw = j->dw;
+    float *out = j->out;
+    const int *want = j->want;
+    int cx = idx % j->nx, cy = j->cy0 + idx / j->nx, step_x = j->step_x, step_y = j->step_y;
+    exr_chunk_info_t cinfo;
+    memset(&cinfo, 0, sizeof cinfo);
+    exr_result_t rc;
+    int x0 = cx * step_x, y0 = cy * step_y;
+    if (storage == EXR_STORAGE_SCANLINE)
+        rc = exr_read_scanline_chunk_info(ctxt, part, dw.min.y + y0, &cinfo);
+    else
+        rc = exr_read_tile_chunk_info(ctxt, part, cx, cy, 0, 0, &cinfo);
+    if (rc != EXR_ERR_SUCCESS) {
+        exr_compression_t comp = EXR_COMPRESSION_NONE;
+        exr_get_compression(ctxt, part, &comp);
+        /* 3.1's C library refuses a chunk whose packed size exceeds its unpacked size; B44 pads HALF data to
+           4x4 blocks, so a small edge tile of a valid file can be refused (the C++ library reads it). */
+        int b44 = comp == EXR_COMPRESSION_B44 || comp == EXR_COMPRESSION_B44A;
+        io_exr_read_err(err, err_size, src, "truncated or corrupt chunk in part %d at rows from %d: %s%s", part,
+                        y0, io_exr_read_msg(rc),
+                        b44 ? " (OpenEXR 3.1's C library refuses some valid B44 edge tiles: re-save with ZIP "
+                              "or PIZ if other programs read this file)"
+                            : "");
+        return -1;
+    }
+    if (storage == EXR_STORAGE_SCANLINE) { /* scanline chunks state their own rows */
+        x0 = cinfo.start_x - dw.min.x;
+        y0 = cinfo.start_y - dw.min.y;
+    }
+    if (x0 < 0 || y0 < 0 || cinfo.width <= 0 || cinfo.height <= 0 || cinfo.width > width - x0 ||
+        cinfo.height > height - y0) {
+        io_exr_read_err(err, err_size, src, "corrupt chunk in part %d: %dx%d at (%d, %d) outside the %dx%d "
+                        "data window", part, cinfo.width, cinfo.height, x0, y0, width, height);
+        return -1;
+    }
+    if (read_chunk(ctxt, src, part, &cinfo, x0, y0, out, width, row0, rows, count, want, err, err_size) != 0)
+        return -1;
+    return 0;
+}
+
+/* The band's chunks decoded by worker threads (issue 28: inflate was a fifth of a composite's CPU). Each worker
+   takes the next chunk index; the error reported is the first failing chunk's in file order, so the outcome does not
+   depend on the thread count. */
+typedef struct chunk_pool {
+    const part_job *job;
+    int total;
+    atomic_int next;
+    pthread_mutex_t lock;
+    int failed_at; /* lowest failing index, total when none */
+    char err[512];
+} chunk_pool;
+
+static void *chunk_worker(void *arg)
+{
+    chunk_pool *p = (chunk_pool *)arg;
+    char err[512];
+    for (;;) {
+        int idx = atomic_fetch_add(&p->next, 1);
+        if (idx >= p->total) break;
+        pthread_mutex_lock(&p->lock);
+        int stop = idx > p->failed_at;
+        pthread_mutex_unlock(&p->lock);
+        if (stop) break;
+        if (part_chunk(p->job, idx, err, sizeof err) != 0) {
+            pthread_mutex_lock(&p->lock);
+            if (idx < p->failed_at) {
+                p->failed_at = idx;
+                memcpy(p->err, err, sizeof err);
+            }
+            pthread_mutex_unlock(&p->lock);
+            break;
+        }
+    }
+    return NULL;
+}
+
+static int run_chunks(const part_job *job, int total, char *err, size_t err_size)
+{
+    int threads = io_encode_threads();
+    if (threads > 16) threads = 16;
+    if (threads > total) threads = total;
+    if (threads <= 1) {
+        for (int i = 0; i < total; ++i)
+            if (part_chunk(job, i, err, err_size) != 0) return -1;
+        return 0;
+    }
+    chunk_pool p;
+    memset(&p, 0, sizeof p);
+    p.job = job, p.total = total, p.failed_at = total;
+    atomic_init(&p.next, 0);
+    pthread_mutex_init(&p.lock, NULL);
+    pthread_t tid[16];
+    int started = 0;
+    for (; started < threads - 1; ++started)
+        if (pthread_create(&tid[started], NULL, chunk_worker, &p) != 0) break;
+    chunk_worker(&p); /* the caller works too; with no worker started it does every chunk */
+    for (int i = 0; i < started; ++i) pthread_join(tid[i], NULL);
+    pthread_mutex_destroy(&p.lock);
+    if (p.failed_at < total) {
+        snprintf(err, err_size, "%s", p.err);
+        return -1;
+    }
+    return 0;
+}
+
 static int read_part(exr_context_t ctxt, const io_exr_src *src, int part, int width, int height, int row0, int rows,
                      float *out, int count, const int *want, char *err, size_t err_size)
 {
@@ -192,46 +354,11 @@ static int read_part(exr_context_t ctxt, const io_exr_src *src, int part, int wi
         return -1;
     }
     int nx = (width + step_x - 1) / step_x, ny = (height + step_y - 1) / step_y;
-    for (int cy = 0; cy < ny; ++cy) {
-        /* Chunk row cy holds rows [cy step_y, (cy + 1) step_y) (scanline chunks say so again below). */
-        if ((int64_t)(cy + 1) * step_y <= row0 || (int64_t)cy * step_y >= (int64_t)row0 + rows) continue;
-        for (int cx = 0; cx < nx; ++cx) {
-            exr_chunk_info_t cinfo;
-            memset(&cinfo, 0, sizeof cinfo);
-            exr_result_t rc;
-            int x0 = cx * step_x, y0 = cy * step_y;
-            if (storage == EXR_STORAGE_SCANLINE)
-                rc = exr_read_scanline_chunk_info(ctxt, part, dw.min.y + y0, &cinfo);
-            else
-                rc = exr_read_tile_chunk_info(ctxt, part, cx, cy, 0, 0, &cinfo);
-            if (rc != EXR_ERR_SUCCESS) {
-                exr_compression_t comp = EXR_COMPRESSION_NONE;
-                exr_get_compression(ctxt, part, &comp);
-                /* 3.1's C library refuses a chunk whose packed size exceeds its unpacked size; B44 pads HALF data to
-                   4x4 blocks, so a small edge tile of a valid file can be refused (the C++ library reads it). */
-                int b44 = comp == EXR_COMPRESSION_B44 || comp == EXR_COMPRESSION_B44A;
-                io_exr_read_err(err, err_size, src, "truncated or corrupt chunk in part %d at rows from %d: %s%s", part,
-                                y0, io_exr_read_msg(rc),
-                                b44 ? " (OpenEXR 3.1's C library refuses some valid B44 edge tiles: re-save with ZIP "
-                                      "or PIZ if other programs read this file)"
-                                    : "");
-                return -1;
-            }
-            if (storage == EXR_STORAGE_SCANLINE) { /* scanline chunks state their own rows */
-                x0 = cinfo.start_x - dw.min.x;
-                y0 = cinfo.start_y - dw.min.y;
-            }
-            if (x0 < 0 || y0 < 0 || cinfo.width <= 0 || cinfo.height <= 0 || cinfo.width > width - x0 ||
-                cinfo.height > height - y0) {
-                io_exr_read_err(err, err_size, src, "corrupt chunk in part %d: %dx%d at (%d, %d) outside the %dx%d "
-                                "data window", part, cinfo.width, cinfo.height, x0, y0, width, height);
-                return -1;
-            }
-            if (read_chunk(ctxt, src, part, &cinfo, x0, y0, out, width, row0, rows, count, want, err, err_size) != 0)
-                return -1;
-        }
-    }
-    return 0;
+    /* Chunk row cy holds rows [cy step_y, (cy + 1) step_y) (scanline chunks say so again): the band's chunk rows. */
+    int cy0 = row0 / step_y, cy1 = (int)(((int64_t)row0 + rows + step_y - 1) / step_y);
+    if (cy1 > ny) cy1 = ny;
+    part_job job = {ctxt, src, part, storage, dw, step_x, step_y, nx, cy0, width, height, row0, rows, out, count, want};
+    return run_chunks(&job, (cy1 - cy0) * nx, err, err_size);
 }
 
 /* "R, G, B, ViewLayer.Combined.R, ..." (cut short) for the missing-channel message. */

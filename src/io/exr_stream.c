@@ -194,7 +194,7 @@ int io_exr_stream_rows_f32(io_exr_stream *s, const float *rgba, int rows, char *
         }
         s->scratch = grown, s->scratch_rows = (size_t)rows;
     }
-    for (size_t i = 0; i < n; ++i) s->scratch[i] = io_float_to_half(rgba[i]);
+    io_floats_to_halves(s->scratch, rgba, n, 1);
     return stream_rows(s, (const unsigned char *)s->scratch, rows, err, err_size);
 }
 
