@@ -7,8 +7,8 @@
 #include "app/runs/startup.h"
 #include "app/runs/tiles.h"
 #include "app/scene/light.h"
-#include "io/encode_settings.h"
 #include "io/half_float.h"
+#include "io/parts.h"
 #include <pthread.h>
 #include <limits.h>
 #include <stdlib.h>
@@ -148,16 +148,6 @@ static int render_list(vksky_renderer *const *rs, uint32_t n, const options *o, 
  * and every pixel's arithmetic is the serial loop's (groups in order, the same float adds), so the bytes depend on
  * nothing else. A 720p frame of 24 wavelengths is 22 M multiply-adds, on the render thread a serial part of every
  * frame (issue 27: the spectral sequence at 3.5-4 frames/s on the H100). */
-#define SUM_PARTS_MAX 64
-
-static float half_table[65536];
-static pthread_once_t table_once = PTHREAD_ONCE_INIT;
-
-static void table_init(void)
-{
-    for (uint32_t v = 0; v < 65536; ++v) half_table[v] = io_half_to_float((uint16_t)v);
-}
-
 typedef struct sum_job {
     const groups *g;
     const uint16_t *group_px[GROUPS_MAX];   /* the readbacks summed by this job, groups first .. first + count - 1 */
@@ -168,32 +158,28 @@ typedef struct sum_job {
     uint16_t *linear;
 } sum_job;
 
-typedef struct sum_part {
-    const sum_job *job;
-    size_t begin, end;
-} sum_part;
-
-static void *sum_pixels(void *arg)
+static void sum_pixels(void *user, size_t part, size_t begin, size_t end)
 {
-    const sum_part *part = arg;
-    const sum_job *j = part->job;
+    (void)part;
+    const sum_job *j = user;
     const groups *g = j->g;
+    const float *half_value = io_half_table();
     for (uint32_t n = 0; n < j->count; ++n) {
         const double(*m)[3] = g->weights[j->first + n];
         const uint16_t *px = j->group_px[n];
-        for (size_t i = part->begin; i < part->end; ++i) {
+        for (size_t i = begin; i < end; ++i) {
             const uint16_t *p = px + 4 * i;
             float *x = j->xyz + 3 * i;
             for (uint32_t c = 0; c < g->per_pass; ++c) {
-                float v = half_table[p[c]];
+                float v = half_value[p[c]];
                 for (int q = 0; q < 3; ++q) x[q] += (float)(m[c][q] * v);
             }
         }
     }
-    if (!j->resolve) return NULL;
+    if (!j->resolve) return;
     /* Alpha: the composite's with three to a pass (the last group's, as the serial loop leaves it), 1 with four (the
      * four-wide readback's alpha is a wavelength). Out of Rec.709's gamut stays negative; half's range bounds it. */
-    for (size_t i = part->begin; i < part->end; ++i) {
+    for (size_t i = begin; i < end; ++i) {
         double in[3] = {j->xyz[3 * i], j->xyz[3 * i + 1], j->xyz[3 * i + 2]}, rec[3];
         vksky_spectral_xyz_to_rec709(in, rec);
         for (int q = 0; q < 3; ++q) {
@@ -204,32 +190,6 @@ static void *sum_pixels(void *arg)
         j->linear[4 * i + 3] = g->per_pass == 4 ? io_float_to_half(1.0f) : j->alpha[4 * i + 3];
         if (j->rgb) j->rgb[4 * i + 3] = 1.0f;
     }
-    return NULL;
-}
-
-/* Runs the job over pixels [0, pixels) in parts of at least 64 Ki pixels (below that a thread costs more than it
- * saves), part 0 on this thread. */
-static void sum_run(const sum_job *job, size_t pixels)
-{
-    pthread_once(&table_once, table_init);
-    size_t parts = (size_t)io_encode_threads();
-    if (parts > SUM_PARTS_MAX) parts = SUM_PARTS_MAX;
-    if (parts > pixels / 65536) parts = pixels / 65536;
-    if (parts < 1) parts = 1;
-    sum_part p[SUM_PARTS_MAX];
-    pthread_t tid[SUM_PARTS_MAX];
-    size_t per = pixels / parts, at = 0;
-    for (size_t k = 0; k < parts; ++k) {
-        size_t n = k + 1 == parts ? pixels - at : per;
-        p[k] = (sum_part){job, at, at + n};
-        at += n;
-    }
-    size_t started = 1;
-    for (; started < parts; ++started)
-        if (pthread_create(&tid[started], NULL, sum_pixels, &p[started]) != 0) break;
-    for (size_t k = started; k < parts; ++k) sum_pixels(&p[k]);   /* threads that did not start */
-    sum_pixels(&p[0]);
-    for (size_t k = 1; k < started; ++k) pthread_join(tid[k], NULL);
 }
 
 /* Groups first .. first + count - 1 (renderers rs[0 .. count-1]'s last frames) into the XYZ sum; with resolve, the
@@ -244,7 +204,7 @@ static int accumulate(const groups *g, uint32_t first, uint32_t count, vksky_ren
         if (vksky_renderer_get_readback(rs[n], &px) != VKSKY_SUCCESS) return 1;
         job.group_px[n] = job.alpha = px.linear_rgba16f;
     }
-    sum_run(&job, pixels);
+    io_parts_run(pixels, 65536, sum_pixels, &job);   /* parts of at least 64 Ki pixels */
     return 0;
 }
 
