@@ -46,7 +46,7 @@ while read -r f inc; do
     */*) target=${inc%%/*} ;;
     # Unqualified names: the C/GLSL shared layouts (shaders/glsl/shared.h, host_frame_push.h) and the SPIR-V headers generated at
     # build time (build/shaders/*_{comp,frag,vert}.h and shader_key.h, their hash), both for the renderer only.
-    shared.h|host_frame_push.h|shader_key.h|*_comp.h|*_frag.h|*_vert.h) target=shaders ;;
+    shared.h|host_frame_push.h|shader_key.h|sky_shader_key.h|*_comp.h|*_frag.h|*_vert.h) target=shaders ;;
     *) target=UNQUALIFIED ;;
   esac
   if [ "$target" = shaders ]; then

@@ -1,5 +1,6 @@
 #include "sky/shaders.h"
 #include "shader_key.h"
+#include "sky_shader_key.h"
 #include "transmittance_lut_comp.h"
 #include "multiscatter_lut_comp.h"
 #include "transmittance_lut_f32_comp.h"
@@ -70,3 +71,4 @@ const sky_spirv spirv_tonemap_composite_s4 = SPIRV(spv_tonemap_composite_s4_frag
 const sky_spirv spirv_tonemap_composite_comp_s4 = SPIRV(spv_tonemap_composite_s4_comp);
 
 const char *sky_shaders_key(void) { return VKSKY_SHADER_KEY; }
+const char *sky_image_shaders_key(void) { return VKSKY_SKY_SHADER_KEY; }

@@ -17,4 +17,7 @@ extern const sky_spirv spirv_transmittance_lut_s4, spirv_transmittance_lut_f32_s
     spirv_sky_blend_comp_s4, spirv_tonemap_composite_s4, spirv_tonemap_composite_comp_s4;
 /* A hash of all the embedded SPIR-V (generated at build time): the pipeline cache's build key. */
 const char *sky_shaders_key(void);
+/* A hash of the sky image's SPIR-V only (the LUT and sky passes, RGB and four-wide): what the measured quality tables
+ * record (app/quality), so a change to the post chain or the composite does not unmeasure them. */
+const char *sky_image_shaders_key(void);
 #endif

@@ -290,7 +290,7 @@ void quality_names_key(const char *const *names, int count, char *out, size_t si
         const quality_config *q = first ? config_named(names[i]) : NULL;
         if (q) h = knob_hash(h, q);
     }
-    snprintf(out, size, "%s/%08lx", sky_shaders_key(), h);
+    snprintf(out, size, "%s/%08lx", sky_image_shaders_key(), h);
 }
 
 void quality_table_key(bool cpu_device, char *out, size_t size)

@@ -75,9 +75,10 @@ const quality_config *quality_pick(double max_error, unsigned classes, bool cpu_
  * configuration whose mean error on each class of the set is within max(1 %, 1.25 x the best measured error on
  * that class), in the table of the device kind: GPU (quality_table.h, sky GPU ms on an H200) or CPU
  * (quality_table_cpu.h, CPU ms per whole frame on lavapipe). *measured: as quality_pick. */
-/* What a measured table was measured with (issue 31): "<shader key>/<knob hash>", the build's embedded SPIR-V hash
- * (sky_shaders_key) and an FNV-1a hash of the knobs of every configuration its rows name. tools/tradeoff
- * --emit-table records it (QUALITY_TABLE_KEY / QUALITY_TABLE_CPU_KEY); a table measured with other shaders or
+/* What a measured table was measured with (issue 31): "<shader key>/<knob hash>", a hash of the sky image's embedded
+ * SPIR-V (sky_image_shaders_key: the LUT and sky passes, what the tables measure; not the post chain or the
+ * composite) and an FNV-1a hash of the knobs of every configuration its rows name. tools/tradeoff --emit-table
+ * records it (QUALITY_TABLE_KEY / QUALITY_TABLE_CPU_KEY); a table measured with other shaders or
  * knobs is re-measured, or its rows are marked as estimates (QUALITY_TABLE_ESTIMATE / ..._CPU_ESTIMATE: why). */
 void quality_names_key(const char *const *names, int count, char *out, size_t size);
 void quality_table_key(bool cpu_device, char *out, size_t size);   /* this build's key for the compiled-in table */

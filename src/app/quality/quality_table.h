@@ -1,7 +1,9 @@
 /* Measured by tools/tradeoff on NVIDIA H100 80GB HBM3 (sky GPU ms at 1920x1080, median of 30 frames; mean relative
  * luminance error at a 96x54 grid of 640x360 frames vs the converged reference).
  * Regenerate: tradeoff --emit-table FILE. */
-#define QUALITY_TABLE_KEY "63b12ed9154ef7715662fa93/a2159f33"
+/* The key was recorded as "63b12ed9154ef7715662fa93/a2159f33" when it hashed every shader; that build's shaders are
+ * this one's (the whole key was still equal when the sky image's key replaced it), so the rows hold for these. */
+#define QUALITY_TABLE_KEY "a03eb016bdd087ffe4d3dd1a/a2159f33"
 typedef struct quality_measurement { const char *config; int scene; double gpu_ms, err_mean, err_p95; } quality_measurement;
 static const quality_measurement quality_table[] = {
     {"low", 0, 0.1126, 0.02278, 0.02733},
