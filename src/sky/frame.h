@@ -18,7 +18,7 @@ typedef struct frame_target {
     gpu_usage_info host_before, host_after;
     /* With host_uses, on a renderer of desc.host_storage_tonemap and the compute post chain: the compute tone map
      * writes the view as a storage image (R8G8B8A8_UNORM, sRGB encoded in the shader), traced as
-     * host.color.to_storage and host.color.storage_to_after. No capture. */
+     * host.color.to_compute_tonemap and host.color.compute_to_after. No capture. */
     bool storage;
 } frame_target;
 
