@@ -49,7 +49,8 @@ extern "C" {
  *    vksky_frame_swapchain (a swapchain image's barriers); vksky_context_set_debug_utils (names, labels);
  *    vksky_renderer_get_lut_timings (--bench --async-luts); vksky_device_requirements' limits;
  *    spectral groups as scenes (vksky_scene_spectral_group, vksky_scene_spectral_coefficients,
- *    vksky_spectral_group_count, vksky_spectral_xyz_to_rec709): the command line's --spectral N through the API. */
+ *    vksky_spectral_group_count, vksky_spectral_xyz_to_rec709): the command line's --spectral N through the API.
+ *    Then (a minor addition, nothing changed shape): vksky_display_config + vksky_renderer_get_tonemap_path. */
 #define VKSKY_ABI_VERSION 3u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -325,7 +326,8 @@ typedef enum vksky_structure_type {
     VKSKY_STRUCTURE_TYPE_FRAME_PLACE = 18,     /* vksky_frame_place */
     VKSKY_STRUCTURE_TYPE_FRAME_TIMER = 19,     /* vksky_frame_timer */
     VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE = 20,   /* vksky_frame_capture */
-    VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN = 21  /* vksky_frame_swapchain */
+    VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN = 21, /* vksky_frame_swapchain */
+    VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG = 22   /* vksky_display_config, from vksky_renderer_desc.next */
 } vksky_structure_type;
 typedef struct vksky_chain {   /* the head every extension struct starts with: to walk a chain */
     vksky_structure_type type;
@@ -676,6 +678,38 @@ typedef struct vksky_frame_swapchain {
     vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN */
     const void *next;
 } vksky_frame_swapchain;
+
+/* ---- The tone map's path into the host's image (output DISPLAY) ---------------------------------------------------
+ * The tone map writes frame.color either as a colour attachment (a fragment pass: any DISPLAY format, sRGB included)
+ * or as a storage image (a compute dispatch after the compute bloom chain, fused with its last upsample: the sRGB
+ * curve encoded in the shader; the same bytes within 1/255). Only the host knows its images' usage, so a renderer
+ * created without a vksky_display_config takes the fragment path, as before. With one (chained from
+ * vksky_renderer_desc.next, output DISPLAY, no readback config):
+ *   AUTO: compute when target_usage has VK_IMAGE_USAGE_STORAGE_BIT, target_format is R8G8B8A8_UNORM with the
+ *         device's STORAGE_IMAGE feature, and the post chain is compute (a GPU; a CPU implementation such as lavapipe
+ *         keeps the fragment chain); else fragment. An sRGB format (not storage-capable on most devices) is fragment.
+ *   COMPUTE: the compute path, the compute post chain included, on any device; VKSKY_ERROR_UNSUPPORTED (with a
+ *         message) when the format or usage cannot be a storage image.
+ *   FRAGMENT: the fragment path always.
+ * On the compute path the host's image goes from color.before to GENERAL (COMPUTE_SHADER, SHADER_STORAGE_WRITE) and
+ * from there to color.after, traced as host.color.to_compute_tonemap and host.color.compute_to_after (docs/library.md,
+ * docs/synchronization.md). The renderer keeps one descriptor set per host view it has written (8, the least
+ * recently used rewritten for a new view): a command buffer of one of the last 7 views may be pending. A frame with
+ * a vksky_frame_capture or a vksky_frame_swapchain takes the fragment path. */
+typedef enum vksky_tonemap_path {
+    VKSKY_TONEMAP_PATH_AUTO = 0,
+    VKSKY_TONEMAP_PATH_FRAGMENT = 1,
+    VKSKY_TONEMAP_PATH_COMPUTE = 2
+} vksky_tonemap_path;
+typedef struct vksky_display_config {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG */
+    const void *next;
+    VkImageUsageFlags target_usage;   /* the usage the host's colour images were created with */
+    vksky_tonemap_path tonemap_path;
+} vksky_display_config;
+/* The path the renderer's frames into the host's image take: FRAGMENT or COMPUTE (never AUTO); FRAGMENT for a
+ * renderer of another output or with a readback config. */
+VKSKY_API vksky_tonemap_path vksky_renderer_get_tonemap_path(const vksky_renderer *renderer);
 
 #ifdef __cplusplus
 }

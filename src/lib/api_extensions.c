@@ -7,9 +7,9 @@
 /* The chain of a renderer desc: each struct's type known and in its place, at most one of each; the quality config
  * (checked against the command line's ranges) in *quality. */
 vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality,
-                                bool *readback)
+                                bool *readback, const vksky_display_config **display)
 {
-    *quality = NULL, *readback = false;
+    *quality = NULL, *readback = false, *display = NULL;
     for (int depth = 0; next; ++depth) {
         const vksky_chain *link = next;
         if (depth >= 16) {
@@ -18,16 +18,18 @@ vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const 
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
         bool twice = (link->type == VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG && *quality) ||
-                     (link->type == VKSKY_STRUCTURE_TYPE_READBACK_CONFIG && *readback);
-        if ((link->type != VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG && link->type != VKSKY_STRUCTURE_TYPE_READBACK_CONFIG) ||
-            twice) {
+                     (link->type == VKSKY_STRUCTURE_TYPE_READBACK_CONFIG && *readback) ||
+                     (link->type == VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG && *display);
+        if ((link->type != VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG && link->type != VKSKY_STRUCTURE_TYPE_READBACK_CONFIG &&
+             link->type != VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG) || twice) {
             lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
                         "vksky_renderer_create: next chain: structure type %d %s (accepted here: "
-                        "VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG and VKSKY_STRUCTURE_TYPE_READBACK_CONFIG, each once)",
+                        "VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG, _READBACK_CONFIG and _DISPLAY_CONFIG, each once)",
                         (int)link->type, twice ? "twice" : "is unknown to this library or not a renderer's");
             return VKSKY_ERROR_INVALID_ARGUMENT;
         }
         if (link->type == VKSKY_STRUCTURE_TYPE_QUALITY_CONFIG) *quality = next;
+        else if (link->type == VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG) *display = next;
         else *readback = true;
         next = link->next;
     }

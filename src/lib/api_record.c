@@ -355,6 +355,8 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
     /* ABI 3, the window's values (api_window.c): tone map, bloom, place, timer slot, capture, swapchain uses. */
     vksky_result res = lib_window_apply(renderer, &ext, &v, &f, &target);
     if (res != VKSKY_SUCCESS) return res;
+    /* vksky_display_config: the compute tone map writes the host's storage image (not a capture's or a swapchain's). */
+    target.storage = renderer->host_compute && target.host_uses && !target.capture;
     return record_trapped(renderer, cmd, &f, false);
 }
 

@@ -111,6 +111,37 @@ static vksky_result check_desc(vksky_context *c, const vksky_renderer_desc *d)
     return VKSKY_SUCCESS;
 }
 
+/* A vksky_display_config (include/vksky.h, "The tone map's path"): its values, and whether the host's images can be
+ * the compute tone map's storage images (an R8G8B8A8_UNORM image of usage STORAGE on a device that allows it). */
+static vksky_result check_display_config(const vksky_context *c, const vksky_renderer_desc *d,
+                                         const vksky_display_config *dc, bool readback, bool *storage_target)
+{
+    if ((unsigned)dc->tonemap_path > VKSKY_TONEMAP_PATH_COMPUTE || d->output != VKSKY_OUTPUT_DISPLAY || readback) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_renderer_create: vksky_display_config: tonemap_path %d, output %d%s; accepted tonemap_path "
+                    "AUTO, FRAGMENT or COMPUTE, for output DISPLAY without a vksky_readback_config",
+                    (int)dc->tonemap_path, (int)d->output, readback ? " with a readback config" : "");
+        return VKSKY_ERROR_INVALID_ARGUMENT;
+    }
+    VkFormatProperties fp;
+    vkGetPhysicalDeviceFormatProperties(c->gpu.physical, d->target_format, &fp);
+    *storage_target = d->target_format == VK_FORMAT_R8G8B8A8_UNORM && (dc->target_usage & VK_IMAGE_USAGE_STORAGE_BIT) &&
+                      (fp.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT);
+    if (dc->tonemap_path == VKSKY_TONEMAP_PATH_COMPUTE && !*storage_target) {
+        lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,
+                    "vksky_renderer_create: vksky_display_config: tonemap_path COMPUTE with target format %d, usage "
+                    "0x%x; the compute tone map writes R8G8B8A8_UNORM images of usage STORAGE (where the device allows)",
+                    (int)d->target_format, (unsigned)dc->target_usage);
+        return VKSKY_ERROR_UNSUPPORTED;
+    }
+    return VKSKY_SUCCESS;
+}
+
+vksky_tonemap_path vksky_renderer_get_tonemap_path(const vksky_renderer *renderer)
+{
+    return renderer && renderer->host_compute ? VKSKY_TONEMAP_PATH_COMPUTE : VKSKY_TONEMAP_PATH_FRAGMENT;
+}
+
 /* Creates r->r for r->o; Vulkan failures come back through the trap, with everything made so far destroyed. */
 static vksky_result build(vksky_renderer *r, const lib_spectral_group *group)
 {
@@ -132,6 +163,13 @@ static vksky_result build(vksky_renderer *r, const lib_spectral_group *group)
         .render_scale = o->render_scale, .lut = o->lut, .bloom_mips = (uint32_t)o->bloom_mips,
         .post_pass = o->post_pass, .bloom_downsample = o->bloom_downsample, .bloom_quarter = o->bloom_quarter,
         .atmosphere = &lit, .sun_angular_radius_rad = options_sun_radius_rad(o), .features = &features};
+    /* vksky_display_config: the compute tone map into the host's storage image (COMPUTE asks for the compute post
+     * chain too; AUTO takes it where the chain is compute anyway). */
+    r->host_compute = !luts_only && !r->readback && r->storage_target &&
+                      (r->tonemap_path == VKSKY_TONEMAP_PATH_COMPUTE ||
+                       (r->tonemap_path == VKSKY_TONEMAP_PATH_AUTO &&
+                        post_pass_resolve(o->post_pass, &r->ctx->gpu) == POST_PASS_COMPUTE));
+    if (r->host_compute) rdesc.post_pass = POST_PASS_COMPUTE, rdesc.host_storage_tonemap = true;
     gpu_trap trap;
     if (setjmp(trap.jump)) {
         lib_message(r->ctx->message, r->ctx->message_user, VKSKY_SEVERITY_ERROR, "%s", trap.message);
@@ -160,7 +198,10 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
     vksky_result res = check_desc(context, desc);
     const vksky_quality_config *explicit_quality = NULL;
     bool readback = false;
-    if (res == VKSKY_SUCCESS) res = lib_renderer_chain(context, desc->next, &explicit_quality, &readback);
+    const vksky_display_config *display = NULL;
+    if (res == VKSKY_SUCCESS) res = lib_renderer_chain(context, desc->next, &explicit_quality, &readback, &display);
+    bool storage_target = false;
+    if (res == VKSKY_SUCCESS && display) res = check_display_config(context, desc, display, readback, &storage_target);
     if (res == VKSKY_SUCCESS && readback &&
         (desc->output != VKSKY_OUTPUT_DISPLAY || desc->target_format != VK_FORMAT_R8G8B8A8_SRGB)) {
         lib_message(context->message, context->message_user, VKSKY_SEVERITY_ERROR,
@@ -179,6 +220,8 @@ vksky_result vksky_renderer_create(vksky_context *context, const vksky_renderer_
     }
     r->ctx = context;
     r->readback = readback;
+    r->tonemap_path = display ? display->tonemap_path : VKSKY_TONEMAP_PATH_FRAGMENT;
+    r->storage_target = storage_target;
     r->desc = *desc;
     r->desc.scene = NULL, r->desc.quality = NULL, r->desc.next = NULL;
     r->scene_quality = !explicit_quality && desc->max_error == 0.0 && desc->quality && !strcmp(desc->quality, "scene");

@@ -62,6 +62,10 @@ struct vksky_renderer {
     gpu_buffer capture;            /* size 0: none made */
     bool captured;                 /* a frame was captured since the buffer was made */
     uint32_t per_pass;             /* ABI 3: made with a spectral group's scene: 3 or 4 (the four-wide build), else 0 */
+    /* vksky_display_config (api_renderer.c): the tone map's path asked for; storage_target: the host's images can be
+     * the compute tone map's storage images; host_compute: this build's frames take the compute path. */
+    vksky_tonemap_path tonemap_path;
+    bool storage_target, host_compute;
 };
 
 /* A frame's `next` chain, each struct or NULL (lib_frame_chain). */
@@ -84,7 +88,7 @@ void lib_trace_end(const gpu_trace_sink *was);
 /* A renderer desc's `next` chain checked (types known, in place, once; the quality config's ranges): the quality
  * config in *quality, or NULL (api_extensions.c). */
 vksky_result lib_renderer_chain(const vksky_context *c, const void *next, const vksky_quality_config **quality,
-                                bool *readback);
+                                bool *readback, const vksky_display_config **display);
 /* A frame's `next` chain checked (types known, in place, once): the view (vksky_frame_view), the auto exposure and
  * the band (vksky_frame_band: its ranges are the renderer's, checked by vksky_record), each or NULL. */
 vksky_result lib_frame_chain(const vksky_context *c, const void *next, lib_frame_ext *ext);

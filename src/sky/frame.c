@@ -192,7 +192,10 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     bloom_chain *bl = &r->bloom;
     post_compute *pc = &r->post;
     VkImageSubresourceRange one = gpu_color_range(0, 1);
-    bool compute_tonemap = pc->tonemap && !f->target;
+    /* A library host's storage-capable image (frame_target.storage): the compute tone map writes it directly. */
+    const frame_target *host = f->target && f->target->storage && f->target->host_uses && !f->target->capture &&
+                               pc->host_tonemap ? f->target : NULL;
+    bool compute_tonemap = (pc->tonemap && !f->target) || host;
     bool spd = bloom && r->desc.bloom_downsample == BLOOM_DOWN_SINGLE_PASS && pc->spd_pipeline;   /* post.c */
     uint32_t t;
 
@@ -296,6 +299,23 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     TonemapPush tm = sky_view_tonemap_push(v, compute_tonemap ? true : !format_is_srgb(r->desc.display_format));
     if (!bloom) tm.params.z = 0.0f;
     tm.meter.y = (float)(f->meter_slot % VKSKY_METER_SLOTS);
+    if (host) {
+        /* The host's image, from its own last use (whatever it was); the tone map rewrites every pixel (WAR or WAW
+         * on that use, the layout to GENERAL). */
+        gpu_barrier_add_image_info(&b, "host.color.to_compute_tonemap", "host color", host->image, one, host->host_before,
+                                   *gpu_usage_get(GPU_USAGE_COMPUTE_STORAGE_WRITE), true);
+        gpu_barrier_flush(cmd, &b);
+        t = frame_timed_begin(r, cmd, "tonemap");
+        post_record_tonemap_set(pc, bl, cmd, host->extent, &tm, post_host_set(pc, r->ctx, host->view));
+        frame_timed_end(r, cmd, t);
+        /* The tone map's writes made available to the host's next use, in its layout (RAW or WAW, and the layout it
+         * asked for). */
+        b = gpu_barrier_batch_begin("end of frame");
+        gpu_barrier_add_image_info(&b, "host.color.compute_to_after", "host color", host->image, one,
+                                   *gpu_usage_get(GPU_USAGE_COMPUTE_STORAGE_WRITE), host->host_after, false);
+        gpu_barrier_flush(cmd, &b);
+        return true;
+    }
     if (compute_tonemap) {
         /* The display and composite images were read by the previous frame's readback copies (WAR); the
          * compute tone map rewrites every pixel: UNDEFINED -> GENERAL. */

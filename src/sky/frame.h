@@ -16,6 +16,10 @@ typedef struct frame_target {
      * of before/after; traced as host.color.to_attachment and host.color.to_after. */
     bool host_uses;
     gpu_usage_info host_before, host_after;
+    /* With host_uses, on a renderer of desc.host_storage_tonemap and the compute post chain: the compute tone map
+     * writes the view as a storage image (R8G8B8A8_UNORM, sRGB encoded in the shader), traced as
+     * host.color.to_compute_tonemap and host.color.compute_to_after. No capture. */
+    bool storage;
 } frame_target;
 
 typedef struct frame_desc {

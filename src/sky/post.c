@@ -84,20 +84,40 @@ static void create_bloom(post_compute *p, const pass_shared *s, const gpu_image 
     }
 }
 
+/* The tone map's bindings but the display's: the HDR image, bloom mips 0 and 1 (the HDR image in their place without
+ * a chain: never sampled, strength 0). */
+static void write_tonemap_sources(const pass_shared *s, VkDescriptorSet set, const gpu_image *hdr,
+                                  const bloom_chain *bloom)
+{
+    const gpu_context *ctx = s->ctx;
+    const VkDescriptorType SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    write_image(ctx, set, VKSKY_BINDING_POST_SOURCE, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    for (uint32_t i = 0; i < 2; ++i) {
+        if (bloom) {
+            VkImageView v = bloom->mips.mip_views[i < bloom->mip_count ? i : 0];
+            write_image(ctx, set, VKSKY_BINDING_POST_MIP + i, SAMPLED, v, s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
+        } else {
+            write_image(ctx, set, VKSKY_BINDING_POST_MIP + i, SAMPLED, hdr->view, s->linear_clamp,
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        }
+    }
+}
+
 void post_compute_create(post_compute *p, const pass_shared *s, const gpu_image *hdr, const bloom_chain *bloom,
-                         VkImageView display, VkImageView composite)
+                         VkImageView display, VkImageView composite, bool host_targets)
 {
     const gpu_context *ctx = s->ctx;
     *p = (post_compute){.tonemap = display != VK_NULL_HANDLE, .composite = composite != VK_NULL_HANDLE,
-                        .mip_count = bloom ? bloom->mip_count : 0};
-    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 24},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 32},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};   /* the tone map's meter */
-    VkDescriptorPoolCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO, .maxSets = 20,
-                                       .poolSizeCount = 3, .pPoolSizes = sizes};
+                        .mip_count = bloom ? bloom->mip_count : 0, .host_tonemap = host_targets};
+    /* The host's sets (POST_HOST_SETS, each 3 samplers, 1 storage image, the meter) beside the own ones. */
+    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 24 + 3 * POST_HOST_SETS},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 32 + POST_HOST_SETS},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1 + POST_HOST_SETS}};   /* the tone map's meter */
+    VkDescriptorPoolCreateInfo info = {.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                       .maxSets = 20 + POST_HOST_SETS, .poolSizeCount = 3, .pPoolSizes = sizes};
     VK_CHECK(vkCreateDescriptorPool(ctx->device, &info, gpu_allocator(ctx->device), &p->pool));
     if (bloom) create_bloom(p, s, hdr, bloom);
-    if (!p->tonemap) return;
+    if (!p->tonemap && !p->host_tonemap) return;
     const VkDescriptorType SAMPLED = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, STORAGE = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     const gpu_slot slots[] = {{VKSKY_BINDING_POST_SOURCE, SAMPLED}, {VKSKY_BINDING_POST_MIP, SAMPLED},
                               {VKSKY_BINDING_POST_MIP + 1, SAMPLED}, {VKSKY_BINDING_TONEMAP_DISPLAY, STORAGE},
@@ -112,20 +132,32 @@ void post_compute_create(post_compute *p, const pass_shared *s, const gpu_image 
                                                                         : &spirv_tonemap_composite_comp)
                                                         : &spirv_tonemap_comp,
                                            "tonemap (compute)");
-    p->tonemap_set = gpu_alloc_set(ctx, p->pool, p->tonemap_set_layout, "tonemap (compute) set");
-    write_image(ctx, p->tonemap_set, VKSKY_BINDING_POST_SOURCE, SAMPLED, hdr->view, s->linear_clamp, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    /* Without a chain the HDR image stands in for the bloom mips (never sampled: strength 0). */
-    for (uint32_t i = 0; i < 2; ++i) {
-        if (bloom) {
-            VkImageView v = bloom->mips.mip_views[i < bloom->mip_count ? i : 0];
-            write_image(ctx, p->tonemap_set, VKSKY_BINDING_POST_MIP + i, SAMPLED, v, s->linear_clamp, VK_IMAGE_LAYOUT_GENERAL);
-        } else {
-            write_image(ctx, p->tonemap_set, VKSKY_BINDING_POST_MIP + i, SAMPLED, hdr->view, s->linear_clamp,
-                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-        }
+    for (uint32_t i = 0; p->host_tonemap && i < POST_HOST_SETS; ++i) {
+        p->host_sets[i] = gpu_alloc_set(ctx, p->pool, p->tonemap_set_layout, "tonemap (compute, host) set");
+        write_tonemap_sources(s, p->host_sets[i], hdr, bloom);
     }
+    if (!p->tonemap) return;
+    p->tonemap_set = gpu_alloc_set(ctx, p->pool, p->tonemap_set_layout, "tonemap (compute) set");
+    write_tonemap_sources(s, p->tonemap_set, hdr, bloom);
     write_image(ctx, p->tonemap_set, VKSKY_BINDING_TONEMAP_DISPLAY, STORAGE, display, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
     if (p->composite) write_image(ctx, p->tonemap_set, VKSKY_BINDING_TONEMAP_COMPOSITE, STORAGE, composite, VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+}
+
+VkDescriptorSet post_host_set(post_compute *p, const gpu_context *ctx, VkImageView view)
+{
+    int pick = 0;
+    ++p->host_clock;
+    for (int i = 0; i < POST_HOST_SETS; ++i) {
+        if (p->host_views[i] == view && p->host_used[i]) {
+            p->host_used[i] = p->host_clock;
+            return p->host_sets[i];
+        }
+        if (p->host_used[i] < p->host_used[pick]) pick = i;
+    }
+    write_image(ctx, p->host_sets[pick], VKSKY_BINDING_TONEMAP_DISPLAY, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, view,
+                VK_NULL_HANDLE, VK_IMAGE_LAYOUT_GENERAL);
+    p->host_views[pick] = view, p->host_used[pick] = p->host_clock;
+    return p->host_sets[pick];
 }
 
 void post_compute_destroy(post_compute *p, const pass_shared *s)
@@ -189,6 +221,12 @@ void post_record_upsample(const post_compute *p, const bloom_chain *bloom, VkCom
 void post_record_tonemap(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, VkExtent2D extent,
                          const TonemapPush *tm)
 {
+    post_record_tonemap_set(p, bloom, cmd, extent, tm, p->tonemap_set);
+}
+
+void post_record_tonemap_set(const post_compute *p, const bloom_chain *bloom, VkCommandBuffer cmd, VkExtent2D extent,
+                             const TonemapPush *tm, VkDescriptorSet set)
+{
     PostPush push = {.tonemap = tm->params, .dither = tm->dither, .meter = tm->meter};
     if (p->mip_count > 1) {
         VkExtent2D m1 = gpu_mip_extent(bloom->mips.extent, 1);
@@ -196,7 +234,7 @@ void post_record_tonemap(const post_compute *p, const bloom_chain *bloom, VkComm
     }
     if (!p->mip_count) push.tonemap.z = 0.0f;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->tonemap_pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->tonemap_layout, 0, 1, &p->tonemap_set, 0, NULL);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p->tonemap_layout, 0, 1, &set, 0, NULL);
     vkCmdPushConstants(cmd, p->tonemap_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatch(cmd, (extent.width + 7) / 8, (extent.height + 7) / 8, 1);
 }

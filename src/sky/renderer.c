@@ -59,8 +59,11 @@ static void create_sized(sky_renderer *r)
     if (r->post_kind == POST_PASS_COMPUTE)
         post_compute_create(&r->post, &r->shared, &r->hdr, desc->bloom ? &r->bloom : NULL,
                             compute_tonemap ? r->display.view : VK_NULL_HANDLE,
-                            compute_tonemap && desc->readback ? r->composite.view : VK_NULL_HANDLE);
+                            compute_tonemap && desc->readback ? r->composite.view : VK_NULL_HANDLE,
+                            desc->external_display && desc->host_storage_tonemap);
     if (r->post_kind == POST_PASS_COMPUTE && r->post.tonemap) meter_write_descriptor(ctx, r->post.tonemap_set, &r->meter);
+    for (uint32_t i = 0; r->post_kind == POST_PASS_COMPUTE && r->post.host_tonemap && i < POST_HOST_SETS; ++i)
+        meter_write_descriptor(ctx, r->post.host_sets[i], &r->meter);
     if (r->post_kind == POST_PASS_COMPUTE && desc->bloom && desc->bloom_downsample == BLOOM_DOWN_SINGLE_PASS &&
         !r->post.spd_pipeline)
         gpu_report(r->ctx, 1, "--bloom-downsample single-pass needs the device feature vulkanMemoryModelDeviceScope, "

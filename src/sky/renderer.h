@@ -19,6 +19,8 @@ typedef struct sky_renderer_desc {
     uint32_t bloom_mips;         /* downsample passes (0: 5) */
     bool readback;               /* keep the linear composite + display image and copy them to host buffers */
     bool external_display;       /* the tone map writes a frame_target (swapchain), no own display image */
+    bool host_storage_tonemap;   /* with external_display and the compute post chain: the compute tone map may write
+                                    a frame_target marked storage (a library host's R8G8B8A8_UNORM storage image) */
     VkFormat display_format;     /* the 8-bit target's format (headless: R8G8B8A8_SRGB) */
     post_pass_kind post_pass;    /* bloom + tone map as fragment passes or compute dispatches (auto: by device) */
     bloom_downsample_kind bloom_downsample;  /* compute chain: the downsample in one dispatch, or one per level */

@@ -12,12 +12,14 @@
 
 int main(int argc, char **argv)
 {
-    bool trace = false, luts = false;
+    bool trace = false, luts = false, storage = false;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--trace-barriers")) trace = true;
         else if (!strcmp(argv[i], "--luts")) luts = true;   /* LUTS_ONLY, the host's shader sampling the LUTs */
+        else if (!strcmp(argv[i], "--storage")) storage = true;   /* the compute tone map into a storage image */
         else if (strcmp(argv[i], "--validate") != 0) {
-            fprintf(stderr, "api_drop_probe: unknown option '%s' (accepted: --validate, --trace-barriers, --luts)\n",
+            fprintf(stderr, "api_drop_probe: unknown option '%s' (accepted: --validate, --trace-barriers, --luts, "
+                            "--storage)\n",
                     argv[i]);
             return 2;
         }
@@ -31,7 +33,7 @@ int main(int argc, char **argv)
     if (volkInitialize() != VK_SUCCESS) return 1;
     host h;
     host_create_device(&h, NULL);
-    host_create_target(&h, 64, 64, VK_FORMAT_R8G8B8A8_UNORM);
+    host_create_target_usage(&h, 64, 64, VK_FORMAT_R8G8B8A8_UNORM, storage ? VK_IMAGE_USAGE_STORAGE_BIT : 0);
     vksky_context_desc cd = host_context_desc(&h, NULL);
     vksky_context *c = NULL;
     if (vksky_context_create(&cd, &c) != VKSKY_SUCCESS) return 1;
@@ -39,8 +41,13 @@ int main(int argc, char **argv)
                              .output = luts ? VKSKY_OUTPUT_LUTS_ONLY : VKSKY_OUTPUT_DISPLAY, .width = 64,
                              .height = 64, .target_format = VK_FORMAT_R8G8B8A8_UNORM, .quality = "lesson",
                              .bloom = true, .units = VKSKY_UNITS_RELATIVE};
+    vksky_display_config dc = {.type = VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG, .tonemap_path = VKSKY_TONEMAP_PATH_COMPUTE,
+                               .target_usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                               VK_IMAGE_USAGE_STORAGE_BIT};
+    if (storage) d.next = &dc;
     vksky_renderer *r = NULL;
     if (vksky_renderer_create(c, &d, &r) != VKSKY_SUCCESS) return 1;
+    if (storage && vksky_renderer_get_tonemap_path(r) != VKSKY_TONEMAP_PATH_COMPUTE) return 1;
     vksky_camera cam = {.origin_altitude_m = 1.0};
     vksky_camera_look(&cam, 0.0, 10.0, 75.0, 1.0, 0.1);
     vksky_frame f = {.camera = &cam, .color = host_image(&h, VK_FORMAT_R8G8B8A8_UNORM)};

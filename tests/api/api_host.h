@@ -209,14 +209,15 @@ static inline vksky_context_desc host_context_desc(const host *h, const VkAlloca
                                 .message = api_message};
 }
 
-/* The target image (colour attachment + copy source) and its readback buffer. */
-static inline void host_create_target(host *h, uint32_t width, uint32_t height, VkFormat format)
+/* The target image (colour attachment + copy source, + `extra` usage) and its readback buffer. */
+static inline void host_create_target_usage(host *h, uint32_t width, uint32_t height, VkFormat format,
+                                            VkImageUsageFlags extra)
 {
     h->width = width, h->height = height;
     VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
                             .format = format, .extent = {width, height, 1}, .mipLevels = 1, .arrayLayers = 1,
                             .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL,
-                            .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT};
+                            .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | extra};
     HOST_VK(vkCreateImage(h->device, &ii, NULL, &h->image));
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(h->device, h->image, &req);
@@ -246,6 +247,11 @@ static inline void host_create_target(host *h, uint32_t width, uint32_t height, 
     HOST_VK(vkAllocateCommandBuffers(h->device, &ci, &h->cmd));
     VkFenceCreateInfo fi = {.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     HOST_VK(vkCreateFence(h->device, &fi, NULL, &h->fence));
+}
+
+static inline void host_create_target(host *h, uint32_t width, uint32_t height, VkFormat format)
+{
+    host_create_target_usage(h, width, height, format, 0);
 }
 
 static inline void host_begin(host *h)

@@ -29,11 +29,11 @@ static int target_create(bench_target *t, vksky_context *ctx, uint32_t width, ui
     vksky_context_handles k;
     vksky_context_get_handles(ctx, &k);
     *t = (bench_target){.device = k.device};
-    const VkFormat format = VK_FORMAT_R8G8B8A8_SRGB;   /* what a swapchain's image would be */
+    const VkFormat format = BENCH_TARGET_FORMAT;   /* a swapchain's image's size and bytes, storage-capable */
     VkImageCreateInfo ii = {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO, .imageType = VK_IMAGE_TYPE_2D,
                             .format = format, .extent = {width, height, 1}, .mipLevels = 1, .arrayLayers = 1,
                             .samples = VK_SAMPLE_COUNT_1_BIT, .tiling = VK_IMAGE_TILING_OPTIMAL,
-                            .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT};
+                            .usage = BENCH_TARGET_USAGE};
     if (vkCreateImage(t->device, &ii, NULL, &t->image) != VK_SUCCESS) return 1;
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(t->device, t->image, &req);

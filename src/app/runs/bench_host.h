@@ -15,4 +15,11 @@
  * LUT passes on the compute queue (app/runs/host_async.h), timed there (vksky_renderer_get_lut_timings).
  * 0 ok, 1 failed. */
 int bench_host_run(const options *o, vksky_context *ctx, vksky_scene *scene, vksky_renderer *r, host_async *async);
+/* The offscreen image of --bench alone: 8-bit UNORM, a colour attachment and a storage image, so that the renderer
+ * (made with BENCH_DISPLAY_CONFIG chained) tone-maps it in a compute dispatch where its post chain is compute (a GPU):
+ * the old path's own display image's figures. */
+#define BENCH_TARGET_FORMAT VK_FORMAT_R8G8B8A8_UNORM
+#define BENCH_TARGET_USAGE (VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT)
+#define BENCH_DISPLAY_CONFIG \
+    {.type = VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG, .target_usage = BENCH_TARGET_USAGE, .tonemap_path = VKSKY_TONEMAP_PATH_AUTO}
 #endif

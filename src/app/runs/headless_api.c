@@ -154,11 +154,15 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
         goto done;
     }
     vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
-    /* --bench without outputs: no readback, the frame writes the host's own image (app/runs/bench_host.c). */
+    /* --bench without outputs: no readback, the frame writes the host's own image (app/runs/bench_host.c), a UNORM
+     * storage image the compute tone map writes where the post chain is compute. */
+    vksky_display_config bench_display = BENCH_DISPLAY_CONFIG;
     vksky_renderer_desc rd = {
-        .abi_version = VKSKY_ABI_VERSION, .next = o->output_count > 0 ? &readback : NULL, .output = VKSKY_OUTPUT_DISPLAY,
+        .abi_version = VKSKY_ABI_VERSION, .next = o->output_count > 0 ? (const void *)&readback : &bench_display,
+        .output = VKSKY_OUTPUT_DISPLAY,
         .width = (uint32_t)o->width, .height = (uint32_t)(banded ? tiles_frame_rows(o) : o->height),
-        .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = "scene", .bloom = o->view.bloom && !banded,
+        .target_format = o->output_count > 0 ? VK_FORMAT_R8G8B8A8_SRGB : BENCH_TARGET_FORMAT, .quality = "scene",
+        .bloom = o->view.bloom && !banded,
         .units = o->units == OPTIONS_UNITS_RELATIVE ? VKSKY_UNITS_RELATIVE : VKSKY_UNITS_PHOTOMETRIC, .scene = scene};
     if (vksky_renderer_create(ctx, &rd, &r) != VKSKY_SUCCESS) goto done;
     if (o->trace_passes)
