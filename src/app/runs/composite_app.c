@@ -20,6 +20,7 @@
 #include "io/half_float.h"
 #include "io/png_io.h"
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -93,13 +94,14 @@ typedef struct composite_gpu {
     vksky_context *ctx;
     vksky_scene *scene;
     vksky_renderer *r;
-    host_commands h;
+    host_commands h[2];           /* [1]: the second slot's, for a ring of bands (made by composite_run) */
     host_async async;
 } composite_gpu;
 
 static void gpu_release(composite_gpu *g)
 {
-    host_commands_destroy(&g->h);
+    host_commands_destroy(&g->h[0]);
+    host_commands_destroy(&g->h[1]);
     host_async_destroy(&g->async);
     vksky_renderer_destroy(g->r);
     vksky_scene_destroy(g->scene);
@@ -136,11 +138,11 @@ static int gpu_begin(const options *o, composite_gpu *g, uint32_t width, uint32_
     if (o->trace_passes)
         vksky_context_set_trace(g->ctx, (o->trace_barriers ? VKSKY_TRACE_BARRIERS : 0u) | VKSKY_TRACE_PASSES,
                                 host_print_trace, NULL);
-    if (host_commands_create(&g->h, g->ctx) != 0) return gpu_end(g, 1);
+    if (host_commands_create(&g->h[0], g->ctx) != 0) return gpu_end(g, 1);
     if (o->async_luts) {
         if (host_async_create(&g->async, g->ctx, compute_index, o->trace_barriers ? stdout : NULL) != 0)
             return gpu_end(g, 1);
-        g->h.async = &g->async;
+        g->h[0].async = &g->async;
     }
     return 0;
 }
@@ -217,9 +219,9 @@ static void bench(composite_gpu *g, vksky_composite *c, bool volume, uint32_t wi
     double *wall = ms + (size_t)frames * PASSES;   /* submit -> fence (lavapipe's timestamps miss compute work) */
     bool timed = true;
     vksky_composite_frame f = {.slot = 0};
-    for (int i = 0; i < 3; ++i) composite_submit(&g->h, g->r, c, &f, 1, trace, NULL);   /* warm-up: LUTs, compiles */
+    for (int i = 0; i < 3; ++i) composite_submit(&g->h[0], g->r, c, &f, 1, trace, NULL);   /* warm-up: LUTs, compiles */
     for (int i = 0; i < frames; ++i) {
-        composite_submit(&g->h, g->r, c, &f, 1, trace, &wall[i]);
+        composite_submit(&g->h[0], g->r, c, &f, 1, trace, &wall[i]);
         vksky_pass_timing read[64];
         uint32_t count = 0;
         timed = vksky_renderer_get_timings(g->r, read, 64, &count) == VKSKY_SUCCESS;
@@ -270,6 +272,33 @@ static int pick_volume(const options *o, const composite_options *co, bool orien
     /* The float values the pass takes (the froxel volume's shape is single precision on the GPU). */
     d->volume_range_km = (float)range, d->volume_distribution = (float)distribution;
     return 0;
+}
+
+/* The check pass over the inputs (composite_run), on a thread of its own: every band read and fixed once, its counts. */
+typedef struct check_job {
+    band_reader *reader;
+    composite_fixups fix;
+    size_t geometry, sky;
+    int status;
+} check_job;
+
+static void *check_thread(void *arg)
+{
+    check_job *job = arg;
+    band_reader *r = job->reader;
+    for (int y0 = 0; y0 < r->height && job->status == 0; y0 += r->band_rows) {
+        if ((job->status = band_reader_read(r, y0, &job->fix)) != 0) break;
+        const composite_band *band = &r->band;
+        size_t core = (size_t)(band->core_row - band->first_row) * (size_t)r->width;
+        size_t end = core + (size_t)band->core_rows * (size_t)r->width;
+        for (size_t i = core; i < end; ++i) {
+            const float *p = r->position + 4 * i;
+            bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+            if (finite && r->beauty[4 * i + 3] > 0.0f) ++job->geometry;
+            else ++job->sky;
+        }
+    }
+    return NULL;
 }
 
 int composite_run(const options *o, const composite_options *co)
@@ -353,56 +382,59 @@ int composite_run(const options *o, const composite_options *co)
         status = 2;
         goto done_info;
     }
+    /* The camera's altitude over the command line's planet (the scene: a value, no device yet). */
+    vksky_scene *planet = NULL;
+    if (vksky_scene_from_args(o->argc, o->argv, host_print_message, NULL, &planet) != VKSKY_SUCCESS) {
+        status = 1;
+        goto done_info;
+    }
+    double altitude = vksky_composite_view_altitude(&v, planet);
+    vksky_scene_destroy(planet);
     /* The inputs in bands (app/runs/composite_bands.h), first read only to check and count them: a bad pixel pass
-     * fails before the GPU starts and before any output exists. */
+     * fails before any output exists. The check runs on a thread of its own while the device, the renderer and the
+     * composite's pipeline are made (issue 28 item 6: the two were serial); a camera inside the planet starts no
+     * device. */
     int band_rows = composite_band_rows(w, h);
     band_reader reader;
     if ((status = band_reader_init(&reader, beauty_path, &inputs, &v, w, h, band_rows)) != 0) goto done_info;
-    composite_fixups fix = {0};
-    size_t geometry = 0, sky = 0;
-    for (int y0 = 0; y0 < h && status == 0; y0 += band_rows) {
-        if ((status = band_reader_read(&reader, y0, &fix)) != 0) break;
-        const composite_band *band = &reader.band;
-        size_t core = (size_t)(band->core_row - band->first_row) * w, end = core + (size_t)band->core_rows * w;
-        for (size_t i = core; i < end; ++i) {
-            const float *p = reader.position + 4 * i;
-            bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-            if (finite && reader.beauty[4 * i + 3] > 0.0f) ++geometry;
-            else ++sky;
-        }
+    check_job job = {.reader = &reader};
+    pthread_t checker;
+    bool threaded = pthread_create(&checker, NULL, check_thread, &job) == 0;
+    if (!threaded) check_thread(&job);
+    composite_gpu g = {0};
+    bool started = false;
+    int gpu_status = 0;
+    if (altitude >= 0.0) {
+        gpu_status = gpu_begin(o, &g, 1, 1, false);
+        started = gpu_status == 0;
     }
-    if (status) goto done_reader;
+    if (threaded) pthread_join(checker, NULL);
+    composite_fixups fix = job.fix;
+    size_t geometry = job.geometry, sky = job.sky;
+    if ((status = job.status) != 0) goto done_checked;
     if (fix.opaque >= 16 && fix.opaque * 100 >= n) {
         fprintf(stderr, "vksky: --composite: %s: the film is opaque: %zu pixels (%.0f %%) have alpha 1 and no "
                         "position (a background, not geometry): render with a transparent film (Blender: Render "
                         "Properties > Film > Transparent) so that the sky can go behind\n",
                 beauty_path, fix.opaque, 100.0 * (double)fix.opaque / (double)n);
         status = 2;
-        goto done_reader;
+        goto done_checked;
     }
     if (geometry == 0) {
         fprintf(stderr, "vksky: --composite: %s: the %s pass has no finite pixel with alpha > 0: nothing to "
                         "apply the atmosphere to (is it the world-position pass?)\n", position_path,
                 inputs.has_depth ? "depth" : "position");
         status = 2;
-        goto done_reader;
+        goto done_checked;
     }
-    /* The camera's altitude over the command line's planet (the scene: a value, no device yet). */
-    vksky_scene *planet = NULL;
-    double altitude = -1.0;
-    if (vksky_scene_from_args(o->argc, o->argv, host_print_message, NULL, &planet) != VKSKY_SUCCESS) {
-        status = 1;
-        goto done_reader;
-    }
-    altitude = vksky_composite_view_altitude(&v, planet);
-    vksky_scene_destroy(planet);
     if (altitude < 0.0) {
         fprintf(stderr, "vksky: --composite: the camera (%g, %g, %g world units) is inside the planet (%.4g km below "
                         "the ground); check --world-up, --world-unit, --ground-altitude\n",
                 v.camera[0], v.camera[1], v.camera[2], -altitude);
         status = 2;
-        goto done_reader;
+        goto done_checked;
     }
+    if ((status = gpu_status) != 0) goto done_checked;   /* the device's own line was printed */
     if (fix.overflowed)
         fprintf(stderr, "vksky: --composite: note: %zu positions overflowed the half-float range (beyond 65504 world "
                         "units) and have no atmosphere: write the Position pass as float (Blender: Output > Float "
@@ -421,7 +453,7 @@ int composite_run(const options *o, const composite_options *co)
     if (exr_header_build(&hdr, &scene, -1) != 0) {
         fprintf(stderr, "vksky: --composite: out of memory\n");
         status = 1;
-        goto done_reader;
+        goto done_checked;
     }
     /* The render's own camera matrices (its world, its units: the position pass's) where it had them. */
     if (cam_info) {
@@ -430,12 +462,17 @@ int composite_run(const options *o, const composite_options *co)
     }
     if (!v.oriented) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
 
-    composite_gpu g;
-    if ((status = gpu_begin(o, &g, 1, 1, false)) != 0) goto done_header;
     vksky_composite *c = NULL;
     cdesc.rows = (uint32_t)band_rows;
+    /* Two slots, a ring of bands (composite_bands.h), where there are several bands of one frame each and no
+     * --async-luts; VKSKY_COMPOSITE_SLOTS=1: one band at a time. */
+    const char *slots_env = getenv("VKSKY_COMPOSITE_SLOTS");
+    int slots = band_rows < h && frames_from_env() <= 1 && !o->async_luts && !(slots_env && atoi(slots_env) == 1) ? 2 : 1;
+    if (slots == 2 && host_commands_create(&g.h[1], g.ctx) != 0) slots = 1;
+    cdesc.slots = (uint32_t)slots;
     if (vksky_composite_create(g.r, &cdesc, &c) != VKSKY_SUCCESS) {
         status = gpu_end(&g, 2);   /* the band is too large for the device's images (the line printed) */
+        started = false;
         goto done_header;
     }
     /* The segments' steps by length, the sky by tiles (docs/aerial_perspective.md). */
@@ -460,7 +497,7 @@ int composite_run(const options *o, const composite_options *co)
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
-    if (out && (status = composite_bands_render(&reader, &g.h, g.r, c, frames_from_env(),
+    if (out && (status = composite_bands_render(&reader, g.h, slots, g.r, c, frames_from_env(),
                                                 o->trace_barriers ? stdout : NULL, out)) == 0 &&
         io_exr_layers_stream_finish(out, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --render: %s\n", err);
@@ -468,9 +505,11 @@ int composite_run(const options *o, const composite_options *co)
     }
     vksky_composite_destroy(c);
     status = gpu_end(&g, status);
+    started = false;
 done_header:
     exr_header_free(&hdr);
-done_reader:
+done_checked:
+    if (started) status = gpu_end(&g, status);
     band_reader_free(&reader);
 done_info:
     io_exr_info_free(&bi);
@@ -501,7 +540,7 @@ int composite_aovs_run(const options *o, const composite_options *co)
     host_view hv = {.yaw_deg = o->view.yaw_deg, .pitch_deg = o->view.pitch_deg, .fov_deg = o->view.fov_deg,
                     .exposure = o->view.exposure_ev, .auto_exposure = light_auto_exposure_wanted(o)};
     FILE *trace = o->trace_barriers ? stdout : NULL;
-    if (host_commands_render(&g.h, g.r, &hv, trace, NULL) != 0) return gpu_end(&g, 1);
+    if (host_commands_render(&g.h[0], g.r, &hv, trace, NULL) != 0) return gpu_end(&g, 1);
     /* The layers: the composite pass over a frame with no geometry, the camera the view's (at the world origin,
      * +Y up, km), its altitude exactly the sky pass's. The volume only with --aerial-perspective volume: there is no
      * geometry to sample it, but the frame is the composite's with the volume pass in it (barrier tests,
@@ -530,7 +569,7 @@ int composite_aovs_run(const options *o, const composite_options *co)
         p[0] = p[1] = p[2] = p[3] = NAN;   /* no geometry anywhere */
     }
     vksky_composite_frame f = {.slot = 0};
-    if (composite_submit(&g.h, g.r, c, &f, frames_from_env(), trace, NULL) != 0) status = 1;
+    if (composite_submit(&g.h[0], g.r, c, &f, frames_from_env(), trace, NULL) != 0) status = 1;
     vksky_readback px;
     if (status == 0 && vksky_renderer_get_readback(g.r, &px) != VKSKY_SUCCESS) status = 1;
     float *top = status ? NULL : malloc(n * 4 * sizeof(float));

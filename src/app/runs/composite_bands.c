@@ -78,7 +78,7 @@ static double now_ms(void)
 /* Frames first .. first + count - 1 of the band into h's command buffer (frame k > 0 rebuilds the LUTs), submitted
  * (after the LUT passes on the compute queue, with h->async) and waited for: the order of host_ring.c's frames. */
 static int submit_frames(host_commands *h, vksky_renderer *r, vksky_composite *c, const vksky_composite_frame *f,
-                         int first, int count, FILE *trace, double *wall_ms)
+                         int first, int count, FILE *trace, double *wall_ms, bool wait_fence)
 {
     VkSemaphoreSubmitInfo wait, signal;
     uint32_t waits = 0;
@@ -102,6 +102,7 @@ static int submit_frames(host_commands *h, vksky_renderer *r, vksky_composite *c
                            .signalSemaphoreInfoCount = h->async ? 1 : 0, .pSignalSemaphoreInfos = &signal};
     double t0 = now_ms();
     VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
+    if (!wait_fence) return vr == VK_SUCCESS ? 0 : 1;   /* the ring's band_done waits for it */
     if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
     if (wall_ms) *wall_ms = now_ms() - t0;
     if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
@@ -118,16 +119,82 @@ int composite_submit(host_commands *h, vksky_renderer *r, vksky_composite *c, co
     int n = frames < 1 ? 1 : frames > 16 ? 16 : frames;
     if (h->async) {   /* each frame its own pair of submissions, checked across queues by synchronization validation */
         for (int k = 0; k < n; ++k)
-            if (submit_frames(h, r, c, f, k, 1, trace, wall_ms)) return 1;
+            if (submit_frames(h, r, c, f, k, 1, trace, wall_ms, true)) return 1;
         return 0;
     }
-    return submit_frames(h, r, c, f, 0, n, trace, wall_ms);
+    return submit_frames(h, r, c, f, 0, n, trace, wall_ms, true);
 }
 
-int composite_bands_render(band_reader *b, host_commands *h, vksky_renderer *r, vksky_composite *c, int frames,
-                           FILE *trace, io_exr_layers_stream *out)
+static int stream_band(vksky_composite *c, uint32_t slot, int core_rows, io_exr_layers_stream *out)
 {
     char err[600];
+    io_exr_band_layer layers[VKSKY_COMPOSITE_LAYERS];
+    for (uint32_t k = 0; k < VKSKY_COMPOSITE_LAYERS; ++k)
+        layers[k] = (io_exr_band_layer){LAYER_NAMES[k], k == 0 ? 4 : 3, 4, vksky_composite_layer(c, slot, k)};
+    if (io_exr_layers_stream_rows(out, layers, core_rows, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --render: %s\n", err);
+        return 1;
+    }
+    return 0;
+}
+
+/* composite.band_done: the host waits for band `band`'s fence before it reads the slot's layers (GPU -> host, RAW:
+ * the copy's writes, made visible to the host by aovs.to_host). Traced; VKSKY_DROP_BARRIER=composite.band_done
+ * leaves it (and the fence's reset) out: the layers are read while the band may still be in flight, and the slot's
+ * next submission finds its fence signalled, which validation reports (tests/composite_ring_test.sh). */
+static int band_done(host_commands *h, int band, uint32_t slot, FILE *trace, const char *drop, bool *waited)
+{
+    if (trace) fprintf(trace, "sync composite.band_done band=%d slot=%u (GPU -> host: the band's layers)\n", band, slot);
+    *waited = !(drop && !strcmp(drop, "composite.band_done"));
+    if (!*waited) return 0;
+    VkResult vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
+    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
+    if (vr != VK_SUCCESS) fprintf(stderr, "vksky: the composite's band %d failed (VkResult %d)\n", band, (int)vr);
+    return vr == VK_SUCCESS ? 0 : 1;
+}
+
+/* Two slots (composite_bands.h): band k is read and submitted into slot k % 2, then band k - 1's layers are waited for
+ * (composite.band_done) and encoded while the GPU composites band k. Slot k % 2 is the host's again when band k - 2's
+ * layers are encoded (composite.slot_free: a hand-over, traced; the wait that makes it safe is band k - 2's
+ * band_done). The rows reach the stream in order, so the file is the one-slot loop's, byte for byte. */
+static int render_ring(band_reader *b, host_commands h[2], vksky_composite *c, FILE *trace,
+                       io_exr_layers_stream *out)
+{
+    const char *drop = getenv("VKSKY_DROP_BARRIER");
+    composite_fixups ignored = {0};   /* counted by the first pass */
+    int bands = (b->height + b->band_rows - 1) / b->band_rows, core_rows[2] = {0, 0}, rc = 0, submitted = 0;
+    bool waited[2] = {true, true};
+    for (int k = 0; k <= bands && rc == 0; ++k) {
+        if (k < bands) {
+            uint32_t s = (uint32_t)k % 2;
+            int y0 = k * b->band_rows;
+            if ((rc = band_reader_read(b, y0, &ignored)) != 0) break;
+            if (trace && k >= 2)
+                fprintf(trace, "sync composite.slot_free band=%d slot=%u (band %d's layers encoded)\n", k, s, k - 2);
+            /* Only where band_done was dropped: the command buffer must not be pending when it is reset (its fence is
+             * left signalled: the drop stays visible to validation, the driver safe). */
+            if (k >= 2 && !waited[s]) vkWaitForFences(h[s].device, 1, &h[s].fence, VK_TRUE, UINT64_MAX);
+            band_reader_upload(b, vksky_composite_inputs(c, s), b->band_rows);
+            core_rows[s] = b->band.core_rows;
+            vksky_composite_frame f = {.slot = s, .first_row = y0};
+            if ((rc = submit_frames(&h[s], NULL, c, &f, 0, 1, trace, NULL, false)) != 0) break;
+            submitted = k + 1;
+        }
+        if (k >= 1) {
+            uint32_t s = (uint32_t)(k - 1) % 2;
+            if ((rc = band_done(&h[s], k - 1, s, trace, drop, &waited[s])) == 0) rc = stream_band(c, s, core_rows[s], out);
+            if (rc == 0 && stop_requested()) rc = 1;   /* SIGINT/SIGTERM: no file at the output path */
+        }
+    }
+    if (submitted > 0) vkQueueWaitIdle(h[0].queue);   /* nothing of a failed run left in flight */
+    if (rc) io_exr_layers_stream_abort(out);
+    return rc;
+}
+
+int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_renderer *r, vksky_composite *c,
+                           int frames, FILE *trace, io_exr_layers_stream *out)
+{
+    if (slots == 2) return render_ring(b, h, c, trace, out);
     composite_fixups ignored = {0};   /* counted by the first pass */
     for (int y0 = 0; y0 < b->height; y0 += b->band_rows) {
         int rc = band_reader_read(b, y0, &ignored);
@@ -137,17 +204,11 @@ int composite_bands_render(band_reader *b, host_commands *h, vksky_renderer *r, 
         }
         band_reader_upload(b, vksky_composite_inputs(c, 0), b->band_rows);
         vksky_composite_frame f = {.slot = 0, .first_row = y0};   /* the band's first row of the whole image */
-        if (composite_submit(h, r, c, &f, frames, trace, NULL) != 0) {
+        if (composite_submit(&h[0], r, c, &f, frames, trace, NULL) != 0) {
             io_exr_layers_stream_abort(out);
             return 1;
         }
-        io_exr_band_layer layers[VKSKY_COMPOSITE_LAYERS];
-        for (uint32_t k = 0; k < VKSKY_COMPOSITE_LAYERS; ++k)
-            layers[k] = (io_exr_band_layer){LAYER_NAMES[k], k == 0 ? 4 : 3, 4, vksky_composite_layer(c, 0, k)};
-        if (io_exr_layers_stream_rows(out, layers, b->band.core_rows, err, sizeof err) != 0) {
-            fprintf(stderr, "vksky: --render: %s\n", err);
-            return 1;
-        }
+        if (stream_band(c, 0, b->band.core_rows, out) != 0) return 1;
         if (stop_requested()) {   /* SIGINT/SIGTERM: no file at the output path */
             io_exr_layers_stream_abort(out);
             return 1;

@@ -43,9 +43,12 @@ void band_reader_upload(const band_reader *b, float *in, int rows);
 int composite_submit(host_commands *h, vksky_renderer *r, vksky_composite *c, const vksky_composite_frame *f,
                      int frames, FILE *trace, double *wall_ms);
 
-/* Every band: read, composited, and its rows streamed into `out`. 0, 1 or 2 (after one line on stderr; the stream
- * is then aborted). */
-int composite_bands_render(band_reader *b, host_commands *h, vksky_renderer *r, vksky_composite *c, int frames,
-                           FILE *trace, io_exr_layers_stream *out);
+/* Every band: read, composited, and its rows streamed into `out`. slots 1: one band at a time through h[0] (frames:
+ * VKSKY_FRAMES, --async-luts as h[0] says). slots 2 (c made with two slots, one frame a band, no --async-luts): a ring
+ * of two, band k + 1's GPU work while band k's layers are encoded (h[k % 2]; composite.band_done, composite.slot_free:
+ * docs/synchronization.md, "The composite's bands"). 0, 1 or 2 (after one line on stderr; the stream is then
+ * aborted). */
+int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_renderer *r, vksky_composite *c,
+                           int frames, FILE *trace, io_exr_layers_stream *out);
 
 #endif
