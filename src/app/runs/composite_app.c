@@ -4,6 +4,7 @@
  * before any output file exists. */
 #include "app/runs/composite_app.h"
 #include "app/runs/composite_bands.h"
+#include "app/runs/composite_camera.h"
 #include "app/runs/composite_layers.h"
 #include "app/runs/exr_header.h"
 #include "app/runs/host_async.h"
@@ -26,56 +27,6 @@
 #include <strings.h>
 
 static const char *const AOV_NAMES[VKSKY_COMPOSITE_LAYERS] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
-
-/* --- The camera ------------------------------------------------------------------------------------------- */
-
-/* Inverse of a 3x3 (row-major); false when singular. */
-static bool invert3(const double m[3][3], double out[3][3])
-{
-    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    if (!(fabs(det) > 1e-300) || !isfinite(det)) return false;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            int a = (j + 1) % 3, b = (j + 2) % 3, c = (i + 1) % 3, d = (i + 2) % 3;
-            out[i][j] = (m[a][c] * m[b][d] - m[a][d] * m[b][c]) / det;
-        }
-    return true;
-}
-
-/* OpenEXR's worldToCamera (row vectors, p_cam = p_world M; the camera looks along -Z, +X right, +Y up): the
- * camera's position and axes in world coordinates. With worldToNDC (NDC x, y in [-1, 1] across the screen
- * window) also the vertical field of view. */
-static bool camera_from_matrices(const io_exr_info *info, composite_view *v, double *fov_deg)
-{
-    const float *M = info->world_to_camera;
-    double R[3][3], Ri[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) R[i][j] = M[4 * i + j];
-    if (!invert3(R, Ri)) return false;
-    /* c R + t = 0 -> c = -t R^-1; camera axis k in world: row k of R^-1. */
-    for (int j = 0; j < 3; ++j) {
-        v->camera[j] = -(M[12] * Ri[0][j] + M[13] * Ri[1][j] + M[14] * Ri[2][j]);
-        v->right[j] = Ri[0][j], v->up[j] = Ri[1][j], v->forward[j] = -Ri[2][j];
-    }
-    double *axes[3] = {v->right, v->up, v->forward};
-    for (int k = 0; k < 3; ++k) {
-        double n = sqrt(axes[k][0] * axes[k][0] + axes[k][1] * axes[k][1] + axes[k][2] * axes[k][2]);
-        for (int j = 0; j < 3; ++j) axes[k][j] /= n;
-    }
-    *fov_deg = 0.0;
-    if (info->has_world_to_ndc) {
-        /* The camera-space point (0, 1, -1) lands at NDC y = 1 / tan(fov / 2). */
-        double p[3], h[4] = {0, 0, 0, 0};
-        for (int j = 0; j < 3; ++j) p[j] = v->camera[j] + Ri[1][j] - Ri[2][j];
-        const float *N = info->world_to_ndc;
-        for (int j = 0; j < 4; ++j) h[j] = p[0] * N[j] + p[1] * N[4 + j] + p[2] * N[8 + j] + N[12 + j];
-        double y = h[3] != 0.0 ? fabs(h[1] / h[3]) : 0.0;
-        double fov = y > 0.0 ? 2.0 * atan(1.0 / y) * 180.0 / 3.14159265358979323846 : 0.0;
-        if (fov >= 1.0 && fov <= 170.0) *fov_deg = fov;
-    }
-    return true;
-}
 
 /* --- Running the pass -------------------------------------------------------------------------------------- */
 
@@ -114,21 +65,34 @@ static int gpu_end(composite_gpu *g, int status)
     return host_device_close(g->dev, g->ctx, status);
 }
 
-static int gpu_begin(const options *o, composite_gpu *g, uint32_t width, uint32_t height, bool readback)
+/* The command line's scene (`render_scale_1`: with --render-scale=1 appended). 0, or 1 (the line printed). The
+ * loader parses the flags again with the command line's own parser, which holds stdout and stderr while it runs: made
+ * before any other thread of the run prints. */
+static int scene_of(const options *o, bool render_scale_1, vksky_scene **out)
 {
-    *g = (composite_gpu){0};
-    uint32_t compute_index = 0;
-    int rc = host_device_open(o, &g->dev, &g->ctx, &compute_index);
-    if (rc != 0) return rc;
     char **argv = malloc(((size_t)o->argc + 2) * sizeof *argv);
-    if (!argv) return gpu_end(g, 1);
+    if (!argv) return 1;
     int argc = o->argc;
     memcpy(argv, o->argv, (size_t)argc * sizeof *argv);
-    if (!readback) argv[argc++] = "--render-scale=1";   /* the LUTs only: the sky at full scale, as before */
+    if (render_scale_1) argv[argc++] = "--render-scale=1";   /* the LUTs only: the sky at full scale, as before */
     argv[argc] = NULL;
-    vksky_result made = vksky_scene_from_args(argc, argv, host_print_message, NULL, &g->scene);
+    vksky_result made = vksky_scene_from_args(argc, argv, host_print_message, NULL, out);
     free(argv);
-    if (made != VKSKY_SUCCESS) return gpu_end(g, 1);
+    return made == VKSKY_SUCCESS ? 0 : 1;
+}
+
+/* `scene`: the command line's, made by the caller (taken over), or NULL: made here. */
+static int gpu_begin(const options *o, composite_gpu *g, vksky_scene *scene, uint32_t width, uint32_t height,
+                     bool readback)
+{
+    *g = (composite_gpu){.scene = scene};
+    uint32_t compute_index = 0;
+    int rc = host_device_open(o, &g->dev, &g->ctx, &compute_index);
+    if (rc != 0) {
+        vksky_scene_destroy(g->scene);
+        return rc;
+    }
+    if (!g->scene && scene_of(o, !readback, &g->scene) != 0) return gpu_end(g, 1);
     vksky_readback_config rb = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
     vksky_renderer_desc rd = {.abi_version = VKSKY_ABI_VERSION, .next = readback ? &rb : NULL,
                               .output = readback ? VKSKY_OUTPUT_DISPLAY : VKSKY_OUTPUT_LUTS_ONLY, .width = width,
@@ -384,19 +348,21 @@ int composite_run(const options *o, const composite_options *co)
     }
     /* The camera's altitude over the command line's planet (the scene: a value, no device yet). */
     vksky_scene *planet = NULL;
-    if (vksky_scene_from_args(o->argc, o->argv, host_print_message, NULL, &planet) != VKSKY_SUCCESS) {
+    if (scene_of(o, true, &planet) != 0) {
         status = 1;
         goto done_info;
     }
     double altitude = vksky_composite_view_altitude(&v, planet);
-    vksky_scene_destroy(planet);
     /* The inputs in bands (app/runs/composite_bands.h), first read only to check and count them: a bad pixel pass
      * fails before any output exists. The check runs on a thread of its own while the device, the renderer and the
      * composite's pipeline are made (issue 28 item 6: the two were serial); a camera inside the planet starts no
      * device. */
     int band_rows = composite_band_rows(w, h);
     band_reader reader;
-    if ((status = band_reader_init(&reader, beauty_path, &inputs, &v, w, h, band_rows)) != 0) goto done_info;
+    if ((status = band_reader_init(&reader, beauty_path, &inputs, &v, w, h, band_rows)) != 0) {
+        vksky_scene_destroy(planet);
+        goto done_info;
+    }
     check_job job = {.reader = &reader};
     pthread_t checker;
     bool threaded = pthread_create(&checker, NULL, check_thread, &job) == 0;
@@ -405,8 +371,10 @@ int composite_run(const options *o, const composite_options *co)
     bool started = false;
     int gpu_status = 0;
     if (altitude >= 0.0) {
-        gpu_status = gpu_begin(o, &g, 1, 1, false);
+        gpu_status = gpu_begin(o, &g, planet, 1, 1, false);
         started = gpu_status == 0;
+    } else {
+        vksky_scene_destroy(planet);
     }
     if (threaded) pthread_join(checker, NULL);
     composite_fixups fix = job.fix;
@@ -534,7 +502,7 @@ int composite_aovs_run(const options *o, const composite_options *co)
         return 2;
     }
     composite_gpu g;
-    int status = gpu_begin(o, &g, (uint32_t)o->width, (uint32_t)o->height, true);
+    int status = gpu_begin(o, &g, NULL, (uint32_t)o->width, (uint32_t)o->height, true);
     if (status) return status;
     /* The sky frame itself, as a plain render (the view as the command line gives it). */
     host_view hv = {.yaw_deg = o->view.yaw_deg, .pitch_deg = o->view.pitch_deg, .fov_deg = o->view.fov_deg,
