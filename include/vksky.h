@@ -50,8 +50,10 @@ extern "C" {
  *    vksky_renderer_get_lut_timings (--bench --async-luts); vksky_device_requirements' limits;
  *    spectral groups as scenes (vksky_scene_spectral_group, vksky_scene_spectral_coefficients,
  *    vksky_spectral_group_count, vksky_spectral_xyz_to_rec709): the command line's --spectral N through the API.
- *    Then (a minor addition, nothing changed shape): vksky_display_config + vksky_renderer_get_tonemap_path. */
-#define VKSKY_ABI_VERSION 3u
+ * 4: compositing a render (vksky_composite_*: the command line's --composite and --aovs); the tone map's path into
+ *    the host's image (vksky_display_config + vksky_renderer_get_tonemap_path: the compute tone map into a storage
+ *    image). */
+#define VKSKY_ABI_VERSION 4u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
 
@@ -327,7 +329,7 @@ typedef enum vksky_structure_type {
     VKSKY_STRUCTURE_TYPE_FRAME_TIMER = 19,     /* vksky_frame_timer */
     VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE = 20,   /* vksky_frame_capture */
     VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN = 21, /* vksky_frame_swapchain */
-    VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG = 22   /* vksky_display_config, from vksky_renderer_desc.next */
+    VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG = 22   /* vksky_display_config, from vksky_renderer_desc.next (ABI 4) */
 } vksky_structure_type;
 typedef struct vksky_chain {   /* the head every extension struct starts with: to walk a chain */
     vksky_structure_type type;
@@ -679,7 +681,7 @@ typedef struct vksky_frame_swapchain {
     const void *next;
 } vksky_frame_swapchain;
 
-/* ---- The tone map's path into the host's image (output DISPLAY) ---------------------------------------------------
+/* ---- ABI 4: the tone map's path into the host's image (output DISPLAY) --------------------------------------------
  * The tone map writes frame.color either as a colour attachment (a fragment pass: any DISPLAY format, sRGB included)
  * or as a storage image (a compute dispatch after the compute bloom chain, fused with its last upsample: the sRGB
  * curve encoded in the shader; the same bytes within 1/255). Only the host knows its images' usage, so a renderer
@@ -710,6 +712,86 @@ typedef struct vksky_display_config {
 /* The path the renderer's frames into the host's image take: FRAGMENT or COMPUTE (never AUTO); FRAGMENT for a
  * renderer of another output or with a readback config. */
 VKSKY_API vksky_tonemap_path vksky_renderer_get_tonemap_path(const vksky_renderer *renderer);
+/* ---- ABI 4: compositing a render (the command line's --composite and --aovs; docs/library.md, "Compositing a
+ * render") -----------------------------------------------------------------------------------------------------
+ * The atmosphere applied to an image the host rendered (its beauty and world position per pixel), with its layers:
+ * the composite, the sky, the sun disc, the transmittance and the Rayleigh and Mie in-scattering. A composite pass is
+ * made over a renderer (its LUTs, its scene's medium and sun; the renderer must outlive it) for bands of `width` x
+ * `rows` pixels; an image of any height is composited band by band. Per band the host writes the inputs into a slot's
+ * host-visible buffer, records the frame into its own command buffer (LUTs when stale, the upload, the pass, the copy
+ * back: every barrier vksky's, named in docs/synchronization.md), submits it, waits, and reads the slot's layers. Two
+ * slots let it fill band k+1 while the GPU composites band k: a slot is the host's again once the command buffer that
+ * last recorded it has completed. */
+typedef struct vksky_composite vksky_composite;
+#define VKSKY_COMPOSITE_SLOTS_MAX 2u
+#define VKSKY_COMPOSITE_LAYERS 6u   /* 0 composite (RGBA), 1 sky, 2 sun disc, 3 transmittance, 4 Rayleigh, 5 Mie */
+
+/* The rendered image's world, its camera and sun (docs/aerial_perspective.md, "Conventions"). */
+typedef struct vksky_composite_view {
+    double camera[3];              /* the camera's position, world units */
+    double km_per_unit;            /* the world unit in km (metres: 0.001) */
+    int up_axis;                   /* 1: +Y up, 2: +Z up */
+    double ground_altitude_km;     /* the altitude of the plane "world up = 0" */
+    bool oriented;                 /* the axes below are known (else pixels without geometry keep the beauty) */
+    double forward[3], right[3], up[3];   /* the camera's axes in world coordinates (unit, right-handed) */
+    double fov_y_deg;              /* vertical field of view */
+    double sun_azimuth_deg, sun_elevation_deg;   /* azimuth 0: north, 90: east */
+    int steps, max_steps;          /* march steps (a count growing with the path when max_steps > steps) */
+    double steps_ramp_km, sample_offset, step_distribution;
+    double altitude_km;            /* with VKSKY_COMPOSITE_VIEW_ALTITUDE: the camera's altitude as given */
+} vksky_composite_view;
+/* The axes of the command line's yaw (0 north, 90 east) and pitch, in the view's world (its up_axis); oriented. */
+VKSKY_API void vksky_composite_view_orient(vksky_composite_view *view, double yaw_deg, double pitch_deg);
+/* The camera's altitude in km above the scene's ground (negative: inside the planet), as vksky_composite_set_view
+ * finds it: for a host's check before it makes a device. */
+VKSKY_API double vksky_composite_view_altitude(const vksky_composite_view *view, const vksky_scene *scene);
+/* World coordinates -> vksky's local frame (north, up, east): Z up (x, y, z) -> (y, z, x), Y up -> (-z, y, x). */
+VKSKY_API void vksky_composite_world_to_local(int up_axis, const double world[3], double local[3]);
+
+typedef struct vksky_composite_desc {
+    uint32_t abi_version;          /* VKSKY_ABI_VERSION */
+    const void *next;              /* NULL */
+    uint32_t width, rows;          /* one band: the image's width, and rows per band (a whole image: its height) */
+    uint32_t slots;                /* 0 or 1: one pair of buffers; 2: two (a host's ring of bands) */
+    bool volume;                   /* camera -> point from a froxel volume (the view must be oriented), else a march
+                                      per pixel */
+    uint32_t volume_size[3];       /* 1..512 each: width, height, depth slices */
+    double volume_range_km, volume_distribution;   /* > 0; >= 1 */
+} vksky_composite_desc;
+/* VKSKY_ERROR_UNSUPPORTED: the device cannot hold a band of that size (the message says its limit). */
+VKSKY_API vksky_result vksky_composite_create(vksky_renderer *renderer, const vksky_composite_desc *desc,
+                                              vksky_composite **out);
+/* The host must know no command buffer recorded for it is pending. NULL is ignored. */
+VKSKY_API void vksky_composite_destroy(vksky_composite *composite);
+
+typedef enum vksky_composite_flags {
+    VKSKY_COMPOSITE_FAST = 1u,           /* the fast defaults (docs/aerial_perspective.md "Cost") when max_steps is 0 */
+    VKSKY_COMPOSITE_VIEW_ALTITUDE = 2u,  /* the camera's altitude is view.altitude_km (a sky frame's own camera) */
+} vksky_composite_flags;
+/* The view of the whole image of `whole_height` rows, for the frames recorded after it; *altitude_km (may be NULL):
+ * the camera's altitude. VKSKY_ERROR_INVALID_ARGUMENT: the camera is inside the planet. */
+VKSKY_API vksky_result vksky_composite_set_view(vksky_composite *composite, const vksky_composite_view *view,
+                                               uint32_t whole_height, uint32_t flags, double *altitude_km);
+/* Where the host writes a band's inputs (host-visible; the slot must be the host's): rows x width RGBA floats of the
+ * beauty (premultiplied, alpha the coverage), then rows x width of the world position (xyz; w is vksky's: it marks
+ * the sky tiles there when the frame is recorded), top row first. Rows past the image's last: alpha 1, position
+ * NaN (nothing marched). NULL for a slot out of range. */
+VKSKY_API float *vksky_composite_inputs(vksky_composite *composite, uint32_t slot);
+
+typedef struct vksky_composite_frame {
+    const void *next;              /* NULL */
+    uint32_t slot;                 /* < the composite's slots: its inputs, and where its layers go */
+    int32_t first_row;             /* the band's first row within the whole image (0: a whole image) */
+    bool force_luts;               /* rebuild the LUTs even if their inputs did not change (benchmarks) */
+    bool follows_frame;            /* another composite frame was recorded before it into the same command buffer */
+} vksky_composite_frame;
+/* Records the frame into `cmd` (recording, outside a render pass, on the context's queue family); reads the slot's
+ * inputs now (the sky tiles). The passes' GPU times: vksky_renderer_get_timings of the composite's renderer. */
+VKSKY_API vksky_result vksky_composite_record(vksky_composite *composite, VkCommandBuffer cmd,
+                                             const vksky_composite_frame *frame);
+/* Layer `layer` (< VKSKY_COMPOSITE_LAYERS) of the slot's last frame, once its command buffer completed: rows x width
+ * RGBA floats, top row first. NULL for a slot or layer out of range. */
+VKSKY_API const float *vksky_composite_layer(vksky_composite *composite, uint32_t slot, uint32_t layer);
 
 #ifdef __cplusplus
 }

@@ -1,80 +1,32 @@
 /* The composite driver: read the render (io/exr_read.h), find its layers, place the camera, run the composite
- * pass (sky/composite.h), write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on
- * stderr and exit status 2, before any output file exists. */
+ * pass through include/vksky.h (vksky_composite_*: this file is a host of the API, no src/sky or src/lib header),
+ * write the composite and its AOV layers (io/exr_layers.h). Every bad input is one line on stderr and exit status 2,
+ * before any output file exists. */
 #include "app/runs/composite_app.h"
-#include "app/scene/render_values.h"
 #include "app/runs/composite_bands.h"
+#include "app/runs/composite_camera.h"
 #include "app/runs/composite_layers.h"
 #include "app/runs/exr_header.h"
+#include "app/runs/host_async.h"
+#include "app/runs/host_device.h"
+#include "app/runs/host_print.h"
+#include "app/runs/host_ring.h"
 #include "app/runs/startup.h"
 #include "app/runs/stop.h"
-#include "sky/limits.h"
+#include "app/scene/light.h"
 #include "io/exr_layers.h"
 #include "io/exr_read.h"
 #include "io/atomic_file.h"
 #include "io/exr_write.h"
 #include "io/half_float.h"
 #include "io/png_io.h"
-#include "sky/frame.h"
-#include "sky/submit.h"
-#include "sky/view_params.h"
-#include "sky/composite.h"
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
-static const char *const AOV_NAMES[VKSKY_AOV_COUNT] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
-
-/* --- The camera ------------------------------------------------------------------------------------------- */
-
-/* Inverse of a 3x3 (row-major); false when singular. */
-static bool invert3(const double m[3][3], double out[3][3])
-{
-    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    if (!(fabs(det) > 1e-300) || !isfinite(det)) return false;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            int a = (j + 1) % 3, b = (j + 2) % 3, c = (i + 1) % 3, d = (i + 2) % 3;
-            out[i][j] = (m[a][c] * m[b][d] - m[a][d] * m[b][c]) / det;
-        }
-    return true;
-}
-
-/* OpenEXR's worldToCamera (row vectors, p_cam = p_world M; the camera looks along -Z, +X right, +Y up): the
- * camera's position and axes in world coordinates. With worldToNDC (NDC x, y in [-1, 1] across the screen
- * window) also the vertical field of view. */
-static bool camera_from_matrices(const io_exr_info *info, composite_view *v, double *fov_deg)
-{
-    const float *M = info->world_to_camera;
-    double R[3][3], Ri[3][3];
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) R[i][j] = M[4 * i + j];
-    if (!invert3(R, Ri)) return false;
-    /* c R + t = 0 -> c = -t R^-1; camera axis k in world: row k of R^-1. */
-    for (int j = 0; j < 3; ++j) {
-        v->camera[j] = -(M[12] * Ri[0][j] + M[13] * Ri[1][j] + M[14] * Ri[2][j]);
-        v->right[j] = Ri[0][j], v->up[j] = Ri[1][j], v->forward[j] = -Ri[2][j];
-    }
-    double *axes[3] = {v->right, v->up, v->forward};
-    for (int k = 0; k < 3; ++k) {
-        double n = sqrt(axes[k][0] * axes[k][0] + axes[k][1] * axes[k][1] + axes[k][2] * axes[k][2]);
-        for (int j = 0; j < 3; ++j) axes[k][j] /= n;
-    }
-    *fov_deg = 0.0;
-    if (info->has_world_to_ndc) {
-        /* The camera-space point (0, 1, -1) lands at NDC y = 1 / tan(fov / 2). */
-        double p[3], h[4] = {0, 0, 0, 0};
-        for (int j = 0; j < 3; ++j) p[j] = v->camera[j] + Ri[1][j] - Ri[2][j];
-        const float *N = info->world_to_ndc;
-        for (int j = 0; j < 4; ++j) h[j] = p[0] * N[j] + p[1] * N[4 + j] + p[2] * N[8 + j] + N[12 + j];
-        double y = h[3] != 0.0 ? fabs(h[1] / h[3]) : 0.0;
-        double fov = y > 0.0 ? 2.0 * atan(1.0 / y) * 180.0 / 3.14159265358979323846 : 0.0;
-        if (fov >= 1.0 && fov <= 170.0) *fov_deg = fov;
-    }
-    return true;
-}
+static const char *const AOV_NAMES[VKSKY_COMPOSITE_LAYERS] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
 
 /* --- Running the pass -------------------------------------------------------------------------------------- */
 
@@ -84,72 +36,102 @@ static int frames_from_env(void)
     return env ? atoi(env) : 1;
 }
 
-/* GPU context, a renderer for the LUTs (1x1: its own images are not used), the atmosphere of the options. */
-static int gpu_begin(const options *o, gpu_context *ctx, sky_renderer *r, uint32_t width, uint32_t height,
-                     bool readback)
+/* The device (app/runs/host_device.h), the command line's scene (its flags, parsed again by the API's loader: the same
+ * parser, the same values; `extra` appended), and a renderer in the lesson's units (docs/units.md: the medium as given,
+ * the disc unpowered): DISPLAY of width x height read back (--aovs: the sky frame), or LUTS_ONLY (the composite: its
+ * images are not used). The host's command buffer, and --async-luts' compute queue (app/runs/host_async.h). */
+typedef struct composite_gpu {
+    host_device *dev;
+    vksky_context *ctx;
+    vksky_scene *scene;
+    vksky_renderer *r;
+    host_commands h[2];           /* [1]: the second slot's, for a ring of bands (made by composite_run) */
+    host_async async;
+} composite_gpu;
+
+static void gpu_release(composite_gpu *g)
 {
-    stop_install();   /* SIGINT/SIGTERM from here on: the output is not renamed into place; exit 130/143 */
-    char why[200];
-    if (!gpu_barrier_set_weaken(getenv("VKSKY_WEAKEN_BARRIER"), why, sizeof why)) {
-        fprintf(stderr, "vksky: VKSKY_WEAKEN_BARRIER: %s\n", why);
-        return 2;
-    }
-    gpu_context_desc desc = {.validation = o->validate, .device_index = o->device_index};
-    int rc = gpu_context_create(ctx, &desc);
-    if (rc != 0) return rc == -2 ? 2 : 1;
-    if (sky_limits_report(ctx) != 0) return 1;   /* a limit under the pipelines' need (sky/limits.h) */
-    startup_open_cache(ctx, o);
-    if (o->trace_barriers) gpu_barrier_trace(stdout);
-    gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
-    /* The composite keeps the lesson's scale and disc (docs/units.md): the medium as given, the disc unpowered. */
-    render_scene scene = {.atmosphere = o->atmosphere, .sun_radius_rad = options_sun_radius_rad(o),
-                          .features = options_features(o)};
-    scene.features.sun_disc_power = false;
-    render_quality quality = render_quality_of(o);
-    if (!readback) quality.render_scale = 1.0;
-    sky_renderer_desc rdesc = render_desc(&quality, &scene);
-    rdesc.width = width, rdesc.height = height, rdesc.bloom = readback && o->view.bloom;
-    rdesc.readback = readback, rdesc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
-    sky_renderer_create(r, ctx, &rdesc);
-    if (o->trace_passes) gpu_barrier_trace_passes(stdout);
-    return 0;
+    host_commands_destroy(&g->h[0]);
+    host_commands_destroy(&g->h[1]);
+    host_async_destroy(&g->async);
+    vksky_renderer_destroy(g->r);
+    vksky_scene_destroy(g->scene);
+    g->r = NULL, g->scene = NULL;
 }
 
-static int gpu_end(gpu_context *ctx, sky_renderer *r, int status)
+static int gpu_end(composite_gpu *g, int status)
 {
-    sky_renderer_destroy(r);
-    startup_close_cache(ctx);
-    gpu_context_destroy(ctx);
-    unsigned messages = gpu_validation_message_count();
-    if (messages) {
-        fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");
-        if (status == 0) status = 1;
+    gpu_release(g);
+    return host_device_close(g->dev, g->ctx, status);
+}
+
+/* The command line's scene (`render_scale_1`: with --render-scale=1 appended). 0, or 1 (the line printed). The
+ * loader parses the flags again with the command line's own parser, which holds stdout and stderr while it runs: made
+ * before any other thread of the run prints. */
+static int scene_of(const options *o, bool render_scale_1, vksky_scene **out)
+{
+    char **argv = malloc(((size_t)o->argc + 2) * sizeof *argv);
+    if (!argv) return 1;
+    int argc = o->argc;
+    memcpy(argv, o->argv, (size_t)argc * sizeof *argv);
+    if (render_scale_1) argv[argc++] = "--render-scale=1";   /* the LUTs only: the sky at full scale, as before */
+    argv[argc] = NULL;
+    vksky_result made = vksky_scene_from_args(argc, argv, host_print_message, NULL, out);
+    free(argv);
+    return made == VKSKY_SUCCESS ? 0 : 1;
+}
+
+/* `scene`: the command line's, made by the caller (taken over), or NULL: made here. */
+static int gpu_begin(const options *o, composite_gpu *g, vksky_scene *scene, uint32_t width, uint32_t height,
+                     bool readback)
+{
+    *g = (composite_gpu){.scene = scene};
+    uint32_t compute_index = 0;
+    int rc = host_device_open(o, &g->dev, &g->ctx, &compute_index);
+    if (rc != 0) {
+        vksky_scene_destroy(g->scene);
+        return rc;
     }
-    return stop_status(status);
+    if (!g->scene && scene_of(o, !readback, &g->scene) != 0) return gpu_end(g, 1);
+    vksky_readback_config rb = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
+    vksky_renderer_desc rd = {.abi_version = VKSKY_ABI_VERSION, .next = readback ? &rb : NULL,
+                              .output = readback ? VKSKY_OUTPUT_DISPLAY : VKSKY_OUTPUT_LUTS_ONLY, .width = width,
+                              .height = height, .target_format = VK_FORMAT_R8G8B8A8_SRGB, .quality = "scene",
+                              .bloom = readback && o->view.bloom, .units = VKSKY_UNITS_RELATIVE, .scene = g->scene};
+    if (vksky_renderer_create(g->ctx, &rd, &g->r) != VKSKY_SUCCESS) return gpu_end(g, 1);
+    if (o->trace_passes)
+        vksky_context_set_trace(g->ctx, (o->trace_barriers ? VKSKY_TRACE_BARRIERS : 0u) | VKSKY_TRACE_PASSES,
+                                host_print_trace, NULL);
+    if (host_commands_create(&g->h[0], g->ctx) != 0) return gpu_end(g, 1);
+    if (o->async_luts) {
+        if (host_async_create(&g->async, g->ctx, compute_index, o->trace_barriers ? stdout : NULL) != 0)
+            return gpu_end(g, 1);
+        g->h[0].async = &g->async;
+    }
+    return 0;
 }
 
 /* The composite RGBA at the top level (or `top` when given), the AOVs as RGB layers (io/exr_layers.h: half, the
  * layer.channel names). */
-static int write_layers(const char *path, const sky_composite *c, const float *top, const io_exr_meta *meta, char *err,
-                        size_t err_size)
+static int write_layers(const char *path, vksky_composite *c, int w, int h, const float *top, const io_exr_meta *meta,
+                        char *err, size_t err_size)
 {
-    size_t n = (size_t)c->width * c->height;
-    float *rgb = malloc(n * 3 * sizeof(float) * (VKSKY_AOV_COUNT - 1));
+    size_t n = (size_t)w * h;
+    float *rgb = malloc(n * 3 * sizeof(float) * (VKSKY_COMPOSITE_LAYERS - 1));
     if (!rgb) {
         snprintf(err, err_size, "out of memory");
         return -1;
     }
-    io_exr_out_layer layers[VKSKY_AOV_COUNT];
-    layers[0] = (io_exr_out_layer){"", 4, top ? top : sky_composite_layer(c, VKSKY_AOV_COMPOSITE)};
-    for (int k = 1; k < VKSKY_AOV_COUNT; ++k) {
+    io_exr_out_layer layers[VKSKY_COMPOSITE_LAYERS];
+    layers[0] = (io_exr_out_layer){"", 4, top ? top : vksky_composite_layer(c, 0, 0)};
+    for (uint32_t k = 1; k < VKSKY_COMPOSITE_LAYERS; ++k) {
         float *dst = rgb + (size_t)(k - 1) * 3 * n;
-        const float *src = sky_composite_layer(c, k);
+        const float *src = vksky_composite_layer(c, 0, k);
         for (size_t i = 0; i < n; ++i)
             for (int ch = 0; ch < 3; ++ch) dst[3 * i + ch] = src[4 * i + ch];
         layers[k] = (io_exr_out_layer){AOV_NAMES[k], 3, dst};
     }
-    int rc = io_write_exr_layers_meta(path, (int)c->width, (int)c->height, layers, VKSKY_AOV_COUNT, meta, err,
-                                      err_size);
+    int rc = io_write_exr_layers_meta(path, w, h, layers, VKSKY_COMPOSITE_LAYERS, meta, err, err_size);
     free(rgb);
     return rc;
 }
@@ -175,7 +157,7 @@ static options composite_scene(const options *o, const composite_options *co, co
     s.view.altitude_km = altitude_km;
     if (v->oriented) {
         double f[3];
-        composite_world_to_local(v->up_axis, v->forward, f);
+        vksky_composite_world_to_local(v->up_axis, v->forward, f);
         s.view.pitch_deg = asin(fmax(-1.0, fmin(1.0, f[1]))) * 180.0 / 3.14159265358979323846;
         s.view.yaw_deg = atan2(f[2], f[0]) * 180.0 / 3.14159265358979323846;
         s.view.fov_deg = v->fov_y_deg;
@@ -191,28 +173,33 @@ static int compare_double(const void *a, const void *b)
 
 /* --bench N with --composite: per-pass GPU medians of N composite frames after warm-up (the LUTs are not in them:
  * built once by the first frame), one line per pass like the sky's benchmark. */
-static void bench(sky_renderer *r, sky_composite *c, const CompositePush *push, int frames)
+static void bench(composite_gpu *g, vksky_composite *c, bool volume, uint32_t width, uint32_t rows, int frames,
+                  FILE *trace)
 {
     enum { PASSES = 4 };
     static const char *const names[PASSES] = {"ap_volume", "composite_upload", "composite", "composite_readback"};
-    double *ms = calloc((size_t)frames * (PASSES + 1), sizeof *ms), read[GPU_TIMER_MAX];
+    double *ms = calloc((size_t)frames * (PASSES + 1), sizeof *ms);
     if (!ms) return;
     double *wall = ms + (size_t)frames * PASSES;   /* submit -> fence (lavapipe's timestamps miss compute work) */
-    for (int i = 0; i < 3; ++i) sky_composite_render(r, c, push, 1);   /* warm-up: LUTs, shader compiles, clocks */
+    bool timed = true;
+    vksky_composite_frame f = {.slot = 0};
+    for (int i = 0; i < 3; ++i) composite_submit(&g->h[0], g->r, c, &f, 1, trace, NULL);   /* warm-up: LUTs, compiles */
     for (int i = 0; i < frames; ++i) {
-        wall[i] = sky_composite_render(r, c, push, 1);
-        uint32_t count = gpu_timer_read(r->ctx, &r->timer, read);
-        for (uint32_t k = 0; k < count; ++k)
+        composite_submit(&g->h[0], g->r, c, &f, 1, trace, &wall[i]);
+        vksky_pass_timing read[64];
+        uint32_t count = 0;
+        timed = vksky_renderer_get_timings(g->r, read, 64, &count) == VKSKY_SUCCESS;
+        for (uint32_t k = 0; k < count && k < 64; ++k)
             for (int p = 0; p < PASSES; ++p)
-                if (!strcmp(r->timer.names[k], names[p])) ms[p * frames + i] = read[k];
+                if (!strcmp(read[k].name, names[p])) ms[p * frames + i] = read[k].gpu_ms;
     }
-    for (int p = c->has_volume ? 0 : 1; p < PASSES && r->timer.enabled; ++p) {
+    for (int p = volume ? 0 : 1; p < PASSES && timed; ++p) {
         qsort(ms + p * frames, (size_t)frames, sizeof *ms, compare_double);
-        printf("pass %s gpu_ms %.4f (%ux%u)\n", names[p], ms[p * frames + frames / 2], c->width, c->height);
+        printf("pass %s gpu_ms %.4f (%ux%u)\n", names[p], ms[p * frames + frames / 2], width, rows);
     }
     qsort(wall, (size_t)frames, sizeof *wall, compare_double);
     printf("composite frame wall_ms %.3f (submit to fence, median of %d; %s)\n", wall[frames / 2], frames,
-           c->has_volume ? "volume" : "march");
+           volume ? "volume" : "march");
     free(ms);
 }
 
@@ -222,12 +209,11 @@ static bool is_exr(const char *path)
     return n > 4 && strcasecmp(path + n - 4, ".exr") == 0;
 }
 
-/* The froxel volume's shape for --aerial-perspective (volume, or auto when --max-error allows it), or NULL: a
- * march per pixel. -1 (after one line on stderr): volume asked for without a known camera orientation. */
-static int pick_volume(const options *o, const composite_options *co, bool oriented, ap_volume_desc *desc,
-                       const ap_volume_desc **out)
+/* The froxel volume's shape for --aerial-perspective (volume, or auto when --max-error allows it) into d, or d->volume
+ * false: a march per pixel. -1 (after one line on stderr): volume asked for without a known camera orientation. */
+static int pick_volume(const options *o, const composite_options *co, bool oriented, vksky_composite_desc *d)
 {
-    *out = NULL;
+    d->volume = false;
     char why[300] = "";
     unsigned size[3] = {co->ap_size[0], co->ap_size[1], co->ap_size[2]};
     double range = co->ap_range_km, distribution = co->ap_distribution;
@@ -245,9 +231,38 @@ static int pick_volume(const options *o, const composite_options *co, bool orien
     }
     if (co->aerial == AERIAL_AUTO && o->max_error > 0.0) fprintf(stderr, "vksky: --aerial-perspective auto: %s\n", why);
     if (!want) return 0;
-    *desc = (ap_volume_desc){size[0], size[1], size[2], (float)range, (float)distribution};
-    *out = desc;
+    d->volume = true;
+    for (int k = 0; k < 3; ++k) d->volume_size[k] = size[k];
+    /* The float values the pass takes (the froxel volume's shape is single precision on the GPU). */
+    d->volume_range_km = (float)range, d->volume_distribution = (float)distribution;
     return 0;
+}
+
+/* The check pass over the inputs (composite_run), on a thread of its own: every band read and fixed once, its counts. */
+typedef struct check_job {
+    band_reader *reader;
+    composite_fixups fix;
+    size_t geometry, sky;
+    int status;
+} check_job;
+
+static void *check_thread(void *arg)
+{
+    check_job *job = arg;
+    band_reader *r = job->reader;
+    for (int y0 = 0; y0 < r->height && job->status == 0; y0 += r->band_rows) {
+        if ((job->status = band_reader_read(r, y0, &job->fix)) != 0) break;
+        const composite_band *band = &r->band;
+        size_t core = (size_t)(band->core_row - band->first_row) * (size_t)r->width;
+        size_t end = core + (size_t)band->core_rows * (size_t)r->width;
+        for (size_t i = core; i < end; ++i) {
+            const float *p = r->position + 4 * i;
+            bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+            if (finite && r->beauty[4 * i + 3] > 0.0f) ++job->geometry;
+            else ++job->sky;
+        }
+    }
+    return NULL;
 }
 
 int composite_run(const options *o, const composite_options *co)
@@ -309,7 +324,7 @@ int composite_run(const options *o, const composite_options *co)
         goto done_info;
     }
     if (co->has_orientation) {
-        composite_view_orient_yaw_pitch(&v, o->view.yaw_deg, o->view.pitch_deg);
+        vksky_composite_view_orient(&v, o->view.yaw_deg, o->view.pitch_deg);
         if (!co->has_fov && !(from_matrix && matrix_fov > 0.0))
             fprintf(stderr, "vksky: --composite: no --fov given: the sky pixels assume %g degrees (vertical); give the "
                             "render's field of view\n", o->view.fov_deg);
@@ -320,9 +335,8 @@ int composite_run(const options *o, const composite_options *co)
         if (!co->has_fov) v.fov_y_deg = matrix_fov;
     }
 
-    ap_volume_desc vol_desc;
-    const ap_volume_desc *vol = NULL;
-    if (pick_volume(o, co, v.oriented, &vol_desc, &vol) != 0) {
+    vksky_composite_desc cdesc = {.abi_version = VKSKY_ABI_VERSION, .width = (uint32_t)w};
+    if (pick_volume(o, co, v.oriented, &cdesc) != 0) {
         status = 2;
         goto done_info;
     }
@@ -332,51 +346,63 @@ int composite_run(const options *o, const composite_options *co)
         status = 2;
         goto done_info;
     }
+    /* The camera's altitude over the command line's planet (the scene: a value, no device yet). */
+    vksky_scene *planet = NULL;
+    if (scene_of(o, true, &planet) != 0) {
+        status = 1;
+        goto done_info;
+    }
+    double altitude = vksky_composite_view_altitude(&v, planet);
     /* The inputs in bands (app/runs/composite_bands.h), first read only to check and count them: a bad pixel pass
-     * fails before the GPU starts and before any output exists. */
+     * fails before any output exists. The check runs on a thread of its own while the device, the renderer and the
+     * composite's pipeline are made (issue 28 item 6: the two were serial); a camera inside the planet starts no
+     * device. */
     int band_rows = composite_band_rows(w, h);
     band_reader reader;
-    if ((status = band_reader_init(&reader, beauty_path, &inputs, &v, w, h, band_rows)) != 0) goto done_info;
-    composite_fixups fix = {0};
-    size_t geometry = 0, sky = 0;
-    for (int y0 = 0; y0 < h && status == 0; y0 += band_rows) {
-        if ((status = band_reader_read(&reader, y0, &fix)) != 0) break;
-        const composite_band *band = &reader.band;
-        size_t core = (size_t)(band->core_row - band->first_row) * w, end = core + (size_t)band->core_rows * w;
-        for (size_t i = core; i < end; ++i) {
-            const float *p = reader.position + 4 * i;
-            bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-            if (finite && reader.beauty[4 * i + 3] > 0.0f) ++geometry;
-            else ++sky;
-        }
+    if ((status = band_reader_init(&reader, beauty_path, &inputs, &v, w, h, band_rows)) != 0) {
+        vksky_scene_destroy(planet);
+        goto done_info;
     }
-    if (status) goto done_reader;
+    check_job job = {.reader = &reader};
+    pthread_t checker;
+    bool threaded = pthread_create(&checker, NULL, check_thread, &job) == 0;
+    if (!threaded) check_thread(&job);
+    composite_gpu g = {0};
+    bool started = false;
+    int gpu_status = 0;
+    if (altitude >= 0.0) {
+        gpu_status = gpu_begin(o, &g, planet, 1, 1, false);
+        started = gpu_status == 0;
+    } else {
+        vksky_scene_destroy(planet);
+    }
+    if (threaded) pthread_join(checker, NULL);
+    composite_fixups fix = job.fix;
+    size_t geometry = job.geometry, sky = job.sky;
+    if ((status = job.status) != 0) goto done_checked;
     if (fix.opaque >= 16 && fix.opaque * 100 >= n) {
         fprintf(stderr, "vksky: --composite: %s: the film is opaque: %zu pixels (%.0f %%) have alpha 1 and no "
                         "position (a background, not geometry): render with a transparent film (Blender: Render "
                         "Properties > Film > Transparent) so that the sky can go behind\n",
                 beauty_path, fix.opaque, 100.0 * (double)fix.opaque / (double)n);
         status = 2;
-        goto done_reader;
+        goto done_checked;
     }
     if (geometry == 0) {
         fprintf(stderr, "vksky: --composite: %s: the %s pass has no finite pixel with alpha > 0: nothing to "
                         "apply the atmosphere to (is it the world-position pass?)\n", position_path,
                 inputs.has_depth ? "depth" : "position");
         status = 2;
-        goto done_reader;
+        goto done_checked;
     }
-    CompositePush push;
-    model_atmosphere earth = o->atmosphere;
-    double altitude = composite_push(&v, earth.bottom_radius, (uint32_t)w, (uint32_t)h, &push);
-    composite_push_fast(&v, &push);   /* segments' steps by length, the sky by tiles (docs/aerial_perspective.md) */
     if (altitude < 0.0) {
         fprintf(stderr, "vksky: --composite: the camera (%g, %g, %g world units) is inside the planet (%.4g km below "
                         "the ground); check --world-up, --world-unit, --ground-altitude\n",
                 v.camera[0], v.camera[1], v.camera[2], -altitude);
         status = 2;
-        goto done_reader;
+        goto done_checked;
     }
+    if ((status = gpu_status) != 0) goto done_checked;   /* the device's own line was printed */
     if (fix.overflowed)
         fprintf(stderr, "vksky: --composite: note: %zu positions overflowed the half-float range (beyond 65504 world "
                         "units) and have no atmosphere: write the Position pass as float (Blender: Output > Float "
@@ -395,7 +421,7 @@ int composite_run(const options *o, const composite_options *co)
     if (exr_header_build(&hdr, &scene, -1) != 0) {
         fprintf(stderr, "vksky: --composite: out of memory\n");
         status = 1;
-        goto done_reader;
+        goto done_checked;
     }
     /* The render's own camera matrices (its world, its units: the position pass's) where it had them. */
     if (cam_info) {
@@ -404,41 +430,54 @@ int composite_run(const options *o, const composite_options *co)
     }
     if (!v.oriented) hdr.meta.world_to_camera = hdr.meta.world_to_ndc = NULL;
 
-    gpu_context ctx;
-    sky_renderer r;
-    if ((status = gpu_begin(o, &ctx, &r, 1, 1, false)) != 0) goto done_header;
-    sky_composite c;
-    if (sky_composite_create(&c, &r, (uint32_t)w, (uint32_t)band_rows, vol, err, sizeof err) != 0) {
-        fprintf(stderr, "vksky: --composite: %s\n", err);
-        status = gpu_end(&ctx, &r, 2);
+    vksky_composite *c = NULL;
+    cdesc.rows = (uint32_t)band_rows;
+    /* Two slots, a ring of bands (composite_bands.h), where there are several bands of one frame each and no
+     * --async-luts; VKSKY_COMPOSITE_SLOTS=1: one band at a time. */
+    const char *slots_env = getenv("VKSKY_COMPOSITE_SLOTS");
+    int slots = band_rows < h && frames_from_env() <= 1 && !o->async_luts && !(slots_env && atoi(slots_env) == 1) ? 2 : 1;
+    if (slots == 2 && host_commands_create(&g.h[1], g.ctx) != 0) slots = 1;
+    cdesc.slots = (uint32_t)slots;
+    if (vksky_composite_create(g.r, &cdesc, &c) != VKSKY_SUCCESS) {
+        status = gpu_end(&g, 2);   /* the band is too large for the device's images (the line printed) */
+        started = false;
         goto done_header;
     }
-    if (o->bench_frames > 0) {   /* the first band (the whole image up to 2^20 pixels) */
+    /* The segments' steps by length, the sky by tiles (docs/aerial_perspective.md). */
+    if (vksky_composite_set_view(c, &v, (uint32_t)h, VKSKY_COMPOSITE_FAST, NULL) != VKSKY_SUCCESS) status = 1;
+    if (status == 0 && o->bench_frames > 0) {   /* the first band (the whole image up to 2^20 pixels) */
         composite_fixups ignored = {0};
         if ((status = band_reader_read(&reader, 0, &ignored)) == 0) {
-            band_reader_upload(&reader, &c);
-            bench(&r, &c, &push, o->bench_frames);
+            band_reader_upload(&reader, vksky_composite_inputs(c, 0), band_rows);
+            bench(&g, c, cdesc.volume, (uint32_t)w, (uint32_t)band_rows, o->bench_frames,
+                  o->trace_barriers ? stdout : NULL);
         }
     }
-    static const char *const names[VKSKY_AOV_COUNT] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
-    io_exr_band_layer layers[VKSKY_AOV_COUNT];
-    for (int k = 0; k < VKSKY_AOV_COUNT; ++k) layers[k] = (io_exr_band_layer){names[k], k == 0 ? 4 : 3, 4, NULL};
-    io_exr_layers_stream *out = status ? NULL : io_exr_layers_stream_open(out_path, w, h, layers, VKSKY_AOV_COUNT,
-                                                                         &hdr.meta, err, sizeof err);
+    static const char *const names[VKSKY_COMPOSITE_LAYERS] = {"", "sky", "sun_disk", "transmittance", "rayleigh",
+                                                              "mie"};
+    io_exr_band_layer layers[VKSKY_COMPOSITE_LAYERS];
+    for (uint32_t k = 0; k < VKSKY_COMPOSITE_LAYERS; ++k)
+        layers[k] = (io_exr_band_layer){names[k], k == 0 ? 4 : 3, 4, NULL};
+    io_exr_layers_stream *out = status ? NULL : io_exr_layers_stream_open(out_path, w, h, layers,
+                                                                         VKSKY_COMPOSITE_LAYERS, &hdr.meta, err,
+                                                                         sizeof err);
     if (!status && !out) {
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
-    if (out && (status = composite_bands_render(&reader, &r, &c, push, frames_from_env(), out)) == 0 &&
+    if (out && (status = composite_bands_render(&reader, g.h, slots, g.r, c, frames_from_env(),
+                                                o->trace_barriers ? stdout : NULL, out)) == 0 &&
         io_exr_layers_stream_finish(out, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
-    sky_composite_destroy(&c, &r);
-    status = gpu_end(&ctx, &r, status);
+    vksky_composite_destroy(c);
+    status = gpu_end(&g, status);
+    started = false;
 done_header:
     exr_header_free(&hdr);
-done_reader:
+done_checked:
+    if (started) status = gpu_end(&g, status);
     band_reader_free(&reader);
 done_info:
     io_exr_info_free(&bi);
@@ -462,55 +501,60 @@ int composite_aovs_run(const options *o, const composite_options *co)
         fprintf(stderr, "vksky: --aovs: needs --render FILE.exr (the layers are EXR layers; not with --bench)\n");
         return 2;
     }
-    gpu_context ctx;
-    sky_renderer r;
-    int status = gpu_begin(o, &ctx, &r, (uint32_t)o->width, (uint32_t)o->height, true);
+    composite_gpu g;
+    int status = gpu_begin(o, &g, NULL, (uint32_t)o->width, (uint32_t)o->height, true);
     if (status) return status;
-    /* The sky frame itself, as a plain render. */
-    frame_desc f = {.view = &o->view};
-    sky_renderer_render(&r, &f);
+    /* The sky frame itself, as a plain render (the view as the command line gives it). */
+    host_view hv = {.yaw_deg = o->view.yaw_deg, .pitch_deg = o->view.pitch_deg, .fov_deg = o->view.fov_deg,
+                    .exposure = o->view.exposure_ev, .auto_exposure = light_auto_exposure_wanted(o)};
+    FILE *trace = o->trace_barriers ? stdout : NULL;
+    if (host_commands_render(&g.h[0], g.r, &hv, trace, NULL) != 0) return gpu_end(&g, 1);
     /* The layers: the composite pass over a frame with no geometry, the camera the view's (at the world origin,
-     * +Y up, km). */
+     * +Y up, km), its altitude exactly the sky pass's. The volume only with --aerial-perspective volume: there is no
+     * geometry to sample it, but the frame is the composite's with the volume pass in it (barrier tests,
+     * docs/synchronization.md). */
     composite_view v = view_from_options(o);
     v.km_per_unit = 1.0, v.up_axis = 1;
     v.camera[1] = o->view.altitude_km;
-    composite_view_orient_yaw_pitch(&v, o->view.yaw_deg, o->view.pitch_deg);
-    CompositePush push;
-    composite_push(&v, o->atmosphere.bottom_radius, (uint32_t)o->width, (uint32_t)o->height, &push);
-    push.forward.w = (float)o->view.altitude_km;   /* exactly the sky pass's altitude */
-    /* The volume only with --aerial-perspective volume: there is no geometry to sample it, but the frame is the
-     * composite's with the volume pass in it (barrier tests, docs/synchronization.md). */
-    ap_volume_desc vol = {co->ap_size[0], co->ap_size[1], co->ap_size[2], (float)co->ap_range_km,
-                          (float)co->ap_distribution};
-    sky_composite c;
-    if (sky_composite_create(&c, &r, (uint32_t)o->width, (uint32_t)o->height,
-                             co->aerial == AERIAL_VOLUME ? &vol : NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "vksky: --aovs: %s\n", err);
-        return gpu_end(&ctx, &r, 2);
+    v.altitude_km = o->view.altitude_km;
+    vksky_composite_view_orient(&v, o->view.yaw_deg, o->view.pitch_deg);
+    vksky_composite_desc cd = {.abi_version = VKSKY_ABI_VERSION, .width = (uint32_t)o->width,
+                               .rows = (uint32_t)o->height, .volume = co->aerial == AERIAL_VOLUME,
+                               .volume_size = {co->ap_size[0], co->ap_size[1], co->ap_size[2]},
+                               .volume_range_km = (float)co->ap_range_km,
+                               .volume_distribution = (float)co->ap_distribution};
+    vksky_composite *c = NULL;
+    if (vksky_composite_create(g.r, &cd, &c) != VKSKY_SUCCESS) return gpu_end(&g, 2);
+    if (vksky_composite_set_view(c, &v, (uint32_t)o->height, VKSKY_COMPOSITE_VIEW_ALTITUDE, NULL) != VKSKY_SUCCESS) {
+        vksky_composite_destroy(c);
+        return gpu_end(&g, 1);
     }
     size_t n = (size_t)o->width * o->height;
-    float *in = sky_composite_inputs(&c);
+    float *in = vksky_composite_inputs(c, 0);
     for (size_t i = 0; i < n; ++i) {
         float *b = in + 4 * i, *p = in + 4 * (n + i);
         b[0] = b[1] = b[2] = b[3] = 0.0f;
         p[0] = p[1] = p[2] = p[3] = NAN;   /* no geometry anywhere */
     }
-    sky_composite_render(&r, &c, &push, frames_from_env());
-    float *top = malloc(n * 4 * sizeof(float));
+    vksky_composite_frame f = {.slot = 0};
+    if (composite_submit(&g.h[0], g.r, c, &f, frames_from_env(), trace, NULL) != 0) status = 1;
+    vksky_readback px;
+    if (status == 0 && vksky_renderer_get_readback(g.r, &px) != VKSKY_SUCCESS) status = 1;
+    float *top = status ? NULL : malloc(n * 4 * sizeof(float));
     exr_header hdr;
     options with_aovs = *o;   /* the command line with --aovs */
     if (co->argv_all) with_aovs.argc = co->argc_all, with_aovs.argv = co->argv_all;
-    if (exr_header_build(&hdr, &with_aovs, -1) != 0) {
+    if (top && exr_header_build(&hdr, &with_aovs, -1) != 0) {
         free(top);
         top = NULL;
     }
-    const uint16_t *half = r.readback_linear.mapped;
-    for (size_t i = 0; top && i < 4 * n; ++i) top[i] = io_half_to_float(half[i]);
+    for (size_t i = 0; top && i < 4 * n; ++i) top[i] = io_half_to_float(px.linear_rgba16f[i]);
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         int rc = !top ? -1
-                 : is_exr(o->outputs[i]) ? write_layers(o->outputs[i], &c, top, &hdr.meta, err, sizeof err)
-                                         : io_write_png(o->outputs[i], o->width, o->height, r.readback_display.mapped, 1,
-                                                        err, sizeof err);
+                 : is_exr(o->outputs[i]) ? write_layers(o->outputs[i], c, o->width, o->height, top, &hdr.meta, err,
+                                                        sizeof err)
+                                         : io_write_png(o->outputs[i], o->width, o->height, px.display_rgba8, 1, err,
+                                                        sizeof err);
         if (rc != 0) {
             fprintf(stderr, "vksky: --render: %s\n", top ? err : "out of memory");
             status = 1;
@@ -518,6 +562,6 @@ int composite_aovs_run(const options *o, const composite_options *co)
     }
     if (top) exr_header_free(&hdr);
     free(top);
-    sky_composite_destroy(&c, &r);
-    return gpu_end(&ctx, &r, status);
+    vksky_composite_destroy(c);
+    return gpu_end(&g, status);
 }

@@ -6,8 +6,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
-static const char *const LAYER_NAMES[VKSKY_AOV_COUNT] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
+static const char *const LAYER_NAMES[VKSKY_COMPOSITE_LAYERS] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
 
 int composite_band_rows(int width, int height)
 {
@@ -54,34 +55,146 @@ int band_reader_read(band_reader *b, int y0, composite_fixups *fix)
     return 0;
 }
 
-void band_reader_upload(const band_reader *b, sky_composite *c)
+void band_reader_upload(const band_reader *b, float *in, int rows)
 {
     const composite_band *band = &b->band;
     size_t row = (size_t)b->width * 4, core = (size_t)(band->core_row - band->first_row) * row;
-    size_t used = (size_t)band->core_rows * row, all = (size_t)c->height * row;
-    float *in = sky_composite_inputs(c);
+    size_t used = (size_t)band->core_rows * row, all = (size_t)rows * row;
     memcpy(in, b->beauty + core, used * sizeof(float));
     memcpy(in + all, b->position + core, used * sizeof(float));
     for (size_t i = used; i < all; i += 4) {
         in[i] = in[i + 1] = in[i + 2] = 0.0f, in[i + 3] = 1.0f;
         in[all + i] = in[all + i + 1] = in[all + i + 2] = NAN, in[all + i + 3] = 1.0f;
     }
-    /* Each sky tile (shared.h) none of whose pixels shows sky (alpha >= 1: the shader's own test), marked in its
-     * first pixel's position w, so that the shader need not read the tile's alphas to skip its sky rays. */
-    const int tile = VKSKY_COMPOSITE_TILE, w = b->width, rows = (int)c->height;
-    for (int ty = 0; ty < rows; ty += tile)
-        for (int tx = 0; tx < w; tx += tile) {
-            bool sky = false;
-            for (int y = ty; y < ty + tile && y < rows && !sky; ++y)
-                for (int x = tx; x < tx + tile && x < w && !sky; ++x) sky = !(in[((size_t)y * w + x) * 4 + 3] >= 1.0f);
-            in[all + ((size_t)ty * w + tx) * 4 + 3] = sky ? 1.0f : (float)VKSKY_COMPOSITE_TILE_NO_SKY;
-        }
 }
 
-int composite_bands_render(band_reader *b, sky_renderer *r, sky_composite *c, CompositePush push, int frames,
-                           io_exr_layers_stream *out)
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+}
+
+/* Frames first .. first + count - 1 of the band into h's command buffer (frame k > 0 rebuilds the LUTs), submitted
+ * (after the LUT passes on the compute queue, with h->async) and waited for: the order of host_ring.c's frames. */
+static int submit_frames(host_commands *h, vksky_renderer *r, vksky_composite *c, const vksky_composite_frame *f,
+                         int first, int count, FILE *trace, double *wall_ms, bool wait_fence)
+{
+    VkSemaphoreSubmitInfo wait, signal;
+    uint32_t waits = 0;
+    bool luts_waited = false;
+    if (h->async && host_async_luts(h->async, r, f->force_luts || first > 0, &luts_waited)) return 1;
+    if (trace) fputs("commands\n", trace);   /* the host's command buffer, as the CLI's trace names one */
+    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
+    for (int k = first; k < first + count; ++k) {
+        vksky_composite_frame fk = *f;
+        fk.force_luts = !h->async && (f->force_luts || k > 0);   /* with --async-luts: recorded above */
+        fk.follows_frame = k > first;   /* the readback copies' write-after-write: a barrier of the frame's */
+        if (vksky_composite_record(c, h->cmd, &fk) != VKSKY_SUCCESS) return 1;
+    }
+    if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
+    if (h->async) waits = host_async_frame(h->async, luts_waited, &wait, &signal);
+    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
+    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = waits,
+                           .pWaitSemaphoreInfos = &wait, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cinfo,
+                           .signalSemaphoreInfoCount = h->async ? 1 : 0, .pSignalSemaphoreInfos = &signal};
+    double t0 = now_ms();
+    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
+    if (!wait_fence) return vr == VK_SUCCESS ? 0 : 1;   /* the ring's band_done waits for it */
+    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
+    if (wall_ms) *wall_ms = now_ms() - t0;
+    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
+    if (vr != VK_SUCCESS) {
+        fprintf(stderr, "vksky: the composite's submission failed (VkResult %d)\n", (int)vr);
+        return 1;
+    }
+    return 0;
+}
+
+int composite_submit(host_commands *h, vksky_renderer *r, vksky_composite *c, const vksky_composite_frame *f,
+                     int frames, FILE *trace, double *wall_ms)
+{
+    int n = frames < 1 ? 1 : frames > 16 ? 16 : frames;
+    if (h->async) {   /* each frame its own pair of submissions, checked across queues by synchronization validation */
+        for (int k = 0; k < n; ++k)
+            if (submit_frames(h, r, c, f, k, 1, trace, wall_ms, true)) return 1;
+        return 0;
+    }
+    return submit_frames(h, r, c, f, 0, n, trace, wall_ms, true);
+}
+
+static int stream_band(vksky_composite *c, uint32_t slot, int core_rows, io_exr_layers_stream *out)
 {
     char err[600];
+    io_exr_band_layer layers[VKSKY_COMPOSITE_LAYERS];
+    for (uint32_t k = 0; k < VKSKY_COMPOSITE_LAYERS; ++k)
+        layers[k] = (io_exr_band_layer){LAYER_NAMES[k], k == 0 ? 4 : 3, 4, vksky_composite_layer(c, slot, k)};
+    if (io_exr_layers_stream_rows(out, layers, core_rows, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --render: %s\n", err);
+        return 1;
+    }
+    return 0;
+}
+
+/* composite.band_done: the host waits for band `band`'s fence before it reads the slot's layers (GPU -> host, RAW:
+ * the copy's writes, made visible to the host by aovs.to_host). Traced; VKSKY_DROP_BARRIER=composite.band_done
+ * leaves it (and the fence's reset) out: the layers are read while the band may still be in flight, and the slot's
+ * next submission finds its fence signalled, which validation reports (tests/composite_ring_test.sh). */
+static int band_done(host_commands *h, int band, uint32_t slot, FILE *trace, const char *drop, bool *waited)
+{
+    if (trace) fprintf(trace, "sync composite.band_done band=%d slot=%u (GPU -> host: the band's layers)\n", band, slot);
+    *waited = !(drop && !strcmp(drop, "composite.band_done"));
+    if (!*waited) return 0;
+    VkResult vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
+    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
+    if (vr != VK_SUCCESS) fprintf(stderr, "vksky: the composite's band %d failed (VkResult %d)\n", band, (int)vr);
+    return vr == VK_SUCCESS ? 0 : 1;
+}
+
+/* Two slots (composite_bands.h): band k is read and submitted into slot k % 2, then band k - 1's layers are waited for
+ * (composite.band_done) and encoded while the GPU composites band k. Slot k % 2 is the host's again when band k - 2's
+ * layers are encoded (composite.slot_free: a hand-over, traced; the wait that makes it safe is band k - 2's
+ * band_done). The rows reach the stream in order, so the file is the one-slot loop's, byte for byte. */
+static int render_ring(band_reader *b, host_commands h[2], vksky_composite *c, FILE *trace,
+                       io_exr_layers_stream *out)
+{
+    const char *drop = getenv("VKSKY_DROP_BARRIER");
+    composite_fixups ignored = {0};   /* counted by the first pass */
+    int bands = (b->height + b->band_rows - 1) / b->band_rows, core_rows[2] = {0, 0}, rc = 0, submitted = 0;
+    bool waited[2] = {true, true};
+    for (int k = 0; k <= bands && rc == 0; ++k) {
+        if (k < bands) {
+            uint32_t s = (uint32_t)k % 2;
+            int y0 = k * b->band_rows;
+            if ((rc = band_reader_read(b, y0, &ignored)) != 0) break;
+            if (trace && k >= 2)
+                fprintf(trace, "sync composite.slot_free band=%d slot=%u (band %d's layers encoded)\n", k, s, k - 2);
+            /* Only where band_done was dropped: the command buffer must not be pending when it is reset (its fence is
+             * left signalled: the drop stays visible to validation, the driver safe). */
+            if (k >= 2 && !waited[s]) vkWaitForFences(h[s].device, 1, &h[s].fence, VK_TRUE, UINT64_MAX);
+            band_reader_upload(b, vksky_composite_inputs(c, s), b->band_rows);
+            core_rows[s] = b->band.core_rows;
+            vksky_composite_frame f = {.slot = s, .first_row = y0};
+            if ((rc = submit_frames(&h[s], NULL, c, &f, 0, 1, trace, NULL, false)) != 0) break;
+            submitted = k + 1;
+        }
+        if (k >= 1) {
+            uint32_t s = (uint32_t)(k - 1) % 2;
+            if ((rc = band_done(&h[s], k - 1, s, trace, drop, &waited[s])) == 0) rc = stream_band(c, s, core_rows[s], out);
+            if (rc == 0 && stop_requested()) rc = 1;   /* SIGINT/SIGTERM: no file at the output path */
+        }
+    }
+    if (submitted > 0) vkQueueWaitIdle(h[0].queue);   /* nothing of a failed run left in flight */
+    if (rc) io_exr_layers_stream_abort(out);
+    return rc;
+}
+
+int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_renderer *r, vksky_composite *c,
+                           int frames, FILE *trace, io_exr_layers_stream *out)
+{
+    if (slots == 2) return render_ring(b, h, c, trace, out);
     composite_fixups ignored = {0};   /* counted by the first pass */
     for (int y0 = 0; y0 < b->height; y0 += b->band_rows) {
         int rc = band_reader_read(b, y0, &ignored);
@@ -89,16 +202,13 @@ int composite_bands_render(band_reader *b, sky_renderer *r, sky_composite *c, Co
             io_exr_layers_stream_abort(out);
             return rc;
         }
-        band_reader_upload(b, c);
-        push.right.w = (float)y0;   /* the band's first row (shared.h) */
-        sky_composite_render(r, c, &push, frames);
-        io_exr_band_layer layers[VKSKY_AOV_COUNT];
-        for (int k = 0; k < VKSKY_AOV_COUNT; ++k)
-            layers[k] = (io_exr_band_layer){LAYER_NAMES[k], k == 0 ? 4 : 3, 4, sky_composite_layer(c, k)};
-        if (io_exr_layers_stream_rows(out, layers, b->band.core_rows, err, sizeof err) != 0) {
-            fprintf(stderr, "vksky: --render: %s\n", err);
+        band_reader_upload(b, vksky_composite_inputs(c, 0), b->band_rows);
+        vksky_composite_frame f = {.slot = 0, .first_row = y0};   /* the band's first row of the whole image */
+        if (composite_submit(&h[0], r, c, &f, frames, trace, NULL) != 0) {
+            io_exr_layers_stream_abort(out);
             return 1;
         }
+        if (stream_band(c, 0, b->band.core_rows, out) != 0) return 1;
         if (stop_requested()) {   /* SIGINT/SIGTERM: no file at the output path */
             io_exr_layers_stream_abort(out);
             return 1;

@@ -1,13 +1,15 @@
 /* The composite in bands (issue 28): any image size through band-sized buffers. The render is read a band of rows at
  * a time (with a few rows either side for the edge repair, app/runs/composite_layers.h), composited on the GPU band by
- * band through one band-sized composite pass (sky/composite.h), and its layers streamed into the output EXR
- * (io/exr_layers.h, io_exr_layers_stream_*): peak memory follows the band, not the image. */
+ * band through one band-sized composite pass of include/vksky.h (vksky_composite_*), and its layers streamed into the
+ * output EXR (io/exr_layers.h, io_exr_layers_stream_*): peak memory follows the band, not the image. A host of the
+ * API: no src/sky or src/lib header (tests/layering_test.sh). */
 #ifndef VKSKY_APP_COMPOSITE_BANDS_H
 #define VKSKY_APP_COMPOSITE_BANDS_H
 
 #include "app/runs/composite_layers.h"
+#include "app/runs/host_ring.h"
 #include "io/exr_layers.h"
-#include "sky/composite.h"
+#include <vksky.h>
 
 /* Rows per band for a width x height composite: about 2^20 pixels (VKSKY_COMPOSITE_BAND_ROWS overrides, for
  * tests), a whole number of the writer's 16-row chunks, the whole image when it is smaller. */
@@ -31,13 +33,22 @@ void band_reader_free(band_reader *b);
  * or 2 (one line on stderr). */
 int band_reader_read(band_reader *b, int y0, composite_fixups *fix);
 
-/* The core rows of the band last read into the composite's upload buffer (beauty rows, then position rows; rows
- * below a short last band: covered and without a position, so that nothing is marched for them). */
-void band_reader_upload(const band_reader *b, sky_composite *c);
+/* The core rows of the band last read into `in` (vksky_composite_inputs: `rows` beauty rows, then `rows` position
+ * rows; rows below a short last band: covered and without a position, so that nothing is marched for them). */
+void band_reader_upload(const band_reader *b, float *in, int rows);
 
-/* Every band: read, composite (push's band row set per band), and its rows streamed into `out`. 0, 1 or 2 (after
- * one line on stderr; the stream is then aborted). */
-int composite_bands_render(band_reader *b, sky_renderer *r, sky_composite *c, CompositePush push, int frames,
-                           io_exr_layers_stream *out);
+/* The composite's frames of one band, from inputs already in `slot`: VKSKY_FRAMES frames recorded back to back into
+ * h's command buffer (the LUTs rebuilt in each after the first; with h->async each frame its own pair of submissions,
+ * the LUTs on the compute queue), submitted and waited for. *wall_ms (may be NULL): submit to fence. 0, or 1. */
+int composite_submit(host_commands *h, vksky_renderer *r, vksky_composite *c, const vksky_composite_frame *f,
+                     int frames, FILE *trace, double *wall_ms);
+
+/* Every band: read, composited, and its rows streamed into `out`. slots 1: one band at a time through h[0] (frames:
+ * VKSKY_FRAMES, --async-luts as h[0] says). slots 2 (c made with two slots, one frame a band, no --async-luts): a ring
+ * of two, band k + 1's GPU work while band k's layers are encoded (h[k % 2]; composite.band_done, composite.slot_free:
+ * docs/synchronization.md, "The composite's bands"). 0, 1 or 2 (after one line on stderr; the stream is then
+ * aborted). */
+int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_renderer *r, vksky_composite *c,
+                           int frames, FILE *trace, io_exr_layers_stream *out);
 
 #endif

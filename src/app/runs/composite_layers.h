@@ -8,9 +8,13 @@
 
 #include "app/cli/options_composite.h"
 #include "io/exr_read.h"
-#include "sky/composite.h"
+#include <volk.h>
+#include <vksky.h>
 #include <stdbool.h>
 #include <stddef.h>
+
+/* The render's world, camera and sun: include/vksky.h's (vksky_composite_view). */
+typedef vksky_composite_view composite_view;
 
 typedef struct layer_pick {
     char prefix[512];         /* "ViewLayer.Combined", "" (top level) */

@@ -1,0 +1,20 @@
+/* The command line's device for a host of include/vksky.h that makes its own (the composite, app/runs/composite_app.c):
+ * made as the headless run makes it (app/runs/headless.c: validation, --device, --async-luts' compute queue, the
+ * pipeline cache, the device's limits checked, VKSKY_WEAKEN_BARRIER / VKSKY_DROP_BARRIER), and adopted by a vksky
+ * context with the command line's message callback, names and labels, LUT cache directory and barrier trace. The
+ * host itself then sees only the context. */
+#ifndef VKSKY_APP_RUNS_HOST_DEVICE_H
+#define VKSKY_APP_RUNS_HOST_DEVICE_H
+#include "app/cli/options.h"
+#include <volk.h>
+#include <vksky.h>
+
+typedef struct host_device host_device;
+
+/* *dev and *ctx made: 0; else 1 or 2 after one line on stderr (nothing left to destroy). *compute_index: --async-luts'
+ * compute queue within its family (host_async_create). Installs the stop handler (app/runs/stop.h). */
+int host_device_open(const options *o, host_device **dev, vksky_context **ctx, uint32_t *compute_index);
+/* Destroys the context (after every renderer of it), then the device. Validation messages fail a run that succeeded;
+ * a stop asked for by a signal gives its status (stop_status). */
+int host_device_close(host_device *dev, vksky_context *ctx, int status);
+#endif
