@@ -29,14 +29,16 @@ V=$(readlink -f "$V" 2>/dev/null || echo "$V")
 [ -x "$V" ] || { echo "qfot_drops.sh: '$V' is not an executable (give the path of vksky)" >&2; exit 2; }
 list=${QFOT_DROPS_LIST:-$root/tests/qfot_drops.txt}   # another list of that format: QFOT_DROPS_LIST=FILE
 drop_test=$root/tests/barrier_drop_test.sh
-[ -f "$list" ] && [ -x "$drop_test" ] || { echo "qfot_drops.sh: run it from a vksky checkout (no $list)" >&2; exit 2; }
+if [ ! -f "$list" ] || [ ! -x "$drop_test" ]; then echo "qfot_drops.sh: run it from a vksky checkout (no $list)" >&2; exit 2; fi
 export BARRIER_IDS=1
 unset VKSKY_DROP_BARRIER VKSKY_WEAKEN_BARRIER VKSKY_ASYNC_ONE_QUEUE
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 echo "# device: $("$V" --list-devices 2>/dev/null | head -n 1)"
-layer_json=$(ls "${VK_LAYER_PATH:-/usr/share/vulkan/explicit_layer.d}"/VkLayer_khronos_validation.json 2>/dev/null | head -n 1)
+layer_json=${VK_LAYER_PATH:-/usr/share/vulkan/explicit_layer.d}
+layer_json=${layer_json%%:*}/VkLayer_khronos_validation.json
+[ -f "$layer_json" ] || layer_json=
 echo "# validation layer: $([ -n "$layer_json" ] && grep -o '"api_version": *"[^"]*"' "$layer_json" | head -n 1 || echo "not found")"
 echo "# $(date -u +%FT%TZ), $("$V" --version 2>/dev/null)"
 
