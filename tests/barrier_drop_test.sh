@@ -34,6 +34,11 @@ grep -q '^config ' "$LIST" || configs=$(dirname "$LIST")/barrier_drops.txt
 read -r kind args < <(awk -v id="$CONFIG" '$1 == "config" && $2 == id { $1 = $2 = ""; sub(/^ +/, ""); print; exit }' "$configs")
 [ -n "${kind:-}" ] || { echo "FAIL: no 'config $CONFIG' line in $LIST"; exit 1; }
 args=${args//OUT/$work/out}
+# A list whose frames need a compute queue of another family (tests/qfot_drops.txt, "requires
+# other_compute_family": the LUTs' ownership transfer): the real queues, not the tests' one-queue mode; a device
+# without such a queue skips below (exit 77, one line).
+other_family=0
+if grep -q '^requires other_compute_family' "$LIST"; then other_family=1; unset VKSKY_ASYNC_ONE_QUEUE; fi
 
 # The barrier line: "NAME CONFIG EXPECTED [untraced] [NOTE]"
 expected=none
@@ -61,6 +66,8 @@ if [ "$kind" = probe ]; then
     # A test program in vksky's place (its path relative to vksky's directory is the first of ARGS).
     read -r probe args <<<"$args"
     run=("$(dirname "$VKSKY")/$probe")
+    # A flat directory of programs (tools/qfot_drops.sh from the GPU bundle's .gpu/bin): the probe beside vksky.
+    [ -x "${run[0]}" ] || [ ! -x "$(dirname "$VKSKY")/$(basename "$probe")" ] || run=("$(dirname "$VKSKY")/$(basename "$probe")")
 elif [ "$kind" = render ]; then
     env_vars+=(VKSKY_FRAMES=2)
 elif [ -z "${DISPLAY:-}" ]; then
@@ -70,6 +77,18 @@ fi
 # shellcheck disable=SC2086  # ARGS are words
 env "${env_vars[@]}" "${run[@]}" $args --validate --trace-barriers >"$work/stdout" 2>"$work/stderr"
 rc=$?
+if [ $other_family -eq 1 ]; then
+    # vksky refuses --async-luts without a second queue (exit 2, one line); a probe says so itself (exit 77).
+    if [ $rc -eq 77 ] || { [ $rc -eq 2 ] && grep -q 'needs a second queue' "$work/stderr"; }; then
+        echo "SKIP: needs a compute-only queue family: $(cat "$work/stdout" "$work/stderr" | grep -v '^queues ' | head -n 1 | cut -c1-200)"
+        exit 77
+    fi
+    queues=$(grep -m1 '^queues ' "$work/stdout")
+    if [ -n "$queues" ] && [[ $queues != *"another family"* ]]; then
+        echo "SKIP: needs a compute-only queue family: the compute queue is of the graphics family (${queues%% (*}), so there is no ownership transfer to leave out"
+        exit 77
+    fi
+fi
 
 # What was reported, as a set: one token per distinct kind, sorted and joined by "+" like EXPECTED.
 got=$(awk '
@@ -84,6 +103,10 @@ got=$(awk '
         # names newer layers give them, docs/synchronization.md "What a newer layer sees").
         else if (id ~ /InvalidImageLayout|oldLayout-01197|imageLayout-00344|None-02699|srcImageLayout-00189|dstImageLayout-00180|pImageIndices-01296|None-09600|pRenderingInfo-09592|pImageIndices-01430/)
             print "layout"
+        # Core checks of queue-family ownership transfers (tests/qfot_drops.txt), 1.3.239 names and newer ones: an
+        # acquire whose release was never submitted; a release while the last one of the image is still unacquired.
+        else if (id ~ /VkImageMemoryBarrier-image-00004|pSubmits-02207/) print "no_release"
+        else if (id ~ /VkImageMemoryBarrier-image-00003/) print "pending_release"
         else print "other:" id
     }' "$work/stderr" | LC_ALL=C sort -u | paste -sd+ -)
 got=${got:-none}
@@ -106,6 +129,11 @@ fi
 [ "$got" = "$want" ] || fail "$label: validation reported {$got}, expected {$want}"
 if [ "$want" = none ] && [ $rc -ne 0 ]; then fail "$label: exit status $rc, expected 0"; fi
 if [ "$want" != none ] && [ $rc -ne 1 ]; then fail "$label: exit status $rc, expected 1 (validation messages)"; fi
+# BARRIER_IDS=1 (tools/qfot_drops.sh): the message ids themselves, as the layer names them.
+if [ -n "${BARRIER_IDS:-}" ]; then
+    echo "ids: $(awk '/^vksky: validation (error|warning)/ && match($0, /\[ [^] ]+ \]/) { print substr($0, RSTART + 2, RLENGTH - 4) }' \
+        "$work/stderr" | LC_ALL=C sort -u | paste -sd+ -)"
+fi
 if [ $fails -ne 0 ]; then
     echo "--- stderr (first 20 lines) ---"
     head -n 20 "$work/stderr" | cut -c1-400

@@ -64,6 +64,8 @@ typedef struct host {
     VkDevice device;
     uint32_t family, index;
     VkQueue queue;
+    uint32_t compute_family;        /* host_want_compute_family: a compute-only family's queue 0, else UINT32_MAX */
+    VkQueue compute_queue;
     bool owns;                      /* made here (else vksky's own context's handles) */
     VkCommandPool pool;
     VkCommandBuffer cmd;
@@ -86,11 +88,16 @@ static inline uint32_t host_memory_type(const host *h, uint32_t bits, VkMemoryPr
     exit(1);
 }
 
+/* Set before host_create_device: the device also gets queue 0 of a compute-only family when it has one
+ * (api_qfot_probe: the LUTs' queue-family ownership transfer). */
+static bool host_want_compute_family __attribute__((unused));
+
 /* The host's own device: Vulkan 1.3 with vksky's requirements, the queue family `family` (its last queue). */
 static inline void host_create_device(host *h, const VkAllocationCallbacks *allocator)
 {
     memset(h, 0, sizeof *h);
     h->owns = true;
+    h->compute_family = UINT32_MAX;
 #ifdef VKSKY_SANITIZE
     /* As src/gpu/context.c does: the driver and the layer stay mapped at exit, so tests/lsan.supp can name their own
      * leaks by library instead of an unknown frame that could hide one of ours. */
@@ -131,8 +138,15 @@ static inline void host_create_device(host *h, const VkAllocationCallbacks *allo
         if ((q[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) == (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT))
             h->family = i, h->index = q[i].queueCount - 1;
     float priorities[16] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
-    VkDeviceQueueCreateInfo qi = {.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, .queueFamilyIndex = h->family,
-                                  .queueCount = h->index + 1, .pQueuePriorities = priorities};
+    VkDeviceQueueCreateInfo qi[2] = {{.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO, .queueFamilyIndex = h->family,
+                                      .queueCount = h->index + 1, .pQueuePriorities = priorities}};
+    for (uint32_t i = 0; host_want_compute_family && i < qn && h->compute_family == UINT32_MAX; ++i)
+        if ((q[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) == VK_QUEUE_COMPUTE_BIT && q[i].queueCount)
+            h->compute_family = i;
+    if (h->compute_family != UINT32_MAX)
+        qi[1] = (VkDeviceQueueCreateInfo){.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
+                                          .queueFamilyIndex = h->compute_family, .queueCount = 1,
+                                          .pQueuePriorities = priorities};
     vksky_device_requirements req;
     vksky_get_device_requirements(&req);
     VkPhysicalDeviceVulkan13Features f13 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
@@ -142,10 +156,11 @@ static inline void host_create_device(host *h, const VkAllocationCallbacks *allo
     VkPhysicalDeviceVulkan12Features f12 = {.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
                                             .timelineSemaphore = VK_TRUE};
     f13.pNext = &f12;
-    VkDeviceCreateInfo di = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, .pNext = &f13, .queueCreateInfoCount = 1,
-                             .pQueueCreateInfos = &qi};
+    VkDeviceCreateInfo di = {.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, .pNext = &f13,
+                             .queueCreateInfoCount = h->compute_family != UINT32_MAX ? 2 : 1, .pQueueCreateInfos = qi};
     HOST_VK(vkCreateDevice(h->physical, &di, allocator, &h->device));
     vkGetDeviceQueue(h->device, h->family, h->index, &h->queue);
+    if (h->compute_family != UINT32_MAX) vkGetDeviceQueue(h->device, h->compute_family, 0, &h->compute_queue);
 }
 
 /* vksky's own context's device, used as a host would use its own. */
