@@ -63,9 +63,9 @@ typedef enum sky_pass_kind { SKY_PASS_FRAGMENT = 0, SKY_PASS_COMPUTE = 1, SKY_PA
 typedef struct sky_pass {
     VkDescriptorSetLayout set_layouts[2];        /* [kind] */
     VkPipelineLayout layouts[2];                 /* [kind] */
-    VkPipeline pipelines[2][4];                  /* [kind][mode], mode 3: the lookup blending into the march */
+    VkPipeline pipelines[2][4];                  /* [kind][mode] (3: lookup into march), made at first use */
     VkDescriptorSet sets[2];                     /* [kind]; the compute set also holds the HDR storage image */
-    const pass_shared *shared;                   /* for the blend variant, built at its first use */
+    const pass_shared *shared;                   /* for the pipelines, made at their first use */
 } sky_pass;
 void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts);
 void sky_pass_destroy(sky_pass *p, const pass_shared *s);
