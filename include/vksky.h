@@ -588,7 +588,8 @@ VKSKY_API vksky_result vksky_renderer_get_lut_timings(vksky_renderer *renderer, 
 
 /* What making the renderer cost and what its LUT cache did (ABI 2: the command line's --timings): wall milliseconds
  * spent making pipelines and resources (creation and variant rebuilds), the times the pipelines were built, and the
- * LUT cache's state after the last frame (and vksky_renderer_store_luts). */
+ * LUT cache's state after the last frame (and vksky_renderer_store_luts). The LUT and sky passes' pipelines are made
+ * when a frame first records with them, and their time is the frame's, not pipelines_ms. */
 typedef enum vksky_lut_cache_state {
     VKSKY_LUT_CACHE_OFF = 0,           /* no cache directory */
     VKSKY_LUT_CACHE_HIT = 1,           /* uploaded, not computed */

@@ -4,8 +4,10 @@
 #include "reference/ref_internal.h"
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* Rows: h = 0.01 + (top - 0.01) y^2, y uniform (the 10 m clamp is the first row).
  * Columns: three segments in mu_s that meet at the kinks of the horizon fade, -0.05 and +0.05 (nodes on both, no
@@ -88,13 +90,73 @@ static const sun_table *sun_table_get(const model_atmosphere *a)
     return g_sun_table;
 }
 
-static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int steps)
+/* One row of the table (altitude j): every column once (the shared segment ends are evaluated twice: cheap, and
+ * keeps this simple); the twilight columns (segment 0) with twice the steps, as ref_multiscatter_converged does. A
+ * row reads only the atmosphere, the mu_s nodes and the sun table, and writes only its own t->v[j]: rows are
+ * independent, so they can be filled on any thread in any order and the table is the same bit for bit. */
+static int psi_row_fill(psi_table *t, const model_atmosphere *a, const double *mus, int j, int sqrt_dirs, int steps,
+                        const sun_table *st)
+{
+    double res[PSI_COLS][3], an[PSI_COLS][MS_MOMENTS];
+    const int lesson = a->sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE;
+    double h = psi_row_h(a, j);
+    polar_rule pr;
+    if (!polar_horizon(a, h, sqrt_dirs, &pr))
+        return 0;
+    int ok = multiscatter_row(a, h, mus, PSI_SEG0, ms_azimuths(sqrt_dirs), &pr, ms_steps_for(steps, -1.0), 1, 0, st,
+                              res, lesson ? NULL : an) &&
+             multiscatter_row(a, h, mus + PSI_SEG0, PSI_COLS - PSI_SEG0, ms_azimuths(sqrt_dirs), &pr, steps, 1, 0,
+                              st, res + PSI_SEG0, lesson ? NULL : an + PSI_SEG0);
+    free(pr.mu);
+    if (!ok)
+        return 0;
+    for (int c = 0; c < 3; ++c) /* the shared node -0.05 belongs to the 1x-steps side (continuity) */
+        res[PSI_SEG0 - 1][c] = res[PSI_SEG0][c];
+    for (int k = 0; k < MS_MOMENTS; ++k)
+        an[PSI_SEG0 - 1][k] = an[PSI_SEG0][k];
+    for (int i = 0; i < PSI_COLS; ++i) {
+        for (int c = 0; c < 3; ++c)
+            t->v[j][i][c] = log(fmax(res[i][c], 1e-300));
+        for (int k = 0; k < MS_MOMENTS; ++k)
+            t->v[j][i][3 + k] = lesson ? 0.0 : an[i][k];
+    }
+    return 1;
+}
+
+/* The rows on worker threads (~4 s of one core per atmosphere at the converged counts: every reference run, and
+ * many tests, build one or more; issue 27 items 3 and 5). Worker w fills rows w, w + n, w + 2n, ...: a fixed split,
+ * no shared counter; each row's result does not depend on who computes it. */
+typedef struct psi_job {
+    psi_table *t;
+    const model_atmosphere *a;
+    const double *mus;
+    const sun_table *st;
+    int sqrt_dirs, steps, first, stride, ok;
+} psi_job;
+
+static void *psi_worker(void *arg)
+{
+    psi_job *J = arg;
+    for (int j = J->first; J->ok && j < PSI_ROWS; j += J->stride)
+        J->ok = !ref_cancelled() && psi_row_fill(J->t, J->a, J->mus, j, J->sqrt_dirs, J->steps, J->st);
+    return NULL;
+}
+
+static int psi_threads_default(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > PSI_ROWS ? PSI_ROWS : (int)n;
+}
+
+psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int steps, int threads)
 {
     psi_table *t = malloc(sizeof *t);
-    const sun_table *st = sun_table_get(a);
-    double mus[PSI_COLS], res[PSI_COLS][3], an[PSI_COLS][MS_MOMENTS];
-    const int lesson = a->sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE;
-    int ok = t && st;
+    const sun_table *st = sun_table_get(a); /* built here, on this thread, before any worker reads it */
+    double mus[PSI_COLS];
+    if (!t || !st) {
+        free(t);
+        return NULL;
+    }
     for (int seg = 0; seg < 3; ++seg)
         for (int i = 0; i < psi_seg_n[seg]; ++i)
             mus[psi_seg_off[seg] + i] = psi_seg_mus(seg, (double)i / (psi_seg_n[seg] - 1));
@@ -102,41 +164,31 @@ static psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int 
     mus[PSI_SEG0 - 1] = mus[PSI_SEG0] = -0.05;
     mus[PSI_SEG0 + PSI_SEG1 - 1] = mus[PSI_SEG0 + PSI_SEG1] = 0.05;
     mus[PSI_COLS - 1] = 1.0;
-    for (int j = 0; ok && j < PSI_ROWS; ++j) {
-        if (ref_cancelled()) {
-            ok = 0;
-            break;
-        }
-        double h = psi_row_h(a, j);
-        polar_rule pr;
-        if (!polar_horizon(a, h, sqrt_dirs, &pr)) {
-            ok = 0;
-            break;
-        }
-        /* every column once (the shared segment ends are evaluated twice: cheap, and keeps this simple); the
-         * twilight columns (segment 0) with twice the steps, as ref_multiscatter_converged does */
-        ok = multiscatter_row(a, h, mus, PSI_SEG0, ms_azimuths(sqrt_dirs), &pr, ms_steps_for(steps, -1.0), 1, 0,
-                              st, res, lesson ? NULL : an) &&
-             multiscatter_row(a, h, mus + PSI_SEG0, PSI_COLS - PSI_SEG0, ms_azimuths(sqrt_dirs), &pr, steps, 1, 0,
-                              st, res + PSI_SEG0, lesson ? NULL : an + PSI_SEG0);
-        free(pr.mu);
-        for (int c = 0; c < 3; ++c) /* the shared node -0.05 belongs to the 1x-steps side (continuity) */
-            res[PSI_SEG0 - 1][c] = res[PSI_SEG0][c];
-        for (int k = 0; k < MS_MOMENTS; ++k)
-            an[PSI_SEG0 - 1][k] = an[PSI_SEG0][k];
-        for (int i = 0; i < PSI_COLS; ++i) {
-            for (int c = 0; c < 3; ++c)
-                t->v[j][i][c] = log(fmax(res[i][c], 1e-300));
-            for (int k = 0; k < MS_MOMENTS; ++k)
-                t->v[j][i][3 + k] = lesson ? 0.0 : an[i][k];
-        }
-    }
+    int n = threads > 0 ? threads : psi_threads_default();
+    n = n > PSI_ROWS ? PSI_ROWS : n;
+    psi_job jobs[PSI_ROWS];
+    pthread_t tid[PSI_ROWS];
+    int started = 0, ok = 1;
+    for (int w = 0; w < n; ++w)
+        jobs[w] = (psi_job){t, a, mus, st, sqrt_dirs, steps, w, n, 1};
+    /* workers 1..n-1 on threads, worker 0 here; the workers whose thread could not start run here after it */
+    for (int w = 1; w < n && pthread_create(&tid[w], NULL, psi_worker, &jobs[w]) == 0; ++w)
+        started = w;
+    psi_worker(&jobs[0]);
+    for (int w = started + 1; w < n; ++w)
+        psi_worker(&jobs[w]);
+    for (int w = 1; w <= started; ++w)
+        pthread_join(tid[w], NULL);
+    for (int w = 0; w < n; ++w)
+        ok = ok && jobs[w].ok;
     if (!ok) {
         free(t);
         return NULL;
     }
     return t;
 }
+
+size_t psi_table_bytes(void) { return sizeof(psi_table); }
 
 void psi_table_eval(const psi_table *t, const model_atmosphere *a, double h, double mus, double out[3],
                     double mom[MS_MOMENTS])
@@ -198,7 +250,7 @@ const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int 
         if (!s->table || (victim->table && s->used < victim->used))
             victim = s;
     }
-    psi_table *t = psi_table_build(&a, sqrt_dirs, steps);
+    psi_table *t = psi_table_build(&a, sqrt_dirs, steps, 0);
     if (!t)
         return NULL;
     free(victim->table);

@@ -6,8 +6,10 @@
  * Inputs are expected finite (ref_sky_radiance returns 0 for unusable ones).
  *
  * Threads: ref_sky_radiance() builds a multi-scattering table lazily (per atmosphere and Psi counts, in a small
- * static cache, ~2 s at the converged counts). Building is not thread-safe; once the table exists (one call made),
- * concurrent calls with the same atmosphere and counts are. Everything else is reentrant.
+ * static cache, ~2 s at the converged counts; its rows are filled on worker threads, one per core, the same bytes
+ * for any count: tests/test_psi_threads.c). Building is not thread-safe (two callers must not build at once); once
+ * the table exists (one call made), concurrent calls with the same atmosphere and counts are. Everything else is
+ * reentrant.
  *
  * The implementation is split by what it computes; ref_internal.h lists which file holds what.
  */

@@ -19,6 +19,7 @@
 #include "reference/ref_atmosphere.h"
 
 #include <math.h>
+#include <stddef.h>
 
 #define REF_PI 3.14159265358979323846
 
@@ -255,6 +256,12 @@ typedef struct psi_table psi_table;
 /* The Psi table of (atmosphere, ms_sqrt_dirs, ms_steps), built on first use and cached (see psi_table.c); NULL when
  * out of memory. Building is not thread-safe; looking up an existing table is. */
 const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps);
+
+/* A new Psi table, uncached, its rows filled on `threads` threads (0: the machine's cores, at most one per row); the
+ * same bytes for any count (tests/test_psi_threads.c). psi_table_bytes: its size, for comparing two. Not thread-safe
+ * (the sun table it reads is the cache's). */
+psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int steps, int threads);
+size_t psi_table_bytes(void);
 
 /* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does), and mom, the second bounce's moments
  * (all 0 for the lesson's model); ms_phase_factor turns them into the factors on the Psi term. */

@@ -42,10 +42,8 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
     const gpu_slot t_slots[] = {{VKSKY_BINDING_ATMOSPHERE, UBO}, {VKSKY_BINDING_OUTPUT, STORAGE}};
     l->transmittance_set_layout = gpu_set_layout(ctx, t_slots, 2, VK_SHADER_STAGE_COMPUTE_BIT, "transmittance set layout");
     l->transmittance_layout = gpu_pipeline_layout(ctx, l->transmittance_set_layout, 0, 0, "transmittance layout");
-    l->transmittance_pipeline = compute_pipeline(s, l->transmittance_layout,
-                                                 s4 ? (q->lut_f32 ? &spirv_transmittance_lut_f32_s4 : &spirv_transmittance_lut_s4)
-                                                    : q->lut_f32 ? &spirv_transmittance_lut_f32 : &spirv_transmittance_lut,
-                                                 "transmittance LUT");
+    l->transmittance_spv = s4 ? (q->lut_f32 ? &spirv_transmittance_lut_f32_s4 : &spirv_transmittance_lut_s4)
+                              : q->lut_f32 ? &spirv_transmittance_lut_f32 : &spirv_transmittance_lut;
     l->transmittance_set = gpu_alloc_set(ctx, s->pool, l->transmittance_set_layout, "transmittance set");
     gpu_write_uniform(ctx, l->transmittance_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
                       sizeof(AtmosphereParams));
@@ -59,10 +57,8 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
         l->multiscatter_set_layout = gpu_set_layout(ctx, m_slots, 4, VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter set layout");
         l->multiscatter_layout = gpu_pipeline_layout(ctx, l->multiscatter_set_layout, sizeof(MultiscatterPush),
                                                      VK_SHADER_STAGE_COMPUTE_BIT, "multiscatter layout");
-        l->multiscatter_pipeline = compute_pipeline(s, l->multiscatter_layout,
-                                                    s4 ? (q->lut_f32 ? &spirv_multiscatter_lut_f32_s4 : &spirv_multiscatter_lut_s4)
-                                                       : q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut,
-                                                    "multiscatter LUT");
+        l->multiscatter_spv = s4 ? (q->lut_f32 ? &spirv_multiscatter_lut_f32_s4 : &spirv_multiscatter_lut_s4)
+                                 : q->lut_f32 ? &spirv_multiscatter_lut_f32 : &spirv_multiscatter_lut;
         l->multiscatter_set = gpu_alloc_set(ctx, s->pool, l->multiscatter_set_layout, "multiscatter set");
         gpu_write_uniform(ctx, l->multiscatter_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
                           sizeof(AtmosphereParams));
@@ -90,8 +86,7 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
                                     {VKSKY_BINDING_MULTISCATTER_LUT, SAMPLED}, {VKSKY_BINDING_OUTPUT, STORAGE}};
         l->ground_set_layout = gpu_set_layout(ctx, g_slots, 4, VK_SHADER_STAGE_COMPUTE_BIT, "ground irradiance set layout");
         l->ground_layout = gpu_pipeline_layout(ctx, l->ground_set_layout, 0, 0, "ground irradiance layout");
-        l->ground_pipeline = compute_pipeline(s, l->ground_layout, s4 ? &spirv_ground_irradiance_lut_s4 : &spirv_ground_irradiance_lut,
-                                             "ground irradiance LUT");
+        l->ground_spv = s4 ? &spirv_ground_irradiance_lut_s4 : &spirv_ground_irradiance_lut;
         l->ground_set = gpu_alloc_set(ctx, s->pool, l->ground_set_layout, "ground irradiance set");
         gpu_write_uniform(ctx, l->ground_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer,
                           sizeof(AtmosphereParams));
@@ -107,7 +102,8 @@ void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bo
     l->skyview_set_layout = gpu_set_layout(ctx, v_slots, 5, VK_SHADER_STAGE_COMPUTE_BIT, "skyview set layout");
     l->skyview_layout = gpu_pipeline_layout(ctx, l->skyview_set_layout, sizeof(SkyPush), VK_SHADER_STAGE_COMPUTE_BIT,
                                             "skyview layout");
-    l->skyview_pipeline = compute_pipeline(s, l->skyview_layout, s4 ? &spirv_skyview_lut_s4 : &spirv_skyview_lut, "skyview LUT");
+    l->skyview_spv = s4 ? &spirv_skyview_lut_s4 : &spirv_skyview_lut;
+    l->shared = s;   /* the pipelines above are made at their first record, with s's variant (spec constants) */
     l->skyview_set = gpu_alloc_set(ctx, s->pool, l->skyview_set_layout, "skyview set");
     gpu_write_uniform(ctx, l->skyview_set, VKSKY_BINDING_ATMOSPHERE, s->atmosphere_ubo.buffer, sizeof(AtmosphereParams));
     gpu_write_sampled(ctx, l->skyview_set, VKSKY_BINDING_TRANSMITTANCE_LUT, l->transmittance.view, s->linear_clamp);
@@ -144,13 +140,19 @@ static void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout 
     vkCmdDispatch(cmd, (target->extent.width + 7) / 8, (target->extent.height + 7) / 8, 1);
 }
 
-void luts_record_transmittance(const sky_luts *l, VkCommandBuffer cmd)
+void luts_record_transmittance(sky_luts *l, VkCommandBuffer cmd)
 {
+    if (!l->transmittance_pipeline)
+        l->transmittance_pipeline = compute_pipeline(l->shared, l->transmittance_layout, l->transmittance_spv,
+                                                     "transmittance LUT");
     dispatch(cmd, l->transmittance_pipeline, l->transmittance_layout, l->transmittance_set, &l->transmittance);
 }
 
-void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd, bool sky_lit_ground)
+void luts_record_multiscatter(sky_luts *l, VkCommandBuffer cmd, bool sky_lit_ground)
 {
+    if (!l->multiscatter_pipeline)
+        l->multiscatter_pipeline = compute_pipeline(l->shared, l->multiscatter_layout, l->multiscatter_spv,
+                                                    "multiscatter LUT");
     /* One 64-thread workgroup per texel (the threads share the sphere directions). */
     MultiscatterPush push = {.ground = {sky_lit_ground ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f}};
     VkDescriptorSet set = sky_lit_ground ? l->multiscatter_ground_set : l->multiscatter_set;
@@ -160,14 +162,18 @@ void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd, bool sky_l
     vkCmdDispatch(cmd, l->multiscatter.extent.width / l->multiscatter_parts, l->multiscatter.extent.height, 1);   /* a workgroup a texel */
 }
 
-void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *push)
+void luts_record_skyview(sky_luts *l, VkCommandBuffer cmd, const SkyPush *push)
 {
+    if (!l->skyview_pipeline)
+        l->skyview_pipeline = compute_pipeline(l->shared, l->skyview_layout, l->skyview_spv, "skyview LUT");
     vkCmdPushConstants(cmd, l->skyview_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
     dispatch(cmd, l->skyview_pipeline, l->skyview_layout, l->skyview_set, &l->skyview);
 }
 
-void luts_record_ground_irradiance(const sky_luts *l, VkCommandBuffer cmd)
+void luts_record_ground_irradiance(sky_luts *l, VkCommandBuffer cmd)
 {
+    if (!l->ground_pipeline)
+        l->ground_pipeline = compute_pipeline(l->shared, l->ground_layout, l->ground_spv, "ground irradiance LUT");
     /* One 64-thread workgroup per texel (the threads share the hemisphere directions). */
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->ground_pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, l->ground_layout, 0, 1, &l->ground_set, 0, NULL);

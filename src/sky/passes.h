@@ -43,15 +43,19 @@ typedef struct sky_luts {
     VkDescriptorSet ground_set;
     VkImageView ground_irradiance_view;
     uint32_t multiscatter_parts;         /* N x N parts of the multi-scattering atlas (4 in the four-wide build) */
+    /* Each pass's pipeline is made at its first record (luts_record_*): a LUT cache hit uploads the transmittance,
+     * multi-scattering and ground LUTs and never makes theirs, a march never makes the sky-view LUT's. */
+    const pass_shared *shared;
+    const struct sky_spirv *transmittance_spv, *multiscatter_spv, *skyview_spv, *ground_spv;
 } sky_luts;
 /* multiscatter false: no multi-scattering LUT image, pipeline or pass. */
 void luts_create(sky_luts *l, const pass_shared *s, const sky_lut_quality *q, bool multiscatter, bool ground);
 void luts_destroy(sky_luts *l, const pass_shared *s);
-void luts_record_transmittance(const sky_luts *l, VkCommandBuffer cmd);
+void luts_record_transmittance(sky_luts *l, VkCommandBuffer cmd);
 /* sky_lit_ground: the second pass of a lit ground (the ground lit by the sky too: the ground-irradiance LUT). */
-void luts_record_multiscatter(const sky_luts *l, VkCommandBuffer cmd, bool sky_lit_ground);
-void luts_record_skyview(const sky_luts *l, VkCommandBuffer cmd, const SkyPush *push);
-void luts_record_ground_irradiance(const sky_luts *l, VkCommandBuffer cmd);
+void luts_record_multiscatter(sky_luts *l, VkCommandBuffer cmd, bool sky_lit_ground);
+void luts_record_skyview(sky_luts *l, VkCommandBuffer cmd, const SkyPush *push);
+void luts_record_ground_irradiance(sky_luts *l, VkCommandBuffer cmd);
 
 /* --- Sky pass (sky_pass.c): per-pixel march, or sky-view LUT lookup, into the HDR target; as a full-screen
  * fragment pass or a compute dispatch --- */
@@ -63,9 +67,9 @@ typedef enum sky_pass_kind { SKY_PASS_FRAGMENT = 0, SKY_PASS_COMPUTE = 1, SKY_PA
 typedef struct sky_pass {
     VkDescriptorSetLayout set_layouts[2];        /* [kind] */
     VkPipelineLayout layouts[2];                 /* [kind] */
-    VkPipeline pipelines[2][4];                  /* [kind][mode], mode 3: the lookup blending into the march */
+    VkPipeline pipelines[2][4];                  /* [kind][mode] (3: lookup into march), made at first use */
     VkDescriptorSet sets[2];                     /* [kind]; the compute set also holds the HDR storage image */
-    const pass_shared *shared;                   /* for the blend variant, built at its first use */
+    const pass_shared *shared;                   /* for the pipelines, made at their first use */
 } sky_pass;
 void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts);
 void sky_pass_destroy(sky_pass *p, const pass_shared *s);

@@ -56,10 +56,11 @@ void sky_pass_create(sky_pass *p, const pass_shared *s, const sky_luts *luts)
         gpu_write_sampled(ctx, set, VKSKY_BINDING_MULTISCATTER_LUT, luts->multiscatter_view, s->linear_clamp);
         gpu_write_sampled(ctx, set, VKSKY_BINDING_SKYVIEW_LUT, luts->skyview.view, s->linear_clamp);
         gpu_write_sampled(ctx, set, VKSKY_BINDING_GROUND_IRRADIANCE_LUT, luts->ground_irradiance_view, s->linear_clamp);
-        /* The blend variant, the largest shader, is built at its first use (a camera above 10 km): lavapipe compiles
-         * at creation, a second or more of every run's start. */
-        for (int mode = 0; mode < 3; ++mode) p->pipelines[kind][mode] = make_pipeline(p, s, kind, mode);
-        p->pipelines[kind][SKY_MODE_BLEND] = VK_NULL_HANDLE;
+        /* Every (kind, mode) pipeline is built at its first use (sky_pass_record): a run draws with one kind and
+         * one or two modes, and lavapipe compiles at creation even with a warm shader cache (with validation, the
+         * six it did not use cost ~150 ms of CPU in every process: issue 27 items 3 and 5). The blend variant, the
+         * largest shader, was already made this way. */
+        for (int mode = 0; mode < 4; ++mode) p->pipelines[kind][mode] = VK_NULL_HANDLE;
     }
     p->shared = s;
 }
