@@ -107,30 +107,24 @@ void main()
     bool oriented = dot(push.forward.xyz, push.forward.xyz) > 0.0;
     vec3 sky = vec3(0.0), sun = vec3(0.0), transmittance = vec3(1.0), rayleigh = vec3(0.0), mie = vec3(0.0);
     bool covered = inside && finite3(position) && alpha > 0.0;
-    /* The covered part's segment camera -> surface (its march waits for the loop below, which it shares with the
-     * pixel's own sky ray). */
-    vec3 point_v = vec3(0.0, 1.0, 0.0);
-    float point_dist = 0.0;
-    bool point_march = false;
-    vec4 point_steps = fast ? vec4(min(push.march.x, POINT_MIN_STEPS), push.march.x, push.march.z, -push.march.w)
-                            : push.march;
     if (covered) {
         /* The offset in world units (small numbers: no planet-scale subtraction), then to march-frame km. */
         vec3 dw = position - vec3(push.world_to_march[0].w, push.world_to_march[1].w, push.world_to_march[2].w);
         vec3 d = vec3(dot(push.world_to_march[0].xyz, dw), dot(push.world_to_march[1].xyz, dw),
                       dot(push.world_to_march[2].xyz, dw));
-        point_dist = length(d);
-        point_v = point_dist > 0.0 ? d / point_dist : vec3(0.0, 1.0, 0.0);
-        point_march = true;
+        float dist = length(d);
+        vec3 v = dist > 0.0 ? d / dist : vec3(0.0, 1.0, 0.0);
+        vec4 march = fast ? vec4(min(push.march.x, POINT_MIN_STEPS), push.march.x, push.march.z, -push.march.w)
+                          : push.march;
 #ifdef AERIAL_VOLUME
         Aerial a;
-        if (aerial_volume_lookup(point_v, point_dist, push, a)) {
-            point_march = false;
-            transmittance = a.transmittance;
-            rayleigh = a.rayleigh;
-            mie = a.mie;
-        }
+        if (!aerial_volume_lookup(v, dist, push, a)) a = aerial_march(h, v, s, dist, march, push.sun_dir.w);
+#else
+        Aerial a = aerial_march(h, v, s, dist, march, push.sun_dir.w);
 #endif
+        transmittance = a.transmittance;
+        rayleigh = a.rayleigh;
+        mie = a.mie;
     }
     bool needs_sky = inside && oriented && alpha < 1.0;
     /* The tile's rays, when the tile is small enough on the sky and some pixel of it shows sky (uniform over the
@@ -167,36 +161,12 @@ void main()
                                                      tile_throughput[3]));
         }
     }
-    /* The sky along this pixel's ray, the sun disc apart: interpolated in a smooth tile, else its own march. */
-    vec3 v = pixel_ray(p, size.x);
-    vec2 f = vec2(p - corner) / float(TILE);
-    bool interpolated = needs_sky && smooth_tile && ray_hits_ground(h, v.y) == tile_hits_ground[0];
-    bool own_sky = needs_sky && !interpolated;
-    /* One march call for the pixel's segments (the covered part's, then its own sky ray's), in one loop. A CPU
-     * device (llvmpipe) runs a SIMD row's branches whether or not a lane takes them, and a masked march still costs
-     * its set-up and one step: three call sites of march_segment (the covered part, the tile's rays, the pixel's
-     * own sky) cost every row three such marches. Here a row pays one (issue 28 item 6); the same arithmetic per
-     * segment, so the same pixels. */
-    MarchSegment sky_seg;
-    sky_seg.rayleigh = sky_seg.mie = sky_seg.throughput = vec3(0.0);
-    sky_seg.hits_ground = false;
-    sky_seg.r = sky_seg.mu_s = sky_seg.nu = sky_seg.t_max = 0.0;
-    int first = point_march ? 0 : 1, last = own_sky ? 2 : 1;
-    for (int job = first; job < last; ++job) {
-        bool point = job == 0;
-        MarchSegment seg = march_segment(h, point ? point_v : v, s, point ? point_steps : push.march,
-                                         push.sun_dir.w, point ? point_dist : 3.0e38);
-        if (point) {
-            transmittance = seg.throughput;
-            rayleigh = seg.rayleigh;
-            mie = seg.mie;
-        } else {
-            sky_seg = seg;
-        }
-    }
     if (needs_sky) {
+        /* The sky along this pixel's ray, the sun disc apart. */
+        vec3 v = pixel_ray(p, size.x);
         SkyRay r;
-        if (interpolated) {
+        vec2 f = vec2(p - corner) / float(TILE);
+        if (smooth_tile && ray_hits_ground(h, v.y) == tile_hits_ground[0]) {
             vec4 w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
             r.rayleigh = w.x * tile_rayleigh[0] + w.y * tile_rayleigh[1] + w.z * tile_rayleigh[2] + w.w * tile_rayleigh[3];
             r.mie = w.x * tile_mie[0] + w.y * tile_mie[1] + w.z * tile_mie[2] + w.w * tile_mie[3];
@@ -205,7 +175,7 @@ void main()
                            w.w * tile_throughput[3];
             r.hits_ground = tile_hits_ground[0];
         } else {
-            r = SkyRay(sky_seg.rayleigh, sky_seg.mie, lit_ground(sky_seg), sky_seg.throughput, sky_seg.hits_ground);
+            r = sky_ray(v);
         }
         if (alpha == 0.0) {   /* nothing covered: the layers are the sky's */
             transmittance = r.throughput;
