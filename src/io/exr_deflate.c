@@ -21,18 +21,16 @@ void io_exr_deflate_free(struct libdeflate_compressor *c)
 void io_exr_zip_predict(unsigned char *out, const unsigned char *raw, size_t n)
 {
     if (n == 0) return;
-    /* Even bytes first, then odd ones (the first half gets the extra byte of an odd count), each byte stored as its
-     * difference from the one before it in that order, + 128 (mod 256). One pass from `raw` (the two halves'
-     * bytes read where they lie: the compiler vectorizes it), not a copy and then a dependent pass over the copy
-     * (issue 28 item 6: the output's six layers go through here). */
+    /* Even bytes first, then odd ones (the first half gets the extra byte of an odd count). */
     size_t pairs = n / 2, half = (n + 1) / 2;
-    unsigned char *restrict t1 = out, *restrict t2 = out + half;
-    const unsigned char *restrict r = raw;
-    t1[0] = r[0];
-    for (size_t i = 1; i < half; ++i) t1[i] = (unsigned char)(r[2 * i] - r[2 * i - 2] + 128u);
-    /* The odd half's first byte follows the even half's last (raw[2 (half - 1)], also for an odd count). */
-    if (pairs > 0) t2[0] = (unsigned char)(r[1] - r[2 * (half - 1)] + 128u);
-    for (size_t i = 1; i < pairs; ++i) t2[i] = (unsigned char)(r[2 * i + 1] - r[2 * i - 1] + 128u);
+    unsigned char *t1 = out, *t2 = out + half;
+    for (size_t i = 0; i < pairs; ++i) {
+        t1[i] = raw[2 * i];
+        t2[i] = raw[2 * i + 1];
+    }
+    if (n & 1) t1[pairs] = raw[n - 1];
+    /* Each byte's difference from the one before, + 128 (mod 256); backwards, so the one before is still original. */
+    for (size_t i = n - 1; i > 0; --i) out[i] = (unsigned char)(out[i] - out[i - 1] + 128u);
 }
 
 /* A pipeline buffer of at least `want` bytes, through the pipeline's own allocator. */
@@ -70,19 +68,15 @@ exr_result_t io_exr_deflate_chunk(exr_encode_pipeline_t *enc, struct libdeflate_
 void io_exr_zip_unpredict(unsigned char *out, unsigned char *pred, size_t n)
 {
     if (n == 0) return;
-    /* Undo the differences (a running sum, + 128 per byte) and re-interleave in the same pass: the even half into
-     * the even bytes, then the odd half, carrying the sum across (one pass instead of two). */
+    /* Undo the differences in place (forwards: the byte before is already restored), then re-interleave. */
+    for (size_t i = 1; i < n; ++i) pred[i] = (unsigned char)(pred[i - 1] + pred[i] - 128u);
     size_t pairs = n / 2, half = (n + 1) / 2;
-    unsigned char acc = pred[0];
-    out[0] = acc;
-    for (size_t i = 1; i < half; ++i) {
-        acc = (unsigned char)(acc + pred[i] - 128u);
-        out[2 * i] = acc;
-    }
+    const unsigned char *t1 = pred, *t2 = pred + half;
     for (size_t i = 0; i < pairs; ++i) {
-        acc = (unsigned char)(acc + pred[half + i] - 128u);
-        out[2 * i + 1] = acc;
+        out[2 * i] = t1[i];
+        out[2 * i + 1] = t2[i];
     }
+    if (n & 1) out[n - 1] = t1[pairs];
 }
 
 exr_result_t io_exr_inflate_chunk(exr_decode_pipeline_t *dec, struct libdeflate_decompressor *d, unsigned char *scratch,

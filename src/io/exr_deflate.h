@@ -32,6 +32,6 @@ void io_exr_zip_predict(unsigned char *out, const unsigned char *raw, size_t n);
  * OpenEXRCore does. EXR_ERR_CORRUPT_CHUNK when the stream is bad or inflates to another size. */
 exr_result_t io_exr_inflate_chunk(exr_decode_pipeline_t *dec, struct libdeflate_decompressor *d, unsigned char *scratch,
                                   size_t scratch_size);
-/* The predictor undone: `pred` (n bytes; may be overwritten) into `out` (n bytes); the inverse of io_exr_zip_predict. */
+/* The predictor undone: `pred` (n bytes, overwritten) into `out` (n bytes); the inverse of io_exr_zip_predict. */
 void io_exr_zip_unpredict(unsigned char *out, unsigned char *pred, size_t n);
 #endif
