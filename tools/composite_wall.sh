@@ -27,6 +27,8 @@ W=${SIZE%x*} H=${SIZE#*x}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 SCENE=${COMPOSITE_WALL_SCENE:-}
+LABEL=$SIZE
+[ -n "$SCENE" ] && LABEL=$SCENE/render.exr
 if [ -z "$SCENE" ]; then
     GEN=${COMPOSITE_WALL_GEN:-$(dirname "$NEW")/tests/gen_composite_scene}
     [ -x "$GEN" ] || { echo "composite_wall.sh: no gen_composite_scene at $GEN (set COMPOSITE_WALL_GEN)" >&2; exit 2; }
@@ -53,7 +55,7 @@ for i in $(seq "$RUNS"); do
 done
 ow=$(cut -d' ' -f1 "$work/old" | median) oc=$(cut -d' ' -f2 "$work/old" | median)
 nw=$(cut -d' ' -f1 "$work/new" | median) nc=$(cut -d' ' -f2 "$work/new" | median)
-echo "$SIZE composite, medians of $RUNS (load at the end: $(cut -d' ' -f1-3 /proc/loadavg)):"
+echo "$LABEL composite, medians of $RUNS (load at the end: $(cut -d' ' -f1-3 /proc/loadavg)):"
 echo "  old $OLD: wall $ow s, cpu $oc s"
 echo "  new $NEW: wall $nw s, cpu $nc s"
 awk -v ow="$ow" -v oc="$oc" -v nw="$nw" -v nc="$nc" \
