@@ -10,6 +10,7 @@
  * records a barrier. */
 #include "sky/frame.h"
 #include "sky/frame_parts.h"
+#include "sky/spectral_sum.h"
 #include "sky/view_params.h"
 #include "sky/tonemap_regions.h"
 #include "gpu/async_queue.h"
@@ -106,12 +107,21 @@ void frame_copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent,
     vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
 }
 
-/* Step 5, readback: the tone map (`writer`) wrote the display and composite images; the copies read them: RAW +
+/* Step 5, readback (or a spectral group's sum on the GPU, f->sum): the tone map (`writer`) wrote the display and
+ * composite images; the copies read them: RAW +
  * layout. Then the copies wrote the host buffers; the CPU reads them after the fence: RAW (a fence alone does
  * not make device writes visible to the host; the HOST_READ barrier does). */
 static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f, gpu_usage writer,
                             const char *display_name, const char *composite_name)
 {
+    if (f->sum) {   /* a spectral group: its composite added into the GPU's sum instead (sky/spectral_sum.h) */
+        spectral_sum_record_before(f->sum, cmd, &r->composite, &r->display, writer);
+        uint32_t t = frame_timed_begin(r, cmd, "spectral_sum");
+        spectral_sum_dispatch(f->sum, cmd);
+        frame_timed_end(r, cmd, t);
+        spectral_sum_record_after(f->sum, cmd, &r->composite);
+        return;
+    }
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     gpu_barrier_batch b = gpu_barrier_batch_begin("before readback");
     gpu_barrier_add_image(&b, display_name, "display", r->display.image, one, writer, GPU_USAGE_TRANSFER_SRC, false);
