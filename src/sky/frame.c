@@ -115,11 +115,13 @@ static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_de
                             const char *display_name, const char *composite_name)
 {
     if (f->sum) {   /* a spectral group: its composite added into the GPU's sum instead (sky/spectral_sum.h) */
-        spectral_sum_record_before(f->sum, cmd, &r->composite, &r->display, writer);
+        spectral_sum_record_before(f->sum, cmd, &r->composite, writer);
         uint32_t t = frame_timed_begin(r, cmd, "spectral_sum");
         spectral_sum_dispatch(f->sum, cmd);
         frame_timed_end(r, cmd, t);
-        spectral_sum_record_after(f->sum, cmd, &r->composite);
+        spectral_sum_record_after(f->sum, cmd);
+        /* The next frame's barriers on these images start from here (the display was written, not read back). */
+        r->display_last = writer, r->composite_last = GPU_USAGE_COMPUTE_SAMPLED;
         return;
     }
     VkImageSubresourceRange one = gpu_color_range(0, 1);
@@ -137,6 +139,7 @@ static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_de
                                GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
     }
     gpu_barrier_flush(cmd, &b);
+    r->display_last = r->composite_last = GPU_USAGE_TRANSFER_SRC;
     uint32_t t = frame_timed_begin(r, cmd, "readback");
     frame_copy_to_buffer(cmd, r->composite.image, r->composite.extent, r->readback_linear.buffer);
     frame_copy_to_buffer(cmd, r->display.image, r->display.extent, r->readback_display.buffer);
@@ -309,11 +312,12 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     if (compute_tonemap) {
         /* The display and composite images were read by the previous frame's readback copies (WAR); the
          * compute tone map rewrites every pixel: UNDEFINED -> GENERAL. */
-        gpu_barrier_add_image(&b, "display.to_storage", "display", r->display.image, one, GPU_USAGE_TRANSFER_SRC,
+        gpu_barrier_add_image(&b, "display.to_storage", "display", r->display.image, one,
+                              r->desc.readback ? r->display_last : GPU_USAGE_TRANSFER_SRC,
                               GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         if (r->desc.readback)
             gpu_barrier_add_image(&b, "composite.to_storage", "composite", r->composite.image, one,
-                                  GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+                                  r->composite_last, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
         t = frame_timed_begin(r, cmd, "tonemap");
         post_record_tonemap(pc, bl, cmd, r->display.extent, &tm);
@@ -426,7 +430,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
      * readback copy read them (WAR), or for a swapchain image the acquire semaphore's wait stage; they are
      * fully rewritten. */
     frame_target own = {r->display.image, r->display.view, r->display.extent,
-                        r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE,
+                        r->desc.readback ? r->display_last : GPU_USAGE_COLOR_ATTACHMENT_WRITE,
                         r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE, .capture = NULL};
     const frame_target *display = f->target ? f->target : &own;
     b = before_tonemap;
@@ -438,7 +442,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                               GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
     if (r->desc.readback)
         gpu_barrier_add_image(&b, "composite.to_attachment", "composite", r->composite.image, one,
-                              GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+                              r->composite_last, GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
     gpu_barrier_flush(cmd, &b);
     TonemapPush tm = sky_view_tonemap_push(v, !f->target ? false : !format_is_srgb(r->desc.display_format));
     if (!bloom) tm.params.z = 0.0f;

@@ -79,7 +79,7 @@ void spectral_sum_push_fill(SpectralSumPush *p, const double weights[4][3], bool
 }
 
 void spectral_sum_record_before(const spectral_sum_step *step, VkCommandBuffer cmd, const gpu_image *group_image,
-                                const gpu_image *display, gpu_usage writer)
+                                gpu_usage writer)
 {
     spectral_sum *s = step->sum;
     const gpu_context *ctx = s->ctx;
@@ -93,10 +93,6 @@ void spectral_sum_record_before(const spectral_sum_step *step, VkCommandBuffer c
     /* The group frame's tone map wrote its composite; the sum samples it: RAW + layout. */
     gpu_barrier_add_image(&b, "spectral.composite_to_sum", "composite", group_image->image, one, writer,
                           GPU_USAGE_COMPUTE_SAMPLED, false);
-    /* Its display image is not read back: the tone map's writes are ordered before the next frame's rewrite (WAW)
-     * through the copy stage the spine's display.to_attachment / to_storage waits for. */
-    gpu_barrier_add_image(&b, "spectral.display_to_idle", "display", display->image, one, writer,
-                          GPU_USAGE_TRANSFER_SRC, false);
     if (first)   /* the previous frame's groups wrote the sum and its last group read it: WAW + WAR, contents dropped */
         gpu_barrier_add_image(&b, "spectral.sum_to_first", "spectral_sum", s->accum.image, one,
                               s->accum_written ? GPU_USAGE_COMPUTE_STORAGE_RW : GPU_USAGE_NONE,
@@ -117,19 +113,15 @@ void spectral_sum_dispatch(const spectral_sum_step *step, VkCommandBuffer cmd)
     vkCmdDispatch(cmd, (s->extent.width + TILE - 1) / TILE, (s->extent.height + TILE - 1) / TILE, 1);
 }
 
-void spectral_sum_record_after(const spectral_sum_step *step, VkCommandBuffer cmd, const gpu_image *group_image)
+void spectral_sum_record_after(const spectral_sum_step *step, VkCommandBuffer cmd)
 {
     const spectral_sum *s = step->sum;
-    VkImageSubresourceRange one = gpu_color_range(0, 1);
-    bool last = step->push.mode.y > 0.5f;
+    if (step->push.mode.y < 0.5f) return;   /* not the last group: nothing of the sum's is read before the next step */
     gpu_barrier_batch b = gpu_barrier_batch_begin("after spectral sum");
-    /* The sum sampled the composite; the next frame's tone map rewrites it from the copy stage's side (WAR): the
-     * image goes back to the readback's layout and stage, which the spine's composite.to_* barriers start from. */
-    gpu_barrier_add_image(&b, "spectral.composite_to_idle", "composite", group_image->image, one,
-                          GPU_USAGE_COMPUTE_SAMPLED, GPU_USAGE_TRANSFER_SRC, false);
-    /* The resolve wrote the host's buffer; the CPU reads it after the fence: RAW (as readback.linear_to_host). */
-    if (last)
-        gpu_barrier_add_buffer(&b, "spectral.resolved_to_host", "spectral_resolved", s->resolved.buffer,
+    /* The resolve wrote the host's buffer; the CPU reads it after the fence: RAW (as readback.linear_to_host). The
+     * group's display and composite images stay as the tone map and the sum left them: the renderer's next frame
+     * starts its barriers on them from there (frame.c, r->display_last / composite_last). */
+    gpu_barrier_add_buffer(&b, "spectral.resolved_to_host", "spectral_resolved", s->resolved.buffer,
                                GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_HOST_READ);
     gpu_barrier_flush(cmd, &b);
 }

@@ -39,11 +39,11 @@ void spectral_sum_destroy(spectral_sum *s);
 /* The push constants of a step: weights[c] the XYZ per unit of channel c, the matrix spectrum_xyz_to_rec709's. */
 void spectral_sum_push_fill(SpectralSumPush *p, const double weights[4][3], bool first, bool last, bool alpha_from_group,
                             uint32_t width);
-/* The step after a group frame's tone map (`writer` wrote `group_image`, the scene-linear composite, and `display`),
- * in three calls so that the spine times the dispatch as a pass: the barriers into the sum, the dispatch, the
- * barriers after it (docs/synchronization.md "The spectral sum on the GPU"). */
+/* The step after a group frame's tone map (`writer` wrote `group_image`, the scene-linear composite), in three calls
+ * so that the spine times the dispatch as a pass: the barriers into the sum, the dispatch, and after the last group
+ * the resolved buffer's to the host (docs/synchronization.md "The spectral sum on the GPU"). */
 void spectral_sum_record_before(const spectral_sum_step *step, VkCommandBuffer cmd, const gpu_image *group_image,
-                                const gpu_image *display, gpu_usage writer);
+                                gpu_usage writer);
 void spectral_sum_dispatch(const spectral_sum_step *step, VkCommandBuffer cmd);
-void spectral_sum_record_after(const spectral_sum_step *step, VkCommandBuffer cmd, const gpu_image *group_image);
+void spectral_sum_record_after(const spectral_sum_step *step, VkCommandBuffer cmd);
 #endif
