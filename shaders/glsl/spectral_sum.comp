@@ -6,12 +6,11 @@
  * host-visible output buffer: one readback a frame instead of one per group. */
 #extension GL_GOOGLE_include_directive : require
 #include "shared.h"
-#include "spectral_sum_push.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(set = 0, binding = 0) uniform sampler2D group_image;
-layout(set = 0, binding = 1, rgba32f) uniform image2D sum;
-layout(std430, set = 0, binding = 2) writeonly buffer Resolved { vec4 pixel[]; } resolved;
+layout(set = 0, binding = VKSKY_BINDING_SPECTRAL_GROUP) uniform sampler2D group_image;
+layout(set = 0, binding = VKSKY_BINDING_SPECTRAL_SUM, rgba32f) uniform image2D sum;
+layout(std430, set = 0, binding = VKSKY_BINDING_SPECTRAL_RESOLVED) writeonly buffer Resolved { vec4 pixel[]; } resolved;
 layout(push_constant) uniform Push { SpectralSumPush push; };
 
 void main()

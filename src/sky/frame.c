@@ -107,6 +107,41 @@ void frame_copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent,
     vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
 }
 
+/* Step 5 of a spectral group's frame (ABI 4; sky/spectral_sum.h, docs/synchronization.md §20): the tone map
+ * (`writer`) wrote the composite; the sum samples it and adds it into its accumulation image; the last group resolves
+ * the sum into the host's buffer. The display and composite stay as left (r->display_last, composite_last): the next
+ * frame's first barriers on them start there. */
+static void record_spectral_sum(sky_renderer *r, VkCommandBuffer cmd, const spectral_sum_step *step, gpu_usage writer)
+{
+    spectral_sum *s = step->sum;
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    bool first = step->push.mode.x > 0.5f, last = step->push.mode.y > 0.5f;
+    spectral_sum_bind(step, &r->composite);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before spectral sum");
+    /* The group frame's tone map wrote its composite; the sum samples it: RAW + layout. */
+    gpu_barrier_add_image(&b, "spectral.composite_to_sum", "composite", r->composite.image, one, writer,
+                          GPU_USAGE_COMPUTE_SAMPLED, false);
+    if (first)   /* the previous frame's groups wrote the sum and its last group read it: WAW + WAR, contents dropped */
+        gpu_barrier_add_image(&b, "spectral.sum_to_first", "spectral_sum", s->accum.image, one,
+                              s->accum_written ? GPU_USAGE_COMPUTE_STORAGE_RW : GPU_USAGE_NONE,
+                              GPU_USAGE_COMPUTE_STORAGE_RW, true);
+    else         /* the group before added into the sum; this one reads and rewrites it: RAW + WAW */
+        gpu_barrier_add_image(&b, "spectral.sum_to_add", "spectral_sum", s->accum.image, one,
+                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, false);
+    gpu_barrier_flush(cmd, &b);
+    s->accum_written = true;
+    uint32_t t = frame_timed_begin(r, cmd, "spectral_sum");
+    spectral_sum_dispatch(step, cmd);
+    frame_timed_end(r, cmd, t);
+    r->display_last = writer, r->composite_last = GPU_USAGE_COMPUTE_SAMPLED;
+    if (!last) return;   /* nothing of the sum's is read before the next group's step */
+    /* The resolve wrote the host's buffer; the CPU reads it after the fence: RAW (as readback.linear_to_host). */
+    b = gpu_barrier_batch_begin("after spectral sum");
+    gpu_barrier_add_buffer(&b, "spectral.resolved_to_host", "spectral_resolved", s->resolved.buffer,
+                           GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_HOST_READ);
+    gpu_barrier_flush(cmd, &b);
+}
+
 /* Step 5, readback (or a spectral group's sum on the GPU, f->sum): the tone map (`writer`) wrote the display and
  * composite images; the copies read them: RAW +
  * layout. Then the copies wrote the host buffers; the CPU reads them after the fence: RAW (a fence alone does
@@ -115,13 +150,7 @@ static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_de
                             const char *display_name, const char *composite_name)
 {
     if (f->sum) {   /* a spectral group: its composite added into the GPU's sum instead (sky/spectral_sum.h) */
-        spectral_sum_record_before(f->sum, cmd, &r->composite, writer);
-        uint32_t t = frame_timed_begin(r, cmd, "spectral_sum");
-        spectral_sum_dispatch(f->sum, cmd);
-        frame_timed_end(r, cmd, t);
-        spectral_sum_record_after(f->sum, cmd);
-        /* The next frame's barriers on these images start from here (the display was written, not read back). */
-        r->display_last = writer, r->composite_last = GPU_USAGE_COMPUTE_SAMPLED;
+        record_spectral_sum(r, cmd, f->sum, writer);
         return;
     }
     VkImageSubresourceRange one = gpu_color_range(0, 1);

@@ -5,7 +5,8 @@
 #include "spectral_sum_comp.h"
 #include <string.h>
 
-enum { BINDING_GROUP = 0, BINDING_SUM = 1, BINDING_RESOLVED = 2, TILE = 8 };
+enum { BINDING_GROUP = VKSKY_BINDING_SPECTRAL_GROUP, BINDING_SUM = VKSKY_BINDING_SPECTRAL_SUM,
+       BINDING_RESOLVED = VKSKY_BINDING_SPECTRAL_RESOLVED, TILE = 8 };
 
 void spectral_sum_create(spectral_sum *s, const gpu_context *ctx, uint32_t width, uint32_t height)
 {
@@ -78,30 +79,13 @@ void spectral_sum_push_fill(SpectralSumPush *p, const double weights[4][3], bool
         p->to_rec709[r] = (vksky_vec4){(float)col[0][r], (float)col[1][r], (float)col[2][r], 0.0f};
 }
 
-void spectral_sum_record_before(const spectral_sum_step *step, VkCommandBuffer cmd, const gpu_image *group_image,
-                                gpu_usage writer)
+void spectral_sum_bind(const spectral_sum_step *step, const gpu_image *group_image)
 {
     spectral_sum *s = step->sum;
-    const gpu_context *ctx = s->ctx;
     if (s->bound[step->group] != group_image->view) {   /* a renderer made or resized since: its image named again */
-        gpu_write_sampled(ctx, s->set[step->group], BINDING_GROUP, group_image->view, s->nearest);
+        gpu_write_sampled(s->ctx, s->set[step->group], BINDING_GROUP, group_image->view, s->nearest);
         s->bound[step->group] = group_image->view;
     }
-    VkImageSubresourceRange one = gpu_color_range(0, 1);
-    bool first = step->push.mode.x > 0.5f;
-    gpu_barrier_batch b = gpu_barrier_batch_begin("before spectral sum");
-    /* The group frame's tone map wrote its composite; the sum samples it: RAW + layout. */
-    gpu_barrier_add_image(&b, "spectral.composite_to_sum", "composite", group_image->image, one, writer,
-                          GPU_USAGE_COMPUTE_SAMPLED, false);
-    if (first)   /* the previous frame's groups wrote the sum and its last group read it: WAW + WAR, contents dropped */
-        gpu_barrier_add_image(&b, "spectral.sum_to_first", "spectral_sum", s->accum.image, one,
-                              s->accum_written ? GPU_USAGE_COMPUTE_STORAGE_RW : GPU_USAGE_NONE,
-                              GPU_USAGE_COMPUTE_STORAGE_RW, true);
-    else         /* the group before added into the sum; this one reads and rewrites it: RAW + WAW */
-        gpu_barrier_add_image(&b, "spectral.sum_to_add", "spectral_sum", s->accum.image, one,
-                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, false);
-    gpu_barrier_flush(cmd, &b);
-    s->accum_written = true;
 }
 
 void spectral_sum_dispatch(const spectral_sum_step *step, VkCommandBuffer cmd)
@@ -111,17 +95,4 @@ void spectral_sum_dispatch(const spectral_sum_step *step, VkCommandBuffer cmd)
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s->layout, 0, 1, &s->set[step->group], 0, NULL);
     vkCmdPushConstants(cmd, s->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof step->push, &step->push);
     vkCmdDispatch(cmd, (s->extent.width + TILE - 1) / TILE, (s->extent.height + TILE - 1) / TILE, 1);
-}
-
-void spectral_sum_record_after(const spectral_sum_step *step, VkCommandBuffer cmd)
-{
-    const spectral_sum *s = step->sum;
-    if (step->push.mode.y < 0.5f) return;   /* not the last group: nothing of the sum's is read before the next step */
-    gpu_barrier_batch b = gpu_barrier_batch_begin("after spectral sum");
-    /* The resolve wrote the host's buffer; the CPU reads it after the fence: RAW (as readback.linear_to_host). The
-     * group's display and composite images stay as the tone map and the sum left them: the renderer's next frame
-     * starts its barriers on them from there (frame.c, r->display_last / composite_last). */
-    gpu_barrier_add_buffer(&b, "spectral.resolved_to_host", "spectral_resolved", s->resolved.buffer,
-                               GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_HOST_READ);
-    gpu_barrier_flush(cmd, &b);
 }

@@ -7,7 +7,7 @@
 #include "gpu/barrier.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
-#include "spectral_sum_push.h"
+#include "shared.h"
 #include <stdbool.h>
 
 #define SPECTRAL_SUM_SETS 17   /* one descriptor set per group: 48 wavelengths three to a pass, plus one */
@@ -39,11 +39,8 @@ void spectral_sum_destroy(spectral_sum *s);
 /* The push constants of a step: weights[c] the XYZ per unit of channel c, the matrix spectrum_xyz_to_rec709's. */
 void spectral_sum_push_fill(SpectralSumPush *p, const double weights[4][3], bool first, bool last, bool alpha_from_group,
                             uint32_t width);
-/* The step after a group frame's tone map (`writer` wrote `group_image`, the scene-linear composite), in three calls
- * so that the spine times the dispatch as a pass: the barriers into the sum, the dispatch, and after the last group
- * the resolved buffer's to the host (docs/synchronization.md "The spectral sum on the GPU"). */
-void spectral_sum_record_before(const spectral_sum_step *step, VkCommandBuffer cmd, const gpu_image *group_image,
-                                gpu_usage writer);
+/* The step after a group frame's tone map, recorded by the frame spine (frame.c, record_spectral_sum: its barriers):
+ * the group image named in the step's descriptor set (before the barriers), then the dispatch. */
+void spectral_sum_bind(const spectral_sum_step *step, const gpu_image *group_image);
 void spectral_sum_dispatch(const spectral_sum_step *step, VkCommandBuffer cmd);
-void spectral_sum_record_after(const spectral_sum_step *step, VkCommandBuffer cmd);
 #endif
