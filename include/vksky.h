@@ -52,7 +52,7 @@ extern "C" {
  *    vksky_spectral_group_count, vksky_spectral_xyz_to_rec709): the command line's --spectral N through the API.
  * 4: compositing a render (vksky_composite_*: the command line's --composite and --aovs); the tone map's path into
  *    the host's image (vksky_display_config + vksky_renderer_get_tonemap_path: the compute tone map into a storage
- *    image). */
+ *    image); the spectral groups summed on the GPU (vksky_spectral_sum, vksky_frame_spectral_sum). */
 #define VKSKY_ABI_VERSION 4u
 VKSKY_API uint32_t vksky_abi_version(void);
 VKSKY_API const char *vksky_version_string(void);   /* "0.1.0" */
@@ -329,7 +329,8 @@ typedef enum vksky_structure_type {
     VKSKY_STRUCTURE_TYPE_FRAME_TIMER = 19,     /* vksky_frame_timer */
     VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE = 20,   /* vksky_frame_capture */
     VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN = 21, /* vksky_frame_swapchain */
-    VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG = 22   /* vksky_display_config, from vksky_renderer_desc.next (ABI 4) */
+    VKSKY_STRUCTURE_TYPE_DISPLAY_CONFIG = 22,  /* ABI 4: vksky_display_config, from vksky_renderer_desc.next */
+    VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM = 23   /* ABI 4: vksky_frame_spectral_sum, from vksky_frame.next */
 } vksky_structure_type;
 typedef struct vksky_chain {   /* the head every extension struct starts with: to walk a chain */
     vksky_structure_type type;
@@ -793,6 +794,35 @@ VKSKY_API vksky_result vksky_composite_record(vksky_composite *composite, VkComm
 /* Layer `layer` (< VKSKY_COMPOSITE_LAYERS) of the slot's last frame, once its command buffer completed: rows x width
  * RGBA floats, top row first. NULL for a slot or layer out of range. */
 VKSKY_API const float *vksky_composite_layer(vksky_composite *composite, uint32_t slot, uint32_t layer);
+/* ---- ABI 4: spectral groups summed on the GPU -----------------------------------------------------------------
+ * A frame of --spectral N without a host sum: the groups' frames (renderers made with a group scene of
+ * vksky_scene_spectral_group and a vksky_readback_config) recorded with a vksky_frame_spectral_sum chained, each adding
+ * its scene-linear image times its xyz_weights into the sum's float32 accumulation image instead of copying its
+ * images to its readback buffers; the frame marked `last` turns the sum into linear Rec.709 (D65,
+ * vksky_spectral_xyz_to_rec709's matrix) in the sum's host-visible buffer: one readback a frame. The groups may go into
+ * one command buffer (renderers of their own) or one submission each (one renderer given each group's scene in turn):
+ * the barriers between the steps are vksky's (docs/synchronization.md "The spectral sum on the GPU"). */
+typedef struct vksky_spectral_sum vksky_spectral_sum;
+/* The sum for frames of width x height (the group renderers' size). */
+VKSKY_API vksky_result vksky_spectral_sum_create(vksky_context *context, uint32_t width, uint32_t height,
+                                                 vksky_spectral_sum **out);
+/* No command buffer that recorded a step of it may be pending. NULL is ignored. */
+VKSKY_API void vksky_spectral_sum_destroy(vksky_spectral_sum *sum);
+#define VKSKY_SPECTRAL_SUM_GROUPS_MAX 17u   /* group indices 0..16: 48 wavelengths three to a pass */
+typedef struct vksky_frame_spectral_sum {
+    vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM */
+    const void *next;
+    vksky_spectral_sum *sum;       /* of the renderer's size and context */
+    uint32_t group;                /* < VKSKY_SPECTRAL_SUM_GROUPS_MAX: the group's index within the frame */
+    double xyz_weights[4][3];      /* vksky_scene_spectral_group's for this group */
+    bool first;                    /* the frame's first group: the sum starts from 0 */
+    bool last;                     /* the frame's last group: the sum resolved into the buffer (after this one's) */
+} vksky_frame_spectral_sum;
+/* The last resolved frame, once the host waited for the command buffer holding its `last` step: width x height x 4
+ * floats, row 0 at the top, linear Rec.709 in the group images' units (the renderer's light scale as in
+ * vksky_readback.linear_rgba16f; not clamped to half floats), alpha the last group's with three wavelengths to a pass
+ * (the composite's coverage where a horizon crosses a pixel), else 1. Valid until the next `last` step runs. */
+VKSKY_API vksky_result vksky_spectral_sum_get(vksky_spectral_sum *sum, const float **rgba32f);
 
 #ifdef __cplusplus
 }

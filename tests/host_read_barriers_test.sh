@@ -52,6 +52,7 @@ run() {
         meter_post) "$VKSKY" "${RENDER[@]}" --auto-exposure --post-pass compute --render "$work/m.png" >"$out" 2>"$work/err" ;;
         lutprobe) env -u VKSKY_LUT_CACHE XDG_CACHE_HOME="$work/xdg" "$(dirname "$PROBE")/lut_cache_probe" --validate \
                       --trace-barriers >"$out" 2>"$work/err" ;;
+        spectral) "$(dirname "$PROBE")/api/api_drop_probe" --spectral --validate --trace-barriers >"$out" 2>"$work/err" ;;
         window) VKSKY_TRACE_CAPTURE=1 "$HERE/xvfb_run.sh" 640x480x24 "$VKSKY" --frames 2 --width 64 --height 64 \
                     --sky-mode march --render-scale 1 --validate --trace-barriers --screenshot "$work/s.png" \
                     >"$out" 2>"$work/err" ;;
@@ -103,7 +104,8 @@ cases=("readback.linear_to_host render readback" "readback.display_to_host rende
        "aovs.to_host aovs composite_readback" "lut_readback.to_host probe lut_readback.to_copy"
        "capture.to_host window display.write_to_capture" "meter.result_to_host meter meter_average compute"
        "lut_cache.readback_to_host lutprobe lut_cache_readback"
-       "meter.result_to_host meter_post meter_average compute" "meter.result_to_host window_nobloom meter_average compute")
+       "meter.result_to_host meter_post meter_average compute" "meter.result_to_host window_nobloom meter_average compute"
+       "spectral.resolved_to_host spectral spectral_sum compute")
 checked=0
 for c in "${cases[@]}"; do
     read -r name kind before writer <<<"$c"

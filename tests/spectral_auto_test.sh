@@ -62,7 +62,7 @@ done
 /usr/bin/python3 "$HERE/sun_disc_power.py" equirect "$work/on.exr" "$work/off.exr" ||
     fail "map: the spectral disc's integral is more than 1 % from vksky:sunIlluminanceAtCamera"
 
-# 3. A sequence keeps RGB under auto and says why (a spectral frame is a pass per wavelength group in the serial loop:
+# 3. A sequence keeps RGB under auto and says why (a spectral frame is a pass per wavelength group, summed on the GPU:
 #    a sequence's throughput is the default's, issue 27); --spectral 24 asked for: its twilight frame is spectral.
 "$VKSKY" "${tw[@]}" --animate sun-elevation=30:-4 --frame-count 2 --validate --quiet --render "$work/r_%d.exr" \
     >"$work/out" 2>"$work/err" && [ ! -s "$work/err" ] || fail "sequence: $(cat "$work/err")"

@@ -59,7 +59,8 @@ echo "host cores $nproc_all"
 "$V" --width 16 --height 16 --render "$scratch/warm.exr" >/dev/null 2>&1   # driver and shader caches warm
 
 # Issue 25s: the spectral sequence (24 wavelengths, the sun -6 -> 30) through include/vksky.h: a renderer per
-# wavelength group keeping its LUTs, each frame's groups in one submission, the sum on the host. First a validated
+# wavelength group keeping its LUTs, each frame's groups in one submission, the sum on the GPU (32j; the host's sum
+# beside it: spectral_720p_hostsum). First a validated
 # check (any validation line fails it), then the goal case with the RGB case beside it; the baseline (main's serial
 # loop: 3.7 frames/s on the H100, docs/perf/h100-2026-11-28-h) in the same run when given. SPECTRAL=1: only these.
 spectral_cases() {
@@ -68,6 +69,10 @@ spectral_cases() {
         --quiet --validate --render s%02d.exr 2>serr)
     echo "check spectral_sequence rc $? validation_lines $(grep -ci validation "$scratch/sp/serr")"
     seq_case spectral_720p "$V" 1280 720 exr 24 --spectral 24 --timings
+    # 32j: the groups summed on the GPU (one readback a frame; the default) against the same build's host sum (each
+    # group read back and summed on the encode threads, VKSKY_SPECTRAL_SUM=host), and a PNG sequence (host tone map).
+    VKSKY_SPECTRAL_SUM=host seq_case spectral_720p_hostsum "$V" 1280 720 exr 24 --spectral 24
+    seq_case spectral_720p_png "$V" 1280 720 png 24 --spectral 24
     seq_case spectral_720p_rgb "$V" 1280 720 exr 24
     [ -n "$BASE" ] && seq_case base_spectral_720p "$BASE" 1280 720 exr 24 --spectral 24
 }

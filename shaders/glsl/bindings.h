@@ -30,5 +30,8 @@
 #define VKSKY_BINDING_TONEMAP_COMPOSITE 4     /* storage: the compute tone map's linear composite */
 #define VKSKY_BINDING_METER 10                /* storage buffer: the exposure meter's partials and results (meter.comp;
                                                  the tone maps read a result) */
+#define VKSKY_BINDING_SPECTRAL_GROUP 0      /* sampled: a spectral group's composite (spectral_sum.comp, its own set) */
+#define VKSKY_BINDING_SPECTRAL_SUM 1        /* storage image: the float32 XYZ sum */
+#define VKSKY_BINDING_SPECTRAL_RESOLVED 2   /* storage buffer: the resolved frame, host-visible */
 
 #endif

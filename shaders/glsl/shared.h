@@ -149,6 +149,19 @@ VKSKY_STRUCT(MeterPush) {
                                   vksky_frame_band; a whole frame counts every row) */
 } VKSKY_END(MeterPush)
 
+/* The spectral sum's push constants (spectral_sum.comp, src/sky/spectral_sum.c; issue 32): 8 vec4 = 128 bytes. */
+VKSKY_STRUCT(SpectralSumPush) {
+    /* weight[c].xyz: CIE XYZ per unit of the group image's channel c (its wavelength's bin, vksky_scene_spectral_group);
+     * 0 for a channel past the last wavelength (three to a pass: channel 3 is the composite's coverage, weight 0). */
+    vec4 weight[4];
+    /* x: 1 = the frame's first group (the sum starts at 0), y: 1 = the last (the sum resolved into the output buffer),
+     * z: the resolved alpha: 1 = the group image's (three to a pass: the composite's coverage), 0 = 1.0,
+     * w: the group image's width in pixels */
+    vec4 mode;
+    /* The XYZ -> linear Rec.709 matrix's rows (xyz; spectrum_xyz_to_rec709's, in float): one definition, the C side's */
+    vec4 to_rec709[3];
+} VKSKY_END(SpectralSumPush)
+
 /* The multi-scattering LUT pass (multiscatter_lut.comp, issue 31): with a lit ground it runs twice, the second time
  * with its ground lit by the sky too (the ground-irradiance LUT that the first pass's LUT made; docs/model.md
  * "Lit ground"). */

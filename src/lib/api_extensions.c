@@ -69,7 +69,8 @@ vksky_result lib_frame_chain(const vksky_context *c, const void *next, lib_frame
     static const vksky_structure_type KNOWN[] = {
         VKSKY_STRUCTURE_TYPE_FRAME_VIEW, VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, VKSKY_STRUCTURE_TYPE_FRAME_BAND,
         VKSKY_STRUCTURE_TYPE_READBACK_TARGET, VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY, VKSKY_STRUCTURE_TYPE_FRAME_PLACE,
-        VKSKY_STRUCTURE_TYPE_FRAME_TIMER, VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE, VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN};
+        VKSKY_STRUCTURE_TYPE_FRAME_TIMER, VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE, VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN,
+        VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM};
     enum { N = sizeof KNOWN / sizeof KNOWN[0] };
     const void *seen[N] = {0};
     for (int depth = 0; next; ++depth) {
@@ -83,7 +84,8 @@ vksky_result lib_frame_chain(const vksky_context *c, const void *next, lib_frame
                         "VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, VKSKY_STRUCTURE_TYPE_FRAME_BAND, "
                         "VKSKY_STRUCTURE_TYPE_READBACK_TARGET, VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY, "
                         "VKSKY_STRUCTURE_TYPE_FRAME_PLACE, VKSKY_STRUCTURE_TYPE_FRAME_TIMER, "
-                        "VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE, VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN, each once)",
+                        "VKSKY_STRUCTURE_TYPE_FRAME_CAPTURE, VKSKY_STRUCTURE_TYPE_FRAME_SWAPCHAIN, "
+                        "VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM, each once)",
                         (int)link->type,
                         depth >= 16 ? "past 16 links (a loop?)" : twice ? "twice" : "is unknown to this library or not a frame's");
             return VKSKY_ERROR_INVALID_ARGUMENT;
@@ -93,7 +95,7 @@ vksky_result lib_frame_chain(const vksky_context *c, const void *next, lib_frame
     }
     *ext = (lib_frame_ext){.view = seen[0], .exposure = seen[1], .band = seen[2], .target = seen[3],
                            .display = seen[4], .place = seen[5], .timer = seen[6], .capture = seen[7],
-                           .swapchain = seen[8]};
+                           .swapchain = seen[8], .spectral_sum = seen[9]};
     const vksky_auto_exposure *e = ext->exposure;
     if (e && (e->slot >= VKSKY_AUTO_EXPOSURE_SLOTS || !(e->ease >= 0.0 && e->ease <= 1e6))) {
         lib_message(c->message, c->message_user, VKSKY_SEVERITY_ERROR,

@@ -325,6 +325,8 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
                     renderer->slot_count == 1 ? "" : "s");
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
+    spectral_sum_step refused;
+    if (ext.spectral_sum && !renderer->readback) return lib_spectral_sum_step(renderer, ext.spectral_sum, &refused);
     if (renderer->readback) {
         /* The host's ring names the pair of readback buffers this frame's copies go to (slot 0 without one). */
         lib_readback_select(renderer, readback_target ? readback_target->slot : 0);
@@ -332,6 +334,13 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
         frame_desc own = {.view = &v, .force_luts = frame->force_luts, .meter_slot = slot,
                           .follows_frame = readback_target && readback_target->follows_frame,
                           .meter_first_row = band ? band->meter_first_row : 0, .meter_rows = band ? band->meter_rows : 0};
+        /* ABI 4: a spectral group's frame adds its composite into the GPU's sum instead (api_spectral_sum.c). */
+        spectral_sum_step sum_step;
+        if (ext.spectral_sum) {
+            vksky_result res = lib_spectral_sum_step(renderer, ext.spectral_sum, &sum_step);
+            if (res != VKSKY_SUCCESS) return res;
+            own.sum = &sum_step;
+        }
         return record_trapped(renderer, cmd, &own, false);
     }
     const vksky_image *img = &frame->color;

@@ -10,6 +10,7 @@
 #include "gpu/context.h"
 #include "sky/frame.h"
 #include "sky/host_frame.h"
+#include "sky/spectral_sum.h"
 
 struct vksky_context {
     gpu_context gpu;
@@ -79,7 +80,15 @@ typedef struct lib_frame_ext {
     const vksky_frame_timer *timer;
     const vksky_frame_capture *capture;
     const vksky_frame_swapchain *swapchain;
+    const vksky_frame_spectral_sum *spectral_sum;   /* ABI 4 */
 } lib_frame_ext;
+
+/* ABI 4 (api_spectral_sum.c): the GPU's spectral sum, and a group frame's step of it checked against the renderer. */
+struct vksky_spectral_sum {
+    vksky_context *ctx;
+    spectral_sum s;
+};
+vksky_result lib_spectral_sum_step(const vksky_renderer *r, const vksky_frame_spectral_sum *e, spectral_sum_step *out);
 
 /* The context's trace bound to this thread for the length of a call (no trace of its own: the process-wide streams
  * stay, the CLI's and the drop probe's); returns what lib_trace_end restores. */

@@ -10,6 +10,7 @@
  * records a barrier. */
 #include "sky/frame.h"
 #include "sky/frame_parts.h"
+#include "sky/spectral_sum.h"
 #include "sky/view_params.h"
 #include "sky/tonemap_regions.h"
 #include "gpu/async_queue.h"
@@ -106,12 +107,52 @@ void frame_copy_to_buffer(VkCommandBuffer cmd, VkImage image, VkExtent2D extent,
     vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
 }
 
-/* Step 5, readback: the tone map (`writer`) wrote the display and composite images; the copies read them: RAW +
+/* Step 5 of a spectral group's frame (ABI 4; sky/spectral_sum.h, docs/synchronization.md §20): the tone map
+ * (`writer`) wrote the composite; the sum samples it and adds it into its accumulation image; the last group resolves
+ * the sum into the host's buffer. The display and composite stay as left (r->display_last, composite_last): the next
+ * frame's first barriers on them start there. */
+static void record_spectral_sum(sky_renderer *r, VkCommandBuffer cmd, const spectral_sum_step *step, gpu_usage writer)
+{
+    spectral_sum *s = step->sum;
+    VkImageSubresourceRange one = gpu_color_range(0, 1);
+    bool first = step->push.mode.x > 0.5f, last = step->push.mode.y > 0.5f;
+    spectral_sum_bind(step, &r->composite);
+    gpu_barrier_batch b = gpu_barrier_batch_begin("before spectral sum");
+    /* The group frame's tone map wrote its composite; the sum samples it: RAW + layout. */
+    gpu_barrier_add_image(&b, "spectral.composite_to_sum", "composite", r->composite.image, one, writer,
+                          GPU_USAGE_COMPUTE_SAMPLED, false);
+    if (first)   /* the previous frame's groups wrote the sum and its last group read it: WAW + WAR, contents dropped */
+        gpu_barrier_add_image(&b, "spectral.sum_to_first", "spectral_sum", s->accum.image, one,
+                              s->accum_written ? GPU_USAGE_COMPUTE_STORAGE_RW : GPU_USAGE_NONE,
+                              GPU_USAGE_COMPUTE_STORAGE_RW, true);
+    else         /* the group before added into the sum; this one reads and rewrites it: RAW + WAW */
+        gpu_barrier_add_image(&b, "spectral.sum_to_add", "spectral_sum", s->accum.image, one,
+                              GPU_USAGE_COMPUTE_STORAGE_RW, GPU_USAGE_COMPUTE_STORAGE_RW, false);
+    gpu_barrier_flush(cmd, &b);
+    s->accum_written = true;
+    uint32_t t = frame_timed_begin(r, cmd, "spectral_sum");
+    spectral_sum_dispatch(step, cmd);
+    frame_timed_end(r, cmd, t);
+    r->display_last = writer, r->composite_last = GPU_USAGE_COMPUTE_SAMPLED;
+    if (!last) return;   /* nothing of the sum's is read before the next group's step */
+    /* The resolve wrote the host's buffer; the CPU reads it after the fence: RAW (as readback.linear_to_host). */
+    b = gpu_barrier_batch_begin("after spectral sum");
+    gpu_barrier_add_buffer(&b, "spectral.resolved_to_host", "spectral_resolved", s->resolved.buffer,
+                           GPU_USAGE_COMPUTE_STORAGE_WRITE, GPU_USAGE_HOST_READ);
+    gpu_barrier_flush(cmd, &b);
+}
+
+/* Step 5, readback (or a spectral group's sum on the GPU, f->sum): the tone map (`writer`) wrote the display and
+ * composite images; the copies read them: RAW +
  * layout. Then the copies wrote the host buffers; the CPU reads them after the fence: RAW (a fence alone does
  * not make device writes visible to the host; the HOST_READ barrier does). */
 static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f, gpu_usage writer,
                             const char *display_name, const char *composite_name)
 {
+    if (f->sum) {   /* a spectral group: its composite added into the GPU's sum instead (sky/spectral_sum.h) */
+        record_spectral_sum(r, cmd, f->sum, writer);
+        return;
+    }
     VkImageSubresourceRange one = gpu_color_range(0, 1);
     gpu_barrier_batch b = gpu_barrier_batch_begin("before readback");
     gpu_barrier_add_image(&b, display_name, "display", r->display.image, one, writer, GPU_USAGE_TRANSFER_SRC, false);
@@ -127,6 +168,7 @@ static void record_readback(sky_renderer *r, VkCommandBuffer cmd, const frame_de
                                GPU_USAGE_TRANSFER_DST, GPU_USAGE_TRANSFER_DST);
     }
     gpu_barrier_flush(cmd, &b);
+    r->display_last = r->composite_last = GPU_USAGE_TRANSFER_SRC;
     uint32_t t = frame_timed_begin(r, cmd, "readback");
     frame_copy_to_buffer(cmd, r->composite.image, r->composite.extent, r->readback_linear.buffer);
     frame_copy_to_buffer(cmd, r->display.image, r->display.extent, r->readback_display.buffer);
@@ -319,11 +361,12 @@ static bool record_post_compute(sky_renderer *r, VkCommandBuffer cmd, const fram
     if (compute_tonemap) {
         /* The display and composite images were read by the previous frame's readback copies (WAR); the
          * compute tone map rewrites every pixel: UNDEFINED -> GENERAL. */
-        gpu_barrier_add_image(&b, "display.to_storage", "display", r->display.image, one, GPU_USAGE_TRANSFER_SRC,
+        gpu_barrier_add_image(&b, "display.to_storage", "display", r->display.image, one,
+                              r->desc.readback ? r->display_last : GPU_USAGE_TRANSFER_SRC,
                               GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         if (r->desc.readback)
             gpu_barrier_add_image(&b, "composite.to_storage", "composite", r->composite.image, one,
-                                  GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
+                                  r->composite_last, GPU_USAGE_COMPUTE_STORAGE_WRITE, true);
         gpu_barrier_flush(cmd, &b);
         t = frame_timed_begin(r, cmd, "tonemap");
         post_record_tonemap(pc, bl, cmd, r->display.extent, &tm);
@@ -436,7 +479,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
      * readback copy read them (WAR), or for a swapchain image the acquire semaphore's wait stage; they are
      * fully rewritten. */
     frame_target own = {r->display.image, r->display.view, r->display.extent,
-                        r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE,
+                        r->desc.readback ? r->display_last : GPU_USAGE_COLOR_ATTACHMENT_WRITE,
                         r->desc.readback ? GPU_USAGE_TRANSFER_SRC : GPU_USAGE_COLOR_ATTACHMENT_WRITE, .capture = NULL};
     const frame_target *display = f->target ? f->target : &own;
     b = before_tonemap;
@@ -448,7 +491,7 @@ void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f)
                               GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
     if (r->desc.readback)
         gpu_barrier_add_image(&b, "composite.to_attachment", "composite", r->composite.image, one,
-                              GPU_USAGE_TRANSFER_SRC, GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
+                              r->composite_last, GPU_USAGE_COLOR_ATTACHMENT_WRITE, true);
     gpu_barrier_flush(cmd, &b);
     TonemapPush tm = sky_view_tonemap_push(v, !f->target ? false : !format_is_srgb(r->desc.display_format));
     if (!bloom) tm.params.z = 0.0f;

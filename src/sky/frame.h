@@ -33,6 +33,8 @@ typedef struct frame_desc {
                                     its tone map reads, one per frame in flight (< VKSKY_METER_SLOTS) */
     uint32_t meter_first_row, meter_rows;   /* the HDR rows the meter counts (a band's own, without the rows it
                                                shares with its neighbours); meter_rows 0: every row */
+    const struct spectral_sum_step *sum;   /* a spectral group's frame (readback renderers): its composite added into
+                                              the GPU's sum (sky/spectral_sum.h) in place of the readback copies */
 } frame_desc;
 void frame_record(sky_renderer *r, VkCommandBuffer cmd, const frame_desc *f);
 /* A frame's first step alone (the composite frame's too): the LUT passes and their barriers, when the atmosphere

@@ -27,6 +27,7 @@ void sky_limits_needed(bool single_pass_bloom, sky_limit_needs *out)
     uint32_t push = 0;   /* every pipeline layout's push block (shaders/glsl/shared.h, host_frame_push.h) */
     push = max_u32(push, (uint32_t)sizeof(SkyPush));
     push = max_u32(push, (uint32_t)sizeof(CompositePush));
+    push = max_u32(push, (uint32_t)sizeof(SpectralSumPush));   /* 128 bytes, as HostFramePush */
     push = max_u32(push, (uint32_t)sizeof(BloomPush));
     push = max_u32(push, (uint32_t)sizeof(TonemapPush));
     push = max_u32(push, (uint32_t)sizeof(PostPush));

@@ -44,7 +44,10 @@ static void create_sized(sky_renderer *r)
         gpu_image_create(ctx, &r->display, "display", compute_tonemap ? VK_FORMAT_R8G8B8A8_UNORM : desc->display_format,
                          desc->width, desc->height, 1, out_usage);
     if (desc->readback) {
-        gpu_image_create(ctx, &r->composite, "composite", HDR_FORMAT, desc->width, desc->height, 1, out_usage);
+        /* Sampled too: a spectral group's composite is added into the GPU's sum (sky/spectral_sum.h). */
+        gpu_image_create(ctx, &r->composite, "composite", HDR_FORMAT, desc->width, desc->height, 1,
+                         out_usage | VK_IMAGE_USAGE_SAMPLED_BIT);
+        r->display_last = r->composite_last = GPU_USAGE_TRANSFER_SRC;   /* as after a readback (first frame: discarded) */
         VkDeviceSize pixels = (VkDeviceSize)desc->width * desc->height;
         gpu_buffer_create(ctx, &r->readback_linear, "readback linear", pixels * 8, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
         gpu_buffer_create(ctx, &r->readback_display, "readback display", pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT);

@@ -50,6 +50,10 @@ typedef struct sky_renderer {
     gpu_image hdr;               /* sky pass output, RGBA16F, render_scale x the output size */
     gpu_image display;           /* tone-mapped, 8-bit (headless) */
     gpu_image composite;         /* HDR + bloom, scene-linear (readback only) */
+    /* How the last frame left the display and composite images (readback renderers): the readback copies'
+     * GPU_USAGE_TRANSFER_SRC (also before the first frame, whose barriers discard), or after a spectral group's sum
+     * (sky/spectral_sum.h) the tone map's write and the sum's sampling; the next frame's barriers start there. */
+    gpu_usage display_last, composite_last;
     gpu_buffer readback_linear, readback_display;
     gpu_timer timer;
     gpu_timer *active_timer;     /* the timer of the frame being recorded */

@@ -4,22 +4,69 @@
  * vksky's place: `--validate` and `--trace-barriers` are its options, VKSKY_DROP_BARRIER / VKSKY_WEAKEN_BARRIER name
  * the barrier to change, messages are printed as vksky prints them and any makes the exit status 1.
  * Built from libvksky's objects (not the .so) to reach the trace and drop switches; the host's Vulkan calls go
- * through volk's table, the one the library fills from the host's vkGetInstanceProcAddr. */
+ * through volk's table, the one the library fills from the host's vkGetInstanceProcAddr.
+ * --spectral (config api_spectral, ABI 4): instead, two frames of --spectral 8 (three groups, a readback renderer
+ * each) summed on the GPU (vksky_frame_spectral_sum), a command buffer a frame. */
 #include <volk.h>
 #include "api_host.h"
 #include "gpu/barrier.h"
 #include "luts_host_comp.h"
 
+/* Two frames of three spectral groups summed on the GPU, in one command buffer (config api_spectral). */
+static int spectral_frames(host *h, vksky_context *c, bool trace)
+{
+    enum { GROUPS = 3, SIZE = 64 };
+    vksky_scene *earth = NULL, *gs[GROUPS] = {0};
+    vksky_renderer *r[GROUPS] = {0};
+    vksky_spectral_sum *sum = NULL;
+    double w[GROUPS][4][3];
+    vksky_readback_config rb = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
+    if (vksky_scene_create_earth(&earth) != VKSKY_SUCCESS || vksky_spectral_sum_create(c, SIZE, SIZE, &sum)) return 1;
+    for (int g = 0; g < GROUPS; ++g) {
+        vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION, .next = &rb, .output = VKSKY_OUTPUT_DISPLAY,
+                                 .width = SIZE, .height = SIZE, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
+                                 .quality = "lesson", .bloom = true, .units = VKSKY_UNITS_RELATIVE};
+        if (vksky_scene_spectral_group(earth, 8, 3, (uint32_t)g, &gs[g], w[g], NULL) != VKSKY_SUCCESS) return 1;
+        d.scene = gs[g];
+        if (vksky_renderer_create(c, &d, &r[g]) != VKSKY_SUCCESS) return 1;
+    }
+    vksky_frame_view view = {.type = VKSKY_STRUCTURE_TYPE_FRAME_VIEW, .pitch_deg = 10.0, .fov_deg = 75.0};
+    if (trace) gpu_barrier_trace(stdout);
+    /* A command buffer a frame (the command line's sequences on a GPU), submitted and waited for in turn. */
+    for (int frame = 0; frame < 2; ++frame) {
+        if (trace) fputs("commands\n", stdout);
+        host_begin(h);
+        for (int g = 0; g < GROUPS; ++g) {
+            vksky_frame_spectral_sum step = {.type = VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM, .next = &view, .sum = sum,
+                                             .group = (uint32_t)g, .first = g == 0, .last = g + 1 == GROUPS};
+            memcpy(step.xyz_weights, w[g], sizeof step.xyz_weights);
+            vksky_frame f = {.next = &step};
+            if (vksky_record(r[g], h->cmd, &f) != VKSKY_SUCCESS) return 1;
+        }
+        host_end_submit_wait(h);
+    }
+    gpu_barrier_trace(NULL);
+    for (int g = 0; g < GROUPS; ++g) vksky_renderer_destroy(r[g]), vksky_scene_destroy(gs[g]);
+    vksky_spectral_sum_destroy(sum);
+    vksky_scene_destroy(earth);
+    vksky_context_destroy(c);
+    host_destroy_target(h);
+    host_destroy_device(h, NULL);
+    if (host_validation_messages) fprintf(stderr, "vksky: validation reported %u messages\n", host_validation_messages);
+    return host_validation_messages ? 1 : 0;
+}
+
 int main(int argc, char **argv)
 {
-    bool trace = false, luts = false, storage = false;
+    bool trace = false, luts = false, storage = false, spectral = false;
     for (int i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--trace-barriers")) trace = true;
         else if (!strcmp(argv[i], "--luts")) luts = true;   /* LUTS_ONLY, the host's shader sampling the LUTs */
         else if (!strcmp(argv[i], "--storage")) storage = true;   /* the compute tone map into a storage image */
+        else if (!strcmp(argv[i], "--spectral")) spectral = true;   /* three groups summed on the GPU */
         else if (strcmp(argv[i], "--validate") != 0) {
             fprintf(stderr, "api_drop_probe: unknown option '%s' (accepted: --validate, --trace-barriers, --luts, "
-                            "--storage)\n",
+                            "--storage, --spectral)\n",
                     argv[i]);
             return 2;
         }
@@ -37,6 +84,7 @@ int main(int argc, char **argv)
     vksky_context_desc cd = host_context_desc(&h, NULL);
     vksky_context *c = NULL;
     if (vksky_context_create(&cd, &c) != VKSKY_SUCCESS) return 1;
+    if (spectral) return spectral_frames(&h, c, trace);
     vksky_renderer_desc d = {.abi_version = VKSKY_ABI_VERSION,
                              .output = luts ? VKSKY_OUTPUT_LUTS_ONLY : VKSKY_OUTPUT_DISPLAY, .width = 64,
                              .height = 64, .target_format = VK_FORMAT_R8G8B8A8_UNORM, .quality = "lesson",

@@ -39,6 +39,8 @@ typedef struct host_view {
     /* The host's own image the frame writes (frame.color: a renderer without readback, --bench without --render),
      * or NULL: the pixels into a readback slot. */
     const vksky_image *target;
+    /* A spectral group's frame: its composite added into the GPU's sum (ABI 4; its `next` is ignored), or NULL. */
+    const vksky_frame_spectral_sum *spectral_sum;
 } host_view;
 
 /* Records one frame of `v` into cmd (begun): its pixels into readback slot `slot` (or v->target), auto exposure's

@@ -48,11 +48,15 @@ typedef struct groups {
     vksky_scene *scene[GROUPS_MAX];
     vksky_renderer *r[GROUPS_MAX];
     double weights[GROUPS_MAX][4][3];
+    /* The groups summed on the GPU (ABI 4: each group's frame adds into it, the last resolves; one readback a frame),
+     * or NULL: each group read back and summed on the host (VKSKY_SPECTRAL_SUM=host, for the comparison tests). */
+    vksky_spectral_sum *sum;
 } groups;
 
 static void groups_destroy(groups *g)
 {
     for (uint32_t k = 0; k < g->count; ++k) vksky_renderer_destroy(g->r[k]), vksky_scene_destroy(g->scene[k]);
+    vksky_spectral_sum_destroy(g->sum);
 }
 
 /* Frame scenes: the groups derived again from the scene as the frame's values left it (a medium may be animated), each
@@ -103,6 +107,10 @@ static int groups_create(groups *g, const options *o, vksky_context *ctx, const 
             .scene = g->scene[k]};
         if (vksky_renderer_create(ctx, &rd, &g->r[k]) != VKSKY_SUCCESS) return 1;
     }
+    const char *where = getenv("VKSKY_SPECTRAL_SUM");
+    if (!(where && !strcmp(where, "host")) &&
+        vksky_spectral_sum_create(ctx, (uint32_t)o->width, (uint32_t)height, &g->sum) != VKSKY_SUCCESS)
+        return 1;
     return 0;
 }
 
@@ -116,17 +124,24 @@ static host_view whole_view(const options *o)
                        .whole_width = (uint32_t)o->width, .whole_height = (uint32_t)o->height};
 }
 
-/* The frames of renderers rs[0 .. n-1] of view v in one command buffer, one submission, one wait. */
-static int render_list(vksky_renderer *const *rs, uint32_t n, const options *o, const host_view *view,
-                       host_commands *h)
+/* The frames of renderers rs[0 .. n-1] (groups first .. first + n - 1) of view v in one command buffer, one
+ * submission, one wait; with the GPU's sum each frame adds its group into it, the frame's last group resolves. */
+static int render_list(const groups *g, vksky_renderer *const *rs, uint32_t first, uint32_t n, const options *o,
+                       const host_view *view, host_commands *h)
 {
     host_view v = *view;
+    vksky_frame_spectral_sum step = {.type = VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM, .sum = g->sum};
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     if (o->trace_barriers) fputs("commands\n", stdout);   /* the host's command buffer, as the CLI's trace names one */
     if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
-    for (uint32_t k = 0; k < n; ++k)
+    for (uint32_t k = 0; k < n; ++k) {
+        uint32_t group = first + k;
+        step.group = group, step.first = group == 0, step.last = group + 1 == g->count;
+        memcpy(step.xyz_weights, g->weights[group], sizeof step.xyz_weights);
+        v.spectral_sum = g->sum ? &step : NULL;
         if (host_record(rs[k], h->cmd, &v, 0) != 0) return 1;
+    }
     if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
     VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
     VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
@@ -154,6 +169,7 @@ typedef struct sum_job {
     uint32_t first, count;
     bool resolve;                           /* then XYZ -> Rec.709 into linear (and rgb) */
     const uint16_t *alpha;                  /* the last group's readback (three to a pass: the alpha) */
+    const float *resolved;                  /* or the GPU's sum, resolved: only converted (linear halves, rgb) */
     float *xyz, *rgb;
     uint16_t *linear;
 } sum_job;
@@ -163,6 +179,19 @@ static void sum_pixels(void *user, size_t part, size_t begin, size_t end)
     (void)part;
     const sum_job *j = user;
     const groups *g = j->g;
+    if (j->resolved) {   /* the GPU summed and resolved: the EXR's halves (clamped to their range) and the PNG's floats */
+        for (size_t i = begin; i < end; ++i) {
+            const float *px = j->resolved + 4 * i;
+            for (int q = 0; q < 3; ++q) {
+                float v = px[q] < -65504.0f ? -65504.0f : px[q] > 65504.0f ? 65504.0f : px[q];
+                j->linear[4 * i + q] = io_float_to_half(v);
+                if (j->rgb) j->rgb[4 * i + q] = px[q];
+            }
+            j->linear[4 * i + 3] = io_float_to_half(px[3]);
+            if (j->rgb) j->rgb[4 * i + 3] = 1.0f;
+        }
+        return;
+    }
     const float *half_value = io_half_table();
     for (uint32_t n = 0; n < j->count; ++n) {
         const double(*m)[3] = g->weights[j->first + n];
@@ -199,6 +228,12 @@ static int accumulate(const groups *g, uint32_t first, uint32_t count, vksky_ren
 {
     sum_job job = {.g = g, .first = first, .count = count, .resolve = resolve, .xyz = xyz, .rgb = rgb,
                    .linear = out->linear};
+    if (g->sum) {   /* the GPU's sum: read back once, after the last group */
+        if (!resolve) return 0;
+        if (vksky_spectral_sum_get(g->sum, &job.resolved) != VKSKY_SUCCESS) return 1;
+        io_parts_run(pixels, 65536, sum_pixels, &job);
+        return 0;
+    }
     for (uint32_t n = 0; n < count; ++n) {
         vksky_readback px;
         if (vksky_renderer_get_readback(rs[n], &px) != VKSKY_SUCCESS) return 1;
@@ -227,10 +262,10 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
     int status = 0;
     if (g->shared) {   /* one renderer: each group summed before the next one's frame overwrites its readback */
         for (uint32_t k = 0; k < g->count && status == 0 && !stop_requested(); ++k)
-            status = vksky_renderer_set_scene(g->r[0], g->scene[k]) != VKSKY_SUCCESS || render_list(g->r, 1, o, &v, h) ||
+            status = vksky_renderer_set_scene(g->r[0], g->scene[k]) != VKSKY_SUCCESS || render_list(g, g->r, k, 1, o, &v, h) ||
                      accumulate(g, k, 1, g->r, xyz, pixels, k + 1 == g->count, out, rgb);
     } else {
-        status = render_list(g->r, g->count, o, &v, h) ||
+        status = render_list(g, g->r, 0, g->count, o, &v, h) ||
                  accumulate(g, 0, g->count, g->r, xyz, pixels, true, out, rgb);
     }
     if (status != 0 || stop_requested()) {
@@ -403,7 +438,7 @@ static int draw_band(void *user, const host_view *v, frame_ring_pixels *out)
 {
     band_draw *d = user;
     memset(d->xyz, 0, d->pixels * 3 * sizeof *d->xyz);
-    if (render_list(d->g->r, d->g->count, d->o, v, d->h) ||
+    if (render_list(d->g, d->g->r, 0, d->g->count, d->o, v, d->h) ||
         accumulate(d->g, 0, d->g->count, d->g->r, d->xyz, d->pixels, true, &d->img, NULL))
         return 1;
     *out = (frame_ring_pixels){d->img.linear, NULL};

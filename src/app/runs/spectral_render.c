@@ -319,15 +319,17 @@ int spectral_auto(options *o, const char *impossible)
     if (rgb <= SPECTRAL_AUTO_RGB_KEEP) return 0;
     char names[96];
     quality_class_names(classes, names, sizeof names);
-    /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group, summed on the host. With the
-     * sum on the encode threads and the write beside the next frame (app/runs/spectral_host.c), a 720p sunset
-     * sequence of 24 wavelengths runs at 22-28 frames/s on an H100 against 45-48 in RGB, and a 960x540 frame costs
-     * 3.5x an RGB frame's CPU on lavapipe (0.45 s against 0.13), so issue 27's throughput stays the default's
-     * (docs/spectral.md). --spectral N asks for it. */
+    /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group. With the sum on the encode
+     * threads and the write beside the next frame (app/runs/spectral_host.c), a 720p sunset sequence of 24 wavelengths
+     * ran at 22-28 frames/s on an H100 against 45-48 in RGB; with the groups summed on the GPU (32j, one readback a
+     * frame) a 960x540 frame still costs ~4x an RGB frame's CPU on lavapipe (0.52 s against 0.12: the groups' passes),
+     * so issue 27's throughput stays the default's until the H100's figure (tools/throughput_bench.sh SPECTRAL=1)
+     * says otherwise (docs/spectral.md, "The sum on the GPU"). --spectral N asks for it. */
     const char *why = impossible               ? impossible
                       : o->bench_frames > 0    ? "--bench (it times RGB frames)"
                       : sequence_active(o)     ? "a sequence at a sequence's speed (a frame would take a pass per "
-                                                 "wavelength group: ask with --spectral N)"
+                                                 "wavelength group, summed on the GPU: ~4x an RGB frame's CPU on "
+                                                 "lavapipe; ask with --spectral N)"
                                                : spectral_render_unable(o);
     if (why) {   /* RGB kept where the spectral path cannot render: said, not silent */
         printf("vksky: --quality auto: RGB's colour on the '%s' scene is within CIEDE2000 %.2f of the spectrum's, "
