@@ -12,6 +12,7 @@
 #    rebuild signals compute_done with the next value, each frame waits for exactly that value at the LUT readers'
 #    stages and signals graphics_done, which the next rebuild waits for; the queue line and `qfot none` say why no
 #    ownership transfer is recorded (one family);
+#  - --spectral 8 --async-luts: the groups' LUT passes on the compute queue, pixels equal to one queue's;
 #  - the window (Xvfb): validation clean, the LUTs built on the compute queue, the screenshot equal;
 #  - the compute command buffer is checked by validation like the frame's: transmittance.write_to_sample left out
 #    there is reported (RAW + layout).
@@ -64,6 +65,38 @@ while read -r name extra; do
             exit failed
         }' "$work/a$i.trace" || fails=$((fails + 1))
 done < <(async_variants)
+
+# --spectral 8 --async-luts (issue 25): the wavelength groups' LUT passes on the compute queue before each frame's
+# submission of the groups (one renderer per group, or one renderer given each group's scene on a CPU device: then a
+# LUT submission per group); pixels identical to the single-queue spectral image, validation clean, the semaphores
+# as for an RGB frame: each LUT submission signals compute_done's next value, the frame after it waits for exactly
+# that value and signals graphics_done, which the next LUT submission waits for.
+"$VKSKY" --render "$work/ss.exr" --render "$work/ss.png" "${A[@]}" --spectral 8 2>"$work/ss.err" \
+    || fail "--spectral 8: failed: $(head -c 300 "$work/ss.err")"
+"$VKSKY" --render "$work/sa.exr" --render "$work/sa.png" "${A[@]}" --spectral 8 --async-luts --trace-barriers \
+    >"$work/sa.trace" 2>"$work/sa.err"
+rc=$?
+if [ $rc -ne 0 ] || [ -s "$work/sa.err" ]; then
+    fail "--spectral 8 --async-luts: exit $rc: $(head -c 600 "$work/sa.err")"
+else
+    "$PIX" same "$work/ss.exr" "$work/sa.exr" || fail "--spectral 8 --async-luts: EXR pixels differ from one queue's"
+    cmp -s "$work/ss.png" "$work/sa.png" || fail "--spectral 8 --async-luts: PNG differs from one queue's"
+    awk '
+        function bad(m) { print "FAIL: spectral: trace: " m > "/dev/stderr"; failed = 1 }
+        /^commands$/ { ++cb; next }
+        /^pass (transmittance|multiscatter|ground_irradiance)_lut(_first|_sky_ground)?$/ { if (cb % 2 == 0) bad("LUT pass in the frame'"'"'s command buffer " cb); luts++ }
+        /^pass sky$/ { if (cb % 2 == 1) bad("sky pass in a LUT command buffer"); sky++ }
+        /^semaphore compute_done.signal / { ++cs; if ($3 != "queue=compute" || $4 != "value=" cs) bad("compute_done.signal: " $0) }
+        /^semaphore compute_done.wait / { ++cw; if ($3 != "queue=graphics" || $4 != "value>=" cs) bad("compute_done.wait: " $0) }
+        /^semaphore graphics_done.signal / { ++gs; if ($3 != "queue=graphics" || $4 != "value=" gs) bad("graphics_done.signal: " $0) }
+        /^semaphore graphics_done.wait / { ++gw; if ($3 != "queue=compute" || $4 != "value>=" gs) bad("graphics_done.wait: " $0) }
+        END {
+            if (cs < 1 || !luts) bad("no LUT submission on the compute queue")
+            if (cw != cs || gs != cs || gw != cs - 1) bad("semaphores: compute_done " cs " signals " cw " waits, graphics_done " gs " signals " gw " waits")
+            if (!sky) bad("no sky pass")
+            exit failed
+        }' "$work/sa.trace" || fails=$((fails + 1))
+fi
 
 # Validation sees the compute command buffer: a LUT barrier left out there is reported.
 VKSKY_DROP_BARRIER=transmittance.write_to_sample "$VKSKY" --render "$work/drop.png" "${A[@]}" --async-luts \

@@ -146,7 +146,13 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     free(argv);
     if (made != VKSKY_SUCCESS) goto done;
     if (o->spectral) {   /* spectral_host_wanted: a renderer per wavelength group, none of the RGB medium */
-        if (host_commands_create(&h, ctx) == 0)
+        /* --async-luts: the groups' LUT passes on the compute queue (app/runs/host_async.h), as for an RGB frame. */
+        status = host_commands_create(&h, ctx);
+        if (status == 0 && o->async_luts) {
+            status = host_async_create(&async, ctx, device->compute_queue_index, o->trace_barriers ? stdout : NULL);
+            h.async = status == 0 ? &async : NULL;
+        }
+        if (status == 0)
             status = stop_requested()                               ? 0
                      : sequence_active(o) || o->skip_existing       ? spectral_host_sequence(o, ctx, scene, &h)
                      : banded                                       ? spectral_host_bands(o, ctx, scene, &h)

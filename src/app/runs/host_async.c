@@ -62,21 +62,32 @@ static bool semaphore_wait(const host_async *a, const char *name, const char *qu
 
 int host_async_luts(host_async *a, vksky_renderer *r, bool force, bool *waits)
 {
+    return host_async_luts_list(a, &r, 1, force, waits);
+}
+
+int host_async_luts_list(host_async *a, vksky_renderer *const *rs, uint32_t n, bool force, bool *waits)
+{
     *waits = false;
     if (a->trace && a->graphics_value == 0 && a->compute_value == 0)
         fprintf(a->trace, "queues graphics=%u:0 compute=%u:%u%s\n", a->family, a->compute_family, a->compute_index,
                 a->compute_family != a->family
                     ? " (another family: exclusive images change owner, release + acquire)"
                     : " (the same family: no ownership transfer, the timeline semaphore is enough)");
-    if (!force && !vksky_renderer_luts_stale(r)) return 0;
+    bool stale = force;
+    for (uint32_t k = 0; k < n && !stale; ++k) stale = vksky_renderer_luts_stale(rs[k]);
+    if (!stale) return 0;
     if (a->trace) fputs("commands\n", a->trace);   /* the compute queue's command buffer */
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     bool recorded = false;
     /* The earlier LUT submission is done: the frame that waited for it was waited for (one frame at a time). */
-    if (vkResetCommandBuffer(a->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(a->cmd, &binfo) != VK_SUCCESS ||
-        vksky_record_luts(r, a->cmd, force, &recorded) != VKSKY_SUCCESS || vkEndCommandBuffer(a->cmd) != VK_SUCCESS)
-        return 1;
+    if (vkResetCommandBuffer(a->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(a->cmd, &binfo) != VK_SUCCESS) return 1;
+    for (uint32_t k = 0; k < n; ++k) {   /* every renderer's LUT passes in the one compute submission */
+        bool one = false;
+        if (vksky_record_luts(rs[k], a->cmd, force, &one) != VKSKY_SUCCESS) return 1;
+        recorded |= one;
+    }
+    if (vkEndCommandBuffer(a->cmd) != VK_SUCCESS) return 1;
     if (a->trace && a->compute_family == a->family)
         fprintf(a->trace, "qfot none: the compute queue is of the graphics family (%u): no ownership transfer; the "
                           "compute_done wait orders the LUT writes before the frame\n", a->family);

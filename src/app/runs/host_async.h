@@ -36,6 +36,9 @@ void host_async_destroy(host_async *a);
 /* Before a frame: the LUT passes, when r's are stale or `force`, recorded and submitted on the compute queue (after
  * the earlier frames: graphics_done); *waits: whether the frame must wait for them. 0, or 1 (the line printed). */
 int host_async_luts(host_async *a, vksky_renderer *r, bool force, bool *waits);
+/* The same for n renderers whose frames share the next graphics submission (--spectral's wavelength groups): their
+ * LUT passes in one compute submission, when any is stale or `force`. */
+int host_async_luts_list(host_async *a, vksky_renderer *const *rs, uint32_t n, bool force, bool *waits);
 /* The frame's submission semaphores: *wait (when `waits`: compute_done at the LUT readers) and *signal
  * (graphics_done's next value). Returns the number of waits (0 or 1). */
 uint32_t host_async_frame(host_async *a, bool waits, VkSemaphoreSubmitInfo *wait, VkSemaphoreSubmitInfo *signal);

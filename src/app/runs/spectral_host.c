@@ -19,7 +19,7 @@
 
 bool spectral_host_wanted(const options *o)
 {
-    return o->spectral > 0 && o->output_count > 0 && o->bench_frames == 0 && !o->async_luts;
+    return o->spectral > 0 && o->output_count > 0 && o->bench_frames == 0;
 }
 
 void spectral_image_release(spectral_image *img)
@@ -133,6 +133,9 @@ static int render_list(const groups *g, vksky_renderer *const *rs, uint32_t firs
     vksky_frame_spectral_sum step = {.type = VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM, .sum = g->sum};
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
+    /* --async-luts: the groups' LUT passes first, in one submission on the compute queue (app/runs/host_async.h). */
+    bool luts_waited = false;
+    if (h->async && host_async_luts_list(h->async, rs, n, false, &luts_waited)) return 1;
     if (o->trace_barriers) fputs("commands\n", stdout);   /* the host's command buffer, as the CLI's trace names one */
     if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
     for (uint32_t k = 0; k < n; ++k) {
@@ -144,8 +147,11 @@ static int render_list(const groups *g, vksky_renderer *const *rs, uint32_t firs
     }
     if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
     VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .commandBufferInfoCount = 1,
-                           .pCommandBufferInfos = &cinfo};
+    VkSemaphoreSubmitInfo wait, signal;
+    uint32_t waits = h->async ? host_async_frame(h->async, luts_waited, &wait, &signal) : 0;
+    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = waits,
+                           .pWaitSemaphoreInfos = &wait, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cinfo,
+                           .signalSemaphoreInfoCount = h->async ? 1 : 0, .pSignalSemaphoreInfos = &signal};
     VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
     if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
     if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);

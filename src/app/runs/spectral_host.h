@@ -10,8 +10,9 @@
 #include "app/cli/options_struct.h"
 #include "app/runs/host_ring.h"
 
-/* Whether o's spectral render goes through here: one image or a sequence's frames in one band each, no --bench, no
- * --async-luts. Images in several bands and --async-luts still run the serial loop (app/runs/spectral_render.c). */
+/* Whether o's spectral render goes through here: one image, an image in bands or a sequence's frames, with or without
+ * --async-luts (the groups' LUT passes then in one compute submission before each frame's); not --bench, which still
+ * runs the serial loop (app/runs/spectral_render.c). */
 bool spectral_host_wanted(const options *o);
 
 /* The image's pixels, the host's own (free them with spectral_image_release). display: NULL without a PNG output. */
