@@ -6,7 +6,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 static const char *const LAYER_NAMES[VKSKY_COMPOSITE_LAYERS] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
 
@@ -68,49 +67,30 @@ void band_reader_upload(const band_reader *b, float *in, int rows)
     }
 }
 
-static double now_ms(void)
+/* A band's frame for host_commands_submit: the composite frame with the LUTs forced and following as it says. */
+typedef struct band_frames {
+    vksky_composite *c;
+    const vksky_composite_frame *f;
+} band_frames;
+
+static int record_band(void *user, VkCommandBuffer cmd, bool force_luts, bool follows_frame)
 {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e3 + (double)t.tv_nsec * 1e-6;
+    const band_frames *b = user;
+    vksky_composite_frame fk = *b->f;
+    fk.force_luts = force_luts, fk.follows_frame = follows_frame;
+    return vksky_composite_record(b->c, cmd, &fk) == VKSKY_SUCCESS ? 0 : 1;
 }
 
 /* Frames first .. first + count - 1 of the band into h's command buffer (frame k > 0 rebuilds the LUTs), submitted
- * (after the LUT passes on the compute queue, with h->async) and waited for: the order of host_ring.c's frames. */
+ * (after the LUT passes on the compute queue, with h->async) and waited for unless the ring waits (wait_fence). */
 static int submit_frames(host_commands *h, vksky_renderer *r, vksky_composite *c, const vksky_composite_frame *f,
                          int first, int count, FILE *trace, double *wall_ms, bool wait_fence)
 {
-    VkSemaphoreSubmitInfo wait, signal;
-    uint32_t waits = 0;
-    bool luts_waited = false;
-    if (h->async && host_async_luts(h->async, r, f->force_luts || first > 0, &luts_waited)) return 1;
-    if (trace) fputs("commands\n", trace);   /* the host's command buffer, as the CLI's trace names one */
-    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
-    for (int k = first; k < first + count; ++k) {
-        vksky_composite_frame fk = *f;
-        fk.force_luts = !h->async && (f->force_luts || k > 0);   /* with --async-luts: recorded above */
-        fk.follows_frame = k > first;   /* the readback copies' write-after-write: a barrier of the frame's */
-        if (vksky_composite_record(c, h->cmd, &fk) != VKSKY_SUCCESS) return 1;
-    }
-    if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
-    if (h->async) waits = host_async_frame(h->async, luts_waited, &wait, &signal);
-    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = waits,
-                           .pWaitSemaphoreInfos = &wait, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cinfo,
-                           .signalSemaphoreInfoCount = h->async ? 1 : 0, .pSignalSemaphoreInfos = &signal};
-    double t0 = now_ms();
-    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
-    if (!wait_fence) return vr == VK_SUCCESS ? 0 : 1;   /* the ring's band_done waits for it */
-    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
-    if (wall_ms) *wall_ms = now_ms() - t0;
-    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
-    if (vr != VK_SUCCESS) {
-        fprintf(stderr, "vksky: the composite's submission failed (VkResult %d)\n", (int)vr);
-        return 1;
-    }
-    return 0;
+    band_frames frames = {c, f};
+    host_submission s = {.luts = &r, .luts_count = 1, .force_luts = f->force_luts, .record = record_band,
+                         .user = &frames, .trace = trace, .wall_ms = wall_ms, .no_wait = !wait_fence,
+                         .what = "the composite"};
+    return host_commands_submit(h, &s, first, count);
 }
 
 int composite_submit(host_commands *h, vksky_renderer *r, vksky_composite *c, const vksky_composite_frame *f,

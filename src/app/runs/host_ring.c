@@ -94,25 +94,22 @@ int host_frames_wanted(void)
     return n < 1 ? 1 : n > 16 ? 16 : n;
 }
 
-/* Frames first .. first + count - 1 of a render (frame k > 0 rebuilds the LUTs) into h's command buffer, submitted
- * (after the LUT passes on the compute queue, with h->async) and waited for. */
-static int render_frames(host_commands *h, vksky_renderer *r, const host_view *v, int first, int count, FILE *trace,
-                         double *wall_ms)
+int host_commands_submit(host_commands *h, const host_submission *s, int first, int count)
 {
     VkSemaphoreSubmitInfo wait, signal;
     uint32_t waits = 0;
     bool luts_waited = false;
-    if (h->async && host_async_luts(h->async, r, v->force_luts || first > 0, &luts_waited)) return 1;
-    if (trace) fputs("commands\n", trace);   /* the host's command buffer, as the CLI's trace names one */
+    if (h->async && host_async_luts_list(h->async, s->luts, s->luts_count, s->force_luts || first > 0, &luts_waited))
+        return 1;
+    if (s->trace) fputs("commands\n", s->trace);   /* the host's command buffer, as the CLI's trace names one */
     VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                       .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
     for (int k = first; k < first + count; ++k) {
-        host_view f = *v;
-        /* With the LUTs on the compute queue (recorded above) the frame records none. */
-        f.force_luts = !h->async && (v->force_luts || k > 0);
-        f.follows_frame = k > first;   /* the readback copies' write-after-write: a barrier of the spine's */
-        if (host_record(r, h->cmd, &f, 0) != 0) return 1;
+        /* With the LUTs on the compute queue (recorded above) the frame records none; a frame after the first in
+         * the command buffer follows one (the readback copies' write-after-write: a barrier of the spine's). */
+        bool force = !h->async && (s->force_luts || k > 0);
+        if (s->record(s->user, h->cmd, force, k > first) != 0) return 1;
     }
     if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
     if (h->async) waits = host_async_frame(h->async, luts_waited, &wait, &signal);
@@ -122,14 +119,29 @@ static int render_frames(host_commands *h, vksky_renderer *r, const host_view *v
                            .signalSemaphoreInfoCount = h->async ? 1 : 0, .pSignalSemaphoreInfos = &signal};
     double t0 = now_ms();
     VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
+    if (s->no_wait && vr == VK_SUCCESS) return 0;   /* the caller waits for h->fence (a ring of its own) */
     if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
-    if (wall_ms) *wall_ms = now_ms() - t0;
+    if (s->wall_ms) *s->wall_ms = now_ms() - t0;
     if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
     if (vr != VK_SUCCESS) {
-        fprintf(stderr, "vksky: the frame's submission failed (VkResult %d)\n", (int)vr);
+        fprintf(stderr, "vksky: %s's submission failed (VkResult %d)\n", s->what, (int)vr);
         return 1;
     }
     return 0;
+}
+
+/* A render's frame k: the renderer's frame of the view, LUTs forced and following as host_commands_submit says. */
+typedef struct view_frames {
+    vksky_renderer *r;
+    const host_view *v;
+} view_frames;
+
+static int record_view(void *user, VkCommandBuffer cmd, bool force_luts, bool follows_frame)
+{
+    const view_frames *f = user;
+    host_view v = *f->v;
+    v.force_luts = force_luts, v.follows_frame = follows_frame;
+    return host_record(f->r, cmd, &v, 0);
 }
 
 int host_commands_render(host_commands *h, vksky_renderer *r, const host_view *v, FILE *trace, double *wall_ms)
@@ -137,12 +149,15 @@ int host_commands_render(host_commands *h, vksky_renderer *r, const host_view *v
     int n = h->frames > 1 ? h->frames : 1;
     /* --async-luts: each frame is its own pair of submissions (the LUTs on the compute queue, the frame on the
      * graphics queue), which synchronization validation checks across submissions and queues. */
+    view_frames frames = {r, v};
+    host_submission s = {.luts = &r, .luts_count = 1, .force_luts = v->force_luts, .record = record_view,
+                         .user = &frames, .trace = trace, .wall_ms = wall_ms, .what = "the frame"};
     if (h->async) {
         for (int k = 0; k < n; ++k)
-            if (render_frames(h, r, v, k, 1, trace, wall_ms)) return 1;
+            if (host_commands_submit(h, &s, k, 1)) return 1;
         return 0;
     }
-    return render_frames(h, r, v, 0, n, trace, wall_ms);
+    return host_commands_submit(h, &s, 0, n);
 }
 
 void host_timings_frame_end(vksky_renderer *r)

@@ -70,6 +70,26 @@ void host_commands_destroy(host_commands *h);
  * submit to fence. 0, or 1 (the line printed). */
 int host_commands_render(host_commands *h, vksky_renderer *r, const host_view *v, FILE *trace, double *wall_ms);
 
+/* One submission of frames through h, whatever records them (a render's frames, a composite's bands, the spectral
+ * groups): with h->async, the LUT passes of luts[0 .. luts_count-1] first, in one submission on the compute queue
+ * (rebuilt when force_luts or a later frame asks), and the frame's submission waits for them (host_async.h). */
+typedef struct host_submission {
+    vksky_renderer *const *luts;   /* the renderers whose LUTs the frames read */
+    uint32_t luts_count;
+    bool force_luts;               /* the first frame rebuilds the LUTs (frames after the first always do) */
+    /* Records frame k into cmd: force_luts (the LUTs in this frame: never with h->async), follows_frame (another frame
+     * precedes it in the command buffer). 0, or 1 after its line. */
+    int (*record)(void *user, VkCommandBuffer cmd, bool force_luts, bool follows_frame);
+    void *user;
+    FILE *trace;                   /* --trace-barriers: the "commands" line (NULL: none) */
+    double *wall_ms;               /* submit to fence (NULL: not measured) */
+    bool no_wait;                  /* return after the submission: the caller waits for h->fence */
+    const char *what;              /* "the frame": its error line's subject */
+} host_submission;
+/* Frames first .. first + count - 1 recorded into h's command buffer and submitted (and waited for, unless no_wait).
+ * 0, or 1 after its line. */
+int host_commands_submit(host_commands *h, const host_submission *s, int first, int count);
+
 /* --timings: the first image's figures (app/runs/startup.h) from the renderer's stats and its last frame's pass
  * timings (after the host waited for that frame; later frames are not measured). */
 void host_timings_frame_end(vksky_renderer *r);

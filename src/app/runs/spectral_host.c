@@ -124,41 +124,42 @@ static host_view whole_view(const options *o)
                        .whole_width = (uint32_t)o->width, .whole_height = (uint32_t)o->height};
 }
 
-/* The frames of renderers rs[0 .. n-1] (groups first .. first + n - 1) of view v in one command buffer, one
- * submission, one wait; with the GPU's sum each frame adds its group into it, the frame's last group resolves. */
-static int render_list(const groups *g, vksky_renderer *const *rs, uint32_t first, uint32_t n, const options *o,
-                       const host_view *view, host_commands *h)
+/* The groups' frames for host_commands_submit: renderers rs[0 .. n-1] (groups first .. first + n - 1) of view v, one
+ * after the other into the command buffer; with the GPU's sum each frame adds its group into it, the frame's last
+ * group resolves. */
+typedef struct group_frames {
+    const groups *g;
+    vksky_renderer *const *rs;
+    uint32_t first, n;
+    const host_view *view;
+} group_frames;
+
+static int record_groups(void *user, VkCommandBuffer cmd, bool force_luts, bool follows_frame)
 {
-    host_view v = *view;
+    (void)force_luts, (void)follows_frame;   /* one frame a submission: neither applies */
+    const group_frames *f = user;
+    const groups *g = f->g;
+    host_view v = *f->view;
     vksky_frame_spectral_sum step = {.type = VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM, .sum = g->sum};
-    VkCommandBufferBeginInfo binfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
-                                      .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
-    /* --async-luts: the groups' LUT passes first, in one submission on the compute queue (app/runs/host_async.h). */
-    bool luts_waited = false;
-    if (h->async && host_async_luts_list(h->async, rs, n, false, &luts_waited)) return 1;
-    if (o->trace_barriers) fputs("commands\n", stdout);   /* the host's command buffer, as the CLI's trace names one */
-    if (vkResetCommandBuffer(h->cmd, 0) != VK_SUCCESS || vkBeginCommandBuffer(h->cmd, &binfo) != VK_SUCCESS) return 1;
-    for (uint32_t k = 0; k < n; ++k) {
-        uint32_t group = first + k;
+    for (uint32_t k = 0; k < f->n; ++k) {
+        uint32_t group = f->first + k;
         step.group = group, step.first = group == 0, step.last = group + 1 == g->count;
         memcpy(step.xyz_weights, g->weights[group], sizeof step.xyz_weights);
         v.spectral_sum = g->sum ? &step : NULL;
-        if (host_record(rs[k], h->cmd, &v, 0) != 0) return 1;
+        if (host_record(f->rs[k], cmd, &v, 0) != 0) return 1;
     }
-    if (vkEndCommandBuffer(h->cmd) != VK_SUCCESS) return 1;
-    VkCommandBufferSubmitInfo cinfo = {.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO, .commandBuffer = h->cmd};
-    VkSemaphoreSubmitInfo wait, signal;
-    uint32_t waits = h->async ? host_async_frame(h->async, luts_waited, &wait, &signal) : 0;
-    VkSubmitInfo2 sinfo = {.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2, .waitSemaphoreInfoCount = waits,
-                           .pWaitSemaphoreInfos = &wait, .commandBufferInfoCount = 1, .pCommandBufferInfos = &cinfo,
-                           .signalSemaphoreInfoCount = h->async ? 1 : 0, .pSignalSemaphoreInfos = &signal};
-    VkResult vr = vkQueueSubmit2(h->queue, 1, &sinfo, h->fence);
-    if (vr == VK_SUCCESS) vr = vkWaitForFences(h->device, 1, &h->fence, VK_TRUE, UINT64_MAX);
-    if (vr == VK_SUCCESS) vr = vkResetFences(h->device, 1, &h->fence);
-    if (vr != VK_SUCCESS) {
-        fprintf(stderr, "vksky: the spectral frame's submission failed (VkResult %d)\n", (int)vr);
-        return 1;
-    }
+    return 0;
+}
+
+/* The frames of renderers rs[0 .. n-1] in one command buffer, one submission, one wait (with --async-luts: their
+ * LUT passes first, in one submission on the compute queue: host_async.h). */
+static int render_list(const groups *g, vksky_renderer *const *rs, uint32_t first, uint32_t n, const options *o,
+                       const host_view *view, host_commands *h)
+{
+    group_frames frames = {g, rs, first, n, view};
+    host_submission s = {.luts = rs, .luts_count = n, .record = record_groups, .user = &frames,
+                         .trace = o->trace_barriers ? stdout : NULL, .what = "the spectral frame"};
+    if (host_commands_submit(h, &s, 0, 1)) return 1;
     /* A LUT cache miss: the LUTs computed, into the cache for the next start (a hit or none: nothing). */
     for (uint32_t k = 0; k < n; ++k)
         if (vksky_renderer_store_luts(rs[k]) != VKSKY_SUCCESS) return 1;
