@@ -45,26 +45,39 @@ int host_device_open(const options *o, host_device **dev, vksky_context **ctx, u
     }
     startup_open_cache(g, o);
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
-    vksky_context_desc cd = {
-        .abi_version = VKSKY_ABI_VERSION, .get_instance_proc_addr = vkGetInstanceProcAddr, .instance = g->instance,
-        .physical_device = g->physical, .device = g->device, .queue_family = g->queue_family, .queue_index = 0,
-        .pipeline_cache = g->pipeline_cache, .message = host_print_message,
-        .compute_queue = g->compute_queue != VK_NULL_HANDLE, .compute_queue_family = g->compute_family,
-        .compute_queue_index = g->compute_index};
-    vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
-                                         .vulkan_memory_model = g->memory_model_device_scope,
-                                         .vulkan_memory_model_device_scope = g->memory_model_device_scope};
     vksky_context *c = NULL;
-    if (vksky_context_create(&cd, &c) != VKSKY_SUCCESS || vksky_context_set_device_features(c, &enabled) != VKSKY_SUCCESS ||
-        vksky_context_set_debug_utils(c, g->debug_utils) != VKSKY_SUCCESS ||
-        vksky_context_set_cache_directory(c, gpu_cache_dir(g)) != VKSKY_SUCCESS) {
-        vksky_context_destroy(c);
+    if (host_device_adopt(g, &c) != 0) {
         host_device_close(d, NULL, 1);
         return 1;
     }
     /* The barrier trace covers the renderers' creation (their uploads), as the command line's own trace did. */
     if (o->trace_barriers) vksky_context_set_trace(c, VKSKY_TRACE_BARRIERS, host_print_trace, NULL);
     *dev = d, *ctx = c, *compute_index = g->compute_index;
+    return 0;
+}
+
+int host_device_adopt(const struct gpu_context *g, vksky_context **out)
+{
+    vksky_context_desc cd = {
+        .abi_version = VKSKY_ABI_VERSION, .get_instance_proc_addr = vkGetInstanceProcAddr, .instance = g->instance,
+        .physical_device = g->physical, .device = g->device, .queue_family = g->queue_family, .queue_index = 0,
+        .pipeline_cache = g->pipeline_cache, .message = host_print_message,
+        /* --async-luts: the compute queue the device was made with (the main queue under VKSKY_ASYNC_ONE_QUEUE=1). */
+        .compute_queue = g->compute_queue != VK_NULL_HANDLE, .compute_queue_family = g->compute_family,
+        .compute_queue_index = g->compute_index};
+    /* What the device creation enabled: the memory model too where the device has it (single-pass SPD). */
+    vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
+                                         .vulkan_memory_model = g->memory_model_device_scope,
+                                         .vulkan_memory_model_device_scope = g->memory_model_device_scope};
+    *out = NULL;
+    vksky_context *c = NULL;
+    if (vksky_context_create(&cd, &c) != VKSKY_SUCCESS || vksky_context_set_device_features(c, &enabled) != VKSKY_SUCCESS ||
+        vksky_context_set_debug_utils(c, g->debug_utils) != VKSKY_SUCCESS ||   /* names, labels (captures) */
+        vksky_context_set_cache_directory(c, gpu_cache_dir(g)) != VKSKY_SUCCESS) {
+        vksky_context_destroy(c);
+        return 1;
+    }
+    *out = c;
     return 0;
 }
 

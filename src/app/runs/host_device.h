@@ -14,6 +14,11 @@ typedef struct host_device host_device;
 /* *dev and *ctx made: 0; else 1 or 2 after one line on stderr (nothing left to destroy). *compute_index: --async-luts'
  * compute queue within its family (host_async_create). Installs the stop handler (app/runs/stop.h). */
 int host_device_open(const options *o, host_device **dev, vksky_context **ctx, uint32_t *compute_index);
+/* A device the command line made (gpu/context.h) adopted by a new vksky context: its queues (and --async-luts'
+ * compute queue), pipeline cache, enabled features, message callback, names and labels, LUT cache directory. 0, or 1
+ * (nothing left to destroy). The window's too (app/window/window_api.c). */
+struct gpu_context;
+int host_device_adopt(const struct gpu_context *g, vksky_context **out);
 /* Destroys the context (after every renderer of it), then the device. Validation messages fail a run that succeeded;
  * a stop asked for by a signal gives its status (stop_status). */
 int host_device_close(host_device *dev, vksky_context *ctx, int status);

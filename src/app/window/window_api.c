@@ -6,8 +6,8 @@
  * uses as a swapchain's, so its barriers keep the window's names (display.to_attachment, display.to_present). No
  * src/sky or src/lib header (tests/layering_test.sh). */
 #include "app/window/window_app.h"
+#include "app/runs/host_device.h"
 #include "app/runs/host_print.h"
-#include "gpu/pipeline_cache.h"
 #include <stdlib.h>
 
 void window_api_check(vksky_result r, const char *what)
@@ -21,22 +21,7 @@ int window_api_open(app *a)
 {
     const options *o = a->o;
     const gpu_context *g = &a->ctx;
-    vksky_context_desc cd = {
-        .abi_version = VKSKY_ABI_VERSION, .get_instance_proc_addr = vkGetInstanceProcAddr, .instance = g->instance,
-        .physical_device = g->physical, .device = g->device, .queue_family = g->queue_family, .queue_index = 0,
-        .pipeline_cache = g->pipeline_cache, .message = host_print_message,
-        /* --async-luts: the compute queue the device was made with (the main queue under VKSKY_ASYNC_ONE_QUEUE=1). */
-        .compute_queue = g->compute_queue != VK_NULL_HANDLE, .compute_queue_family = g->compute_family,
-        .compute_queue_index = g->compute_index};
-    /* What the device creation enabled: the memory model too where the device has it (single-pass SPD). */
-    vksky_device_requirements enabled = {.synchronization2 = true, .dynamic_rendering = true, .maintenance4 = true,
-                                         .vulkan_memory_model = g->memory_model_device_scope,
-                                         .vulkan_memory_model_device_scope = g->memory_model_device_scope};
-    if (vksky_context_create(&cd, &a->api) != VKSKY_SUCCESS ||
-        vksky_context_set_device_features(a->api, &enabled) != VKSKY_SUCCESS ||
-        vksky_context_set_debug_utils(a->api, g->debug_utils) != VKSKY_SUCCESS ||   /* names, labels (captures) */
-        vksky_context_set_cache_directory(a->api, gpu_cache_dir(g)) != VKSKY_SUCCESS)
-        return 1;
+    if (host_device_adopt(g, &a->api) != 0) return 1;
     /* The scene, view settings and quality of the command line the window was started with (the same parser). */
     if (vksky_scene_from_args(o->argc, o->argv, host_print_message, NULL, &a->scene) != VKSKY_SUCCESS) return 1;
     /* The bloom chain is always allocated so B can toggle it; --no-bloom only starts with it off (a->view.bloom). */
