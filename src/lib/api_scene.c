@@ -1,6 +1,7 @@
 /* Scenes: values made by the CLI's own loader (include/vksky.h). */
 #include "lib/lib_internal.h"
 #include "app/scene/light.h"
+#include "app/cli/bad_value.h"
 #include "app/cli/options.h"
 #include "app/runs/sequence_frames.h"
 #include <math.h>
@@ -162,26 +163,33 @@ void vksky_scene_destroy(vksky_scene *scene)
     free(scene);
 }
 
-/* The command line's one-line complaints (written to stderr by app/cli and app/scene) captured for the host's
- * callback: vksky_scene_set_values and vksky_scene_reload. */
+/* The command line's one-line complaints captured for the host's callback. A frame's values (vksky_scene_set_values:
+ * per frame, while the host's other threads run) write theirs to this thread's report stream (app/cli/bad_value.h):
+ * the capture takes no other thread's line. Pointing the process's stderr at it did, for the length of the call: the
+ * command line's sequence lost a frame's progress line, printed by a readback consumer meanwhile (the encode_frames
+ * flake; tests/api/api_values_threads.c). The scene file's loader (vksky_scene_reload, F5: a load, not per frame)
+ * still writes to stderr, which is pointed at the capture for that call. */
 typedef struct captured_stderr {
     char *text;   /* what was written; the caller frees it */
     size_t size;
     FILE *memory, *saved;
+    bool loader;  /* stderr pointed at the capture (a scene file's load), not this thread's report stream */
 } captured_stderr;
 
-static void capture_begin(captured_stderr *c)
+static void capture_begin(captured_stderr *c, bool loader)
 {
-    c->text = NULL, c->size = 0;
+    c->text = NULL, c->size = 0, c->loader = loader;
     c->memory = open_memstream(&c->text, &c->size);
     c->saved = stderr;
-    if (c->memory) stderr = c->memory;
+    if (c->memory && loader) stderr = c->memory;
+    else if (c->memory) options_report_to(c->memory);
 }
 
 static void capture_end(captured_stderr *c)
 {
     if (!c->memory) return;
-    stderr = c->saved;
+    if (c->loader) stderr = c->saved;
+    else options_report_to(NULL);
     fclose(c->memory);
 }
 
@@ -216,7 +224,7 @@ vksky_result vksky_scene_set_values(vksky_scene *scene, uint32_t count, const ch
     if (count == 0) return VKSKY_SUCCESS;
     /* The command line's own frame function (values, not text), its one-line complaint captured for the callback. */
     captured_stderr capture;
-    capture_begin(&capture);
+    capture_begin(&capture, false);
     options f;
     int rc = options_frame(base, flags, values, (int)count, &f);
     capture_end(&capture);
@@ -274,7 +282,7 @@ vksky_result vksky_scene_reload(vksky_scene *scene, vksky_message_fn message, vo
     }
     /* The scene loader's one-line complaint goes to the callback, as vksky_scene_load's (lib_options_parse). */
     captured_stderr capture;
-    capture_begin(&capture);
+    capture_begin(&capture, true);
     options fresh;
     int rc = options_reload(&scene->o, &fresh);
     capture_end(&capture);

@@ -2,5 +2,15 @@
  * control characters shown as '?'). Returns 2, the exit status for bad input. */
 #ifndef VKSKY_APP_BAD_VALUE_H
 #define VKSKY_APP_BAD_VALUE_H
+#include <stdio.h>
 int bad_value(const char *what, const char *text, const char *why);
+
+/* Where a frame's values (options_frame: the flags' values applied, everything derived again) write their lines, bad
+ * values and notes: stderr, unless this thread set a stream of its own. The library captures a frame's line for its
+ * host's callback (lib/api_scene.c) this way, on the setting thread alone: pointing the process's stderr at the
+ * capture took other threads' lines too (a sequence's progress lines, printed by the readback ring's consumers while
+ * the producer sets the next frame's values: the encode_frames flake). */
+FILE *options_report_stream(void);
+/* This thread's stream (NULL: stderr again). */
+void options_report_to(FILE *stream);
 #endif

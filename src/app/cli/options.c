@@ -1,4 +1,5 @@
 #include "app/cli/options.h"
+#include "app/cli/bad_value.h"
 #include "app/cli/flags.h"
 #include "app/cli/options_sunvis.h"
 #include "app/cli/options_projection.h"
@@ -41,7 +42,7 @@ void options_print_help(FILE *out)
 
 static int bad(const char *flag_name, const char *what)
 {
-    fprintf(stderr, "vksky: %s: %s\n", flag_name, what);
+    fprintf(options_report_stream(), "vksky: %s: %s\n", flag_name, what);
     return 2;
 }
 

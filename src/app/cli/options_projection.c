@@ -1,5 +1,6 @@
 /* --projection and --quiet (see options_projection.h). */
 #include "app/cli/options_projection.h"
+#include "app/cli/bad_value.h"
 #include "app/scene/light.h"
 #include "sky/projection.h"
 #include <math.h>
@@ -24,7 +25,8 @@ int options_projection_apply(options *o, const char *flag_name, const char *valu
             o->view.projection = i;
             return 0;
         }
-    fprintf(stderr, "vksky: --projection: unknown value '%s'; expected perspective, equirect, cubemap or fisheye\n", value);
+    fprintf(options_report_stream(),
+            "vksky: --projection: unknown value '%s'; expected perspective, equirect, cubemap or fisheye\n", value);
     return 2;
 }
 
@@ -51,8 +53,9 @@ int options_projection_finish(options *o, int argc, char **argv)
         double e[3], c[3];
         light_sun(o, e);
         options_sun_at_camera(o, c);
-        fprintf(stderr, "vksky: sun direction %.6f %.6f %.6f (+Y up, OpenEXR latlong axes), illuminance %g %g %g at the "
-                        "top of the atmosphere, %.6g %.6g %.6g at the camera\n", d[0], d[1], d[2], e[0], e[1], e[2],
+        fprintf(options_report_stream(),
+                "vksky: sun direction %.6f %.6f %.6f (+Y up, OpenEXR latlong axes), illuminance %g %g %g at the "
+                "top of the atmosphere, %.6g %.6g %.6g at the camera\n", d[0], d[1], d[2], e[0], e[1], e[2],
                 c[0], c[1], c[2]);
     }
     if (p == SKY_PROJECTION_PERSPECTIVE) return 0;
@@ -60,15 +63,18 @@ int options_projection_finish(options *o, int argc, char **argv)
     /* An environment map looks every way at once: the camera's orientation and field of view do not apply (its
      * altitude does). */
     if (given(argc, argv, "--yaw") || given(argc, argv, "--pitch") || given(argc, argv, "--fov"))
-        fprintf(stderr, "vksky: note: --projection %s ignores --yaw, --pitch and --fov (the map covers every "
-                        "direction; --altitude applies)\n", name);
+        fprintf(options_report_stream(),
+                "vksky: note: --projection %s ignores --yaw, --pitch and --fov (the map covers every "
+                "direction; --altitude applies)\n", name);
     int w, h;
     projection_image_size((sky_projection)p, o->width, o->height, &w, &h);
     if (given(argc, argv, "--height") && h != o->height)
-        fprintf(stderr, "vksky: note: --projection %s makes the image %dx%d from --width %d; --height ignored\n", name,
+        fprintf(options_report_stream(),
+                "vksky: note: --projection %s makes the image %dx%d from --width %d; --height ignored\n", name,
                 w, h, o->width);
     if (p == SKY_PROJECTION_EQUIRECT && o->width < 2) {
-        fprintf(stderr, "vksky: --width: %d is too small for an equirect map; expected 2 or more\n", o->width);
+        fprintf(options_report_stream(),
+                "vksky: --width: %d is too small for an equirect map; expected 2 or more\n", o->width);
         return 2;
     }
     o->width = w, o->height = h;

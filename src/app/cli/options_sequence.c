@@ -133,14 +133,16 @@ int options_sequence_resolve(options *o)
     bool sequence = count > 1 || o->animate_count > 0 || o->frame_range_set;
     if (!o->frame_range_set) o->frame_first = 0, o->frame_last = count - 1;
     if (o->skip_existing && !sequence) {
-        fprintf(stderr, "vksky: --skip-existing: only with a sequence (--frame-count, --animate or --frame-range), whose "
-                        "frames it resumes\n");
+        fprintf(options_report_stream(),
+                "vksky: --skip-existing: only with a sequence (--frame-count, --animate or --frame-range), whose "
+                "frames it resumes\n");
         return 2;
     }
     /* With --bench as well, the sequence is the benchmark's frames to disk (issue 27: frames/s). */
     if (sequence && (o->output_count == 0 || o->reference)) {
-        fprintf(stderr, "vksky: %s: only with --render (a sequence of frames written to files, --bench: timed; not "
-                        "with --reference or the window)\n",
+        fprintf(options_report_stream(),
+                "vksky: %s: only with --render (a sequence of frames written to files, --bench: timed; not "
+                "with --reference or the window)\n",
                 o->animate_count ? "--animate" : o->frame_range_set ? "--frame-range" : "--frame-count");
         return 2;
     }

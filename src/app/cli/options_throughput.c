@@ -1,5 +1,6 @@
 /* --threads and --exr-compression (options_throughput.h). */
 #include "app/cli/options_throughput.h"
+#include "app/cli/bad_value.h"
 #include "io/encode_settings.h"
 #include <stdio.h>
 #include <string.h>
@@ -16,8 +17,9 @@ int options_throughput_apply(options *o, const char *n, const char *value, doubl
         /* OpenEXRCore 3.1 (Debian 12's) reads DWAA/DWAB files but cannot write them ("not yet implemented"). */
         const char *why = c < 0 ? "unknown" : !io_exr_compression_writable(c) ? "not written by OpenEXR 3.1's C library" : NULL;
         if (why) {
-            fprintf(stderr, "vksky: --exr-compression: '%s': %s; expected zip, zips (each with an optional zlib level "
-                            ":1 to :9), piz, pxr24, b44, b44a, rle or none\n", value, why);
+            fprintf(options_report_stream(),
+                    "vksky: --exr-compression: '%s': %s; expected zip, zips (each with an optional zlib level "
+                    ":1 to :9), piz, pxr24, b44, b44a, rle or none\n", value, why);
             return 2;
         }
         o->exr_compression = c + 1;   /* 0: not given (ZIP) */

@@ -1,5 +1,6 @@
 /* Issue 14's flags (options_tooling.h). */
 #include "app/cli/options_tooling.h"
+#include "app/cli/bad_value.h"
 #include "app/scene/scene_find.h"
 #include <limits.h>
 #include <stdio.h>
@@ -41,8 +42,9 @@ bool options_tooling_first_pass(const char *n)
 int options_tooling_resolve(options *o)
 {
     if (o->sun_angles_flag && o->place.from_flags) {
-        fprintf(stderr, "vksky: %s: not with --date/--time/--latitude/--longitude; give the sun either by angles or by "
-                        "date and place\n", o->sun_angles_flag);
+        fprintf(options_report_stream(),
+                "vksky: %s: not with --date/--time/--latitude/--longitude; give the sun either by angles or by "
+                "date and place\n", o->sun_angles_flag);
         return 2;
     }
     if (!sun_place_any(&o->place)) return 0;

@@ -89,8 +89,9 @@ int sun_place_resolve(const sun_place *p, double *elevation_deg, double *azimuth
         const bool have[4] = {p->has_date, p->has_time, p->has_latitude, p->has_longitude};
         for (int i = 0; i < 4; ++i)
             if (!have[i]) strcat(strcat(missing, missing[0] ? ", " : ""), names[i]);
-        fprintf(stderr, "vksky: %s: missing %s; the sun from a date and place needs --date, --time, --latitude and "
-                        "--longitude (or the scene's sun.date, time, latitude_deg, longitude_deg)\n",
+        fprintf(options_report_stream(),
+                "vksky: %s: missing %s; the sun from a date and place needs --date, --time, --latitude and "
+                "--longitude (or the scene's sun.date, time, latitude_deg, longitude_deg)\n",
                 p->has_date ? "--date" : p->has_time ? "--time" : p->has_latitude ? "--latitude" : "--longitude", missing);
         return 2;
     }
@@ -101,7 +102,8 @@ int sun_place_resolve(const sun_place *p, double *elevation_deg, double *azimuth
     where.pressure_mbar = 1010.0, where.temperature_c = 10.0;
     solar_position s;
     if (!solar_position_compute(&when, &where, &s)) {
-        fprintf(stderr, "vksky: --date: the date, time or place is outside the solar position algorithm's range\n");
+        fprintf(options_report_stream(),
+                "vksky: --date: the date, time or place is outside the solar position algorithm's range\n");
         return 2;
     }
     *elevation_deg = s.elevation_deg;
