@@ -10,9 +10,9 @@
 #include <string.h>
 
 /* The scene loader reports a bad file as one line on stderr (the CLI's contract); the library hands that line to
- * the host's callback instead, so stderr is pointed at a memory stream for the call. Calls on scenes must not
- * overlap another thread's use of stderr (the header's rule: one thread at a time per context, and loading is
- * not per frame). */
+ * the host's callback instead, so stderr is pointed at a memory stream for the call. A load must not overlap another
+ * thread's use of stderr (include/vksky.h says so; loading is not per frame). A frame's values are captured on their
+ * own thread (capture_begin below). */
 int lib_options_load(const char *path_or_name, options *o, char *why, size_t why_size)
 {
     char *argv_store[] = {"vksky", "--quality", "low", "--scene", (char *)path_or_name, NULL};
