@@ -53,6 +53,13 @@ expect_bad "bad --exr-type" "--exr-type" "${R[@]}" --exr-type double
 expect_bad "bad --units" "--units" "${R[@]}" --units lumens
 expect_bad "--auto-exposure with --exposure" "--auto-exposure" "${R[@]}" --auto-exposure --exposure 3
 (unset DISPLAY WAYLAND_DISPLAY; f0=$fails; expect_bad "no display" "no display available" --width 64; [ $fails -eq $f0 ]) || fails=$((fails + 1))
+# A frame with no output and no --bench is the window's, traces or not (issue 25: no headless frame of its own that
+# could call the renderer beside the API): without a display, the window's line, and no trace line on stdout.
+for t in --trace-barriers --trace-passes; do
+    (unset DISPLAY WAYLAND_DISPLAY; f0=$fails; expect_bad "$t alone" "no display available" $t --width 64 --validate
+     [ ! -s "$work/stdout" ] || fail "$t alone: printed a trace: $(head -3 "$work/stdout")"
+     [ $fails -eq $f0 ]) || fails=$((fails + 1))
+done
 
 # Good renders: EXR (half RGBA, ZIP) and PNG, with the atomic rename (no temp file left). The sun's disc is in view:
 # in photometric units (the default) it needs float (checked below), so half is asked for (--exr-type).

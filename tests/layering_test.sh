@@ -131,6 +131,8 @@ api_hosts+=(app/window/window.c app/window/window.h app/window/window_app.h app/
             app/window/swapchain.c app/window/swapchain.h)
 api_hosts+=(app/runs/spectral_host.c app/runs/spectral_host.h)   # --spectral N of one image (25s)
 api_hosts+=(app/runs/host_print.h)   # the hosts' message and trace callbacks (25o)
+api_hosts+=(app/runs/headless.c app/runs/headless.h app/runs/spectral_render.c   # the last side doors closed:
+            app/runs/spectral_render.h app/runs/host_device.h)                   # every headless run, --spectral (issue 25)
 api_hosts+=(app/runs/composite_app.c app/runs/composite_app.h app/runs/composite_bands.c   # --composite, --aovs
             app/runs/composite_bands.h app/runs/composite_layers.c app/runs/composite_layers.h   # (25x)
             app/runs/composite_camera.c app/runs/composite_camera.h)

@@ -62,7 +62,7 @@ static void gpu_release(composite_gpu *g)
 static int gpu_end(composite_gpu *g, int status)
 {
     gpu_release(g);
-    return host_device_close(g->dev, g->ctx, status);
+    return host_device_close(g->dev, g->ctx, status, (host_device_end){0});
 }
 
 /* The command line's scene (`render_scale_1`: with --render-scale=1 appended). 0, or 1 (the line printed). The

@@ -105,23 +105,8 @@ static int render_spectral(const options *o, vksky_context *ctx, const vksky_sce
     return status;
 }
 
-int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled,
-                        bool debug_utils, const char *cache_dir)
+int headless_api_render(const options *o, vksky_context *ctx, uint32_t compute_queue_index)
 {
-    vksky_context_desc cd = *device;
-    cd.message = host_print_message;
-    vksky_context *ctx = NULL;
-    if (vksky_context_create(&cd, &ctx) != VKSKY_SUCCESS) return 1;
-    /* Names and labels where the CLI's instance enabled VK_EXT_debug_utils (always under --validate), so validation
-     * messages and captures name vksky's objects as the src/sky path did. */
-    if (vksky_context_set_device_features(ctx, enabled) != VKSKY_SUCCESS ||
-        vksky_context_set_debug_utils(ctx, debug_utils) != VKSKY_SUCCESS ||
-        vksky_context_set_cache_directory(ctx, cache_dir) != VKSKY_SUCCESS) {
-        vksky_context_destroy(ctx);
-        return 1;
-    }
-    /* The barrier trace covers the renderer's creation (its uploads); the pass trace starts with the frames. */
-    if (o->trace_barriers) vksky_context_set_trace(ctx, VKSKY_TRACE_BARRIERS, host_print_trace, NULL);
     vksky_scene *scene = NULL;
     vksky_renderer *r = NULL;
     int status = 1;
@@ -145,11 +130,11 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     vksky_result made = vksky_scene_from_args(argc, argv, host_print_message, NULL, &scene);
     free(argv);
     if (made != VKSKY_SUCCESS) goto done;
-    if (o->spectral) {   /* spectral_host_wanted: a renderer per wavelength group, none of the RGB medium */
+    if (o->spectral) {   /* a renderer per wavelength group (app/runs/spectral_host.c), none of the RGB medium */
         /* --async-luts: the groups' LUT passes on the compute queue (app/runs/host_async.h), as for an RGB frame. */
         status = host_commands_create(&h, ctx);
         if (status == 0 && o->async_luts) {
-            status = host_async_create(&async, ctx, device->compute_queue_index, o->trace_barriers ? stdout : NULL);
+            status = host_async_create(&async, ctx, compute_queue_index, o->trace_barriers ? stdout : NULL);
             h.async = status == 0 ? &async : NULL;
         }
         if (status == 0)
@@ -177,7 +162,7 @@ int headless_api_render(const options *o, const vksky_context_desc *device, cons
     if (host_commands_create(&h, ctx)) goto done;
     /* --async-luts: the LUT passes on the compute queue the device was made with (app/runs/host_async.h). */
     if (o->async_luts) {
-        if (host_async_create(&async, ctx, device->compute_queue_index, o->trace_barriers ? stdout : NULL)) goto done;
+        if (host_async_create(&async, ctx, compute_queue_index, o->trace_barriers ? stdout : NULL)) goto done;
         h.async = &async;
     }
     /* Stopped while the device and the renderer were made: nothing to render (stop_status says why). */
@@ -200,6 +185,5 @@ done:
     host_async_destroy(&async);
     vksky_renderer_destroy(r);
     vksky_scene_destroy(scene);
-    vksky_context_destroy(ctx);
     return status;
 }

@@ -9,12 +9,10 @@
 #include <vksky.h>
 #include "app/cli/options_struct.h"
 
-/* The frames of `o` (one frame, a sequence's, --bench with --render, an image in bands: app/runs/tiles.c; with
- * --async-luts the LUTs on the device's compute queue: app/runs/host_async.c) on the device `device` describes (the
- * caller's, which it keeps and destroys after), with the features `enabled` on it. Returns the run's exit status: 0,
- * or 1 for a runtime failure (the line printed). */
-/* cache_dir: the CLI's cache directory (the LUT cache beside its pipeline cache), or NULL (--no-cache). */
-int headless_api_render(const options *o, const vksky_context_desc *device, const vksky_device_requirements *enabled,
-                        bool debug_utils,
-                        const char *cache_dir);
+/* The frames of `o` (one frame, a sequence's, --bench with --render or alone, an image in bands: app/runs/tiles.c;
+ * --spectral: app/runs/spectral_host.c; with --async-luts the LUTs on the device's compute queue, index
+ * compute_queue_index in its family: app/runs/host_async.c) on ctx, the command line's device adopted
+ * (app/runs/host_device.h), which the caller keeps and destroys after. Returns the run's exit status: 0, or 1 for a
+ * runtime failure (the line printed). */
+int headless_api_render(const options *o, vksky_context *ctx, uint32_t compute_queue_index);
 #endif

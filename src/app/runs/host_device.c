@@ -47,7 +47,7 @@ int host_device_open(const options *o, host_device **dev, vksky_context **ctx, u
     gpu_barrier_set_drop(getenv("VKSKY_DROP_BARRIER"));
     vksky_context *c = NULL;
     if (host_device_adopt(g, &c) != 0) {
-        host_device_close(d, NULL, 1);
+        host_device_close(d, NULL, 1, (host_device_end){0});
         return 1;
     }
     /* The barrier trace covers the renderers' creation (their uploads), as the command line's own trace did. */
@@ -81,14 +81,18 @@ int host_device_adopt(const struct gpu_context *g, vksky_context **out)
     return 0;
 }
 
-int host_device_close(host_device *dev, vksky_context *ctx, int status)
+int host_device_close(host_device *dev, vksky_context *ctx, int status, host_device_end end)
 {
-    vksky_context_destroy(ctx);
+    startup_outputs_done();   /* --timings: the files are done (if not said before); what follows is teardown */
+    if (!end.keep) vksky_context_destroy(ctx);
     if (dev) {
-        startup_close_cache(&dev->gpu);
-        gpu_context_destroy(&dev->gpu);
-        free(dev);
+        startup_close_cache(&dev->gpu);   /* saved even when the rest is left to the exit */
+        if (!end.keep) {
+            gpu_context_destroy(&dev->gpu);
+            free(dev);
+        }
     }
+    if (end.timings) startup_report(stderr);   /* after the teardown: the cache's save is part of the run's cost */
     unsigned messages = gpu_validation_message_count();
     if (messages) {
         fprintf(stderr, "vksky: validation reported %u message%s\n", messages, messages == 1 ? "" : "s");

@@ -1,8 +1,8 @@
-/* The command line's device for a host of include/vksky.h that makes its own (the composite, app/runs/composite_app.c):
- * made as the headless run makes it (app/runs/headless.c: validation, --device, --async-luts' compute queue, the
- * pipeline cache, the device's limits checked, VKSKY_WEAKEN_BARRIER / VKSKY_DROP_BARRIER), and adopted by a vksky
- * context with the command line's message callback, names and labels, LUT cache directory and barrier trace. The
- * host itself then sees only the context. */
+/* The command line's device for the hosts of include/vksky.h that make their own (the headless run,
+ * app/runs/headless.c; the composite, app/runs/composite_app.c): validation, --device, --async-luts' compute queue, the
+ * pipeline cache, the device's limits checked, VKSKY_WEAKEN_BARRIER / VKSKY_DROP_BARRIER; adopted by a vksky context
+ * with the command line's message callback, names and labels, LUT cache directory and barrier trace. The host itself
+ * then sees only the context. */
 #ifndef VKSKY_APP_RUNS_HOST_DEVICE_H
 #define VKSKY_APP_RUNS_HOST_DEVICE_H
 #include "app/cli/options.h"
@@ -19,7 +19,12 @@ int host_device_open(const options *o, host_device **dev, vksky_context **ctx, u
  * (nothing left to destroy). The window's too (app/window/window_api.c). */
 struct gpu_context;
 int host_device_adopt(const struct gpu_context *g, vksky_context **out);
-/* Destroys the context (after every renderer of it), then the device. Validation messages fail a run that succeeded;
- * a stop asked for by a signal gives its status (stop_status). */
-int host_device_close(host_device *dev, vksky_context *ctx, int status);
+/* How a run ends: timings, --timings' report on stderr (after the teardown); keep, the context, device and instance
+ * left to the process's exit (startup_keep_for_exit: one image, validation off), only the pipeline cache saved. */
+typedef struct host_device_end {
+    bool timings, keep;
+} host_device_end;
+/* Destroys the context (after every renderer of it), then the device (not with end.keep). Validation messages fail a
+ * run that succeeded; a stop asked for by a signal gives its status (stop_status). */
+int host_device_close(host_device *dev, vksky_context *ctx, int status, host_device_end end);
 #endif

@@ -6,7 +6,6 @@
 #define VKSKY_APP_SEQUENCE_H
 #include "app/cli/options_struct.h"
 #include "app/runs/sequence_frames.h"
-#include "sky/frame.h"
 #include <stdio.h>
 
 /* Before any GPU work: a quality chosen by the scene (auto, --max-error) is chosen once for every scene class the
@@ -15,11 +14,4 @@
  * written). */
 int sequence_check(options *base);
 
-typedef void (*sequence_render_fn)(sky_renderer *r, const frame_desc *f);
-/* Render the range's frames with r (made for base) one at a time, each by `render` (the tests' VKSKY_FRAMES loop,
- * --spectral's groups), writing each frame's outputs; the LUTs are recomputed only when a frame changes their inputs
- * (counted; stderr: a line per frame and a summary in a sequence, not with --quiet). The runs that are hosts of
- * include/vksky.h render their sequences through app/runs/sequence_host.h (pipelined there); this loop serves what
- * still calls src/sky: --spectral, and --bench's sequence with --async-luts. 0 ok, 1 failed. */
-int sequence_render(const options *base, sky_renderer *r, sequence_render_fn render);
 #endif

@@ -17,11 +17,6 @@
 
 #define GROUPS_MAX (VKSKY_SPECTRAL_MAX / 3 + 1)
 
-bool spectral_host_wanted(const options *o)
-{
-    return o->spectral > 0 && o->output_count > 0 && o->bench_frames == 0;
-}
-
 void spectral_image_release(spectral_image *img)
 {
     free(img->linear);
@@ -45,6 +40,7 @@ typedef struct groups {
      * a CPU device compiles per renderer), else a renderer per group (a sequence: each keeps its LUTs, and a frame's
      * groups go in one submission). */
     bool shared;
+    bool quiet;   /* the host tone map's auto exposure line left out (--quiet, or a sequence: as the GPU meter's) */
     vksky_scene *scene[GROUPS_MAX];
     vksky_renderer *r[GROUPS_MAX];
     double weights[GROUPS_MAX][4][3];
@@ -85,6 +81,7 @@ static int groups_create(groups *g, const options *o, vksky_context *ctx, const 
                          int height)
 {
     g->shared = shared;
+    g->quiet = o->quiet || sequence_active(o);   /* o: the run's, not a frame's */
     /* Four to a pass unless the horizon is in a perspective frame (its resolve needs the composite's alpha). */
     g->per_pass = spectral_render_four_wide(o) ? 4u : 3u;
     uint32_t count = vksky_spectral_group_count((uint32_t)o->spectral, g->per_pass);
@@ -167,8 +164,8 @@ static int render_list(const groups *g, vksky_renderer *const *rs, uint32_t firs
 }
 
 /* The host's sum, split over the encode threads (io_encode_threads, --threads): each part is a range of whole pixels
- * and every pixel's arithmetic is the serial loop's (groups in order, the same float adds), so the bytes depend on
- * nothing else. A 720p frame of 24 wavelengths is 22 M multiply-adds, on the render thread a serial part of every
+ * and every pixel's arithmetic is the same whatever the split (groups in order, the same float adds), so the bytes
+ * depend on nothing else. A 720p frame of 24 wavelengths is 22 M multiply-adds, on the render thread a serial part of every
  * frame (issue 27: the spectral sequence at 3.5-4 frames/s on the H100). */
 typedef struct sum_job {
     const groups *g;
@@ -213,7 +210,7 @@ static void sum_pixels(void *user, size_t part, size_t begin, size_t end)
         }
     }
     if (!j->resolve) return;
-    /* Alpha: the composite's with three to a pass (the last group's, as the serial loop leaves it), 1 with four (the
+    /* Alpha: the composite's with three to a pass (the last group's), 1 with four (the
      * four-wide readback's alpha is a wavelength). Out of Rec.709's gamut stays negative; half's range bounds it. */
     for (size_t i = begin; i < end; ++i) {
         double in[3] = {j->xyz[3 * i], j->xyz[3 * i + 1], j->xyz[3 * i + 2]}, rec[3];
@@ -281,7 +278,7 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
     }
     free(xyz);
     if (png) {
-        /* The meter counts the ground's pixels where the last group lights a ground (the serial loop's renderer). */
+        /* The meter counts the ground's pixels where the last group lights a ground. */
         bool ground = false;
         for (uint32_t c = 0; c < 3; ++c) {
             vksky_spectral_coefficients k;
@@ -291,7 +288,7 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
         }
         sky_view view = o->view;   /* auto exposure where a PNG is written and no exposure was given (light.h) */
         view.auto_exposure = light_auto_exposure_wanted(o);
-        spectral_render_tonemap_image(&view, o->width, o->height, ground, o->atmosphere.bottom_radius, rgb,
+        spectral_render_tonemap_image(&view, o->width, o->height, ground, o->atmosphere.bottom_radius, g->quiet, rgb,
                                       out->display);
         free(rgb);
     }
@@ -306,7 +303,7 @@ static void print_message(void *user, vksky_severity severity, const char *messa
 
 /* A frame's files, written on a thread of their own while the next frame renders and sums (issue 27: on the render
  * thread the write was a serial half of every spectral frame). One frame at a time: the next hand-over first joins
- * the frame before, so files are written and lines printed in the frames' order, as the serial loop did. */
+ * the frame before, so files are written and lines printed in the frames' order. */
 typedef struct frame_write {
     const options *base;
     options f;
@@ -337,8 +334,9 @@ static int write_join(frame_write *w)
     return w->status;
 }
 
-/* A sequence (or --skip-existing) one frame at a time, as the serial loop of app/runs/sequence.c: its lines and files,
- * each frame's files written while the next renders. */
+/* A sequence (or --skip-existing) one frame at a time, with an RGB sequence's lines and files (app/runs/sequence.c's
+ * sequence_write_outputs, sequence_frame_line, sequence_summary_line), each frame's files written while the next
+ * renders. */
 static int render_sequence(const options *base, vksky_context *ctx, vksky_scene *scene, host_commands *h, groups *g)
 {
     bool sequence = sequence_active(base);
@@ -406,7 +404,6 @@ static bool sequence_shared(const vksky_context *ctx)
 
 int spectral_host_sequence(const options *o, vksky_context *ctx, vksky_scene *scene, host_commands *h)
 {
-    spectral_render_begin(o, NULL);   /* the host tone map's quiet setting (a sequence: no exposure line) */
     groups g = {0};
     int status = groups_create(&g, o, ctx, scene, sequence_shared(ctx), o->height);
     if (status == 0) status = render_sequence(o, ctx, scene, h, &g);
@@ -418,7 +415,6 @@ int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene
                          spectral_image *out)
 {
     *out = (spectral_image){0};
-    spectral_render_begin(o, NULL);   /* the host tone map's quiet setting */
     groups g = {0};
     int status = groups_create(&g, o, ctx, scene, true, o->height);
     startup_frame_begin();   /* --timings: the first image (its renderer's figures, its last group's passes) */
@@ -454,7 +450,6 @@ static int draw_band(void *user, const host_view *v, frame_ring_pixels *out)
 
 int spectral_host_bands(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h)
 {
-    spectral_render_begin(o, NULL);
     groups g = {0};
     int rows = tiles_frame_rows(o), status = groups_create(&g, o, ctx, scene, false, rows);
     band_draw d = {.o = o, .g = &g, .h = h, .pixels = (size_t)o->width * (size_t)rows};

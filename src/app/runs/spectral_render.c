@@ -5,27 +5,13 @@
 #include "app/runs/tiles.h"
 #include "app/runs/sequence_frames.h"
 #include "app/scene/light.h"
-#include "io/half_float.h"
-#include "model/spectrum.h"
 #include "reference/metrics.h"
-#include "reference/spectral.h"
-#include "sky/submit.h"
-#include "sky/view_params.h"
 #include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 #include <unistd.h>
-
-static struct {
-    int wavelengths;
-    bool medium_set;
-    spectral_medium medium;
-    sequence_render_fn inner;
-    bool display;   /* a PNG among the outputs: the sum tone-mapped on the host (spectral_render_tonemap) */
-    bool quiet;     /* or a sequence: no auto exposure line per frame, as the GPU meter's */
-} job;
 
 static bool ends_with(const char *s, const char *tail);
 
@@ -76,27 +62,14 @@ const char *spectral_render_unable(const options *o)
     return NULL;
 }
 
-void spectral_render_begin(const options *o, sequence_render_fn inner)
-{
-    job.wavelengths = o->spectral;
-    job.medium_set = o->spectral_medium_set;
-    job.medium = o->spectral_medium;
-    job.inner = inner;
-    job.display = wants_display(o);
-    job.quiet = o->quiet || sequence_active(o);
-}
-
-void spectral_render_plain(sky_renderer *r, const frame_desc *f) { sky_renderer_render(r, f); }
-
 /* Whether the horizon passes within HORIZON_MARGIN pixels of any pixel of the (perspective) frame: the sign of each
  * pixel centre's elevation sine against the horizon's, over the image grown by the margin on every side. */
 #define HORIZON_MARGIN 3
 static bool horizon_in_view(const options *o)
 {
-    double f[3], right[3], up[3];
-    sky_view_basis(&o->view, f, right, up);
-    double ty = tan(0.5 * o->view.fov_deg * 3.14159265358979323846 / 180.0), tx = ty * o->width / o->height;
-    double sin_h = sky_view_horizon_sine(o->view.altitude_km, o->atmosphere.bottom_radius);
+    view_rays rays = light_view_rays(&o->view, o->width, o->height);
+    const double *f = rays.forward, *right = rays.right, *up = rays.up, tx = rays.tx, ty = rays.ty;
+    double sin_h = light_horizon_sine(o->view.altitude_km, o->atmosphere.bottom_radius);
     bool above = false, below = false;
     for (int j = -HORIZON_MARGIN; j < o->height + HORIZON_MARGIN; ++j)
         for (int i = -HORIZON_MARGIN; i < o->width + HORIZON_MARGIN; ++i) {
@@ -121,140 +94,20 @@ bool spectral_render_four_wide(const options *o)
     return !horizon_in_view(o);
 }
 
-/* The ground's albedo at a wavelength: the RGB law (680, 550, 440 nm, linear between), as the spectral reference's
- * irradiance takes it. */
-static double albedo_at(const sky_features *base, double nm)
-{
-    spectral_law law = {.kind = SPECTRAL_LAW_RGB};
-    memcpy(law.rgb, base->ground_albedo, sizeof law.rgb);
-    return spectral_law_eval(&law, nm);
-}
-
-/* Group g of `width` (3 or 4) wavelengths: the first three as the channels of a model_atmosphere (the reference's
- * packing, ref_spectral_group's for width 3), the fourth (width 4) as sky_fourth, each channel's sun the configured
- * sun's luminance `sun_y`. idx: the bins, a group past the last bin repeats it (weight 0). Returns the real ones. */
-static int pack_group(const ref_spectral *s, int g, int width, const model_atmosphere *base, double sun_y,
-                      const sky_features *base_features, model_atmosphere *a, sky_features *feat, int idx[4])
-{
-    int n = s->wavelengths, real = 0;
-    double nm[4], sun[3] = {sun_y, sun_y, sun_y};
-    for (int c = 0; c < width; ++c) {
-        int i = width * g + c;
-        if (i < n) ++real;
-        else i = n - 1;
-        idx[c] = i;
-        nm[c] = ref_spectral_nm(n, i);
-    }
-    spectral_medium_pack(&s->medium, base, nm, sun, a);
-    *feat = *base_features;
-    for (int c = 0; c < 3; ++c) feat->ground_albedo[c] = albedo_at(base_features, nm[c]);
-    if (width == 4) {
-        spectral_coefficients k;
-        spectral_medium_eval(&s->medium, nm[3], &k);
-        sky_fourth *w = &feat->fourth;
-        *w = (sky_fourth){.rayleigh_scattering = k.rayleigh_scattering, .mie_scattering = k.mie_scattering,
-                          .mie_absorption = k.mie_absorption, .ozone_absorption = k.ozone_absorption,
-                          .sun_illuminance = sun_y, .ground_albedo = albedo_at(base_features, nm[3])};
-        for (int e = 0; e < VKSKY_MAX_EXTRA && e < MODEL_MAX_EXTRA_SPECIES; ++e)
-            w->extra_scattering[e] = k.extra_scattering[e], w->extra_absorption[e] = k.extra_absorption[e];
-    }
-    return real;
-}
-
-void spectral_render_frame(sky_renderer *r, const frame_desc *f)
-{
-    const model_atmosphere base = r->medium;
-    const sky_features base_features = r->features;
-    const double sun_radius = r->sun_angular_radius;
-    ref_spectral s;
-    ref_spectral_init(&s, &base, job.wavelengths);
-    if (job.medium_set) s.medium = job.medium;
-    /* Each channel's sun is the configured sun's luminance, so that a group's image has the magnitudes of today's
-     * RGB image (half floats keep their precision at twilight); the sum then divides it out again with the
-     * spectrum's own illuminance: the sun at the top of the atmosphere comes out as the solar spectrum's colour
-     * with the configured sun's luminance (the spectral reference's sun_scale, app/runs/reference_run.c). */
-    const double *e = base.sun_illuminance;
-    double sun_y = 0.2126 * e[0] + 0.7152 * e[1] + 0.0722 * e[2];
-    double toa = spectrum_solar_illuminance_toa();
-    size_t pixels = (size_t)r->desc.width * r->desc.height;
-    float *xyz = calloc(pixels * 3, sizeof *xyz);
-    if (!xyz) {
-        fprintf(stderr, "vksky: --spectral: out of memory\n");
-        exit(1);
-    }
-    /* Four wavelengths a pass in the four-wide build (its composite holds them in RGBA), else three. */
-    int width = r->desc.spectral4 ? 4 : 3;
-    int n = job.wavelengths, groups = (n + width - 1) / width;
-    uint16_t *px = r->readback_linear.mapped;
-    for (int g = 0; g < groups && !stop_requested(); ++g) {
-        model_atmosphere a;
-        sky_features feat;
-        int idx[4];
-        int real = pack_group(&s, g, width, &base, sun_y, &base_features, &a, &feat, idx);
-        double m[4][3];   /* m[c]: channel c's XYZ per unit of the group's image */
-        for (int c = 0; c < width; ++c) {
-            ref_spectral_weights(n, idx[c], m[c]);
-            for (int k = 0; k < 3; ++k) m[c][k] = c < real ? m[c][k] / toa : 0.0;
-        }
-        sky_renderer_set_scene(r, &a, sun_radius, &feat);
-        job.inner(r, f);
-        for (size_t i = 0; i < pixels; ++i) {
-            const uint16_t *p = px + 4 * i;
-            for (int c = 0; c < width; ++c) {
-                float v = io_half_to_float(p[c]);
-                for (int k = 0; k < 3; ++k) xyz[3 * i + k] += (float)(m[c][k] * v);
-            }
-        }
-    }
-    /* XYZ -> linear Rec.709 (D65), back into the linear readback the EXR writer takes; alpha: the composite's with
-     * three to a pass, 1 with four (the four-wide readback's alpha is the last group's fourth wavelength). The sum
-     * is float; the readback is half, in the HDR image's units (light_scale, app/scene/light.h), which keep the
-     * sun's disc under half of half's range in every group and so in their sum (its colour is the sun's). */
-    float *rgb = job.display ? malloc(pixels * 4 * sizeof *rgb) : NULL;
-    for (size_t i = 0; i < pixels; ++i) {
-        double in[3] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]}, out[3];
-        spectrum_xyz_to_rec709(in, out);
-        for (int k = 0; k < 3; ++k) {
-            /* Out of Rec.709's gamut stays negative, as the reference writes it; half's range bounds it. */
-            double v = out[k] < -65504.0 ? -65504.0 : out[k] > 65504.0 ? 65504.0 : out[k];
-            px[4 * i + k] = io_float_to_half((float)v);
-            if (rgb) rgb[4 * i + k] = (float)out[k];
-        }
-        if (width == 4) px[4 * i + 3] = io_float_to_half(1.0f);
-        if (rgb) rgb[4 * i + 3] = 1.0f;
-    }
-    free(xyz);
-    if (job.display) {
-        if (!rgb) {
-            fprintf(stderr, "vksky: --spectral: out of memory\n");
-            exit(1);
-        }
-        spectral_render_tonemap(r, f->view, rgb, r->readback_display.mapped);
-        free(rgb);
-    }
-    sky_renderer_set_scene(r, &base, sun_radius, &base_features);
-}
-
 /* The spectral sum's PNG: tone-mapped on the host, where the sum is (the GPU's tone map saw one group at a time).
  * The same law as the GPU's (metrics_tonemap_srgb8: shaders/glsl/tonemap_ops.glsl's operators and sRGB encode) at
  * the view's exposure; auto exposure as the GPU's meter computes it (sky/meter.c: the log-average of the luminance
  * in cd/m2 floored at 1e-4, over the sky's pixels only when the ground is black). No bloom (the spectral path has
  * none) and no dither (the GPU's +-1 LSB triangular noise). */
-void spectral_render_tonemap(const sky_renderer *r, const sky_view *v, const float *rgb, void *display)
-{
-    spectral_render_tonemap_image(v, (int)r->desc.width, (int)r->desc.height, r->variant.ground,
-                                  r->medium.bottom_radius, rgb, display);
-}
-
-void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius,
+void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius, bool quiet,
                                    const float *rgb, void *display)
 {
     double scale = v->ev100 ? v->light_scale : 1.0, ev = v->exposure_ev;
     if (v->auto_exposure) {
-        double f[3], right[3], up[3], log_sum = 0.0, count = 0.0;
-        sky_view_basis(v, f, right, up);
-        double ty = tan(0.5 * v->fov_deg * 3.14159265358979323846 / 180.0), tx = ty * w / h;
-        double sin_h = sky_view_horizon_sine(v->altitude_km, bottom_radius);
+        double log_sum = 0.0, count = 0.0;
+        view_rays rays = light_view_rays(v, w, h);
+        const double *f = rays.forward, *right = rays.right, *up = rays.up, tx = rays.tx, ty = rays.ty;
+        double sin_h = light_horizon_sine(v->altitude_km, bottom_radius);
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i) {
                 double x = 2.0 * (i + 0.5) / w - 1.0, y = 1.0 - 2.0 * (j + 0.5) / h, d[3];
@@ -268,7 +121,7 @@ void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_p
         sky_view exposed = *v;
         light_expose(&exposed, average);
         ev = exposed.exposure_ev;
-        if (!job.quiet)
+        if (!quiet)
             fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered "
                             "on the host: the spectral sum)\n", light_auto_ev100(average), average,
                     v->ev100 ? "cd/m2" : "(relative units)", count);

@@ -109,14 +109,6 @@ void startup_frame_begin(void)
     t.frame_begin = now_ms();
 }
 
-void startup_frame_end(sky_renderer *r)
-{
-    if (t.frame_done) return;
-    double ms[GPU_TIMER_MAX];
-    uint32_t n = r->timer.enabled ? gpu_timer_read(r->ctx, &r->timer, ms) : 0;
-    startup_frame_end_values(r->pipelines_ms, r->variant_builds, (int)r->lut_cache, r->timer.names, ms, n);
-}
-
 void startup_frame_end_values(double pipelines_ms, int variant_builds, int lut_cache, const char *const *names,
                               const double *ms, uint32_t n)
 {

@@ -28,12 +28,11 @@ void startup_exit(int status);
 void startup_open_cache(gpu_context *ctx, const options *o);
 void startup_close_cache(gpu_context *ctx);
 
-/* The first image, as the headless driver renders it: call around its frame (the renderer's GPU timer read after),
- * then once its files are written (before the next frame, or at the end). Later frames are not measured. */
+/* The first image, as the headless run renders it: call around its frame, then once its files are written (before
+ * the next frame, or at the end). Later frames are not measured. The frame's end from a host of include/vksky.h
+ * (vksky_renderer_get_stats, vksky_renderer_get_timings): the pipelines' ms, the variant builds, the LUT cache's state
+ * (vksky_lut_cache_state) and the frame's timed passes (n 0: none). */
 void startup_frame_begin(void);
-void startup_frame_end(sky_renderer *r);
-/* The same from a host of include/vksky.h (vksky_renderer_get_stats, vksky_renderer_get_timings): the pipelines' ms,
- * the variant builds, the LUT cache's state (vksky_lut_cache_state) and the frame's timed passes (n 0: none). */
 void startup_frame_end_values(double pipelines_ms, int variant_builds, int lut_cache, const char *const *names,
                               const double *ms, uint32_t n);
 void startup_outputs_done(void);

@@ -170,11 +170,24 @@ static ref_quality meter_quality(void)
     return (ref_quality){.view_steps = 64, .sun_steps = 32, .ms_sqrt_dirs = 16, .ms_steps = 16};
 }
 
+view_rays light_view_rays(const sky_view *v, int width, int height)
+{
+    view_rays rays;
+    sky_view_basis(v, rays.forward, rays.right, rays.up);
+    rays.ty = tan(0.5 * v->fov_deg * 3.14159265358979323846 / 180.0), rays.tx = rays.ty * width / height;
+    return rays;
+}
+
+double light_horizon_sine(double altitude_km, double ground_radius_km)
+{
+    return sky_view_horizon_sine(altitude_km, ground_radius_km);
+}
+
 double light_meter_pixel(const options *o, const sky_view *v, int width, int height, double x, double y)
 {
-    double f[3], r[3], u[3], d[3], sun[3], rgb[3];
-    sky_view_basis(v, f, r, u);
-    double ty = tan(0.5 * v->fov_deg * 3.14159265358979323846 / 180.0), tx = ty * width / height;
+    double d[3], sun[3], rgb[3];
+    view_rays rays = light_view_rays(v, width, height);
+    const double *f = rays.forward, *r = rays.right, *u = rays.up, tx = rays.tx, ty = rays.ty;
     double nx = 2.0 * x / width - 1.0, ny = 1.0 - 2.0 * y / height;
     for (int i = 0; i < 3; ++i) d[i] = f[i] + nx * tx * r[i] + ny * ty * u[i];
     projection_dir_from_angles(v->sun_azimuth_deg, v->sun_elevation_deg, sun);

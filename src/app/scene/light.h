@@ -49,6 +49,18 @@ const char *light_sun_units_text(const options *o);
  * and at the camera in output units, the units' names, whiteLuminance (photometric: 1). envmap/projection untouched. */
 void light_sky_attrs(const options *o, io_exr_sky_attrs *a);
 
+/* The rays of a perspective frame of v, width x height: the camera's unit basis (+Y up; sky/view_params.h's) and the
+ * half-extents tan(fov/2) * width / height and tan(fov/2). Pixel position (x, y) in [-1, 1] (y = 1: the top row) looks
+ * along forward + x tx right + y ty up. */
+typedef struct view_rays {
+    double forward[3], right[3], up[3];
+    double tx, ty;
+} view_rays;
+view_rays light_view_rays(const sky_view *v, int width, int height);
+/* The sine of the horizon's elevation seen from altitude_km above a planet of ground_radius_km (0 on the ground): a
+ * ray whose elevation sine is below it meets the planet. */
+double light_horizon_sine(double altitude_km, double ground_radius_km);
+
 /* The window's luminance under the cursor (auto exposure itself is metered on the GPU: sky/meter.h): the CPU
  * reference's sky luminance (output units, cd/m2 in photometric units; the disc left out) along the view ray of
  * continuous pixel (x, y) of a width x height view, at a quality fit for an interactive readout (~1e-3 of the

@@ -1,17 +1,10 @@
-/* The values a renderer is built from and set to, made from the parsed options in one place: the scene as the
- * renderer takes it (the medium with the sun in the HDR image's units, the sun's size, the features) and the quality
- * configuration (LUT sizes, render scale, the post chain). Every renderer build (headless, bands, the composite, the
- * window) takes both, so no path drops a knob (--post-pass, --bloom-res) the others honour. */
+/* The values a run is made of, from the parsed options in one place: the quality configuration (LUT sizes, render
+ * scale, the post chain; every renderer build takes it, so no path drops a knob such as --post-pass or --bloom-res the
+ * others honour) and what a scene file gives (scene, camera, job), which the CLI and the library's loader share. */
 #ifndef VKSKY_APP_RENDER_VALUES_H
 #define VKSKY_APP_RENDER_VALUES_H
 #include "app/cli/options_struct.h"
 #include "sky/renderer.h"
-
-typedef struct render_scene {
-    model_atmosphere atmosphere;   /* the sun in the HDR image's units (app/scene/light.h) */
-    double sun_radius_rad;
-    sky_features features;
-} render_scene;
 
 /* The quality configuration: every knob that trades speed for accuracy, as one value (a preset by name, --max-error's
  * pick, a scene's quality section, the flags over them). */
@@ -76,12 +69,6 @@ int values_quality_pick(double max_error, unsigned classes, bool cpu_device, ren
 /* A quality's march settings onto a view. */
 void render_quality_to_view(const render_quality *q, sky_view *v);
 
-/* Zeroed first, so that two scenes compare bytewise (a sequence drains its ring only on a real change). */
-void render_scene_of(const options *o, render_scene *out);
+/* The options' quality knobs as one value. */
 render_quality render_quality_of(const options *o);
-/* A description with the quality and the first scene filled in (the pipelines built once, for that scene); the caller
- * adds size, bloom, readback and display. s must outlive sky_renderer_create. */
-sky_renderer_desc render_desc(const render_quality *q, const render_scene *s);
-/* A new scene for a live renderer (no frame in flight): the variant is rebuilt at most once. */
-void render_scene_set(sky_renderer *r, const render_scene *s);
 #endif
