@@ -4,13 +4,8 @@
 # (validation + synchronization validation); any message would make it exit non-zero.
 set -u
 VKSKY=${1:?usage: cli_test.sh path/to/vksky}
-work=$(mktemp -d) lut_dir=$(mktemp -d)
-trap 'rm -rf "$work" "$lut_dir"' EXIT
-# The LUT cache on in a directory of the test's own, beside $work (whose listing is checked): the checks are about
-# the command line and the files, not the LUT passes (tests/lib/own_lut_cache.sh).
-# shellcheck source=lib/own_lut_cache.sh
-source "$(dirname "$0")/lib/own_lut_cache.sh"
-own_lut_cache "$lut_dir"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 
