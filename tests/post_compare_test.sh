@@ -19,6 +19,11 @@ COMPARE=${2:?usage: post_compare_test.sh VKSKY POST_COMPARE}
 E_TOL=0.02 SHAPE_TOL=0.02 LEVELS=2 MEAN=0.25
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+# The LUT cache on in the test's own directory: 28 renders of three LUT settings, and the checks are about the post
+# chains, which run after the LUT passes (tests/lib/own_lut_cache.sh).
+# shellcheck source=lib/own_lut_cache.sh
+source "$(dirname "$0")/lib/own_lut_cache.sh"
+own_lut_cache "$work"
 fails=0
 # Frames: the sun in view at sunset (the bloom's peak), odd sizes (every level's halving rounds down, the single
 # pass's tiles are partial), a size with many tiles per level (levels 0-2 of 25x16, 13x8, 7x4 tiles: counters

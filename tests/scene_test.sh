@@ -19,6 +19,12 @@ SCENES=${3:-$here/../scenes}
 BAD=${4:-$here/scenes_bad}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+# The LUT cache on in the test's own directory: a scene and its dump render the same LUT inputs twice, and the
+# checks are about the scene files, not the LUT passes; a dump that lost a LUT input keys other LUTs and renders
+# them afresh (tests/lib/own_lut_cache.sh).
+# shellcheck source=lib/own_lut_cache.sh
+source "$(dirname "$0")/lib/own_lut_cache.sh"
+own_lut_cache "$work"
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
 SMALL=(--width 64 --height 36 --validate)

@@ -11,6 +11,11 @@ VKSKY=${1:?usage: sun_power_test.sh VKSKY EXR_PROBE}
 PROBE=${2:?usage: sun_power_test.sh VKSKY EXR_PROBE}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+# The LUT cache on in the test's own directory: 28 renders of three LUT settings, and the checks are about the sun's
+# disc in the sky pass, not the LUT passes (tests/lib/own_lut_cache.sh).
+# shellcheck source=lib/own_lut_cache.sh
+source "$(dirname "$0")/lib/own_lut_cache.sh"
+own_lut_cache "$work"
 fails=0
 fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
 FOV=40

@@ -12,6 +12,11 @@
 
 enum { W = 96, H = 54 };
 
+/* The march and sky-view frames (no preset): one renderer for all of them, since they share the default LUTs and
+ * Earth and differ only in the view (mode, pass kind, camera, sun), which every frame takes afresh (its sky-view LUT
+ * too); a renderer per frame computed the same LUTs 24 times. */
+static test_renderer plain;
+
 static test_frame render_with(gpu_context *ctx, const quality_scene *s, sky_mode_choice mode, sky_pass_kind kind,
                               const quality_config *preset)
 {
@@ -32,6 +37,7 @@ static test_frame render_with(gpu_context *ctx, const quality_scene *s, sky_mode
     } else {
         v.mode = mode;
         v.pass_kind = kind;
+        return test_renderer_frame(&plain, &v);
     }
     return test_render_quality(ctx, &v, W, H, &lut);
 }
@@ -43,6 +49,7 @@ int main(void)
     model_atmosphere a;
     model_atmosphere_earth(&a);
     unsigned char mask[W * H];
+    test_renderer_create(&plain, &ctx, W, H, false, NULL, NULL);
     for (int i = 0; i < 6; ++i) {
         const quality_scene *s = &quality_scenes[i];
         test_frame frag = render_with(&ctx, s, SKY_CHOICE_MARCH, SKY_PASS_FRAGMENT, NULL);
@@ -88,6 +95,7 @@ int main(void)
         }
         test_frame_free(&frag), test_frame_free(&comp), test_frame_free(&view), test_frame_free(&view_comp);
     }
+    test_renderer_destroy(&plain);
     /* Every preset renders (bloom on), finite and non-negative. */
     for (int i = 0; i < 4; ++i) {
         test_frame f = render_with(&ctx, &quality_scenes[1], SKY_CHOICE_AUTO, SKY_PASS_AUTO, &quality_presets[i]);

@@ -109,6 +109,7 @@ int main(void)
     converged.lut_f32 = true;
     converged.multiscatter_sqrt_dirs = 32;
     converged.multiscatter_steps = 64;
+    float clear_sunward[3] = {0};   /* Earth's converged frame of cases[2], for the haze below */
     for (int quality = 0; quality < 2; ++quality) {
         double worst = 0.0, tol = quality ? 0.01 : 0.05;
         test_renderer t;
@@ -118,6 +119,7 @@ int main(void)
             double e = versus_reference(&t, quality ? "converged" : "default", cases[i], quality ? 256 : 0, NULL, gpu);
             worst = fmax(worst, e);
             CHECK(e <= tol, "luminance error %.2f%% > %.0f%%", 100 * e, 100 * tol);
+            if (quality && i == 2) memcpy(clear_sunward, gpu, sizeof gpu);
         }
         test_renderer_destroy(&t);
         printf("%s settings: max luminance error %.2f%% (bound %.0f%%)\n", quality ? "converged" : "default", 100 * worst, 100 * tol);
@@ -134,19 +136,17 @@ int main(void)
     test_renderer layered_renderer;
     test_renderer_create(&layered_renderer, &ctx, N, N, false, &converged_layered, &layered);
     double worst_layered = 0.0;
-    float hazy_sunward[3] = {0}, clear_sunward[3] = {0};
+    float hazy_sunward[3] = {0};
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         float gpu[3];
         double e = versus_reference(&layered_renderer, "layered", cases[i], 256, &layered, gpu);
         worst_layered = fmax(worst_layered, e);
         CHECK(e <= 0.01, "layered medium: luminance error %.2f%% > 1%%", 100 * e);
-        if (i == 2) { /* sun 20, 25 deg up toward the sun (Mie's forward lobe): against Earth's clear sky */
-            memcpy(hazy_sunward, gpu, sizeof gpu);
-            test_renderer clear;
-            test_renderer_create(&clear, &ctx, N, N, false, &converged_layered, NULL);
-            versus_reference(&clear, "clear", cases[i], 256, NULL, clear_sunward);
-            test_renderer_destroy(&clear);
-        }
+        /* Sun 20, 25 deg up toward the sun (Mie's forward lobe), against Earth's clear sky of the same view: the
+         * converged frame above (held within 1 % of the reference). A clear frame of its own with the 128^2 LUT cost
+         * as much as the layered one (40 % of the test's CPU) for a luminance 0.02 % away (0.9232 vs 0.9230), against
+         * a bound of 2x (hazy 3.80). */
+        if (i == 2) memcpy(hazy_sunward, gpu, sizeof gpu);
     }
     test_renderer_destroy(&layered_renderer);
     printf("layered medium, converged settings: max luminance error %.2f%% (bound 1%%); toward the sun: hazy %.4f, "
