@@ -16,7 +16,9 @@ static inline void host_print_message(void *user, vksky_severity severity, const
 static inline void host_print_trace(void *user, const char *line)
 {
     (void)user;
-    fputs(line, stdout);
-    fputc('\n', stdout);
+    /* One call, so one locked write into stdout's buffer: the readback ring's consumer prints its own "sync ..." lines
+     * to stdout on another thread, and between a fputs and its fputc('\n') one landed inside this line (readback_ring
+     * then counted a wait too few: tests/print_lines.c). */
+    fprintf(stdout, "%s\n", line);
 }
 #endif
