@@ -12,10 +12,10 @@
  *
  * Threads: calls on one context, or on renderers of one context, must not overlap (one thread at a time, or the
  * host's lock); different contexts are independent. vksky_record only records: the host submits the command buffer,
- * and must not destroy a renderer or change its scene while a command buffer it recorded is pending. A scene's load
- * (vksky_scene_load, vksky_scene_from_args, vksky_scene_reload) points the process's stderr at a capture of the
- * loader's one line (for `message`) for the length of the call: no other thread should print to stderr meanwhile.
- * vksky_scene_set_values (per frame) captures on its own thread only: other threads' stderr lines are theirs.
+ * and must not destroy a renderer or change its scene while a command buffer it recorded is pending. vksky never
+ * points the process's stdout or stderr elsewhere: a scene's load (vksky_scene_load, vksky_scene_from_args,
+ * vksky_scene_reload) and a frame's values (vksky_scene_set_values) capture the loader's one line (for `message`) on
+ * the calling thread only, so the lines the host's other threads print meanwhile stay theirs.
  *
  * Units: lengths in metres unless a name says otherwise; angles in degrees; +Y up in the host's world, the ground
  * (the planet's surface) at y = 0 below the world origin unless vksky_camera.origin_altitude_m says otherwise. */

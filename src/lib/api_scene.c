@@ -9,10 +9,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The scene loader reports a bad file as one line on stderr (the CLI's contract); the library hands that line to
- * the host's callback instead, so stderr is pointed at a memory stream for the call. A load must not overlap another
- * thread's use of stderr (include/vksky.h says so; loading is not per frame). A frame's values are captured on their
- * own thread (capture_begin below). */
+/* The scene loader reports a bad file as one line on stderr (the CLI's contract) and its notes on stdout; the library
+ * hands that line to the host's callback instead and drops the notes. Both go through this thread's report and notes
+ * streams (app/cli/bad_value.h), pointed at memory streams for the call: the host's other threads keep their stderr
+ * and stdout (pointing the process's streams at a capture took their lines too: the encode_frames flake,
+ * tests/api/api_values_threads.c). */
 int lib_options_load(const char *path_or_name, options *o, char *why, size_t why_size)
 {
     char *argv_store[] = {"vksky", "--quality", "low", "--scene", (char *)path_or_name, NULL};
@@ -24,29 +25,23 @@ int lib_options_parse(int argc, char *const *argv_store, options *o, char *why, 
     char *captured = NULL;
     size_t captured_size = 0;
     FILE *memory = open_memstream(&captured, &captured_size);
-    FILE *saved = stderr;
-    if (memory) stderr = memory;
+    if (memory) options_report_to(memory);
     /* The parse's reports on stdout (--max-error's pick and its notes) are the command line's to print, once, from
      * its own parse: the library prints nothing (include/vksky.h). */
     char *reported = NULL;
     size_t reported_size = 0;
     FILE *dropped = open_memstream(&reported, &reported_size);
-    FILE *saved_out = stdout;
-    if (dropped) stdout = dropped;
+    if (dropped) options_notes_to(dropped);
     int rc = options_parse(o, argc, (char **)argv_store);
     /* An animated command line: a quality chosen by the scene serves every frame (the command line's sequence). */
     if (rc == 0 && o->animate_count > 0 && sequence_choose_quality(o) != 0) {
         options_release(o);
         rc = 2;
     }
-    if (memory) {
-        stderr = saved;
-        fclose(memory);
-    }
-    if (dropped) {
-        stdout = saved_out;
-        fclose(dropped);
-    }
+    options_report_to(NULL);
+    options_notes_to(NULL);
+    if (memory) fclose(memory);
+    if (dropped) fclose(dropped);
     free(reported);
     why[0] = 0;
     if (captured) {
@@ -163,33 +158,26 @@ void vksky_scene_destroy(vksky_scene *scene)
     free(scene);
 }
 
-/* The command line's one-line complaints captured for the host's callback. A frame's values (vksky_scene_set_values:
- * per frame, while the host's other threads run) write theirs to this thread's report stream (app/cli/bad_value.h):
- * the capture takes no other thread's line. Pointing the process's stderr at it did, for the length of the call: the
- * command line's sequence lost a frame's progress line, printed by a readback consumer meanwhile (the encode_frames
- * flake; tests/api/api_values_threads.c). The scene file's loader (vksky_scene_reload, F5: a load, not per frame)
- * still writes to stderr, which is pointed at the capture for that call. */
+/* The command line's one-line complaints captured for the host's callback: a frame's values (vksky_scene_set_values:
+ * per frame, while the host's other threads run) and a scene file's reload (F5) write theirs to this thread's report
+ * stream (app/cli/bad_value.h), so the capture takes no other thread's line. */
 typedef struct captured_stderr {
     char *text;   /* what was written; the caller frees it */
     size_t size;
-    FILE *memory, *saved;
-    bool loader;  /* stderr pointed at the capture (a scene file's load), not this thread's report stream */
+    FILE *memory;
 } captured_stderr;
 
-static void capture_begin(captured_stderr *c, bool loader)
+static void capture_begin(captured_stderr *c)
 {
-    c->text = NULL, c->size = 0, c->loader = loader;
+    c->text = NULL, c->size = 0;
     c->memory = open_memstream(&c->text, &c->size);
-    c->saved = stderr;
-    if (c->memory && loader) stderr = c->memory;
-    else if (c->memory) options_report_to(c->memory);
+    if (c->memory) options_report_to(c->memory);
 }
 
 static void capture_end(captured_stderr *c)
 {
     if (!c->memory) return;
-    if (c->loader) stderr = c->saved;
-    else options_report_to(NULL);
+    options_report_to(NULL);
     fclose(c->memory);
 }
 
@@ -224,7 +212,7 @@ vksky_result vksky_scene_set_values(vksky_scene *scene, uint32_t count, const ch
     if (count == 0) return VKSKY_SUCCESS;
     /* The command line's own frame function (values, not text), its one-line complaint captured for the callback. */
     captured_stderr capture;
-    capture_begin(&capture, false);
+    capture_begin(&capture);
     options f;
     int rc = options_frame(base, flags, values, (int)count, &f);
     capture_end(&capture);
@@ -282,7 +270,7 @@ vksky_result vksky_scene_reload(vksky_scene *scene, vksky_message_fn message, vo
     }
     /* The scene loader's one-line complaint goes to the callback, as vksky_scene_load's (lib_options_parse). */
     captured_stderr capture;
-    capture_begin(&capture, true);
+    capture_begin(&capture);
     options fresh;
     int rc = options_reload(&scene->o, &fresh);
     capture_end(&capture);

@@ -7,6 +7,12 @@ FILE *options_report_stream(void) { return report_stream ? report_stream : stder
 
 void options_report_to(FILE *stream) { report_stream = stream; }
 
+static _Thread_local FILE *notes_stream;   /* NULL: stdout */
+
+FILE *options_notes_stream(void) { return notes_stream ? notes_stream : stdout; }
+
+void options_notes_to(FILE *stream) { notes_stream = stream; }
+
 int bad_value(const char *what, const char *text, const char *why)
 {
     char shown[64];

@@ -499,11 +499,11 @@ static int resolve(options *o, unsigned quality_classes, bool report)
     bool frames_pick = o->animate_count > 0 && !o->dump_scene;   /* --dump-scene: no frames, the base is all */
     if (!report || o->quiet || (quality_classes != 0) != frames_pick) picked = NULL;
     if (picked && frames_pick)
-        fprintf(stdout, "vksky: --max-error %g: picked '%s' for frames %d-%d (measured mean relative luminance error "
+        fprintf(options_notes_stream(), "vksky: --max-error %g: picked '%s' for frames %d-%d (measured mean relative luminance error "
                 "%.3g at worst on the frames' '%s' scenes)\n", o->max_error, picked->name, o->frame_first, o->frame_last,
                 picked_error, picked_scene);
     else if (picked)
-        fprintf(o->dump_scene ? stderr : stdout, /* keep a --dump-scene's stdout pure JSON */
+        fprintf(o->dump_scene ? options_report_stream() : options_notes_stream(), /* keep a --dump-scene's stdout pure JSON */
                 "vksky: --max-error %g: picked '%s' (measured mean relative luminance error %.3g on the '%s' scene)\n",
                 o->max_error, picked->name, picked_error, picked_scene);
     /* Issue 32: --max-error's promise is the luminance; the colour of the RGB renderer it picks for is measured too
@@ -512,7 +512,7 @@ static int resolve(options *o, unsigned quality_classes, bool report)
         double de = 0.0;
         for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
             if (o->quality_classes & (1u << c)) de = fmax(de, quality_color_error(0, c));
-        fprintf(o->dump_scene ? stderr : stdout, "vksky: note: --max-error bounds the luminance only; RGB's colour on "
+        fprintf(o->dump_scene ? options_report_stream() : options_notes_stream(), "vksky: note: --max-error bounds the luminance only; RGB's colour on "
                 "the '%s' scene is within CIEDE2000 %.2f of the spectrum's (--max-color-error DE picks wavelengths)\n",
                 picked_scene, de);
     }
@@ -520,7 +520,7 @@ static int resolve(options *o, unsigned quality_classes, bool report)
      * pick (the same stream: a run that parses cleanly keeps stderr empty, docs/robustness.md). */
     const char *estimate = picked ? quality_table_estimate(picked_cpu) : NULL;
     if (estimate)
-        fprintf(o->dump_scene ? stderr : stdout, "vksky: note: --max-error: the %s table's rows are estimates (%s)\n",
+        fprintf(o->dump_scene ? options_report_stream() : options_notes_stream(), "vksky: note: --max-error: the %s table's rows are estimates (%s)\n",
                 picked_cpu ? "CPU device" : "GPU", estimate);
     return 0;
 }
@@ -586,7 +586,7 @@ int options_copy(options *dst, const options *src)
     if (!src->unresolved) return 0;
     dst->unresolved = malloc(sizeof *dst->unresolved);
     if (!dst->unresolved) {
-        fprintf(stderr, "vksky: out of memory\n");
+        fprintf(options_report_stream(), "vksky: out of memory\n");
         return 1;
     }
     *dst->unresolved = *src->unresolved;

@@ -1,4 +1,5 @@
 #include "app/cli/options_composite.h"
+#include "app/cli/bad_value.h"
 #include "app/quality/ap_trade_table.h"
 #include "app/cli/help.h"
 #include <errno.h>
@@ -46,7 +47,7 @@ void composite_options_print_help(FILE *out)
 
 static int bad(const char *flag, const char *what, const char *value)
 {
-    fprintf(stderr, "vksky: %s: %s%s%s\n", flag, value ? "'" : "", value ? value : "", what);
+    fprintf(options_report_stream(), "vksky: %s: %s%s%s\n", flag, value ? "'" : "", value ? value : "", what);
     return 2;
 }
 

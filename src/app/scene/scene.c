@@ -1,6 +1,7 @@
 /* Scene files (schema and rules in scene.h): read, parsed by cJSON, walked section by section onto the options with
  * the field readers of scene_validate.c. */
 #include "app/scene/scene.h"
+#include "app/cli/bad_value.h"
 #include "app/scene/light.h"
 #include "app/quality/quality.h"
 #include "app/scene/scene_sun.h"
@@ -371,7 +372,7 @@ static int read_all(const char *path, const char *shown, char **text, size_t *le
 {
     FILE *f = fopen(path, "rb");
     if (!f) {
-        fprintf(stderr, "vksky: --scene: cannot read '%s': %s\n", shown, strerror(errno));
+        fprintf(options_report_stream(), "vksky: --scene: cannot read '%s': %s\n", shown, strerror(errno));
         return 2;
     }
     size_t cap = 4096, n = 0;
@@ -393,16 +394,16 @@ static int read_all(const char *path, const char *shown, char **text, size_t *le
     int err = ferror(f) ? errno : 0;
     fclose(f);
     if (!buf) {
-        fprintf(stderr, "vksky: --scene: cannot read '%s': out of memory\n", shown);
+        fprintf(options_report_stream(), "vksky: --scene: cannot read '%s': out of memory\n", shown);
         return 2;
     }
     if (err) {
-        fprintf(stderr, "vksky: --scene: cannot read '%s': %s\n", shown, strerror(err));
+        fprintf(options_report_stream(), "vksky: --scene: cannot read '%s': %s\n", shown, strerror(err));
         free(buf);
         return 2;
     }
     if (n > SCENE_MAX_BYTES) {
-        fprintf(stderr, "vksky: --scene: '%s' is larger than %d bytes; expected a scene (a small JSON file)\n", shown,
+        fprintf(options_report_stream(), "vksky: --scene: '%s' is larger than %d bytes; expected a scene (a small JSON file)\n", shown,
                 SCENE_MAX_BYTES);
         free(buf);
         return 2;
@@ -423,13 +424,13 @@ static int read_exr_scene(const char *path, const char *shown, char **text, size
 {
     char err[512];
     int rc = io_exr_read_string_attr(path, EXR_HEADER_SCENE, text, err, sizeof err);
-    if (rc < 0) fprintf(stderr, "vksky: --scene: %s\n", err);
-    if (rc > 0) fprintf(stderr, "vksky: --scene: '%s' has no '%s' attribute; expected an EXR written by vksky (or a "
+    if (rc < 0) fprintf(options_report_stream(), "vksky: --scene: %s\n", err);
+    if (rc > 0) fprintf(options_report_stream(), "vksky: --scene: '%s' has no '%s' attribute; expected an EXR written by vksky (or a "
                                 "scene .json file)\n", shown, EXR_HEADER_SCENE);
     if (rc != 0) return 2;
     *len = strlen(*text);
     if (*len > SCENE_MAX_BYTES) {
-        fprintf(stderr, "vksky: --scene: '%s' carries a scene larger than %d bytes; expected a scene (a small JSON "
+        fprintf(options_report_stream(), "vksky: --scene: '%s' carries a scene larger than %d bytes; expected a scene (a small JSON "
                         "text)\n", shown, SCENE_MAX_BYTES);
         free(*text);
         *text = NULL;
@@ -447,13 +448,13 @@ static int read_exr_units(const char *path, const char *shown, options *o)
     int rc = io_exr_read_string_attr(path, EXR_HEADER_UNITS, &units, err, sizeof err);
     if (rc > 0) return 0;
     if (rc < 0) {
-        fprintf(stderr, "vksky: --scene: %s\n", err);
+        fprintf(options_report_stream(), "vksky: --scene: %s\n", err);
         return 2;
     }
     if (!strncmp(units, "relative", 8)) o->units = OPTIONS_UNITS_RELATIVE;
     else if (!strncmp(units, "cd/m2", 5)) o->units = OPTIONS_UNITS_PHOTOMETRIC;
     else rc = 2;
-    if (rc) fprintf(stderr, "vksky: --scene: '%s': unknown %s '%.40s'; expected 'relative ...' or 'cd/m2 ...'\n",
+    if (rc) fprintf(options_report_stream(), "vksky: --scene: '%s': unknown %s '%.40s'; expected 'relative ...' or 'cd/m2 ...'\n",
                     shown, EXR_HEADER_UNITS, units);
     free(units);
     return rc;
@@ -482,11 +483,11 @@ static int syntax_error(const scene_ctx *c, const char *text, size_t len, const 
     bool at_end = true;
     for (size_t i = at; i < len; ++i) at_end = at_end && blank(text[i]);
     if (at < len && text[at] == '\0') {
-        fprintf(stderr, "vksky: %s:%d:%d: a NUL byte; expected JSON text\n", c->file, line, column);
+        fprintf(options_report_stream(), "vksky: %s:%d:%d: a NUL byte; expected JSON text\n", c->file, line, column);
         return 2;
     }
     if (at_end) {
-        fprintf(stderr, "vksky: %s:%d:%d: syntax error: unexpected end of the file (an unclosed object, array or "
+        fprintf(options_report_stream(), "vksky: %s:%d:%d: syntax error: unexpected end of the file (an unclosed object, array or "
                         "string?); expected a JSON object\n", c->file, line, column);
         return 2;
     }
@@ -499,7 +500,7 @@ static int syntax_error(const scene_ctx *c, const char *text, size_t len, const 
     for (size_t i = start; i < len && text[i] != '\n' && text[i] != '\r' && k + 1 < sizeof near; ++i) near[k++] = text[i];
     near[k] = '\0';
     scene_printable(shown, sizeof shown, near);
-    fprintf(stderr, "vksky: %s:%d:%d: syntax error near '%s'; expected JSON (no comments, no trailing commas, "
+    fprintf(options_report_stream(), "vksky: %s:%d:%d: syntax error near '%s'; expected JSON (no comments, no trailing commas, "
                     "strings in double quotes)\n", c->file, line, column, shown);
     return 2;
 }
@@ -523,7 +524,7 @@ int scene_load(const char *path, options *o)
     while (first < len && blank(text[first])) ++first;
     const char *nul = memchr(text, '\0', len);
     if (first == len) {
-        fprintf(stderr, "vksky: %s: empty file; expected a JSON object (see scenes/README.md)\n", c.file);
+        fprintf(options_report_stream(), "vksky: %s: empty file; expected a JSON object (see scenes/README.md)\n", c.file);
         goto done;
     }
     if (nul) {
@@ -537,7 +538,7 @@ int scene_load(const char *path, options *o)
         goto done;
     }
     if (!cJSON_IsObject(root)) {
-        fprintf(stderr, "vksky: %s: the top level is %s; expected a JSON object {...} (see scenes/README.md)\n",
+        fprintf(options_report_stream(), "vksky: %s: the top level is %s; expected a JSON object {...} (see scenes/README.md)\n",
                 c.file, scene_type_of(root));
         goto done;
     }

@@ -1,5 +1,6 @@
 /* Scene files: --dump-scene, the effective options written back as a scene (the schema in scene.h). */
 #include "app/scene/scene_dump.h"
+#include "app/cli/bad_value.h"
 #include "app/scene/scene_sun.h"
 #include "app/scene/scene_spectral.h"
 #include "app/scene/scene.h"
@@ -181,11 +182,11 @@ int scene_dump(const options *o, FILE *out)
     char *text = b.ok ? cJSON_Print(root) : NULL;
     cJSON_Delete(root);
     if (!text) {
-        fprintf(stderr, "vksky: --dump-scene: out of memory\n");
+        fprintf(options_report_stream(), "vksky: --dump-scene: out of memory\n");
         return 1;
     }
     int rc = fputs(text, out) < 0 || fputc('\n', out) == EOF || fflush(out) != 0 ? 1 : 0;
-    if (rc) fprintf(stderr, "vksky: --dump-scene: cannot write the scene: %s\n", strerror(errno));
+    if (rc) fprintf(options_report_stream(), "vksky: --dump-scene: cannot write the scene: %s\n", strerror(errno));
     cJSON_free(text);
     return rc;
 }

@@ -5,6 +5,7 @@
 #ifdef VKSKY_SCENE_DIR_FROM_LIB
 #define _GNU_SOURCE   /* dladdr: where the library itself was loaded from */
 #include <dlfcn.h>
+#include "app/cli/bad_value.h"
 #endif
 #include "app/scene/scene_find.h"
 #include <cjson/cJSON.h>
@@ -124,10 +125,10 @@ bool scene_find(const char *name, char *out, size_t n)
     for (; name[k] && k + 1 < sizeof shown; ++k) shown[k] = (unsigned char)name[k] < 0x20 ? '?' : name[k];
     shown[k] = '\0';
     if (count)
-        fprintf(stderr, "vksky: --scene: no file and no shipped scene named '%s'; expected FILE.json or one of: %s "
+        fprintf(options_report_stream(), "vksky: --scene: no file and no shipped scene named '%s'; expected FILE.json or one of: %s "
                         "(vksky --list-scenes)\n", shown, list);
     else
-        fprintf(stderr, "vksky: --scene: no file '%s' and no shipped scenes found (looked in %s relative to the binary "
+        fprintf(options_report_stream(), "vksky: --scene: no file '%s' and no shipped scenes found (looked in %s relative to the binary "
                         "and %s); expected FILE.json\n", shown, VKSKY_SCENE_DIR_FROM_BIN, VKSKY_SOURCE_SCENE_DIR);
     return false;
 }
@@ -184,6 +185,6 @@ int scene_list(FILE *out)
         fprintf(out, "  %-*s  %s\n", width, names[i], line);
         free(names[i]);
     }
-    if (!count) fprintf(stderr, "vksky: --list-scenes: no shipped scenes found\n");
+    if (!count) fprintf(options_report_stream(), "vksky: --list-scenes: no shipped scenes found\n");
     return count ? 0 : 1;
 }

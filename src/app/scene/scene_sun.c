@@ -1,12 +1,13 @@
 /* Scene fields for the sun by date and place (scene_sun.h). */
 #include "app/scene/scene_sun.h"
+#include "app/cli/bad_value.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 static int bad(const char *file, const char *field, const char *msg)
 {
-    fprintf(stderr, "vksky: %s: sun.%s: %s\n", file, field, msg);
+    fprintf(options_report_stream(), "vksky: %s: sun.%s: %s\n", file, field, msg);
     return 2;
 }
 
@@ -57,7 +58,7 @@ int scene_sun_parse(const char *file, const cJSON *sun, options *o)
     const char *angle = cJSON_GetObjectItemCaseSensitive(sun, "elevation_deg") ? "elevation_deg"
                         : cJSON_GetObjectItemCaseSensitive(sun, "azimuth_deg") ? "azimuth_deg" : NULL;
     if (angle && sun_place_any(p)) {
-        fprintf(stderr, "vksky: %s: sun.%s: not with sun.date/time/latitude_deg/longitude_deg; give the sun either by "
+        fprintf(options_report_stream(), "vksky: %s: sun.%s: not with sun.date/time/latitude_deg/longitude_deg; give the sun either by "
                         "angles or by date and place\n", file, angle);
         return 2;
     }

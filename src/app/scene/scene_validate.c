@@ -1,6 +1,7 @@
 /* Scene files: reading one field of the JSON: its type, its range (the flag's, from the flag table, or the
  * scene-only ranges), unknown and repeated fields, and the one-line message when it is wrong. See scene_validate.h. */
 #include "app/scene/scene_validate.h"
+#include "app/cli/bad_value.h"
 #include "app/cli/flags.h"
 #include <math.h>
 #include <stdarg.h>
@@ -31,7 +32,7 @@ int scene_fail(const scene_ctx *c, const char *path, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    fprintf(stderr, "vksky: %s: %s: %s\n", c->file, path, msg);
+    fprintf(options_report_stream(), "vksky: %s: %s: %s\n", c->file, path, msg);
     return 2;
 }
 
@@ -58,7 +59,7 @@ scene_range scene_flag_range(const char *flag, bool integer)
 {
     scene_range r = {0, 0, integer, flag};
     if (!flags_range(flag, &r.min, &r.max)) {
-        fprintf(stderr, "vksky: internal error: no range for %s in the flag table\n", flag);
+        fprintf(options_report_stream(), "vksky: internal error: no range for %s in the flag table\n", flag);
         abort();
     }
     return r;
