@@ -71,6 +71,7 @@ static void swapchain_recreate(app *a)
     window_api_check(vksky_renderer_resize(a->renderer, a->sc.extent.width, a->sc.extent.height),
                      "vksky_renderer_resize");
     a->swapchain_dirty = false;
+    a->test.present_due = a->test.report;
 }
 
 /* --- Frames in flight -------------------------------------------------------------------------------------- */
@@ -175,7 +176,8 @@ static void submit(app *a, frame_slot *f, uint32_t image)
     VK_CHECK(vkQueueSubmit2(a->ctx.queue, 1, &info, f->done));
 }
 
-static void present(app *a, uint32_t image)
+/* Returns whether the image went to the presentation engine (OUT_OF_DATE: it did not). */
+static bool present(app *a, uint32_t image)
 {
     /* With VK_EXT_swapchain_maintenance1, a fence that signals once the presentation engine no longer waits
      * on the semaphore: what swapchain.c waits for before destroying it (docs/synchronization.md §6). */
@@ -190,6 +192,7 @@ static void present(app *a, uint32_t image)
     /* Even when rejected as OUT_OF_DATE the present's semaphore wait still executes; recreate next loop. */
     if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) a->swapchain_dirty = true;
     else VK_CHECK(r);
+    return r != VK_ERROR_OUT_OF_DATE_KHR;
 }
 
 /* One frame: wait for the slot, acquire, record, submit, present. Returns false when nothing was submitted
@@ -217,7 +220,10 @@ static bool draw_frame(app *a, bool capture)
     else VK_CHECK(r);
     record(a, f, image, capture);
     submit(a, f, image);
-    present(a, image);
+    if (present(a, image) && a->test.present_due) {
+        printf("presented %ux%u\n", a->sc.extent.width, a->sc.extent.height);
+        a->test.present_due = false;
+    }
     a->slot = (a->slot + 1) % FRAMES_IN_FLIGHT;
     a->presented++;
     if (a->presented == STEADY_FROM) a->st.steady_time = glfwGetTime(), a->st.steady_cpu_ms = process_cpu_ms();
@@ -463,6 +469,7 @@ static int start_rendering(app *a)
         a->sc.extent = (VkExtent2D){(uint32_t)o->width, (uint32_t)o->height};
         a->swapchain_dirty = true;
     }
+    a->test.present_due = a->test.report;
     if (o->screenshot && (!a->sc.can_copy || !format_is_rgba8(a->sc.format.format))) {
         fprintf(stderr, "vksky: --screenshot: this surface's images cannot be copied (format %d)\n",
                 (int)a->sc.format.format);

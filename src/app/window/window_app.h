@@ -34,7 +34,9 @@ typedef struct stats {
 
 typedef struct test_hooks {
     bool resize;               /* VKSKY_TEST_RESIZE=1: resize 3 times, minimise and restore once */
-    bool report;               /* VKSKY_TEST_REPORT=1: print each swapchain's size (tests driving from outside) */
+    bool report;               /* VKSKY_TEST_REPORT=1: print each swapchain's size and its first present (tests
+                                * driving from outside wait for a size to reach the screen before the next) */
+    bool present_due;          /* report: a swapchain was created and none of its images presented yet */
     long last_frame;           /* the presented count the hook last acted on */
     int minimized_waits;       /* > 0: we minimised the window; restore after a few idle waits */
     bool hid;                  /* no window manager iconified it: we unmapped it ourselves */
