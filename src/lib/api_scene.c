@@ -9,11 +9,49 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The scene loader reports a bad file as one line on stderr (the CLI's contract) and its notes on stdout; the library
- * hands that line to the host's callback instead and drops the notes. Both go through this thread's report and notes
- * streams (app/cli/bad_value.h), pointed at memory streams for the call: the host's other threads keep their stderr
- * and stdout (pointing the process's streams at a capture took their lines too: the encode_frames flake,
+/* The command line's loaders and frame function report a bad value as one line on stderr (the CLI's contract) and
+ * their notes (--max-error's pick) on stdout; the library hands that line to the host's callback instead and drops
+ * the notes: it prints nothing (include/vksky.h). Both go through this thread's report and notes streams
+ * (app/cli/bad_value.h), pointed at memory streams for the call, so the host's other threads keep their stderr and
+ * stdout (pointing the process's streams at a capture took their lines too: the encode_frames flake,
  * tests/api/api_values_threads.c). */
+typedef struct captured_lines {
+    char *report;         /* the report stream's text (the caller frees it); NULL when nothing was written */
+    size_t report_size;
+    FILE *report_stream;
+    char *notes;          /* the notes stream's text: dropped at the end */
+    size_t notes_size;
+    FILE *notes_stream;
+} captured_lines;
+
+static void capture_begin(captured_lines *c)
+{
+    *c = (captured_lines){0};
+    c->report_stream = open_memstream(&c->report, &c->report_size);
+    if (c->report_stream) options_report_to(c->report_stream);
+    c->notes_stream = open_memstream(&c->notes, &c->notes_size);
+    if (c->notes_stream) options_notes_to(c->notes_stream);
+}
+
+static void capture_end(captured_lines *c)
+{
+    options_report_to(NULL);
+    options_notes_to(NULL);
+    if (c->report_stream) fclose(c->report_stream);
+    if (c->notes_stream) fclose(c->notes_stream);
+    free(c->notes);
+    c->notes = NULL;
+}
+
+/* The report's first line, without the CLI's "vksky: " and its newline, as the text of a message. */
+static const char *capture_line(const captured_lines *c, int *length)
+{
+    const char *text = c->report ? c->report : "";
+    if (!strncmp(text, "vksky: ", 7)) text += 7;
+    *length = (int)strcspn(text, "\n");
+    return text;
+}
+
 int lib_options_load(const char *path_or_name, options *o, char *why, size_t why_size)
 {
     char *argv_store[] = {"vksky", "--quality", "low", "--scene", (char *)path_or_name, NULL};
@@ -22,34 +60,19 @@ int lib_options_load(const char *path_or_name, options *o, char *why, size_t why
 
 int lib_options_parse(int argc, char *const *argv_store, options *o, char *why, size_t why_size)
 {
-    char *captured = NULL;
-    size_t captured_size = 0;
-    FILE *memory = open_memstream(&captured, &captured_size);
-    if (memory) options_report_to(memory);
-    /* The parse's reports on stdout (--max-error's pick and its notes) are the command line's to print, once, from
-     * its own parse: the library prints nothing (include/vksky.h). */
-    char *reported = NULL;
-    size_t reported_size = 0;
-    FILE *dropped = open_memstream(&reported, &reported_size);
-    if (dropped) options_notes_to(dropped);
+    captured_lines capture;
+    capture_begin(&capture);
     int rc = options_parse(o, argc, (char **)argv_store);
     /* An animated command line: a quality chosen by the scene serves every frame (the command line's sequence). */
     if (rc == 0 && o->animate_count > 0 && sequence_choose_quality(o) != 0) {
         options_release(o);
         rc = 2;
     }
-    options_report_to(NULL);
-    options_notes_to(NULL);
-    if (memory) fclose(memory);
-    if (dropped) fclose(dropped);
-    free(reported);
-    why[0] = 0;
-    if (captured) {
-        /* One line, without the CLI's "vksky: " and its newline. */
-        const char *text = strncmp(captured, "vksky: ", 7) ? captured : captured + 7;
-        snprintf(why, why_size, "%.*s", (int)strcspn(text, "\n"), text);
-        free(captured);
-    }
+    capture_end(&capture);
+    int length;
+    const char *line = capture_line(&capture, &length);
+    snprintf(why, why_size, "%.*s", length, line);
+    free(capture.report);
     o->argc = 0, o->argv = NULL;   /* the loader's argv was this function's */
     if (rc == 0 && o->unresolved) {
         /* A frame's values are set over these (vksky_scene_set_values); finishing them reads argv[0] only. */
@@ -158,35 +181,13 @@ void vksky_scene_destroy(vksky_scene *scene)
     free(scene);
 }
 
-/* The command line's one-line complaints captured for the host's callback: a frame's values (vksky_scene_set_values:
- * per frame, while the host's other threads run) and a scene file's reload (F5) write theirs to this thread's report
- * stream (app/cli/bad_value.h), so the capture takes no other thread's line. */
-typedef struct captured_stderr {
-    char *text;   /* what was written; the caller frees it */
-    size_t size;
-    FILE *memory;
-} captured_stderr;
-
-static void capture_begin(captured_stderr *c)
+/* Sends the captured line to the callback as an error; returns its text (up to the end of the capture). */
+static const char *capture_report(const captured_lines *c, vksky_message_fn message, void *message_user)
 {
-    c->text = NULL, c->size = 0;
-    c->memory = open_memstream(&c->text, &c->size);
-    if (c->memory) options_report_to(c->memory);
-}
-
-static void capture_end(captured_stderr *c)
-{
-    if (!c->memory) return;
-    options_report_to(NULL);
-    fclose(c->memory);
-}
-
-/* Sends the captured first line, without its "vksky: " prefix, to the callback as an error; returns that text. */
-static const char *capture_report(const captured_stderr *c, vksky_message_fn message, void *message_user)
-{
-    const char *text = c->text && !strncmp(c->text, "vksky: ", 7) ? c->text + 7 : c->text ? c->text : "";
-    lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%.*s", (int)strcspn(text, "\n"), text);
-    return text;
+    int length;
+    const char *line = capture_line(c, &length);
+    lib_message(message, message_user, VKSKY_SEVERITY_ERROR, "%.*s", length, line);
+    return line;
 }
 
 vksky_result vksky_scene_set_values(vksky_scene *scene, uint32_t count, const char *const *flags,
@@ -210,18 +211,19 @@ vksky_result vksky_scene_set_values(vksky_scene *scene, uint32_t count, const ch
         }
     }
     if (count == 0) return VKSKY_SUCCESS;
-    /* The command line's own frame function (values, not text), its one-line complaint captured for the callback. */
-    captured_stderr capture;
+    /* The command line's own frame function (values, not text), its one-line complaint captured for the callback
+     * (a frame's values are set per frame while the host's other threads run). */
+    captured_lines capture;
     capture_begin(&capture);
     options f;
     int rc = options_frame(base, flags, values, (int)count, &f);
     capture_end(&capture);
     if (rc != 0) {
         capture_report(&capture, message, message_user);
-        free(capture.text);
+        free(capture.report);
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
-    free(capture.text);
+    free(capture.report);
     f.unresolved = scene->o.unresolved;   /* kept: the next frame's values are set over it too */
     scene->o = f;
     return VKSKY_SUCCESS;
@@ -269,17 +271,17 @@ vksky_result vksky_scene_reload(vksky_scene *scene, vksky_message_fn message, vo
         return VKSKY_ERROR_INVALID_ARGUMENT;
     }
     /* The scene loader's one-line complaint goes to the callback, as vksky_scene_load's (lib_options_parse). */
-    captured_stderr capture;
+    captured_lines capture;
     capture_begin(&capture);
     options fresh;
     int rc = options_reload(&scene->o, &fresh);
     capture_end(&capture);
     if (rc != 0) {
         vksky_result failed = load_failure(capture_report(&capture, message, message_user));
-        free(capture.text);
+        free(capture.report);
         return failed;   /* the scene as it was */
     }
-    free(capture.text);
+    free(capture.report);
     scene->o = fresh;
     return VKSKY_SUCCESS;
 }
