@@ -60,6 +60,13 @@ for t in --trace-barriers --trace-passes; do
      [ ! -s "$work/stdout" ] || fail "$t alone: printed a trace: $(head -3 "$work/stdout")"
      [ $fails -eq $f0 ]) || fails=$((fails + 1))
 done
+# --quality auto in the window where RGB's colour is far off (twilight, 2 deg below the horizon): the window stays RGB
+# (interactive) and says so on stdout, as every other output auto keeps RGB for does (docs/spectral.md), not silently.
+(unset DISPLAY WAYLAND_DISPLAY; f0=$fails; expect_bad "window under auto" "no display available" --quality auto \
+     --sun-elevation -2 --width 64 --validate
+ grep -q "^vksky: --quality auto: RGB's colour on the 'twilight-2' scene .*this run stays RGB: the spectral path cannot render the interactive window" \
+     "$work/stdout" || fail "window under auto: no line saying why it stays RGB: $(cat "$work/stdout")"
+ [ $fails -eq $f0 ]) || fails=$((fails + 1))
 
 # Good renders: EXR (half RGBA, ZIP) and PNG, with the atomic rename (no temp file left). The sun's disc is in view:
 # in photometric units (the default) it needs float (checked below), so half is asked for (--exr-type).

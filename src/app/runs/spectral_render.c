@@ -1,17 +1,16 @@
 /* --spectral N on the GPU (spectral_render.h). */
 #include "app/runs/spectral_render.h"
+#include "app/cli/bad_value.h"
 #include "app/quality/quality.h"
 #include "app/runs/stop.h"
 #include "app/runs/tiles.h"
 #include "app/runs/sequence_frames.h"
 #include "app/scene/light.h"
 #include "reference/metrics.h"
-#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <unistd.h>
 
 static bool ends_with(const char *s, const char *tail);
 
@@ -138,19 +137,17 @@ static unsigned run_classes(const options *o)
     if (!sequence_active(o)) return o->quality_classes;
     unsigned classes = 0;
     int count = o->frame_count > 0 ? o->frame_count : 1, bad = 0;
-    /* A bad frame is refused later by sequence_check, with its one line: not printed here a first time. */
-    fflush(stderr);
-    int saved = dup(STDERR_FILENO), null = open("/dev/null", O_WRONLY);
-    if (saved >= 0 && null >= 0) dup2(null, STDERR_FILENO);
+    /* A bad frame is refused later by sequence_check, with its one line: not printed here a first time. The frames'
+     * lines go to this thread's report stream (app/cli/bad_value.h), pointed at nothing for the loop, not the
+     * process's stderr. */
+    FILE *null = fopen("/dev/null", "w");
+    if (null) options_report_to(null);
     for (int i = 0; i < count && !bad; ++i) {
         options f;
         bad = sequence_frame_options(o, i, &f);
         if (!bad) classes |= quality_class_bit(f.view.altitude_km, f.view.sun_elevation_deg);
     }
-    fflush(stderr);
-    if (saved >= 0 && null >= 0) dup2(saved, STDERR_FILENO);
-    if (saved >= 0) close(saved);
-    if (null >= 0) close(null);
+    if (null) options_report_to(NULL), fclose(null);
     return bad ? 0 : classes;
 }
 
@@ -159,8 +156,6 @@ int spectral_auto(options *o, const char *impossible)
     if (!o->quality_auto || o->spectral || o->max_color_error > 0.0 || o->reference) return 0;
     for (int i = 1; i < o->argc; ++i)   /* --spectral 0 given: RGB asked for */
         if (!strcmp(o->argv[i], "--spectral") || !strncmp(o->argv[i], "--spectral=", 11)) return 0;
-    /* The window is interactive: it stays RGB (a spectral frame is a pass per group of four wavelengths). */
-    if (o->output_count == 0 && o->bench_frames == 0) return 0;
     /* A sequence gets one choice for the run, from the worst of its frames' classes: its frames share one colour
      * setting as they share one quality preset (no jump in colour from one frame to the next). */
     unsigned classes = run_classes(o);
@@ -178,7 +173,10 @@ int spectral_auto(options *o, const char *impossible)
      * frame) a 960x540 frame still costs ~4x an RGB frame's CPU on lavapipe (0.52 s against 0.12: the groups' passes),
      * so issue 27's throughput stays the default's until the H100's figure (tools/throughput_bench.sh SPECTRAL=1)
      * says otherwise (docs/spectral.md, "The sum on the GPU"). --spectral N asks for it. */
+    bool window = o->output_count == 0 && o->bench_frames == 0;
     const char *why = impossible               ? impossible
+                      : window                 ? "the interactive window (a frame would take a pass per group of "
+                                                 "four wavelengths)"
                       : o->bench_frames > 0    ? "--bench (it times RGB frames)"
                       : sequence_active(o)     ? "a sequence at a sequence's speed (a frame would take a pass per "
                                                  "wavelength group, summed on the GPU: ~4x an RGB frame's CPU on "
