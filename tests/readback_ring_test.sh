@@ -42,7 +42,7 @@ run() {
     while [ "$1" != -- ]; do envs+=("$1"); shift; done
     shift
     rm -rf "${work:?}/$name"; mkdir -p "$work/$name"
-    (cd "$work/$name" && env "${envs[@]}" "$VKSKY" "$@" >stdout 2>stderr)
+    (cd "$work/$name" && env "${envs[@]}" ${RUN_LIMIT:+timeout -s KILL "$RUN_LIMIT"} "$VKSKY" "$@" >stdout 2>stderr)
 }
 # files NAME: the checksums of a run's images, one per line.
 files() { (cd "$work/$1" && md5sum -- *.exr *.png 2>/dev/null); }
@@ -98,7 +98,9 @@ count() { grep -c "^sync $2 " "$work/$1/stdout"; }
 # 6. Each wait left out. What goes wrong is undefined behaviour, so it may show in more than one way: a file that
 # differs from the serial run's, the validation layer's report (a command buffer freed or a fence reset while
 # pending: the producer reused a slot the GPU still works on), or the driver crashing on that freed command buffer
-# (lavapipe does). Any of them is the hazard seen; a run that exits 0 with the serial run's files is not.
+# (lavapipe does), or hanging there: these runs are killed after 120 s (exit 137), a hang counted as going wrong, not
+# left to the test's own timeout (a loaded CI machine once ran this test past 600 s). Any of them is the hazard seen;
+# a run that exits 0 with the serial run's files is not.
 # went_wrong NAME REFERENCE: the run NAME (exit status in $rc) went wrong.
 went_wrong() {
     [ "$rc" -ge 128 ] && return 0
@@ -106,6 +108,7 @@ went_wrong() {
         return 0
     [ "$(files "$2")" != "$(files "$1")" ]
 }
+RUN_LIMIT=120
 run drop_gpu VKSKY_DROP_BARRIER=ring.gpu_done -- "${SUN[@]}" --render f%02d.exr --render f%02d.png; rc=$?
 went_wrong drop_gpu serial || fail "ring.gpu_done dropped: nothing went wrong (exit $rc, the serial run's files)"
 run drop_slot VKSKY_DROP_BARRIER=ring.slot_free VKSKY_RING_DELAY_MS=300 -- "${SUN[@]}" --render f%02d.exr \
@@ -113,6 +116,7 @@ run drop_slot VKSKY_DROP_BARRIER=ring.slot_free VKSKY_RING_DELAY_MS=300 -- "${SU
 went_wrong drop_slot serial || fail "ring.slot_free dropped: nothing went wrong (exit $rc, the serial run's files)"
 run drop_drain VKSKY_DROP_BARRIER=ring.drain -- "${MEDIUM[@]}" --render f%02d.exr; rc=$?
 went_wrong drop_drain mserial || fail "ring.drain dropped: nothing went wrong (exit $rc, the serial run's files)"
+RUN_LIMIT=
 # ... and the runs that drop nothing exited 0 with the serial files (above): the difference is the wait.
 
 # 7. --quiet and --bench.
