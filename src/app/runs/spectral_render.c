@@ -6,7 +6,6 @@
 #include "app/runs/sequence_frames.h"
 #include "app/scene/light.h"
 #include "reference/metrics.h"
-#include "sky/projection.h"
 #include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
@@ -88,17 +87,17 @@ void spectral_render_meter_rows(const sky_view *v, int w, int whole_h, int first
     view_rays rays = light_view_rays(v, w, whole_h);
     const double *f = rays.forward, *right = rays.right, *up = rays.up, tx = rays.tx, ty = rays.ty;
     double sin_h = light_horizon_sine(v->altitude_km, bottom_radius);
-    sky_projection projection = (sky_projection)v->projection;
+    bool map = v->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE;
     /* Rows in order, pixels in order, one double sum: the whole image's sum, whether it comes in one band or many. */
     for (int r = 0; r < rows; ++r)
         for (int i = 0; i < w; ++i) {
             int j = first_row + r;
             double d[3];
-            if (projection == SKY_PROJECTION_PERSPECTIVE) {
+            if (!map) {
                 double x = 2.0 * (i + 0.5) / w - 1.0, y = 1.0 - 2.0 * (j + 0.5) / whole_h;
                 for (int k = 0; k < 3; ++k) d[k] = f[k] + x * tx * right[k] + y * ty * up[k];
-            } else if (!projection_dir(projection, w, whole_h, i + 0.5, j + 0.5, d)) {
-                continue;   /* outside the fisheye's circle: no direction, written black, no part of the scene */
+            } else if (!light_map_dir(v->projection, w, whole_h, i + 0.5, j + 0.5, d)) {
+                continue;   /* outside a fisheye's circle: no direction, written black, no part of the scene */
             }
             if (!every_pixel && d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < sin_h) continue;
             const float *p = rgb + 4 * ((size_t)r * w + i);
