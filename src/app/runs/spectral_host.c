@@ -247,6 +247,25 @@ static int accumulate(const groups *g, uint32_t first, uint32_t count, vksky_ren
     return 0;
 }
 
+/* Whether the meter counts the ground's pixels: where the last group lights a ground. */
+static bool lit_ground(const groups *g)
+{
+    for (uint32_t c = 0; c < 3; ++c) {
+        vksky_spectral_coefficients k;
+        if (vksky_scene_spectral_coefficients(g->scene[g->count - 1], c, &k) == VKSKY_SUCCESS && k.ground_albedo != 0.0)
+            return true;
+    }
+    return false;
+}
+
+/* The view the PNG's host tone map reads: auto exposure where a PNG is written and no exposure was given (light.h). */
+static sky_view png_view(const options *o)
+{
+    sky_view view = o->view;
+    view.auto_exposure = light_auto_exposure_wanted(o);
+    return view;
+}
+
 /* A frame: every group rendered and summed into XYZ, then XYZ -> linear Rec.709 into out (and the PNG's tone map). */
 static int groups_frame(groups *g, const options *o, host_commands *h, spectral_image *out)
 {
@@ -278,18 +297,9 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
     }
     free(xyz);
     if (png) {
-        /* The meter counts the ground's pixels where the last group lights a ground. */
-        bool ground = false;
-        for (uint32_t c = 0; c < 3; ++c) {
-            vksky_spectral_coefficients k;
-            if (vksky_scene_spectral_coefficients(g->scene[g->count - 1], c, &k) == VKSKY_SUCCESS &&
-                k.ground_albedo != 0.0)
-                ground = true;
-        }
-        sky_view view = o->view;   /* auto exposure where a PNG is written and no exposure was given (light.h) */
-        view.auto_exposure = light_auto_exposure_wanted(o);
-        spectral_render_tonemap_image(&view, o->width, o->height, ground, o->atmosphere.bottom_radius, g->quiet, rgb,
-                                      out->display);
+        sky_view view = png_view(o);
+        spectral_render_tonemap_image(&view, o->width, o->height, lit_ground(g), o->atmosphere.bottom_radius, g->quiet,
+                                      rgb, out->display);
         free(rgb);
     }
     return 0;
@@ -427,24 +437,58 @@ int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene
 
 /* An image in several bands (app/runs/tiles.c draws them through tiles_render_drawn): a renderer per group of the
  * band's size, each keeping its LUTs from band to band, every group of a band in one submission, the sum on the encode
- * threads into the band's linear image (.exr only: a .png in bands is refused, spectral_render_unable). */
+ * threads into the band's linear image and, with a PNG, its floats tone-mapped on the host into the band's display
+ * rows. An auto-exposed PNG is metered first: every band drawn once and its own rows metered in order (the whole
+ * image's sum, as spectral_render_tonemap_image counts it), nothing written; then drawn again and written at that
+ * exposure (the RGB banded meter's two passes, tiles.c). Memory stays a band's: no whole image is kept. */
 typedef struct band_draw {
     const options *o;
     groups *g;
     host_commands *h;
     size_t pixels;      /* a band's, pad rows included */
     float *xyz;
+    float *rgb;         /* a PNG's: the band's sum as floats, the tone map's input (NULL: no PNG) */
     spectral_image img;
+    sky_view view;      /* the PNG's (png_view) */
+    double exposure;    /* the PNG's, given or metered (meter_bands) */
 } band_draw;
+
+/* The band of view v rendered and summed into d->img.linear (and d->rgb). */
+static int sum_band(band_draw *d, const host_view *v)
+{
+    memset(d->xyz, 0, d->pixels * 3 * sizeof *d->xyz);
+    return render_list(d->g, d->g->r, 0, d->g->count, d->o, v, d->h) ||
+           accumulate(d->g, 0, d->g->count, d->g->r, d->xyz, d->pixels, true, &d->img, d->rgb);
+}
 
 static int draw_band(void *user, const host_view *v, frame_ring_pixels *out)
 {
     band_draw *d = user;
-    memset(d->xyz, 0, d->pixels * 3 * sizeof *d->xyz);
-    if (render_list(d->g, d->g->r, 0, d->g->count, d->o, v, d->h) ||
-        accumulate(d->g, 0, d->g->count, d->g->r, d->xyz, d->pixels, true, &d->img, NULL))
-        return 1;
-    *out = (frame_ring_pixels){d->img.linear, NULL};
+    if (sum_band(d, v)) return 1;
+    /* Every row drawn, pad rows too (the writer skips them): the tone map is per pixel. */
+    if (d->rgb)
+        spectral_render_tonemap_rows(&d->view, d->exposure, d->o->width, (int)(d->pixels / (size_t)d->o->width), d->rgb,
+                                     d->img.display);
+    *out = (frame_ring_pixels){d->img.linear, d->img.display};
+    return 0;
+}
+
+/* Auto exposure of a banded PNG: each band's own rows (not its pad rows) metered in the image's row order. */
+static int meter_bands(band_draw *d)
+{
+    const options *o = d->o;
+    int band = tiles_band_rows(o->width, o->height, tiles_budget()), pad = tiles_band_pad(o), bands = 0;
+    spectral_meter m = {0};
+    bool every_pixel = lit_ground(d->g);
+    for (int y = 0; y < o->height; y += band, ++bands) {
+        if (stop_requested()) return 1;   /* nothing written yet: stop_status says why */
+        host_view v = whole_view(o);
+        v.band = true, v.first_row = y - pad;
+        if (sum_band(d, &v)) return 1;
+        spectral_render_meter_rows(&d->view, o->width, o->height, y, o->height - y < band ? o->height - y : band,
+                                   every_pixel, o->atmosphere.bottom_radius, d->rgb + (size_t)pad * o->width * 4, &m);
+    }
+    d->exposure = spectral_render_exposure(&d->view, &m, bands, d->g->quiet);
     return 0;
 }
 
@@ -452,15 +496,19 @@ int spectral_host_bands(const options *o, vksky_context *ctx, const vksky_scene 
 {
     groups g = {0};
     int rows = tiles_frame_rows(o), status = groups_create(&g, o, ctx, scene, false, rows);
-    band_draw d = {.o = o, .g = &g, .h = h, .pixels = (size_t)o->width * (size_t)rows};
+    bool png = wants_png(o);
+    band_draw d = {.o = o, .g = &g, .h = h, .pixels = (size_t)o->width * (size_t)rows, .view = png_view(o)};
+    d.exposure = d.view.exposure_ev;
     d.xyz = malloc(d.pixels * 3 * sizeof *d.xyz);
     d.img.linear = malloc(d.pixels * 4 * sizeof *d.img.linear);
-    if (status == 0 && (!d.xyz || !d.img.linear)) {
+    if (png) d.rgb = malloc(d.pixels * 4 * sizeof *d.rgb), d.img.display = malloc(d.pixels * 4);
+    if (status == 0 && (!d.xyz || !d.img.linear || (png && (!d.rgb || !d.img.display)))) {
         fprintf(stderr, "vksky: --spectral: out of memory\n");
         status = 1;
     }
+    if (status == 0 && png && d.view.auto_exposure) status = meter_bands(&d);
     if (status == 0) status = tiles_render_drawn(o, draw_band, &d);
-    free(d.xyz);
+    free(d.xyz), free(d.rgb);
     spectral_image_release(&d.img);
     groups_destroy(&g);
     return status;

@@ -1,5 +1,5 @@
-/* --spectral N of one image through include/vksky.h (issue 25s): a perspective frame, or an environment map in one
- * band. A renderer per wavelength group, each made with its group's scene (vksky_scene_spectral_group: the spectral
+/* --spectral N of one image through include/vksky.h (issue 25s): a perspective frame, or an environment map, in one
+ * band or several. A renderer per wavelength group, each made with its group's scene (vksky_scene_spectral_group: the spectral
  * reference's packing and weights as API values), every group recorded into one command buffer and submitted once; the
  * readbacks summed on the host into CIE XYZ, then linear Rec.709 into the linear image and, with a PNG, the host's tone
  * map (spectral_render_tonemap_image). No src/sky or src/lib header (tests/layering_test.sh). */
@@ -24,7 +24,8 @@ int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene
 /* A sequence (or --skip-existing), frame by frame (each frame's groups in one submission), as an RGB sequence writes
  * them (app/runs/sequence.c): files, progress and summary lines. `scene` takes each frame's values. 0, or 1. */
 int spectral_host_sequence(const options *o, vksky_context *ctx, vksky_scene *scene, host_commands *h);
-/* An .exr image in several bands (tiles_in_bands): a renderer per group of tiles_frame_rows rows, every band's groups
- * in one submission and summed on the encode threads, the bands streamed by app/runs/tiles.c. 0, or 1. */
+/* An .exr or .png image in several bands (tiles_in_bands): a renderer per group of tiles_frame_rows rows, every band's
+ * groups in one submission and summed on the encode threads, the bands streamed by app/runs/tiles.c; a PNG's band
+ * tone-mapped on the host (an auto-exposed one metered first over every band). 0, or 1. */
 int spectral_host_bands(const options *o, vksky_context *ctx, const vksky_scene *scene, host_commands *h);
 #endif

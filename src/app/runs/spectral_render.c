@@ -12,22 +12,6 @@
 #include <string.h>
 #include <strings.h>
 
-static bool ends_with(const char *s, const char *tail);
-
-/* Whether any output is a PNG (the only other format --render writes). */
-static bool wants_display(const options *o)
-{
-    for (int i = 0; i < o->output_count; ++i)
-        if (!ends_with(o->outputs[i], ".exr")) return true;
-    return false;
-}
-
-static bool ends_with(const char *s, const char *tail)
-{
-    size_t n = strlen(s), m = strlen(tail);
-    return n >= m && strcasecmp(s + n - m, tail) == 0;
-}
-
 int spectral_render_check(const options *o, const char *flag)
 {
     if (!o->spectral) return 0;
@@ -48,13 +32,10 @@ const char *spectral_render_unable(const options *o)
 {
     if (o->output_count == 0 || o->bench_frames > 0)
         return "on the GPU only with --render FILE (.exr or .png; not the window, not --bench)";
-    /* A PNG is the sum tone-mapped on the host (spectral_render_tonemap), which knows a perspective frame's pixels
-     * only; an environment map or a banded image writes its bands as they come, before a whole image exists. */
-    if (wants_display(o) && tiles_wanted(o))
-        return "a .png environment map or banded image: its tone map needs the whole image (write .exr, or one band "
-               "of a perspective frame)";
-    /* An .exr map or image, in one band or several, goes through include/vksky.h (app/runs/spectral_host.c; several
-     * bands through tiles.c's tiles_render_drawn). A sequence draws whole frames: not one in several bands. */
+    /* A map or image, .exr or .png, in one band or several, goes through include/vksky.h (app/runs/spectral_host.c;
+     * several bands through tiles.c's tiles_render_drawn). A PNG is the sum tone-mapped on the host, per pixel; its
+     * exposure is given or metered on the host over the whole image (in bands: a first pass over the bands that
+     * writes nothing, as the RGB banded meter's). A sequence draws whole frames: not one in several bands. */
     if (tiles_in_bands(o) && sequence_active(o))
         return "a sequence of images in several bands (over the band budget, VKSKY_TILE_PIXELS / VKSKY_TILE_ROWS): a "
                "spectral sequence draws whole frames (render each frame alone, or RGB)";
@@ -96,38 +77,61 @@ bool spectral_render_four_wide(const options *o)
 /* The spectral sum's PNG: tone-mapped on the host, where the sum is (the GPU's tone map saw one group at a time).
  * The same law as the GPU's (metrics_tonemap_srgb8: shaders/glsl/tonemap_ops.glsl's operators and sRGB encode) at
  * the view's exposure; auto exposure as the GPU's meter computes it (sky/meter.c: the log-average of the luminance
- * in cd/m2 floored at 1e-4, over the sky's pixels only when the ground is black). No bloom (the spectral path has
- * none) and no dither (the GPU's +-1 LSB triangular noise). */
+ * in cd/m2 floored at 1e-4, over the sky's pixels only when the ground is black; a fisheye's pixels outside its circle
+ * not counted). No bloom (the spectral path has none) and no dither (the GPU's +-1 LSB triangular noise). */
+void spectral_render_meter_rows(const sky_view *v, int w, int whole_h, int first_row, int rows, bool every_pixel,
+                                double bottom_radius, const float *rgb, spectral_meter *m)
+{
+    double scale = v->ev100 ? v->light_scale : 1.0;
+    view_rays rays = light_view_rays(v, w, whole_h);
+    const double *f = rays.forward, *right = rays.right, *up = rays.up, tx = rays.tx, ty = rays.ty;
+    double sin_h = light_horizon_sine(v->altitude_km, bottom_radius);
+    bool map = v->projection != VKSKY_PROJECTION_TYPE_PERSPECTIVE;
+    /* Rows in order, pixels in order, one double sum: the whole image's sum, whether it comes in one band or many. */
+    for (int r = 0; r < rows; ++r)
+        for (int i = 0; i < w; ++i) {
+            int j = first_row + r;
+            double d[3];
+            if (!map) {
+                double x = 2.0 * (i + 0.5) / w - 1.0, y = 1.0 - 2.0 * (j + 0.5) / whole_h;
+                for (int k = 0; k < 3; ++k) d[k] = f[k] + x * tx * right[k] + y * ty * up[k];
+            } else if (!light_map_dir(v->projection, w, whole_h, i + 0.5, j + 0.5, d)) {
+                continue;   /* outside a fisheye's circle: no direction, written black, no part of the scene */
+            }
+            if (!every_pixel && d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < sin_h) continue;
+            const float *p = rgb + 4 * ((size_t)r * w + i);
+            double lum = (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / scale;
+            m->log_sum += log(fmax(lum, 1e-4)), m->count += 1.0;
+        }
+}
+
+double spectral_render_exposure(const sky_view *v, const spectral_meter *m, int bands, bool quiet)
+{
+    if (!v->auto_exposure) return v->exposure_ev;
+    double average = m->count > 0.0 ? exp(m->log_sum / m->count) : 1e-4;
+    sky_view exposed = *v;
+    light_expose(&exposed, average);
+    if (!quiet)
+        fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered "
+                        "on the host: the spectral sum%s)\n", light_auto_ev100(average), average,
+                v->ev100 ? "cd/m2" : "(relative units)", m->count, bands > 1 ? " in bands" : "");
+    return exposed.exposure_ev;
+}
+
+void spectral_render_tonemap_rows(const sky_view *v, double exposure_ev, int w, int rows, const float *rgb,
+                                  void *display)
+{
+    /* The tone map's multiplier (sky/view_params.c): photometric 1 / (light_scale 1.2 2^EV100), else 2^EV. */
+    double multiplier = v->ev100 ? 1.0 / (v->light_scale * 1.2 * exp2(exposure_ev)) : exp2(exposure_ev);
+    metrics_tonemap_srgb8(rgb, w, rows, log2(multiplier), v->tonemap, display);
+}
+
 void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius, bool quiet,
                                    const float *rgb, void *display)
 {
-    double scale = v->ev100 ? v->light_scale : 1.0, ev = v->exposure_ev;
-    if (v->auto_exposure) {
-        double log_sum = 0.0, count = 0.0;
-        view_rays rays = light_view_rays(v, w, h);
-        const double *f = rays.forward, *right = rays.right, *up = rays.up, tx = rays.tx, ty = rays.ty;
-        double sin_h = light_horizon_sine(v->altitude_km, bottom_radius);
-        for (int j = 0; j < h; ++j)
-            for (int i = 0; i < w; ++i) {
-                double x = 2.0 * (i + 0.5) / w - 1.0, y = 1.0 - 2.0 * (j + 0.5) / h, d[3];
-                for (int k = 0; k < 3; ++k) d[k] = f[k] + x * tx * right[k] + y * ty * up[k];
-                if (!every_pixel && d[1] / sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) < sin_h) continue;
-                const float *p = rgb + 4 * ((size_t)j * w + i);
-                double lum = (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / scale;
-                log_sum += log(fmax(lum, 1e-4)), count += 1.0;
-            }
-        double average = count > 0.0 ? exp(log_sum / count) : 1e-4;
-        sky_view exposed = *v;
-        light_expose(&exposed, average);
-        ev = exposed.exposure_ev;
-        if (!quiet)
-            fprintf(stderr, "vksky: auto exposure: EV100 %.4f (log-average luminance %.6g %s over %.0f pixels, metered "
-                            "on the host: the spectral sum)\n", light_auto_ev100(average), average,
-                    v->ev100 ? "cd/m2" : "(relative units)", count);
-    }
-    /* The tone map's multiplier (sky/view_params.c): photometric 1 / (light_scale 1.2 2^EV100), else 2^EV. */
-    double multiplier = v->ev100 ? 1.0 / (v->light_scale * 1.2 * exp2(ev)) : exp2(ev);
-    metrics_tonemap_srgb8(rgb, w, h, log2(multiplier), v->tonemap, display);
+    spectral_meter m = {0};
+    if (v->auto_exposure) spectral_render_meter_rows(v, w, h, 0, h, every_pixel, bottom_radius, rgb, &m);
+    spectral_render_tonemap_rows(v, spectral_render_exposure(v, &m, 1, quiet), w, h, rgb, display);
 }
 
 /* The scene classes of the run: a sequence's every frame (all of them, whatever --frame-range renders, so that a

@@ -11,12 +11,12 @@
 
 #define SPECTRAL_GPU_MAX 48   /* 16 groups: the largest count the GPU path accepts */
 
-/* Bad combinations of --spectral with the GPU's outputs (the window, --bench, a PNG environment map or banded image):
+/* Bad combinations of --spectral with the GPU's outputs (the window, --bench, a sequence in several bands):
  * one line on stderr naming `flag` (the flag that asked for the wavelengths) and 2; else 0. Call before any GPU work. */
 int spectral_render_check(const options *o, const char *flag);
 /* Why o's outputs cannot be rendered spectral (a phrase for a message), or NULL: they can. EXR and PNG stills and
- * sequences can, EXR environment maps and banded images can (a pass per group in every band); the window, --bench
- * and PNG maps or banded images cannot. */
+ * sequences can, EXR and PNG environment maps and banded images can (a pass per group in every band); the window,
+ * --bench and a sequence in several bands cannot. */
 const char *spectral_render_unable(const options *o);
 
 /* Whether --spectral renders four wavelengths to a texel (the SPECTRAL4 build) rather than three (the RGB shaders,
@@ -39,11 +39,25 @@ int spectral_pick(double max_de, unsigned classes, double *measured);
 #define SPECTRAL_AUTO_RGB_KEEP 3.0
 int spectral_auto(options *o, const char *impossible);
 
-/* The spectral sum rgb (RGBA floats, linear Rec.709 in the HDR image's units, w x h of a perspective frame)
- * tone-mapped into display (RGBA8 sRGB) at v's exposure, or metered on the host under v->auto_exposure (one stderr
- * line unless quiet): the GPU tone map's law without bloom or dither (docs/spectral.md). every_pixel: whether the meter
- * counts the ground's pixels too (a lit ground); bottom_radius: the planet's (km). A host of include/vksky.h calls it
+/* The spectral sum's PNG (docs/spectral.md, "The PNG"): rgb (RGBA floats, linear Rec.709 in the HDR image's units)
+ * tone-mapped into display (RGBA8 sRGB) by the GPU tone map's law without bloom or dither, at v's exposure or, under
+ * v->auto_exposure, at the exposure metered on the host. A host of include/vksky.h calls these
  * (app/runs/spectral_host.c). */
+typedef struct spectral_meter {
+    double log_sum, count;   /* sum of ln max(Y, 1e-4) in cd/m2 (or relative units), and the pixels counted */
+} spectral_meter;
+/* Adds rows first_row .. first_row + rows - 1 of a w x whole_h image of v's projection (rgb: those rows) to the
+ * meter, in row order (bands metered in order sum what the whole image's meter sums). every_pixel: whether the ground's
+ * pixels count too (a lit ground); bottom_radius: the planet's (km). */
+void spectral_render_meter_rows(const sky_view *v, int w, int whole_h, int first_row, int rows, bool every_pixel,
+                                double bottom_radius, const float *rgb, spectral_meter *m);
+/* The exposure to tone-map with: v's, or under v->auto_exposure the meter's (one stderr line unless quiet; bands: how
+ * many the meter saw). */
+double spectral_render_exposure(const sky_view *v, const spectral_meter *m, int bands, bool quiet);
+/* rows x w pixels of rgb into display at exposure_ev (v's units and operator). */
+void spectral_render_tonemap_rows(const sky_view *v, double exposure_ev, int w, int rows, const float *rgb,
+                                  void *display);
+/* A whole w x h image: metered (under v->auto_exposure), then tone-mapped. */
 void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius, bool quiet,
                                    const float *rgb, void *display);
 

@@ -55,11 +55,11 @@ bool tiles_in_bands(const options *o)
  * map clamps its taps there, vksky_frame_band), so the tone map's horizon coverage (hdr_upsample.glsl), which reads a
  * pixel's neighbours, sees the same neighbours as in one whole image: no seam at a band's edge. The band's own rows
  * start `pad` rows into what was read back. */
-static int band_pad(const options *o) { return tiles_in_bands(o) ? 1 : 0; }
+int tiles_band_pad(const options *o) { return tiles_in_bands(o) ? 1 : 0; }
 
 int tiles_frame_rows(const options *o)
 {
-    return tiles_band_rows(o->width, o->height, tiles_budget()) + 2 * band_pad(o);
+    return tiles_band_rows(o->width, o->height, tiles_budget()) + 2 * tiles_band_pad(o);
 }
 
 void tiles_begin_notes(const options *o)
@@ -82,7 +82,7 @@ typedef struct bands_state {
     int stopped_line;   /* a stop ended the line of a terminal's progress */
     float *band_f32;    /* a band in output units (write_exr_rows), reused; only the writing thread touches it */
     size_t band_cap;    /* its size in pixels */
-    int pad;            /* rows rendered above (and below) each band (band_pad) */
+    int pad;            /* rows rendered above (and below) each band (tiles_band_pad) */
 } bands_state;
 
 /* A band's own rows: `pad` rows into what was read back. */
@@ -246,7 +246,7 @@ static int render_bands(const options *o, vksky_context *ctx, vksky_renderer *r,
     snprintf(what, sizeof what, "rendering %s (%dx%d, %d bands)", o->output_count ? o->outputs[0] : "", width, height, bands);
     progress prog;
     progress_begin(&prog, stderr, o->quiet || bands < 2, what, height);
-    bands_state st = {o, outs, &prog, 0, NULL, 0, band_pad(o)};
+    bands_state st = {o, outs, &prog, 0, NULL, 0, tiles_band_pad(o)};
     /* The whole image's view (a perspective band's rays from yaw, pitch and fov) and projection. */
     host_view whole = {.yaw_deg = o->view.yaw_deg, .pitch_deg = o->view.pitch_deg, .fov_deg = o->view.fov_deg,
                        .exposure = o->view.exposure_ev, .projection = (vksky_projection)o->view.projection,

@@ -17,6 +17,7 @@ bool tiles_wanted(const options *o);
 /* Whether it takes more than one band (else one frame of the whole image: through the API, app/runs/headless_api.c). */
 bool tiles_in_bands(const options *o);
 /* The rows of the renderer a render in bands draws with: a band and the pad rows above and below it. */
+int tiles_band_pad(const options *o);   /* the pad rows above (and below) each band: 1 in several bands, else 0 */
 int tiles_frame_rows(const options *o);
 /* The notes a render in bands or an environment map prints before its renderer is made: bloom left out of a render in
  * several bands, a --render-scale ignored. */
@@ -31,7 +32,7 @@ int tiles_render(const options *o, vksky_context *ctx, vksky_renderer *r, host_c
 /* The same bands drawn by someone else (app/runs/spectral_host.c: the wavelength groups summed): `draw` fills *out
  * with the band of view v (v->first_row, tiles_frame_rows(o) rows read back, pad rows included) and returns 0, or 1
  * with its message printed; its pixels stay valid until the next call. One band at a time, written in order; no
- * auto exposure (a .png in bands is refused before: spectral_render_unable). 0, or 1. */
+ * auto exposure here (a .png's display rows come tone-mapped from `draw`, which meters them itself). 0, or 1. */
 typedef int (*tiles_draw_fn)(void *user, const host_view *v, frame_ring_pixels *out);
 int tiles_render_drawn(const options *o, tiles_draw_fn draw, void *user);
 #endif

@@ -178,6 +178,11 @@ view_rays light_view_rays(const sky_view *v, int width, int height)
     return rays;
 }
 
+bool light_map_dir(int projection, int width, int height, double x, double y, double dir[3])
+{
+    return projection_dir((sky_projection)projection, width, height, x, y, dir);
+}
+
 double light_horizon_sine(double altitude_km, double ground_radius_km)
 {
     return sky_view_horizon_sine(altitude_km, ground_radius_km);

@@ -57,6 +57,10 @@ typedef struct view_rays {
     double tx, ty;
 } view_rays;
 view_rays light_view_rays(const sky_view *v, int width, int height);
+/* The unit direction of continuous pixel position (x, y) of a width x height environment map of `projection` (sky_view's,
+ * not perspective: sky/projection.h's projection_dir, for the hosts of include/vksky.h that may not include sky/);
+ * false where the projection has none (outside a fisheye's circle). */
+bool light_map_dir(int projection, int width, int height, double x, double y, double dir[3]);
 /* The sine of the horizon's elevation seen from altitude_km above a planet of ground_radius_km (0 on the ground): a
  * ray whose elevation sine is below it meets the planet. */
 double light_horizon_sine(double altitude_km, double ground_radius_km);

@@ -1,0 +1,138 @@
+#!/usr/bin/env bash
+# tests/spectral_png_test.sh VKSKY SPECTRAL_COMPARE TONEMAP_CHECK: spectral .png environment maps and banded .png
+# images (issue 32 item 5): the sum tone-mapped on the host as the .png still's is. Every render runs with --validate
+# (a validation message fails the run); stderr holds nothing but the host meter's line. Small sizes, single scattering.
+#   1. A twilight equirect .png under --quality auto picks a spectral setting (its stdout line); at six sky directions
+#      (pixel centres at 5.6-50.6 degrees up, three azimuths) the PNG's pixel is within CIEDE2000 1 (auto's colour
+#      budget) of the 48-wavelength CPU reference along the same ray (3x3 perspective views, centre pixel), tone-mapped
+#      at the map's metered EV100 (spectral_compare --png).
+#   2. The same run's .exr and .png (equirect, cube, fisheye; --spectral 8 at sunset): the PNG within one 8-bit level
+#      of the tone-map formula applied to the EXR at the printed EV100 (tonemap_check, written from the published
+#      formulas; tonemap_png's bound without dither), and that EV100 within 0.005 of the log-average of the EXR's own
+#      pixels computed here in numpy over the sky's pixels (the default ground is black: docs/units.md's meter), each
+#      pixel's direction from the projection's published convention (docs/readme/envmap.md).
+#   3. In bands (VKSKY_TILE_ROWS, a map and a perspective frame with the horizon in it): the banded PNG byte for byte the
+#      one-band PNG, auto-exposed (the meter's first pass over the bands) and at a given exposure.
+set -u
+VKSKY=${1:?usage: spectral_png_test.sh VKSKY SPECTRAL_COMPARE TONEMAP_CHECK}
+COMPARE=${2:?usage: spectral_png_test.sh VKSKY SPECTRAL_COMPARE TONEMAP_CHECK}
+CHECK=${3:?usage: spectral_png_test.sh VKSKY SPECTRAL_COMPARE TONEMAP_CHECK}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fails=0
+fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
+picked() { sed -n 's/^vksky: --quality auto: .*picked --spectral \([0-9]*\) .*/\1/p' "$1"; }
+metered() { sed -n 's/^vksky: auto exposure: EV100 \([-0-9.]*\) .*metered on the host: the spectral sum.*/\1/p' "$1"; }
+# clean NAME: stderr holds the host meter's line only
+clean() { grep -v '^vksky: auto exposure: .*metered on the host' "$work/err" | grep -q . && fail "$1: stderr: $(cat "$work/err")"; }
+
+# 1. The twilight equirect map against the 48-wavelength reference.
+map=(--projection equirect --width 32 --no-sun-disc --no-multiscatter --sun-elevation -4 --sun-azimuth 0)
+"$VKSKY" "${map[@]}" --validate --render "$work/tw.png" >"$work/out" 2>"$work/err" || fail "twilight map: $(cat "$work/err")"
+clean "twilight map"
+n=$(picked "$work/out")
+ev=$(metered "$work/err")
+[ -n "$n" ] && [ "$n" -gt 0 ] || fail "twilight map: no spectral pick printed: $(cat "$work/out")"
+echo "twilight map: picked --spectral ${n:-?}, EV100 ${ev:-?}"
+# Pixels (i, j) of the 32x16 map: row j's centre is at latitude 90 - 11.25 (j + 0.5); column i's longitude
+# pi (1 - (2 i + 1) / 32), direction (sin lon cos lat, sin lat, cos lon cos lat) = dir(azimuth, elevation).
+pixels="4,3 4,7 12,5 12,7 22,3 22,6"
+i=0
+for p in $pixels; do
+    read -r az el < <(/usr/bin/python3 -c "
+import math; i, j = $p
+lon = math.pi * (1 - (2 * i + 1) / 32); lat = math.pi * (0.5 - (j + 0.5) / 16)
+d = (math.sin(lon) * math.cos(lat), math.sin(lat), math.cos(lon) * math.cos(lat))
+print('%.9f %.9f' % (math.degrees(math.atan2(d[2], d[0])), math.degrees(lat)))")
+    "$VKSKY" --width 3 --height 3 --fov 1 --yaw "$az" --pitch "$el" --no-sun-disc --no-multiscatter --sun-elevation -4 \
+        --sun-azimuth 0 --reference --spectral 48 --render "$work/ref$i.exr" 2>"$work/err" ||
+        fail "reference at ($az, $el): $(cat "$work/err")"
+    i=$((i + 1))
+done
+# The map's pixels and the references' centre pixels, side by side: a 6x1 PNG against a 6x1 EXR.
+/usr/bin/python3 - "$work" "$pixels" <<'PY' || fail "twilight map: gathering the pixels"
+import sys
+import numpy as np
+import OpenImageIO as oiio
+work, pixels = sys.argv[1], sys.argv[2].split()
+png = oiio.ImageBuf(work + "/tw.png").get_pixels(oiio.UINT8)
+got = np.zeros((1, len(pixels), 4), np.uint8)
+ref = np.zeros((1, len(pixels), 4), np.float32)
+for k, p in enumerate(pixels):
+    i, j = map(int, p.split(","))
+    got[0, k] = png[j, i, :4] if png.shape[2] == 4 else list(png[j, i, :3]) + [255]
+    ref[0, k] = oiio.ImageBuf("%s/ref%d.exr" % (work, k)).get_pixels(oiio.FLOAT)[1, 1, :4]
+for name, px, fmt in (("got.png", got, oiio.UINT8), ("ref.exr", ref, oiio.FLOAT)):
+    out = oiio.ImageBuf(oiio.ImageSpec(len(pixels), 1, 4, fmt))
+    out.set_pixels(oiio.ROI(), px)
+    out.write(work + "/" + name)
+PY
+line=$("$COMPARE" --png "$work/got.png" "$work/ref.exr" "${ev:-0}" 1) || fail "twilight map: $line (bound 1)"
+echo "twilight map against the 48-wavelength reference at 6 directions: $line"
+
+# --max-color-error with a .png map: the pick (the fewest wavelengths within 1 at noon) renders it.
+"$VKSKY" --projection equirect --width 16 --sun-elevation 60 --max-color-error 1 --validate --render "$work/pick.png" \
+    >"$work/out" 2>"$work/err" || fail "--max-color-error 1, .png map: $(cat "$work/err")"
+clean "--max-color-error 1, .png map"
+[ -n "$(sed -n 's/.*picked --spectral \([1-9][0-9]*\) .*/\1/p' "$work/out")" ] && [ -s "$work/pick.png" ] ||
+    fail "--max-color-error 1, .png map: no pick or no file: $(cat "$work/out")"
+
+# 2. The PNG against the tone-map formula on the same run's EXR, and the meter against the EXR's log-average.
+formula() {
+    local name=$1; shift
+    "$VKSKY" --spectral 8 --sun-elevation 3 --sun-azimuth 40 --no-sun-disc --no-dither --validate "$@" \
+        --render "$work/$name.exr" --render "$work/$name.png" >"$work/out" 2>"$work/err" || { fail "$name: $(cat "$work/err")"; return; }
+    clean "$name"
+    local e
+    e=$(metered "$work/err")
+    [ -n "$e" ] || { fail "$name: no host meter line: $(cat "$work/err")"; return; }
+    "$CHECK" "$work/$name.exr" "$work/$name.png" photometric "$e" aces || fail "$name: the PNG is not the formula's"
+    /usr/bin/python3 - "$work/$name.exr" "$e" "$name" <<'PY' || fail "$name: the metered EV100 is not the EXR's"
+import math, sys
+import numpy as np
+import OpenImageIO as oiio
+px = np.asarray(oiio.ImageBuf(sys.argv[1]).get_pixels(oiio.FLOAT), dtype=np.float64)
+y = 0.2126 * px[..., 0] + 0.7152 * px[..., 1] + 0.0722 * px[..., 2]
+h, w = y.shape
+jj, ii = np.mgrid[0:h, 0:w]
+u, v = (ii + 0.5) / w, (jj + 0.5) / h
+if sys.argv[3] == "equirect":   # latitude pi (0.5 - v): the sky is the upper half
+    sky = np.pi * (0.5 - v) >= 0
+elif sys.argv[3] == "cube":     # faces +X -X +Y -Y +Z -Z stacked, b top to bottom: up is -b on the side faces
+    face, b = np.floor(v * 6), 2 * (v * 6 - np.floor(v * 6)) - 1
+    up = np.choose(face.astype(int), [-b, -b, np.ones_like(b), -np.ones_like(b), -b, -b])
+    sky = up >= 0
+else:                            # the upper hemisphere inside the inscribed circle; outside it, nothing
+    sky = np.hypot(2 * u - 1, 1 - 2 * v) <= 1
+y = y[sky]
+ev = math.log2(math.exp(np.mean(np.log(np.maximum(y, 1e-4)))) * 100 / 12.5)
+print("%s: EV100 %s metered, %.4f from the EXR's pixels" % (sys.argv[3], sys.argv[2], ev))
+sys.exit(abs(ev - float(sys.argv[2])) > 0.005)
+PY
+}
+formula equirect --projection equirect --width 64
+formula cube --projection cubemap --width 16
+formula fisheye --projection fisheye --width 48
+
+# 3. Banded against one band, byte for byte.
+bands() {
+    local name=$1 rows=$2; shift 2
+    "$VKSKY" "$@" --no-bloom --validate --render "$work/$name.one.png" >/dev/null 2>"$work/err" ||
+        { fail "$name: one band: $(cat "$work/err")"; return; }
+    clean "$name: one band"
+    local one
+    one=$(metered "$work/err")
+    VKSKY_TILE_ROWS=$rows "$VKSKY" "$@" --no-bloom --validate --render "$work/$name.bands.png" >/dev/null \
+        2>"$work/all" || { fail "$name: in bands: $(cat "$work/all")"; return; }
+    grep -v '^vksky: rendering .* bands)' "$work/all" >"$work/err"   # the progress lines
+    clean "$name: in bands"
+    [ "$(metered "$work/err")" = "$one" ] || fail "$name: EV100 '$(metered "$work/err")' in bands, '$one' in one"
+    cmp -s "$work/$name.one.png" "$work/$name.bands.png" && echo "$name: bands of $rows rows = one band (EV100 $one)" ||
+        fail "$name: the banded PNG differs from the one-band PNG"
+}
+bands equirect-auto 5 --projection equirect --width 48 --spectral 8 --sun-elevation 2
+bands perspective-auto 7 --width 40 --height 24 --pitch 0 --fov 50 --spectral 4 --sun-elevation 1
+bands fisheye-ev 9 --projection fisheye --width 40 --spectral 8 --sun-elevation 2 --exposure 9
+
+[ $fails -eq 0 ] && echo "spectral_png: all checks passed"
+exit $((fails > 0))
