@@ -5,9 +5,9 @@
 #ifdef VKSKY_SCENE_DIR_FROM_LIB
 #define _GNU_SOURCE   /* dladdr: where the library itself was loaded from */
 #include <dlfcn.h>
-#include "app/cli/bad_value.h"
 #endif
 #include "app/scene/scene_find.h"
+#include "app/cli/bad_value.h"
 #include <cjson/cJSON.h>
 #include <dirent.h>
 #include <limits.h>
