@@ -83,6 +83,7 @@ int main(void)
            "march's own: |dT| +%.1e, S +%.2f%%\n", checked, worst_T, BOUND_T, 100 * worst_S, 100 * BOUND_S,
            worst_T_interp, 100 * worst_S_interp);
     CHECK(checked >= 20, "only %d points", checked);
+    aerial_check_shared_luts(&t);
 
     /* 2. The trade by distance (docs/readme/apvolume.md): seed 004's camera (218.8 m, looking along azimuth 95,
      * pitch 0, 40 deg), sun 30 deg up; a horizontal ray, one 0.3 deg down (the ground 42 km away: every point above it), one 3 deg up. */
@@ -111,7 +112,6 @@ int main(void)
         CHECK(worst.T <= BOUND_T && worst.S <= BOUND_S, "sweep %g km: volume |dT| %.2e, S %.2f%%", dists[k], worst.T,
               100 * worst.S);
     }
-    test_renderer_destroy(&t);
-    gpu_context_destroy(&ctx);
+    aerial_teardown(&ctx, &t);
     return test_finish("test_ap_volume");
 }
