@@ -4,6 +4,7 @@
 #ifndef VKSKY_TESTS_AERIAL_POINTS_H
 #define VKSKY_TESTS_AERIAL_POINTS_H
 #include "gpu_test.h"
+#include "gpu/pipeline_cache.h"
 #include "sky/composite.h"
 
 typedef struct point_case {
@@ -102,13 +103,33 @@ static sky_lut_quality aerial_converged_luts(void)
 }
 
 /* The Vulkan context (validation on), Hillaire's Earth, a renderer with the converged LUTs; and the composite
- * view of the tests: a Y-up world in metres, a converged march of `steps` (quadratic spacing), field of view fov. */
+ * view of the tests: a Y-up world in metres, a converged march of `steps` (quadratic spacing), field of view fov.
+ * VKSKY_TEST_LUT_DIR: the LUT cache directory the ctest fixture aerial_luts filled (tests/aerial_luts.c), which
+ * test_aerial and ap_volume read with VKSKY_LUT_CACHE=ro: the converged LUTs (most of each test's CPU on
+ * lavapipe) are computed once for both, and uploaded byte for byte (the LUT cache's contract, ctest lut_cache).
+ * Without it (the binary run by hand) the test computes them itself. */
 static void aerial_setup(gpu_context *ctx, model_atmosphere *earth, test_renderer *t)
 {
     test_context(ctx);
+    const char *lut_dir = getenv("VKSKY_TEST_LUT_DIR");
+    if (lut_dir && lut_dir[0]) CHECK(gpu_cache_dir_attach(ctx, lut_dir), "LUT cache directory %s", lut_dir);
     model_atmosphere_earth(earth);
     sky_lut_quality converged = aerial_converged_luts();
     test_renderer_create(t, ctx, 9, 9, false, &converged, NULL);
+}
+/* With the fixture's directory: the converged LUTs came from it (the key matched), not computed a second time. */
+static void aerial_check_shared_luts(const test_renderer *t)
+{
+    const char *lut_dir = getenv("VKSKY_TEST_LUT_DIR");
+    if (lut_dir && lut_dir[0])
+        CHECK(t->r.lut_cache == SKY_LUT_CACHE_HIT, "the converged LUTs were not read from %s (LUT cache state %d)",
+              lut_dir, (int)t->r.lut_cache);
+}
+static void aerial_teardown(gpu_context *ctx, test_renderer *t)
+{
+    test_renderer_destroy(t);
+    gpu_cache_dir_attach(ctx, NULL);
+    gpu_context_destroy(ctx);
 }
 static composite_view aerial_view(double fov_y_deg, int steps)
 {

@@ -8,6 +8,7 @@
 #  2. A corrupt, truncated, foreign-key (key byte changed, checksum made good) or alien file: the LUTs computed,
 #     one note at most, the same images, and the file rewritten good (the next run hits).
 #  3. An unwritable cache directory still renders (one "not saved" note); --no-cache neither reads nor writes.
+#  4. VKSKY_LUT_CACHE=ro: a hit uploads without touching the file, a miss computes and writes no LUT file.
 set -u
 VKSKY=${1:?usage: lut_cache_test.sh VKSKY}
 export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
@@ -128,6 +129,19 @@ render nocache --no-cache || fail "--no-cache with a warm cache failed"
     fail "--no-cache read the LUT cache: '$(state nocache)'"
 [ "$(stat -c %Y "$cache")" = "$(date -d '2000-01-01' +%s)" ] || fail "--no-cache rewrote the LUT cache file"
 cmp -s cold/out.png nocache/out.png || fail "--no-cache's PNG differs"
+
+# 4. VKSKY_LUT_CACHE=ro (the readers of a ctest LUT fixture, tests/CMakeLists.txt): a hit uploads and leaves the
+#    file alone; a miss computes the LUTs and writes no LUT file.
+touch -d '2000-01-01' "$cache"
+VKSKY_LUT_CACHE=ro render ro_hit || fail "VKSKY_LUT_CACHE=ro, warm: $(cat ro_hit.err)"
+[ "$(state ro_hit)" = "hit: uploaded, not computed" ] || fail "VKSKY_LUT_CACHE=ro, warm: LUT cache '$(state ro_hit)'"
+[ "$(stat -c %Y "$cache")" = "$(date -d '2000-01-01' +%s)" ] || fail "VKSKY_LUT_CACHE=ro rewrote the LUT cache file"
+same ro_hit || fail "VKSKY_LUT_CACHE=ro, warm: the images differ"
+XDG_CACHE_HOME="$work/ro_empty" VKSKY_LUT_CACHE=ro render ro_miss || fail "VKSKY_LUT_CACHE=ro, cold: $(cat ro_miss.err)"
+grep -q '^pass transmittance_lut$' ro_miss.out || fail "VKSKY_LUT_CACHE=ro, cold: the LUTs were not computed"
+! ls "$work"/ro_empty/vksky/luts-*.bin >/dev/null 2>&1 || fail "VKSKY_LUT_CACHE=ro, cold: a LUT cache file was written"
+[ "$(notes ro_miss.err)" -eq 0 ] || fail "VKSKY_LUT_CACHE=ro, cold: a note: $(cat ro_miss.err)"
+same ro_miss || fail "VKSKY_LUT_CACHE=ro, cold: the images differ"
 
 # 6. The command line's single frame as a host of include/vksky.h (no --timings: headless_api.c): the library's
 #    vksky_context_set_cache_directory + vksky_renderer_store_luts write the file on a miss and upload it on a hit.

@@ -4,6 +4,8 @@
  * sunset; the known answers (d = 0; T at 200 m and 10 km for Hillaire's Earth); S growing with distance; a far
  * ground point against the sky pass along the same ray; the layers adding up. Validation on throughout. */
 #include "aerial_points.h"
+#include <dirent.h>
+#include <unistd.h>
 
 
 /* Every point of `groups` through the composite pass of renderer t with march settings `base`, against the
@@ -65,8 +67,43 @@ static void compare_all(test_renderer *t, composite_view base, const char *label
 
 }
 
-int main(void)
+/* `test_aerial --store-luts DIR`: the ctest fixture aerial_luts of this test and ap_volume (tests/CMakeLists.txt,
+ * FIXTURES_SETUP): their converged LUTs (aerial_converged_luts, most of each test's CPU on lavapipe) computed once,
+ * under validation and synchronization validation, into the LUT cache directory DIR, which the two tests then only
+ * read (VKSKY_LUT_CACHE=ro, VKSKY_TEST_LUT_DIR; aerial_setup). DIR's LUT files are removed first, so the tests read
+ * this build's LUTs, computed in this run. */
+static int store_luts(const char *dir)
 {
+    DIR *d = opendir(dir);
+    for (struct dirent *e; d && (e = readdir(d));) {
+        char path[4096];
+        if (strncmp(e->d_name, "luts-", 5) || snprintf(path, sizeof path, "%s/%s", dir, e->d_name) >= (int)sizeof path)
+            continue;
+        CHECK(unlink(path) == 0, "cannot remove %s", path);
+    }
+    if (d) closedir(d);
+    setenv("VKSKY_TEST_LUT_DIR", dir, 1);
+    setenv("VKSKY_LUT_CACHE", "1", 1);
+    gpu_context ctx;
+    model_atmosphere earth;
+    test_renderer t;
+    aerial_setup(&ctx, &earth, &t);
+    sky_view view = sky_view_default();
+    test_frame f = test_renderer_frame(&t, &view);   /* computes the LUTs, then stores them (sky_renderer_render) */
+    CHECK(t.r.lut_cache == SKY_LUT_CACHE_STORED, "the converged LUTs were not stored in %s (LUT cache state %d)",
+          dir, (int)t.r.lut_cache);
+    test_frame_free(&f);
+    aerial_teardown(&ctx, &t);
+    return test_finish("test_aerial --store-luts");
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 3 && !strcmp(argv[1], "--store-luts") && argv[2][0]) return store_luts(argv[2]);
+    if (argc != 1) {
+        fprintf(stderr, "usage: test_aerial [--store-luts DIR]\n");
+        return 2;
+    }
     gpu_context ctx;
     model_atmosphere earth;
     test_renderer t;
@@ -76,6 +113,7 @@ int main(void)
 
     result seed[11];
     compare_all(&t, base, "converged", 0.02, 0.03, seed);
+    aerial_check_shared_luts(&t);
     /* The world's conventions change nothing but the numbers: the seed group again in a Z-up world in metres and
      * a Y-up world in km (the camera above the origin: the same rays); the sun's azimuth turns with the axes. */
     {
@@ -158,7 +196,6 @@ int main(void)
                res.R[0] + res.M[0], res.R[1] + res.M[1], res.R[2] + res.M[2], sky[0], sky[1], sky[2]);
         test_frame_free(&f);
     }
-    test_renderer_destroy(&t);
-    gpu_context_destroy(&ctx);
+    aerial_teardown(&ctx, &t);
     return test_finish("test_aerial");
 }

@@ -12,28 +12,31 @@ static const double BOUND_T = 3e-3, BOUND_S = 0.04;   /* measured: 2.5e-3, 2.9 %
 
 typedef struct errors { double T, S, T_march, S_march; } errors;
 
-/* The point through a volume frame and a march frame of the same camera; errors against the reference. */
-static errors measure(test_renderer *t, composite_view base, const ap_volume_desc *vol, const group *g, int i,
-                      const ref_aerial *ref, result *vol_out)
+/* The points of `g` through one volume frame and one march frame of the same camera (each pixel is its own point:
+ * the frame's other pixels change nothing); each point's errors against its reference. */
+static void measure(test_renderer *t, composite_view base, const ap_volume_desc *vol, const group *g,
+                    const ref_aerial *refs, errors *e, result *vol_out)
 {
-    group one = {g->altitude_km, g->sun_az, g->sun_el, &g->points[i], 1};
-    result rv, rm;
-    run_group(t, &one, base, vol, &rv);
-    run_group(t, &one, base, NULL, &rm);
-    errors e = {0, 0, 0, 0};
-    for (int c = 0; c < 3; ++c) {
-        double S_ref = ref->rayleigh[c] + ref->mie[c];
-        e.T = fmax(e.T, fabs(rv.T[c] - ref->transmittance[c]));
-        e.T_march = fmax(e.T_march, fabs(rm.T[c] - ref->transmittance[c]));
-        e.S = fmax(e.S, rel((double)rv.R[c] + rv.M[c], S_ref, 1e-6));
-        e.S_march = fmax(e.S_march, rel((double)rm.R[c] + rm.M[c], S_ref, 1e-6));
-        /* The volume's layers still add up in the composite. */
-        double expect = BEAUTY[c] * rv.T[c] + rv.R[c] + rv.M[c];
-        CHECK(rel(rv.composite[c], expect, 1e-6) < 1e-5, "%s: composite %g != beauty T + R + M %g",
-              g->points[i].what, rv.composite[c], expect);
+    result rv[24], rm[24];
+    CHECK(g->count <= 24, "%d points in one frame", g->count);
+    run_group(t, g, base, vol, rv);
+    run_group(t, g, base, NULL, rm);
+    for (int i = 0; i < g->count && i < 24; ++i) {
+        const ref_aerial *ref = &refs[i];
+        e[i] = (errors){0, 0, 0, 0};
+        for (int c = 0; c < 3; ++c) {
+            double S_ref = ref->rayleigh[c] + ref->mie[c];
+            e[i].T = fmax(e[i].T, fabs(rv[i].T[c] - ref->transmittance[c]));
+            e[i].T_march = fmax(e[i].T_march, fabs(rm[i].T[c] - ref->transmittance[c]));
+            e[i].S = fmax(e[i].S, rel((double)rv[i].R[c] + rv[i].M[c], S_ref, 1e-6));
+            e[i].S_march = fmax(e[i].S_march, rel((double)rm[i].R[c] + rm[i].M[c], S_ref, 1e-6));
+            /* The volume's layers still add up in the composite. */
+            double expect = BEAUTY[c] * rv[i].T[c] + rv[i].R[c] + rv[i].M[c];
+            CHECK(rel(rv[i].composite[c], expect, 1e-6) < 1e-5, "%s: composite %g != beauty T + R + M %g",
+                  g->points[i].what, rv[i].composite[c], expect);
+        }
+        if (vol_out) vol_out[i] = rv[i];
     }
-    if (vol_out) *vol_out = rv;
-    return e;
 }
 
 int main(void)
@@ -61,8 +64,11 @@ int main(void)
             ref_dir(p->view_az * TEST_DEG, p->view_el * TEST_DEG, v);
             ref_aerial ref;
             ref_radiance_to_point(&earth, g->altitude_km, v, sun, p->d_km, q, &ref);
+            /* Each point its own camera (turned off the point): one point a frame. */
+            group one = {g->altitude_km, g->sun_az, g->sun_el, p, 1};
             result rv;
-            errors e = measure(&t, cv, &vol, g, i, &ref, &rv);
+            errors e;
+            measure(&t, cv, &vol, &one, &ref, &e, &rv);
             printf("%-36s volume |dT| %.1e S %.2f%%   march |dT| %.1e S %.2f%%%s\n", p->what, e.T, 100 * e.S,
                    e.T_march, 100 * e.S_march, p->d_km > vol.range_km ? "   (beyond the range: marched)" : "");
             CHECK(e.T <= BOUND_T, "%s: volume transmittance off the reference by %.2e > %.0e", p->what, e.T, BOUND_T);
@@ -83,6 +89,7 @@ int main(void)
            "march's own: |dT| +%.1e, S +%.2f%%\n", checked, worst_T, BOUND_T, 100 * worst_S, 100 * BOUND_S,
            worst_T_interp, 100 * worst_S_interp);
     CHECK(checked >= 20, "only %d points", checked);
+    aerial_check_shared_luts(&t);
 
     /* 2. The trade by distance (docs/readme/apvolume.md): seed 004's camera (218.8 m, looking along azimuth 95,
      * pitch 0, 40 deg), sun 30 deg up; a horizontal ray, one 0.3 deg down (the ground 42 km away: every point above it), one 3 deg up. */
@@ -93,25 +100,31 @@ int main(void)
     double sun[3];
     ref_dir(0.0, 30.0 * TEST_DEG, sun);
     printf("\n| distance | volume max dT | march max dT | volume S error | march S error |\n|---|---|---|---|---|\n");
+    /* All 24 points share the camera: one volume frame and one march frame of 24 points. */
+    point_case pcs[24];
+    ref_aerial refs[24];
+    errors e[24];
+    for (int k = 0; k < 8; ++k)
+        for (int d = 0; d < 3; ++d) {
+            pcs[3 * k + d] = (point_case){"sweep", dirs[d][0], dirs[d][1], dists[k]};
+            double v[3];
+            ref_dir(dirs[d][0] * TEST_DEG, dirs[d][1] * TEST_DEG, v);
+            ref_radiance_to_point(&earth, 0.2188, v, sun, dists[k], q, &refs[3 * k + d]);
+        }
+    group sweep = {0.2188, 0.0, 30.0, pcs, 24};
+    measure(&t, cv, &vol, &sweep, refs, e, NULL);
     for (int k = 0; k < 8; ++k) {
         errors worst = {0, 0, 0, 0};
         for (int d = 0; d < 3; ++d) {
-            point_case pc = {"sweep", dirs[d][0], dirs[d][1], dists[k]};
-            group g = {0.2188, 0.0, 30.0, &pc, 1};
-            double v[3];
-            ref_dir(pc.view_az * TEST_DEG, pc.view_el * TEST_DEG, v);
-            ref_aerial ref;
-            ref_radiance_to_point(&earth, g.altitude_km, v, sun, pc.d_km, q, &ref);
-            errors e = measure(&t, cv, &vol, &g, 0, &ref, NULL);
-            worst.T = fmax(worst.T, e.T), worst.S = fmax(worst.S, e.S);
-            worst.T_march = fmax(worst.T_march, e.T_march), worst.S_march = fmax(worst.S_march, e.S_march);
+            const errors *ed = &e[3 * k + d];
+            worst.T = fmax(worst.T, ed->T), worst.S = fmax(worst.S, ed->S);
+            worst.T_march = fmax(worst.T_march, ed->T_march), worst.S_march = fmax(worst.S_march, ed->S_march);
         }
         printf("| %g km | %.1e | %.1e | %.2f %% | %.2f %% |\n", dists[k], worst.T, worst.T_march, 100 * worst.S,
                100 * worst.S_march);
         CHECK(worst.T <= BOUND_T && worst.S <= BOUND_S, "sweep %g km: volume |dT| %.2e, S %.2f%%", dists[k], worst.T,
               100 * worst.S);
     }
-    test_renderer_destroy(&t);
-    gpu_context_destroy(&ctx);
+    aerial_teardown(&ctx, &t);
     return test_finish("test_ap_volume");
 }

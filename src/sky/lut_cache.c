@@ -78,15 +78,18 @@ bool sky_lut_cache_fetch(sky_renderer *r)
     r->lut_cache = SKY_LUT_CACHE_OFF;
     if (!ctx->cache_file) return false;   /* --no-cache, or no cache directory */
     /* VKSKY_LUT_CACHE=0: the test suite's setting (tests/CMakeLists.txt). Its tests count LUT passes and trace
-     * barriers in one shared cache directory, where a test's second run would otherwise differ from its first. */
+     * barriers in one shared cache directory, where a test's second run would otherwise differ from its first.
+     * VKSKY_LUT_CACHE=ro: read, never write (tests that share LUTs a ctest fixture computed: a reader running
+     * beside another never writes the directory, and a miss computes the LUTs as with the cache off). */
     const char *env = getenv("VKSKY_LUT_CACHE");
     if (env && !strcmp(env, "0")) return false;
+    bool read_only = env && !strcmp(env, "ro");
     lut_cache_key key;
     make_key(r, &key);
     size_t size = sky_lut_cache_size(r);
     void *payload = gpu_cache_blob_load(ctx, "luts", &key, sizeof key, size);
     if (!payload) {
-        r->lut_cache = SKY_LUT_CACHE_MISS;
+        r->lut_cache = read_only ? SKY_LUT_CACHE_OFF : SKY_LUT_CACHE_MISS;
         return false;
     }
     /* The staging buffer of an earlier upload was consumed by a submission that has finished (a new atmosphere

@@ -445,7 +445,7 @@ int composite_run(const options *o, const composite_options *co)
     }
     /* The segments' steps by length, the sky by tiles (docs/aerial_perspective.md). */
     if (vksky_composite_set_view(c, &v, (uint32_t)h, VKSKY_COMPOSITE_FAST, NULL) != VKSKY_SUCCESS) status = 1;
-    if (status == 0 && o->bench_frames > 0) {   /* the first band (the whole image up to 2^20 pixels) */
+    if (status == 0 && o->bench_frames > 0) {   /* the first band (the whole image up to 2^18 pixels) */
         composite_fixups ignored = {0};
         if ((status = band_reader_read(&reader, 0, &ignored)) == 0) {
             band_reader_upload(&reader, vksky_composite_inputs(c, 0), band_rows);

@@ -11,7 +11,7 @@
 #include "io/exr_layers.h"
 #include <vksky.h>
 
-/* Rows per band for a width x height composite: about 2^20 pixels (VKSKY_COMPOSITE_BAND_ROWS overrides, for
+/* Rows per band for a width x height composite: about 2^18 pixels (VKSKY_COMPOSITE_BAND_ROWS overrides, for
  * tests), a whole number of the writer's 16-row chunks, the whole image when it is smaller. */
 int composite_band_rows(int width, int height);
 
