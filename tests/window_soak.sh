@@ -76,11 +76,15 @@ if [ "${3:-}" = "--inside-xvfb" ]; then
     RANDOM=$SEED
     keys=(b 1 2 3 equal minus Up Down Left Right w a s d t F1)
     resizes=0 reloads=0 rss1=0 waited=0 missed=0 last_size=320x180
-    # Send the commands queued so far (one xdotool process: one X connection), then resize to $1x$2 and wait until a
-    # frame of that size has been presented: a "presented WxH" line after the ones already there.
-    resize_and_wait() {
+    # Send the commands queued so far in one xdotool process (one X connection).
+    send_queued() {
         if [ ${#cmd[@]} -gt 0 ]; then timeout 60 xdotool "${cmd[@]}" || fail "round $round: xdotool failed"; fi
         cmd=()
+    }
+    # Send what is queued, then resize to $1x$2 and wait until a frame of that size has been presented: a
+    # "presented WxH" line after the ones already there.
+    resize_and_wait() {
+        send_queued
         local before
         before=$(grep -c '^presented ' "$work/out")
         timeout 10 xdotool windowsize "$wid" "$1" "$2"
@@ -122,7 +126,7 @@ if [ "${3:-}" = "--inside-xvfb" ]; then
                 cmd+=(windowunmap "$wid" sleep 0.3 windowmap "$wid" sleep 0.1 windowfocus "$wid")
             fi
         done
-        if [ ${#cmd[@]} -gt 0 ]; then timeout 60 xdotool "${cmd[@]}" || fail "round $round: xdotool failed"; fi
+        send_queued
         # The scene edited (a different Rayleigh scale height: new LUTs) and reloaded with F5.
         sed -i -E "s/\"scale_height_km\": (8|9)\b/\"scale_height_km\": $((8 + round % 2))/" "$work/scene.json"
         timeout 5 xdotool key F5
