@@ -721,7 +721,9 @@ VKSKY_API vksky_tonemap_path vksky_renderer_get_tonemap_path(const vksky_rendere
  * render") -----------------------------------------------------------------------------------------------------
  * The atmosphere applied to an image the host rendered (its beauty and world position per pixel), with its layers:
  * the composite, the sky, the sun disc, the transmittance and the Rayleigh and Mie in-scattering. A composite pass is
- * made over a renderer (its LUTs, its scene's medium and sun; the renderer must outlive it) for bands of `width` x
+ * made over a renderer (its LUTs, its scene's medium and sun; the renderer must outlive it; an RGB scene's, or a
+ * spectral group's of three a pass, whose layers then hold its three wavelengths for the host to sum, as the command
+ * line's --composite --spectral N does: docs/aerial_perspective.md "Spectral colour") for bands of `width` x
  * `rows` pixels; an image of any height is composited band by band. Per band the host writes the inputs into a slot's
  * host-visible buffer, records the frame into its own command buffer (LUTs when stale, the upload, the pass, the copy
  * back: every barrier vksky's, named in docs/synchronization.md), submits it, waits, and reads the slot's layers. Two

@@ -135,6 +135,7 @@ api_hosts+=(app/runs/headless.c app/runs/headless.h app/runs/spectral_render.c  
             app/runs/spectral_render.h app/runs/host_device.h)                   # every headless run, --spectral (issue 25)
 api_hosts+=(app/runs/composite_app.c app/runs/composite_app.h app/runs/composite_bands.c   # --composite, --aovs
             app/runs/composite_bands.h app/runs/composite_layers.c app/runs/composite_layers.h   # (25x)
+            app/runs/composite_spectral.c app/runs/composite_spectral.h   # --composite --spectral N (issue 32)
             app/runs/composite_camera.c app/runs/composite_camera.h)
 for f in "${api_hosts[@]}"; do
   [ -f "$f" ] || { echo "layering: $f: listed as an API host but missing"; fail=1; continue; }

@@ -74,7 +74,10 @@ vksky_result vksky_composite_create(vksky_renderer *renderer, const vksky_compos
         return VKSKY_ERROR_ABI_MISMATCH;
     }
     if (desc->next) return refuse(ctx, "next: NULL (no extension struct is known here)");
-    if (renderer->per_pass) return refuse(ctx, "a renderer of an RGB scene (not a spectral group's)");
+    /* A group of three wavelengths a pass renders them in the layers' R, G, B (the host sums the groups); four a
+     * pass is the four-wide build, whose fourth wavelength the RGB layers cannot hold. */
+    if (renderer->per_pass == 4)
+        return refuse(ctx, "a renderer of an RGB scene or of a spectral group of three a pass (not four)");
     if (desc->slots > VKSKY_COMPOSITE_SLOTS_MAX) return refuse(ctx, "slots: 0..2 (0: one)");
     if (desc->volume && (desc->volume_size[0] < 1 || desc->volume_size[1] < 1 || desc->volume_size[2] < 1 ||
                          desc->volume_size[0] > 512 || desc->volume_size[1] > 512 || desc->volume_size[2] > 512 ||

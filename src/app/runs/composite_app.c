@@ -6,6 +6,7 @@
 #include "app/runs/composite_bands.h"
 #include "app/runs/composite_camera.h"
 #include "app/runs/composite_layers.h"
+#include "app/runs/composite_spectral.h"
 #include "app/runs/exr_header.h"
 #include "app/runs/host_async.h"
 #include "app/runs/host_device.h"
@@ -265,6 +266,31 @@ static void *check_thread(void *arg)
     return NULL;
 }
 
+/* The spectral composite's bands (composite_spectral.h) into out_path: the same stream, layers and header as the RGB
+ * composite's. 0, or 1 after one line on stderr. */
+static int spectral_bands(const options *o, composite_gpu *g, band_reader *reader, const vksky_composite_desc *cdesc,
+                          const composite_view *v, int w, int h, const io_exr_meta *meta, const char *out_path)
+{
+    char err[600];
+    io_exr_band_layer layers[VKSKY_COMPOSITE_LAYERS];
+    for (uint32_t k = 0; k < VKSKY_COMPOSITE_LAYERS; ++k)
+        layers[k] = (io_exr_band_layer){AOV_NAMES[k], k == 0 ? 4 : 3, 4, NULL};
+    io_exr_layers_stream *out = io_exr_layers_stream_open(out_path, w, h, layers, VKSKY_COMPOSITE_LAYERS, meta, err,
+                                                          sizeof err);
+    if (!out) {
+        fprintf(stderr, "vksky: --render: %s\n", err);
+        return 1;
+    }
+    if (composite_spectral_bands(reader, &g->h[0], g->ctx, g->scene, o->spectral, cdesc, v,
+                                 o->trace_barriers ? stdout : NULL, out) != 0)
+        return 1;
+    if (io_exr_layers_stream_finish(out, err, sizeof err) != 0) {
+        fprintf(stderr, "vksky: --render: %s\n", err);
+        return 1;
+    }
+    return 0;
+}
+
 int composite_run(const options *o, const composite_options *co)
 {
     char err[600];
@@ -432,6 +458,11 @@ int composite_run(const options *o, const composite_options *co)
 
     vksky_composite *c = NULL;
     cdesc.rows = (uint32_t)band_rows;
+    if (o->spectral) {   /* --spectral N: a composite pass per group of three wavelengths (composite_spectral.h) */
+        status = gpu_end(&g, spectral_bands(o, &g, &reader, &cdesc, &v, w, h, &hdr.meta, out_path));
+        started = false;
+        goto done_header;
+    }
     /* Two slots, a ring of bands (composite_bands.h), where there are several bands of one frame each and no
      * --async-luts; VKSKY_COMPOSITE_SLOTS=1: one band at a time. */
     const char *slots_env = getenv("VKSKY_COMPOSITE_SLOTS");
