@@ -59,19 +59,10 @@ static int run(options *o, int argc, char **argv)
                 co.input ? "--composite" : "--aovs");
         return 2;
     }
-    if (o->spectral && co.aovs) {
-        fprintf(stderr, "vksky: --spectral: not with --aovs (its plain sky frame and layers are RGB; --composite takes "
-                        "--spectral)\n");
-        return 2;
-    }
     if (o->max_color_error > 0.0) {   /* the colour axis of the trade: the fewest wavelengths that keep the promise */
         if (o->spectral || o->reference) {
             fprintf(stderr, "vksky: --max-color-error: not with %s; give one or the other\n",
                     o->reference ? "--reference" : "--spectral");
-            return 2;
-        }
-        if (co.aovs) {
-            fprintf(stderr, "vksky: --max-color-error: not with --aovs (its plain sky frame and layers are RGB)\n");
             return 2;
         }
         unsigned classes = o->quality_classes ? o->quality_classes
@@ -92,7 +83,7 @@ static int run(options *o, int argc, char **argv)
         printf("vksky: --max-color-error %g: picked --spectral %d (measured worst CIEDE2000 %.2f on the '%s' scene)\n",
                o->max_color_error, n, measured, names);
     }
-    spectral_auto(o, co.aovs ? "--aovs" : NULL);   /* --quality auto's colour: spectral where RGB's is far off */
+    spectral_auto(o, NULL);   /* --quality auto's colour: spectral where RGB's is far off */
     if (spectral_render_check(o, "--spectral")) return 2;   /* the GPU's --spectral: EXR renders only */
     /* The composite keeps the lesson's scale (docs/units.md: the layers add up with the render's own units): its
      * header says so (vksky:units). */

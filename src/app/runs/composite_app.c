@@ -12,6 +12,7 @@
 #include "app/runs/host_device.h"
 #include "app/runs/host_print.h"
 #include "app/runs/host_ring.h"
+#include "app/runs/spectral_host.h"
 #include "app/runs/startup.h"
 #include "app/runs/stop.h"
 #include "app/scene/light.h"
@@ -114,8 +115,8 @@ static int gpu_begin(const options *o, composite_gpu *g, vksky_scene *scene, uin
 
 /* The composite RGBA at the top level (or `top` when given), the AOVs as RGB layers (io/exr_layers.h: half, the
  * layer.channel names). */
-static int write_layers(const char *path, vksky_composite *c, int w, int h, const float *top, const io_exr_meta *meta,
-                        char *err, size_t err_size)
+static int write_layers(const char *path, const float *const *aov, int w, int h, const float *top,
+                        const io_exr_meta *meta, char *err, size_t err_size)
 {
     size_t n = (size_t)w * h;
     float *rgb = malloc(n * 3 * sizeof(float) * (VKSKY_COMPOSITE_LAYERS - 1));
@@ -124,10 +125,10 @@ static int write_layers(const char *path, vksky_composite *c, int w, int h, cons
         return -1;
     }
     io_exr_out_layer layers[VKSKY_COMPOSITE_LAYERS];
-    layers[0] = (io_exr_out_layer){"", 4, top ? top : vksky_composite_layer(c, 0, 0)};
+    layers[0] = (io_exr_out_layer){"", 4, top ? top : aov[0]};
     for (uint32_t k = 1; k < VKSKY_COMPOSITE_LAYERS; ++k) {
         float *dst = rgb + (size_t)(k - 1) * 3 * n;
-        const float *src = vksky_composite_layer(c, 0, k);
+        const float *src = aov[k];
         for (size_t i = 0; i < n; ++i)
             for (int ch = 0; ch < 3; ++ch) dst[3 * i + ch] = src[4 * i + ch];
         layers[k] = (io_exr_out_layer){AOV_NAMES[k], 3, dst};
@@ -164,44 +165,6 @@ static options composite_scene(const options *o, const composite_options *co, co
         s.view.fov_deg = v->fov_y_deg;
     }
     return s;
-}
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* --bench N with --composite: per-pass GPU medians of N composite frames after warm-up (the LUTs are not in them:
- * built once by the first frame), one line per pass like the sky's benchmark. */
-static void bench(composite_gpu *g, vksky_composite *c, bool volume, uint32_t width, uint32_t rows, int frames,
-                  FILE *trace)
-{
-    enum { PASSES = 4 };
-    static const char *const names[PASSES] = {"ap_volume", "composite_upload", "composite", "composite_readback"};
-    double *ms = calloc((size_t)frames * (PASSES + 1), sizeof *ms);
-    if (!ms) return;
-    double *wall = ms + (size_t)frames * PASSES;   /* submit -> fence (lavapipe's timestamps miss compute work) */
-    bool timed = true;
-    vksky_composite_frame f = {.slot = 0};
-    for (int i = 0; i < 3; ++i) composite_submit(&g->h[0], g->r, c, &f, 1, trace, NULL);   /* warm-up: LUTs, compiles */
-    for (int i = 0; i < frames; ++i) {
-        composite_submit(&g->h[0], g->r, c, &f, 1, trace, &wall[i]);
-        vksky_pass_timing read[64];
-        uint32_t count = 0;
-        timed = vksky_renderer_get_timings(g->r, read, 64, &count) == VKSKY_SUCCESS;
-        for (uint32_t k = 0; k < count && k < 64; ++k)
-            for (int p = 0; p < PASSES; ++p)
-                if (!strcmp(read[k].name, names[p])) ms[p * frames + i] = read[k].gpu_ms;
-    }
-    for (int p = volume ? 0 : 1; p < PASSES && timed; ++p) {
-        qsort(ms + p * frames, (size_t)frames, sizeof *ms, compare_double);
-        printf("pass %s gpu_ms %.4f (%ux%u)\n", names[p], ms[p * frames + frames / 2], width, rows);
-    }
-    qsort(wall, (size_t)frames, sizeof *wall, compare_double);
-    printf("composite frame wall_ms %.3f (submit to fence, median of %d; %s)\n", wall[frames / 2], frames,
-           volume ? "volume" : "march");
-    free(ms);
 }
 
 static bool is_exr(const char *path)
@@ -480,8 +443,8 @@ int composite_run(const options *o, const composite_options *co)
         composite_fixups ignored = {0};
         if ((status = band_reader_read(&reader, 0, &ignored)) == 0) {
             band_reader_upload(&reader, vksky_composite_inputs(c, 0), band_rows);
-            bench(&g, c, cdesc.volume, (uint32_t)w, (uint32_t)band_rows, o->bench_frames,
-                  o->trace_barriers ? stdout : NULL);
+            composite_bench(&g.h[0], g.r, c, cdesc.volume, (uint32_t)w, (uint32_t)band_rows, o->bench_frames,
+                            o->trace_barriers ? stdout : NULL);
         }
     }
     static const char *const names[VKSKY_COMPOSITE_LAYERS] = {"", "sky", "sun_disk", "transmittance", "rayleigh",
@@ -535,11 +498,7 @@ int composite_aovs_run(const options *o, const composite_options *co)
     composite_gpu g;
     int status = gpu_begin(o, &g, NULL, (uint32_t)o->width, (uint32_t)o->height, true);
     if (status) return status;
-    /* The sky frame itself, as a plain render (the view as the command line gives it). */
-    host_view hv = {.yaw_deg = o->view.yaw_deg, .pitch_deg = o->view.pitch_deg, .fov_deg = o->view.fov_deg,
-                    .exposure = o->view.exposure_ev, .auto_exposure = light_auto_exposure_wanted(o)};
     FILE *trace = o->trace_barriers ? stdout : NULL;
-    if (host_commands_render(&g.h[0], g.r, &hv, trace, NULL) != 0) return gpu_end(&g, 1);
     /* The layers: the composite pass over a frame with no geometry, the camera the view's (at the world origin,
      * +Y up, km), its altitude exactly the sky pass's. The volume only with --aerial-perspective volume: there is no
      * geometry to sample it, but the frame is the composite's with the volume pass in it (barrier tests,
@@ -554,23 +513,42 @@ int composite_aovs_run(const options *o, const composite_options *co)
                                .volume_size = {co->ap_size[0], co->ap_size[1], co->ap_size[2]},
                                .volume_range_km = (float)co->ap_range_km,
                                .volume_distribution = (float)co->ap_distribution};
-    vksky_composite *c = NULL;
-    if (vksky_composite_create(g.r, &cd, &c) != VKSKY_SUCCESS) return gpu_end(&g, 2);
-    if (vksky_composite_set_view(c, &v, (uint32_t)o->height, VKSKY_COMPOSITE_VIEW_ALTITUDE, NULL) != VKSKY_SUCCESS) {
-        vksky_composite_destroy(c);
-        return gpu_end(&g, 1);
-    }
     size_t n = (size_t)o->width * o->height;
-    float *in = vksky_composite_inputs(c, 0);
-    for (size_t i = 0; i < n; ++i) {
-        float *b = in + 4 * i, *p = in + 4 * (n + i);
-        b[0] = b[1] = b[2] = b[3] = 0.0f;
-        p[0] = p[1] = p[2] = p[3] = NAN;   /* no geometry anywhere */
+    const float *aov[VKSKY_COMPOSITE_LAYERS] = {NULL};
+    const uint16_t *linear = NULL;
+    const uint8_t *display = NULL;
+    vksky_composite *c = NULL;
+    spectral_image img = {0};
+    float *sums = NULL;
+    if (o->spectral) {   /* the sky frame (the spectral still's) and the layers in spectral colour */
+        if (spectral_host_render(o, g.ctx, g.scene, &g.h[0], &img) != 0 ||
+            composite_spectral_aovs(&g.h[0], g.ctx, g.scene, o->spectral, &cd, &v, trace, &sums) != 0)
+            status = 1;
+        for (uint32_t k = 0; k < VKSKY_COMPOSITE_LAYERS && sums; ++k) aov[k] = sums + (size_t)k * n * 4;
+        linear = img.linear, display = img.display;
+    } else {
+        /* The sky frame itself, as a plain render (the view as the command line gives it). */
+        host_view hv = {.yaw_deg = o->view.yaw_deg, .pitch_deg = o->view.pitch_deg, .fov_deg = o->view.fov_deg,
+                        .exposure = o->view.exposure_ev, .auto_exposure = light_auto_exposure_wanted(o)};
+        if (host_commands_render(&g.h[0], g.r, &hv, trace, NULL) != 0) return gpu_end(&g, 1);
+        if (vksky_composite_create(g.r, &cd, &c) != VKSKY_SUCCESS) return gpu_end(&g, 2);
+        if (vksky_composite_set_view(c, &v, (uint32_t)o->height, VKSKY_COMPOSITE_VIEW_ALTITUDE, NULL) != VKSKY_SUCCESS) {
+            vksky_composite_destroy(c);
+            return gpu_end(&g, 1);
+        }
+        float *in = vksky_composite_inputs(c, 0);
+        for (size_t i = 0; i < n; ++i) {
+            float *b = in + 4 * i, *p = in + 4 * (n + i);
+            b[0] = b[1] = b[2] = b[3] = 0.0f;
+            p[0] = p[1] = p[2] = p[3] = NAN;   /* no geometry anywhere */
+        }
+        vksky_composite_frame f = {.slot = 0};
+        if (composite_submit(&g.h[0], g.r, c, &f, frames_from_env(), trace, NULL) != 0) status = 1;
+        vksky_readback px;
+        if (status == 0 && vksky_renderer_get_readback(g.r, &px) != VKSKY_SUCCESS) status = 1;
+        if (status == 0) linear = px.linear_rgba16f, display = px.display_rgba8;
+        for (uint32_t k = 0; k < VKSKY_COMPOSITE_LAYERS; ++k) aov[k] = vksky_composite_layer(c, 0, k);
     }
-    vksky_composite_frame f = {.slot = 0};
-    if (composite_submit(&g.h[0], g.r, c, &f, frames_from_env(), trace, NULL) != 0) status = 1;
-    vksky_readback px;
-    if (status == 0 && vksky_renderer_get_readback(g.r, &px) != VKSKY_SUCCESS) status = 1;
     float *top = status ? NULL : malloc(n * 4 * sizeof(float));
     exr_header hdr;
     options with_aovs = *o;   /* the command line with --aovs */
@@ -579,12 +557,12 @@ int composite_aovs_run(const options *o, const composite_options *co)
         free(top);
         top = NULL;
     }
-    for (size_t i = 0; top && i < 4 * n; ++i) top[i] = io_half_to_float(px.linear_rgba16f[i]);
+    for (size_t i = 0; top && i < 4 * n; ++i) top[i] = io_half_to_float(linear[i]);
     for (int i = 0; i < o->output_count && status == 0; ++i) {
         int rc = !top ? -1
-                 : is_exr(o->outputs[i]) ? write_layers(o->outputs[i], c, o->width, o->height, top, &hdr.meta, err,
+                 : is_exr(o->outputs[i]) ? write_layers(o->outputs[i], aov, o->width, o->height, top, &hdr.meta, err,
                                                         sizeof err)
-                                         : io_write_png(o->outputs[i], o->width, o->height, px.display_rgba8, 1, err,
+                                         : io_write_png(o->outputs[i], o->width, o->height, display, 1, err,
                                                         sizeof err);
         if (rc != 0) {
             fprintf(stderr, "vksky: --render: %s\n", top ? err : "out of memory");
@@ -593,6 +571,8 @@ int composite_aovs_run(const options *o, const composite_options *co)
     }
     if (top) exr_header_free(&hdr);
     free(top);
+    free(sums);
+    spectral_image_release(&img);
     vksky_composite_destroy(c);
     return gpu_end(&g, status);
 }

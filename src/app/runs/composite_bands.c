@@ -203,3 +203,39 @@ int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_
     }
     return 0;
 }
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+void composite_bench(host_commands *h, vksky_renderer *r, vksky_composite *c, bool volume, uint32_t width,
+                     uint32_t rows, int frames, FILE *trace)
+{
+    enum { PASSES = 4 };
+    static const char *const names[PASSES] = {"ap_volume", "composite_upload", "composite", "composite_readback"};
+    double *ms = calloc((size_t)frames * (PASSES + 1), sizeof *ms);
+    if (!ms) return;
+    double *wall = ms + (size_t)frames * PASSES;   /* submit -> fence (lavapipe's timestamps miss compute work) */
+    bool timed = true;
+    vksky_composite_frame f = {.slot = 0};
+    for (int i = 0; i < 3; ++i) composite_submit(h, r, c, &f, 1, trace, NULL);   /* warm-up: LUTs, compiles */
+    for (int i = 0; i < frames; ++i) {
+        composite_submit(h, r, c, &f, 1, trace, &wall[i]);
+        vksky_pass_timing read[64];
+        uint32_t count = 0;
+        timed = vksky_renderer_get_timings(r, read, 64, &count) == VKSKY_SUCCESS;
+        for (uint32_t k = 0; k < count && k < 64; ++k)
+            for (int p = 0; p < PASSES; ++p)
+                if (!strcmp(read[k].name, names[p])) ms[p * frames + i] = read[k].gpu_ms;
+    }
+    for (int p = volume ? 0 : 1; p < PASSES && timed; ++p) {
+        qsort(ms + p * frames, (size_t)frames, sizeof *ms, compare_double);
+        printf("pass %s gpu_ms %.4f (%ux%u)\n", names[p], ms[p * frames + frames / 2], width, rows);
+    }
+    qsort(wall, (size_t)frames, sizeof *wall, compare_double);
+    printf("composite frame wall_ms %.3f (submit to fence, median of %d; %s)\n", wall[frames / 2], frames,
+           volume ? "volume" : "march");
+    free(ms);
+}

@@ -51,4 +51,9 @@ int composite_submit(host_commands *h, vksky_renderer *r, vksky_composite *c, co
 int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_renderer *r, vksky_composite *c,
                            int frames, FILE *trace, io_exr_layers_stream *out);
 
+/* --bench N with --composite: per-pass GPU medians of N composite frames of slot 0's inputs after warm-up (the LUTs
+ * are not in them: built once by the first frame), one line per pass like the sky's benchmark, on stdout. */
+void composite_bench(host_commands *h, vksky_renderer *r, vksky_composite *c, bool volume, uint32_t width,
+                     uint32_t rows, int frames, FILE *trace);
+
 #endif

@@ -10,7 +10,7 @@
 
 #define GROUPS_MAX 16   /* 48 wavelengths, three to a pass */
 #define PER_PASS 3u     /* the layers are RGB: three wavelengths to a pass */
-#define FP16_MAX 65504.0f   /* the composite pass's clamp (shaders/glsl/composite.comp `store`) */
+#define FP16_MAX 65504.0f   /* half's largest finite value, the composite pass's clamp (composite.comp `store`) */
 
 static const char *const LAYER_NAMES[VKSKY_COMPOSITE_LAYERS] = {"", "sky", "sun_disk", "transmittance", "rayleigh", "mie"};
 
@@ -38,7 +38,8 @@ static void groups_destroy(spectral_groups *g)
 
 /* One renderer (the LUTs of the group's medium, kept for every band) and one composite pass per group. */
 static int groups_create(spectral_groups *g, vksky_context *ctx, const vksky_scene *scene, int wavelengths,
-                         const vksky_composite_desc *desc, const composite_view *view, uint32_t whole_height)
+                         const vksky_composite_desc *desc, const composite_view *view, uint32_t whole_height,
+                         uint32_t view_flags)
 {
     uint32_t count = vksky_spectral_group_count((uint32_t)wavelengths, PER_PASS);
     if (count == 0 || count > GROUPS_MAX) {
@@ -65,7 +66,7 @@ static int groups_create(spectral_groups *g, vksky_context *ctx, const vksky_sce
         cd.slots = 1;
         if (vksky_renderer_create(ctx, &rd, &g->r[k]) != VKSKY_SUCCESS ||
             vksky_composite_create(g->r[k], &cd, &g->c[k]) != VKSKY_SUCCESS ||
-            vksky_composite_set_view(g->c[k], view, whole_height, VKSKY_COMPOSITE_FAST, NULL) != VKSKY_SUCCESS)
+            vksky_composite_set_view(g->c[k], view, whole_height, view_flags, NULL) != VKSKY_SUCCESS)
             return 1;
     }
     for (uint32_t k = 0; k < count; ++k)
@@ -105,16 +106,19 @@ static void add_group(void *user, size_t part, size_t begin, size_t end)
 
 static float clampf(float v, float lo, float hi) { return v < lo ? lo : v > hi ? hi : v; }
 
-/* The layers within the pass's range (the atmosphere's never negative: an out-of-gamut sum is clamped as the pass
- * clamps), then the composite from them by the coverage identity, with the pass's reading of the beauty (a
- * non-finite value as 0, alpha clamped to [0, 1]). */
+/* The layers within half's range, then the composite from them by the coverage identity, with the pass's reading of
+ * the beauty (a non-finite value as 0, alpha clamped to [0, 1]). A light layer keeps a negative channel where its
+ * colour lies outside Rec.709's gamut (a sunset's Mie light in the blue), as a spectral still's pixels do: clamping
+ * each layer would bias its colour and break sky = rayleigh + mie (+ the lit ground). The transmittance is kept
+ * non-negative, as a fraction of light must be. */
 static void resolve(void *user, size_t part, size_t begin, size_t end)
 {
     (void)part;
     const band_sum *s = user;
     for (size_t i = begin; i < end; ++i) {
         for (uint32_t L = 1; L < VKSKY_COMPOSITE_LAYERS; ++L)
-            for (int q = 0; q < 3; ++q) s->layer[L][4 * i + q] = clampf(s->layer[L][4 * i + q], 0.0f, FP16_MAX);
+            for (int q = 0; q < 3; ++q)
+                s->layer[L][4 * i + q] = clampf(s->layer[L][4 * i + q], L == 3 ? 0.0f : -FP16_MAX, FP16_MAX);
         float beauty[4];
         for (int q = 0; q < 4; ++q) beauty[q] = isfinite(s->beauty[4 * i + q]) ? s->beauty[4 * i + q] : 0.0f;
         float alpha = clampf(beauty[3], 0.0f, 1.0f), *out = s->layer[0] + 4 * i;
@@ -127,6 +131,28 @@ static void resolve(void *user, size_t part, size_t begin, size_t end)
     }
 }
 
+/* One band through every group: fill(user, inputs) writes the band's inputs into each group's slot, the groups'
+ * layers are summed into s's layers and resolved (`pixels`: the band's core, its first rows). 0, or 1. */
+static int sum_band(const spectral_groups *g, host_commands *h, int first_row, size_t pixels,
+                    void (*fill)(void *user, float *inputs), void *user, FILE *trace, band_sum *s)
+{
+    for (uint32_t k = 0; k < g->count; ++k) {
+        fill(user, vksky_composite_inputs(g->c[k], 0));
+        vksky_composite_frame f = {.slot = 0, .first_row = first_row};   /* the band's first row of the whole image */
+        if (composite_submit(h, g->r[k], g->c[k], &f, 1, trace, NULL) != 0) return 1;
+        s->group = k;
+        io_parts_run(pixels, 65536, add_group, s);
+    }
+    io_parts_run(pixels, 65536, resolve, s);
+    return 0;
+}
+
+static void fill_band(void *user, float *inputs)
+{
+    const band_reader *b = user;
+    band_reader_upload(b, inputs, b->band_rows);
+}
+
 int composite_spectral_bands(band_reader *b, host_commands *h, vksky_context *ctx, const vksky_scene *scene,
                              int wavelengths, const vksky_composite_desc *desc, const composite_view *view,
                              FILE *trace, io_exr_layers_stream *out)
@@ -134,7 +160,8 @@ int composite_spectral_bands(band_reader *b, host_commands *h, vksky_context *ct
     spectral_groups g = {0};
     size_t band_pixels = (size_t)b->width * (size_t)b->band_rows;
     float *sums = malloc(band_pixels * 4 * VKSKY_COMPOSITE_LAYERS * sizeof(float));
-    int rc = sums ? groups_create(&g, ctx, scene, wavelengths, desc, view, (uint32_t)b->height) : 1;
+    int rc = sums ? groups_create(&g, ctx, scene, wavelengths, desc, view, (uint32_t)b->height, VKSKY_COMPOSITE_FAST)
+                  : 1;
     if (!sums) fprintf(stderr, "vksky: --composite: out of memory for a band of %dx%d pixels\n", b->width, b->band_rows);
     band_sum s = {.g = &g, .oriented = view->oriented};
     for (uint32_t L = 0; L < VKSKY_COMPOSITE_LAYERS && sums; ++L) s.layer[L] = sums + (size_t)L * band_pixels * 4;
@@ -142,17 +169,9 @@ int composite_spectral_bands(band_reader *b, host_commands *h, vksky_context *ct
     for (int y0 = 0; y0 < b->height && rc == 0; y0 += b->band_rows) {
         if ((rc = band_reader_read(b, y0, &ignored)) != 0) break;
         const composite_band *band = &b->band;
-        size_t pixels = (size_t)band->core_rows * (size_t)b->width;
         s.beauty = b->beauty + (size_t)(band->core_row - band->first_row) * (size_t)b->width * 4;
-        for (uint32_t k = 0; k < g.count && rc == 0; ++k) {
-            band_reader_upload(b, vksky_composite_inputs(g.c[k], 0), b->band_rows);
-            vksky_composite_frame f = {.slot = 0, .first_row = y0};   /* the band's first row of the whole image */
-            if ((rc = composite_submit(h, g.r[k], g.c[k], &f, 1, trace, NULL)) != 0) break;
-            s.group = k;
-            io_parts_run(pixels, 65536, add_group, &s);
-        }
-        if (rc) break;
-        io_parts_run(pixels, 65536, resolve, &s);
+        if ((rc = sum_band(&g, h, y0, (size_t)band->core_rows * (size_t)b->width, fill_band, b, trace, &s)) != 0)
+            break;
         char err[600];
         io_exr_band_layer layers[VKSKY_COMPOSITE_LAYERS];
         for (uint32_t k = 0; k < VKSKY_COMPOSITE_LAYERS; ++k)
@@ -166,5 +185,39 @@ int composite_spectral_bands(band_reader *b, host_commands *h, vksky_context *ct
     if (rc) io_exr_layers_stream_abort(out);
     groups_destroy(&g);
     free(sums);
+    return rc;
+}
+
+/* --aovs' frame: no geometry anywhere (beauty 0, position NaN), so every pixel's layers are the sky's. */
+static void fill_empty(void *user, float *inputs)
+{
+    size_t n = *(const size_t *)user;
+    for (size_t i = 0; i < n; ++i) {
+        float *b = inputs + 4 * i, *p = inputs + 4 * (n + i);
+        b[0] = b[1] = b[2] = b[3] = 0.0f;
+        p[0] = p[1] = p[2] = p[3] = NAN;
+    }
+}
+
+int composite_spectral_aovs(host_commands *h, vksky_context *ctx, const vksky_scene *scene, int wavelengths,
+                            const vksky_composite_desc *desc, const composite_view *view, FILE *trace,
+                            float **layers)
+{
+    *layers = NULL;
+    spectral_groups g = {0};
+    size_t n = (size_t)desc->width * desc->rows;
+    float *sums = malloc(n * 4 * VKSKY_COMPOSITE_LAYERS * sizeof(float));
+    float *zero = calloc(n * 4, sizeof(float));   /* the beauty the identity adds: none */
+    int rc = sums && zero ? groups_create(&g, ctx, scene, wavelengths, desc, view, desc->rows,
+                                          VKSKY_COMPOSITE_VIEW_ALTITUDE)
+                          : 1;
+    if (!sums || !zero) fprintf(stderr, "vksky: --aovs: out of memory\n");
+    band_sum s = {.g = &g, .oriented = view->oriented, .beauty = zero};
+    for (uint32_t L = 0; L < VKSKY_COMPOSITE_LAYERS && sums; ++L) s.layer[L] = sums + (size_t)L * n * 4;
+    if (rc == 0) rc = sum_band(&g, h, 0, n, fill_empty, &n, trace, &s);
+    groups_destroy(&g);
+    free(zero);
+    if (rc) free(sums);
+    else *layers = sums;
     return rc;
 }

@@ -1,4 +1,4 @@
-/* The composite in spectral colour (--spectral N with --composite; issue 32): every group of three wavelengths
+/* The composite in spectral colour (--spectral N with --composite or --aovs; issue 32): every group of three wavelengths
  * (vksky_scene_spectral_group) composited band by band through its own renderer and composite pass of
  * include/vksky.h, the groups' layers summed on the host into linear Rec.709:
  *  - the light layers (sky, sun_disk, rayleigh, mie) with the groups' XYZ weights, as a spectral still's pixels;
@@ -22,5 +22,12 @@
 int composite_spectral_bands(band_reader *b, host_commands *h, vksky_context *ctx, const vksky_scene *scene,
                              int wavelengths, const vksky_composite_desc *desc, const vksky_composite_view *view,
                              FILE *trace, io_exr_layers_stream *out);
+
+/* --aovs' layers at `wavelengths`: the composite pass of a frame with no geometry (desc: the whole image, one band;
+ * view: the sky frame's camera, its altitude as given) through every group, summed. *layers: VKSKY_COMPOSITE_LAYERS
+ * layers of width x rows RGBA floats one after the other (free()), or NULL on failure. 0, or 1 after one line. */
+int composite_spectral_aovs(host_commands *h, vksky_context *ctx, const vksky_scene *scene, int wavelengths,
+                            const vksky_composite_desc *desc, const composite_view *view, FILE *trace,
+                            float **layers);
 
 #endif
