@@ -2,7 +2,8 @@
  * (issue 32): the relative luminance error (metrics_relative_luminance, its default floor) and CIEDE2000 per pixel in
  * CIELAB with the D65 white at the reference pixel's own luminance (the reference is L* = 100, so a luminance error
  * shows as lightness too; tools/color_error's convention), over pixels at least 1e-4 of the reference's brightest.
- * Prints one line; with limits, exits 1 when the 95th percentile of either is over its limit. */
+ * Also the sRGB PSNR (srgb_psnr, below). Prints one line; with limits, exits 1 when the 95th percentile of either is
+ * over its limit. */
 #include "io/exr_read.h"
 #include "io/png_io.h"
 #include "reference/metrics.h"
@@ -73,6 +74,33 @@ static int compare_png(int argc, char **argv)
     return status;
 }
 
+/* Bruneton's image measure (precomputed_atmospheric_scattering's evaluation: sRGB PSNR against a many-wavelength
+ * reference), our way: both images through one tone map (ACES fitted, at the exposure that puts the reference's
+ * log-average luminance at the key 0.18) and the sRGB encode, in floats (no 8-bit step), then
+ * 10 log10(1 / MSE) over every pixel and channel. */
+static double srgb_encoded(double x)
+{
+    x = x < 0.0 ? 0.0 : x;
+    x = x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14);
+    x = x > 1.0 ? 1.0 : x;
+    return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
+}
+
+static double srgb_psnr(const float *t, const float *r, size_t n)
+{
+    double log_sum = 0.0, se = 0.0;
+    for (size_t i = 0; i < n; ++i)
+        log_sum += log(fmax(0.2126 * r[4 * i] + 0.7152 * r[4 * i + 1] + 0.0722 * r[4 * i + 2], 1e-9));
+    double scale = 0.18 / exp(log_sum / (double)n);
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) {
+            double d = srgb_encoded(scale * t[4 * i + c]) - srgb_encoded(scale * r[4 * i + c]);
+            se += d * d;
+        }
+    double mse = se / (3.0 * (double)n);
+    return mse > 0.0 ? 10.0 * log10(1.0 / mse) : INFINITY;
+}
+
 int main(int argc, char **argv)
 {
     if (argc >= 5 && argc <= 6 && !strcmp(argv[1], "--png")) return compare_png(argc, argv);
@@ -112,9 +140,11 @@ int main(int argc, char **argv)
         sum += de[count - 1];
     }
     qsort(de, count, sizeof *de, cmp);
+    double psnr = srgb_psnr(t, r, n);
     double de_p95 = count ? de[(size_t)ceil(0.95 * count) - 1] : 0.0, de_max = count ? de[count - 1] : 0.0;
-    printf("luminance error mean %.3f %% p95 %.3f %% max %.3f %%; CIEDE2000 mean %.3f p95 %.3f max %.3f (%zu pixels)\n",
-           100 * lum.mean, 100 * lum.p95, 100 * lum.max, count ? sum / count : 0.0, de_p95, de_max, count);
+    printf("luminance error mean %.3f %% p95 %.3f %% max %.3f %%; CIEDE2000 mean %.3f p95 %.3f max %.3f (%zu pixels); "
+           "sRGB PSNR %.1f dB\n", 100 * lum.mean, 100 * lum.p95, 100 * lum.max, count ? sum / count : 0.0, de_p95, de_max,
+           count, psnr);
     int status = 0;
     if (argc == 5) {
         double max_lum = atof(argv[3]), max_de = atof(argv[4]);

@@ -23,8 +23,8 @@ views=(
   "noon|--sun-elevation 60 --sun-azimuth 0 --yaw 180 --pitch 40 --fov 70"
   "space|--altitude 400 --sun-elevation 10 --sun-azimuth 0 --yaw 0 --pitch -60 --fov 60"
 )
-echo "| view | GPU setting | luminance error mean / p95 | CIEDE2000 mean / p95 / max |"
-echo "|---|---|---|---|"
+echo "| view | GPU setting | luminance error mean / p95 | CIEDE2000 mean / p95 / max | sRGB PSNR |"
+echo "|---|---|---|---|---|"
 for v in "${views[@]}"; do
     name=${v%%|*} args=${v#*|}
     [[ " ${VIEWS:-sunset twilight noon space} " == *" $name "* ]] || continue
@@ -38,9 +38,9 @@ for v in "${views[@]}"; do
         q=${s%%:*} n=${s#*:}
         "$VKSKY" "${common[@]}" --quality "$q" --spectral "$n" --render "$work/gpu.exr" || exit 1
         line=$("$COMPARE" "$work/gpu.exr" "$work/ref.exr")
-        # "luminance error mean A % p95 B % max C %; CIEDE2000 mean D p95 E max F (...)"
+        # "luminance error mean A % p95 B % max C %; CIEDE2000 mean D p95 E max F (N pixels); sRGB PSNR P dB"
         set -- $line
         label=$([ "$n" = 0 ] && echo "RGB, --quality $q" || echo "--spectral $n, --quality $q")
-        echo "| $name | $label | $4 % / $7 % | ${14} / ${16} / ${18} |"
+        echo "| $name | $label | $4 % / $7 % | ${14} / ${16} / ${18} | ${23} dB |"
     done
 done
