@@ -105,6 +105,11 @@ void main()
      * uncovered part stays the beauty's (alpha kept). */
     float alpha = clamp(beauty.a, 0.0, 1.0);
     bool oriented = dot(push.forward.xyz, push.forward.xyz) > 0.0;
+    /* The sun disc drawn as the sky pass draws it (sky_common.glsl: at least a texel wide, its power kept), so that the
+     * sun_disk layer of an uncovered pixel is the plain render's disc: a pixel's angular size at the view axis, as
+     * texel_angle gives it for a perspective image (right.w is the band's first row here, the width the band's). */
+    if (oriented)
+        sky_texel_angle = 2.0 * max(length(push.right.xyz) / float(size.x), length(push.up.xyz) * push.up.w);
     vec3 sky = vec3(0.0), sun = vec3(0.0), transmittance = vec3(1.0), rayleigh = vec3(0.0), mie = vec3(0.0);
     bool covered = inside && finite3(position) && alpha > 0.0;
     if (covered) {

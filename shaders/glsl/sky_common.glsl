@@ -96,8 +96,9 @@ float ms_phase_factor(MultiScatter ms, float v_x, float v_z, PhaseLegendre k)
     return max(0.0, 1.0 + 3.0 * k.low.x * (v_x * ms.moments.z + v_z * ms.moments.w) + 7.5 * k.low.y * vqv + zonal);
 }
 
-/* The angular size of a texel of the image being rendered (radians), or 0: point sampling (the composite pass).
- * The sky pass sets it (texel_angle) before it evaluates a pixel; sun_drawn_radius reads it. */
+/* The angular size of a texel of the image being rendered (radians), or 0: point sampling. The sky pass sets it
+ * (texel_angle) before it evaluates a pixel, the composite pass from its own push (composite.comp); sun_drawn_radius
+ * reads it. */
 float sky_texel_angle = 0.0;
 /* A texel's larger angular side, by projection (projection.glsl; right.w and up.w are 1 / the whole image's size):
  * perspective at the view axis 2 tan(fov/2) / height (and the same across); equirect 2 pi / width; a cube face's
