@@ -109,7 +109,7 @@ int main(int argc, char **argv)
     printf("composite_spectral_check: %d pixels, sun %.2f deg, reference %d wavelengths\n", PICKS, atof(argv[4]), BINS);
     for (int p = 0; p < PICKS; ++p) {
         size_t i = (size_t)cand[(count - 1) * (size_t)p / (PICKS - 1)][1];
-        /* World (Z up: x east?, the composite's convention: local = (north, up, east) = (y, z, x)) -> local km. */
+        /* World (Z up, metres) -> vksky's local frame (north, up, east) = (y, z, x), as the composite maps it. */
         const float *pos = in + 4 * i + 1;
         double dw[3] = {pos[0] - CAMERA_M[0], pos[1] - CAMERA_M[1], pos[2] - CAMERA_M[2]};
         double v[3] = {dw[1], dw[2], dw[0]};
@@ -132,13 +132,6 @@ int main(int argc, char **argv)
         }
         double s_ref[3];
         spectrum_xyz_to_rec709(xyz_s, s_ref);
-        if (getenv("RGBREF")) {
-            ref_aerial r;
-            ref_radiance_to_point(&earth, CAMERA_M[2] * 1e-3, v, sun, dist * 1e-3, quality, &r);
-            printf("    RGB ref S %.4g %.4g %.4g T %.4f %.4f %.4f\n", 20 * (r.rayleigh[0] + r.mie[0]),
-                   20 * (r.rayleigh[1] + r.mie[1]), 20 * (r.rayleigh[2] + r.mie[2]), r.transmittance[0],
-                   r.transmittance[1], r.transmittance[2]);
-        }
         for (int q = 0; q < 3; ++q) s_ref[q] *= 20.0 / wy;
         printf("  pixel (%zu, %zu) %.2f km: ref S %.4g %.4g %.4g T %.4f %.4f %.4f\n", i % w, i / w, dist * 1e-3,
                s_ref[0], s_ref[1], s_ref[2], t_ref[0], t_ref[1], t_ref[2]);
