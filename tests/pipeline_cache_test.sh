@@ -9,6 +9,7 @@
 #     XDG_CACHE_HOME is ignored (~/.cache); runs started together leave one good file and no temporary files.
 #  4. --timings names every stage, its stages add up to its total and the total is the run's wall time; Mars builds
 #     its pipeline variant once (the renderer used to build it three times) and computes each of its LUTs once.
+#     A validated run adopts --quality auto's probe's instance, and the layer still catches a dropped barrier there.
 #  5. Without validation one image leaves its device to the exit, still saves the cache, writes the same bytes.
 set -u
 VKSKY=${1:?usage: pipeline_cache_test.sh VKSKY}
@@ -153,6 +154,16 @@ awk -v t="$total" '$1 ~ /^(exec|options|probe|instance|device|cache|pipelines|se
     fail "--timings' stages do not add up to its total: $(cat mars.err)"
 awk -v t="$total" -v w="$wall" 'BEGIN {exit !(t <= w + 11 && t >= w - (0.1 * w + 200))}' ||
     fail "--timings' total $total ms is not the process's wall time ($wall ms seen from outside): $(cat mars.err)"
+
+# 4b. The device probed once (issue 27): --quality auto's probe makes the instance the run then adopts, with the
+#     validation layer on when the run validates (VKSKY_VALIDATION=1 here); and the layer still reports through the
+#     adopted instance: a barrier left out is caught, its hazard on stderr and the exit status non-zero.
+grep -q "^  instance .*(the device probe's, reused)" mars.err ||
+    fail "a validated run made a second instance after the probe's: $(grep -E '^  (probe|instance)' mars.err)"
+VKSKY_DROP_BARRIER=hdr.write_to_sample "$VKSKY" "${ARGS[@]}" --render drop.exr --timings >drop.out 2>drop.err &&
+    fail "hdr.write_to_sample dropped, under the probe's instance: exit 0"
+grep -q "SYNC-HAZARD-READ-AFTER-WRITE" drop.err && grep -q "(the device probe's, reused)" drop.err ||
+    fail "hdr.write_to_sample dropped, under the probe's instance: no hazard reported: $(head -c 600 drop.err)"
 
 # 5. One image without validation leaves its renderer, device and instance to the exit (startup_keep_for_exit):
 #    the run still succeeds, still saves the pipeline cache (a fresh directory gets a whole file), and writes the same

@@ -145,6 +145,21 @@ static void keep_vulkan_libraries_mapped(void)
 }
 #endif
 
+/* The validation layer's messages to this context's callback (the messenger's user data is the context). */
+static void attach_messenger(gpu_context *ctx)
+{
+    VkDebugUtilsMessengerCreateInfoEXT info = {
+        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
+        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
+        .pfnUserCallback = debug_callback,
+        .pUserData = ctx,
+    };
+    VK_CHECK(vkCreateDebugUtilsMessengerEXT(ctx->instance, &info, NULL, &ctx->messenger));
+    ctx->validation = true;
+}
+
 static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool quiet)
 {
 #ifdef VKSKY_SANITIZE
@@ -175,11 +190,11 @@ static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool 
 
     const char *layers[1] = {"VK_LAYER_KHRONOS_validation"};
     if (desc->validation && !has_layer(layers[0])) {
-        gpu_report(ctx, 2, "--validate needs the Khronos validation layer (Debian package vulkan-validationlayers)");
+        if (!quiet) gpu_report(ctx, 2, "--validate needs the Khronos validation layer (Debian package vulkan-validationlayers)");
         return -1;
     }
     if (desc->validation && !ctx->debug_utils) {
-        gpu_report(ctx, 2, "--validate needs VK_EXT_debug_utils, which this loader lacks");
+        if (!quiet) gpu_report(ctx, 2, "--validate needs VK_EXT_debug_utils, which this loader lacks");
         return -1;
     }
     /* Synchronization validation is off by default in the layer; it is the only thing that sees a missing
@@ -190,14 +205,6 @@ static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool 
         .sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT,
         .enabledValidationFeatureCount = 1,
         .pEnabledValidationFeatures = enables,
-    };
-    VkDebugUtilsMessengerCreateInfoEXT messenger_info = {
-        .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-        .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-        .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-        .pfnUserCallback = debug_callback,
-        .pUserData = ctx,
     };
     VkApplicationInfo app = {
         .sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
@@ -217,14 +224,11 @@ static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool 
     };
     VkResult r = vkCreateInstance(&info, NULL, &ctx->instance);
     if (r != VK_SUCCESS) {
-        gpu_report(ctx, 2, "vkCreateInstance failed: %s", gpu_result_name(r));
+        if (!quiet) gpu_report(ctx, 2, "vkCreateInstance failed: %s", gpu_result_name(r));
         return -1;
     }
     volkLoadInstanceOnly(ctx->instance);
-    if (desc->validation) {
-        VK_CHECK(vkCreateDebugUtilsMessengerEXT(ctx->instance, &messenger_info, NULL, &ctx->messenger));
-        ctx->validation = true;
-    }
+    if (desc->validation) attach_messenger(ctx);
     return 0;
 }
 
@@ -294,11 +298,11 @@ static int pick_device(gpu_context *ctx, int index, bool quiet)
     return 0;
 }
 
-/* The probe's instance, kept for the context that usually follows (the device probed once, issue 27): a plain
- * instance (no validation, no window extensions) is adopted by gpu_context_create; any other context destroys it
- * first, and exit does if none came. */
+/* The probe's instance, kept for the context that usually follows (the device probed once, issue 27): an instance
+ * without window extensions, with the validation layer when the run validates (gpu_device_type_for), is adopted by
+ * gpu_context_create with the same validation; any other context destroys it first, and exit does if none came. */
 static VkInstance parked;
-static bool parked_debug_utils;
+static bool parked_debug_utils, parked_validation;
 
 static void release_parked(void)
 {
@@ -310,7 +314,7 @@ static void park(const gpu_context *probe)
 {
     static bool registered;
     release_parked();
-    parked = probe->instance, parked_debug_utils = probe->debug_utils;
+    parked = probe->instance, parked_debug_utils = probe->debug_utils, parked_validation = probe->validation;
     if (!registered) registered = atexit(release_parked) == 0;
     if (!registered) release_parked();
 }
@@ -332,6 +336,11 @@ void gpu_probe_times(double *instance_ms, double *enumerate_ms)
 
 int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
 {
+    return gpu_device_type_for(device_index, false, type);
+}
+
+int gpu_device_type_for(int device_index, bool validation, VkPhysicalDeviceType *type)
+{
     /* With a context alive (the window re-reading its scene file), name its device: a second instance would
      * reload volk's instance functions, and destroying it would leave the live context calling into freed ones. */
     if (live_contexts > 0) {
@@ -343,14 +352,22 @@ int gpu_device_type(int device_index, VkPhysicalDeviceType *type)
     static bool probed;
     static int probed_index, probed_result;
     static VkPhysicalDeviceType probed_type;
-    if (probed && probed_index == device_index) {
+    if (probed && probed_index == device_index) {   /* the answer; its instance stays as it was parked */
         *type = probed_type;
         return probed_result;
     }
     gpu_context ctx = {0};
-    gpu_context_desc desc = {.device_index = device_index};
+    gpu_context_desc desc = {.device_index = device_index, .validation = validation};
     double start = now_ms();
-    if (create_instance(&ctx, &desc, false) != 0) return -1;
+    /* Without the layer (or debug utils) a plain probe, quietly: the run's own context then says once what is
+     * missing. */
+    if (create_instance(&ctx, &desc, validation) != 0) {
+        desc.validation = false;
+        if (!validation || create_instance(&ctx, &desc, false) != 0) return -1;
+    }
+    /* Its messenger would name this stack frame's context: the adopting context attaches its own. */
+    if (ctx.messenger) vkDestroyDebugUtilsMessengerEXT(ctx.instance, ctx.messenger, NULL);
+    ctx.messenger = VK_NULL_HANDLE;
     double made = now_ms();
     int picked = pick_device(&ctx, device_index, true);
     probe_instance_ms = made - start, probe_pick_ms = now_ms() - made;
@@ -390,9 +407,10 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
 {
     *ctx = (gpu_context){.message = message, .message_user = user, .allocator = allocator, .owns_device = true};
     double start = now_ms();
-    if (parked && !desc->validation && desc->instance_extension_count == 0) {
+    if (parked && parked_validation == desc->validation && desc->instance_extension_count == 0) {
         ctx->instance = parked, ctx->debug_utils = parked_debug_utils, ctx->instance_reused = true;
         parked = VK_NULL_HANDLE;
+        if (desc->validation) attach_messenger(ctx);
     } else {
         release_parked();
         if (create_instance(ctx, desc, false) != 0) return -1;

@@ -318,7 +318,10 @@ static bool device_is_cpu(const options *o)
     const char *forced = getenv("VKSKY_QUALITY_TABLE");
     if (forced && *forced) return !strcmp(forced, "cpu");
     VkPhysicalDeviceType type;
-    return gpu_device_type(o->device_index, &type) == 0 && type == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    /* The probe's instance is the run's when their validation agrees (--validate is applied after this choice). */
+    static const char *const validate[] = {"--validate"};
+    bool validation = o->validate || named_any(o, validate, 1);
+    return gpu_device_type_for(o->device_index, validation, &type) == 0 && type == VK_PHYSICAL_DEVICE_TYPE_CPU;
 }
 
 static int finish(options *o, int argc, char **argv, bool exposure_flag);
