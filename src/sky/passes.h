@@ -104,9 +104,13 @@ typedef struct tonemap_pass {
     VkPipelineLayout layout;
     VkPipeline pipeline;
     VkPipeline far_pipeline[2];   /* hdr_upsample.glsl's far path only (the regions away from the horizon); [1]:
-                                     the sky image is the output's size */
+                                     the sky image is the output's size. Made at their first use: a run uses one
+                                     of them, or none (no regions), and each is a pipeline to compile */
     VkDescriptorSet set;
     bool composite;
+    const gpu_context *ctx;       /* what the far variants are made from, kept until then */
+    VkShaderModule vs, fs;
+    VkFormat formats[2];
 } tonemap_pass;
 /* `bloom_view` may be the HDR view when bloom is off (its strength is then 0). */
 void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view, VkImageView bloom_view,
@@ -115,7 +119,7 @@ void tonemap_destroy(tonemap_pass *t, const pass_shared *s);
 /* `regions` (sky/tonemap_regions.h): each drawn by its pipeline under its scissor; NULL: the whole target, full.
  * hdr_full_size: the sky image is `extent` (render scale 1). */
 typedef struct tonemap_regions tonemap_regions;
-void tonemap_record(const tonemap_pass *t, VkCommandBuffer cmd, VkExtent2D extent, VkImageView display,
+void tonemap_record(tonemap_pass *t, VkCommandBuffer cmd, VkExtent2D extent, VkImageView display,
                     VkImageView composite, const TonemapPush *push, const tonemap_regions *regions,
                     bool hdr_full_size);
 #endif

@@ -16,19 +16,13 @@ void tonemap_create(tonemap_pass *t, const pass_shared *s, VkImageView hdr_view,
     /* The four-wide spectral build's composite carries the HDR texel's four wavelengths. */
     const sky_spirv *spv = composite ? (s->spectral4 ? &spirv_tonemap_composite_s4 : &spirv_tonemap_composite) : &spirv_tonemap;
     VkShaderModule fs = gpu_shader_module(ctx, spv->code, spv->size, composite ? "tonemap_composite.frag" : "tonemap.frag");
-    VkFormat formats[2] = {display_format, HDR_FORMAT};
-    t->pipeline = gpu_fullscreen_pipeline(ctx, t->layout, s->fullscreen_vs, fs, formats, composite ? 2 : 1,
+    t->formats[0] = display_format, t->formats[1] = HDR_FORMAT;
+    t->pipeline = gpu_fullscreen_pipeline(ctx, t->layout, s->fullscreen_vs, fs, t->formats, composite ? 2 : 1,
                                           GPU_BLEND_NONE, "tonemap");
-    /* The far-only variants (HDR_FAR 1, 2): the horizon path compiled out, for the regions away from it. */
-    for (int32_t k = 0; k < 2; ++k) {
-        int32_t far = k + 1;
-        VkSpecializationMapEntry entry = {VKSKY_SPEC_TONEMAP_FAR, 0, sizeof far};
-        VkSpecializationInfo spec = {1, &entry, sizeof far, &far};
-        t->far_pipeline[k] = gpu_fullscreen_pipeline_spec(ctx, t->layout, s->fullscreen_vs, fs, &spec, formats,
-                                                          composite ? 2 : 1, GPU_BLEND_NONE,
-                                                          k ? "tonemap (far, scale 1)" : "tonemap (far)");
-    }
-    vkDestroyShaderModule(ctx->device, fs, gpu_allocator(ctx->device));
+    /* The far variants come at their first use (tonemap_record): the module stays, and the vertex shader is the
+     * renderer's (destroyed after the passes). */
+    t->ctx = ctx, t->vs = s->fullscreen_vs, t->fs = fs;
+    t->far_pipeline[0] = t->far_pipeline[1] = VK_NULL_HANDLE;
     t->set = gpu_alloc_set(ctx, s->pool, t->set_layout, "tonemap set");
     gpu_write_sampled(ctx, t->set, VKSKY_BINDING_POST_SOURCE, hdr_view, s->linear_clamp);
     gpu_write_sampled(ctx, t->set, VKSKY_BINDING_POST_MIP, bloom_view, s->linear_clamp);
@@ -38,11 +32,26 @@ void tonemap_destroy(tonemap_pass *t, const pass_shared *s)
 {
     vkDestroyPipeline(s->ctx->device, t->pipeline, gpu_allocator(s->ctx->device));
     for (int k = 0; k < 2; ++k) vkDestroyPipeline(s->ctx->device, t->far_pipeline[k], gpu_allocator(s->ctx->device));
+    vkDestroyShaderModule(s->ctx->device, t->fs, gpu_allocator(s->ctx->device));
     vkDestroyPipelineLayout(s->ctx->device, t->layout, gpu_allocator(s->ctx->device));
     vkDestroyDescriptorSetLayout(s->ctx->device, t->set_layout, gpu_allocator(s->ctx->device));
 }
 
-void tonemap_record(const tonemap_pass *t, VkCommandBuffer cmd, VkExtent2D extent, VkImageView display,
+/* A far-only variant (HDR_FAR 1, 2: the horizon path compiled out, for the regions away from it). */
+static VkPipeline far_pipeline(tonemap_pass *t, int hdr_full_size)
+{
+    if (!t->far_pipeline[hdr_full_size]) {
+        int32_t far = hdr_full_size + 1;
+        VkSpecializationMapEntry entry = {VKSKY_SPEC_TONEMAP_FAR, 0, sizeof far};
+        VkSpecializationInfo spec = {1, &entry, sizeof far, &far};
+        t->far_pipeline[hdr_full_size] = gpu_fullscreen_pipeline_spec(
+            t->ctx, t->layout, t->vs, t->fs, &spec, t->formats, t->composite ? 2 : 1, GPU_BLEND_NONE,
+            hdr_full_size ? "tonemap (far, scale 1)" : "tonemap (far)");
+    }
+    return t->far_pipeline[hdr_full_size];
+}
+
+void tonemap_record(tonemap_pass *t, VkCommandBuffer cmd, VkExtent2D extent, VkImageView display,
                     VkImageView composite, const TonemapPush *push, const tonemap_regions *regions,
                     bool hdr_full_size)
 {
@@ -57,7 +66,7 @@ void tonemap_record(const tonemap_pass *t, VkCommandBuffer cmd, VkExtent2D exten
     /* The far regions first, then the horizon's: one pipeline switch. Scissors do not overlap: every pixel is
      * written once, by the path the full shader would take for it. */
     for (int pass = 0; regions && pass < 2; ++pass) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass ? t->pipeline : t->far_pipeline[hdr_full_size]);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pass ? t->pipeline : far_pipeline(t, hdr_full_size));
         for (uint32_t i = 0; i < regions->count; ++i) {
             if (regions->region[i].horizon != (pass == 1)) continue;
             vkCmdSetScissor(cmd, 0, 1, &regions->region[i].rect);

@@ -176,7 +176,7 @@ void startup_report(FILE *out)
     else
         fprintf(out, "  LUTs            -    (no GPU timestamps on this device)\n");
     fprintf(out, "  frame      %8.1f  (record, submit to fence: LUTs, passes and readback copy; GPU passes %.2f; the "
-                 "LUT and sky passes' pipelines made at their first use)\n", t.frame, t.gpu_total);
+                 "LUT, sky and far tone map pipelines made at their first use)\n", t.frame, t.gpu_total);
     if (t.gpu_timed) fprintf(out, "  readback   %8.2f  (GPU copy to host memory, inside the frame)\n", t.gpu_readback);
     fprintf(out, "  encode     %8.1f  (pixels to file bytes)\n", t.outputs - t.write);
     fprintf(out, "  write      %8.1f  (fsync, close, rename)\n", t.write);
