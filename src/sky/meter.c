@@ -29,9 +29,7 @@ void meter_create(meter_pass *m, const pass_shared *s, VkDescriptorPool pool, co
                               {VKSKY_BINDING_METER, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER}};
     m->set_layout = gpu_set_layout(ctx, slots, 2, VK_SHADER_STAGE_COMPUTE_BIT, "meter set layout");
     m->layout = gpu_pipeline_layout(ctx, m->set_layout, sizeof(MeterPush), VK_SHADER_STAGE_COMPUTE_BIT, "meter layout");
-    VkShaderModule mod = gpu_shader_module(ctx, spv_meter_comp, sizeof spv_meter_comp, "meter.comp");
-    m->pipeline = gpu_compute_pipeline(ctx, m->layout, mod, "meter");
-    vkDestroyShaderModule(ctx->device, mod, gpu_allocator(ctx->device));
+    m->ctx = ctx;
     m->set = gpu_alloc_set(ctx, pool, m->set_layout, "meter set");
     gpu_write_sampled(ctx, m->set, VKSKY_BINDING_POST_SOURCE, hdr->view, s->linear_clamp);
     meter_write_descriptor(ctx, m->set, m);
@@ -47,15 +45,20 @@ void meter_destroy(meter_pass *m, const pass_shared *s)
     *m = (meter_pass){0};
 }
 
-static void dispatch(const meter_pass *m, VkCommandBuffer cmd, const MeterPush *push, uint32_t x, uint32_t y)
+static void dispatch(meter_pass *m, VkCommandBuffer cmd, const MeterPush *push, uint32_t x, uint32_t y)
 {
+    if (!m->pipeline) {
+        VkShaderModule mod = gpu_shader_module(m->ctx, spv_meter_comp, sizeof spv_meter_comp, "meter.comp");
+        m->pipeline = gpu_compute_pipeline(m->ctx, m->layout, mod, "meter");
+        vkDestroyShaderModule(m->ctx->device, mod, gpu_allocator(m->ctx->device));
+    }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m->pipeline);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m->layout, 0, 1, &m->set, 0, NULL);
     vkCmdPushConstants(cmd, m->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof *push, push);
     vkCmdDispatch(cmd, x, y, 1);
 }
 
-void meter_record_tiles(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t first_row,
+void meter_record_tiles(meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t first_row,
                         uint32_t rows, bool fisheye, int whole_row0)
 {
     /* Rows first_row .. first_row + rows - 1 count (0 rows: all of them); row indices are exact in a float. */
@@ -65,7 +68,7 @@ void meter_record_tiles(const meter_pass *m, VkCommandBuffer cmd, double scale, 
     dispatch(m, cmd, &push, m->tiles.width, m->tiles.height);
 }
 
-void meter_record_average(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t slot,
+void meter_record_average(meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t slot,
                           double ease)
 {
     MeterPush push = {.params = {(float)scale, (float)METER_FLOOR_CD_M2, all_pixels ? 1.0f : 0.0f, (float)slot},

@@ -19,8 +19,9 @@ typedef struct meter_pass {
     VkExtent2D tiles;            /* pass 0's workgroups: one per VKSKY_METER_TILE^2 texels of the HDR image */
     VkDescriptorSetLayout set_layout;
     VkPipelineLayout layout;
-    VkPipeline pipeline;
+    VkPipeline pipeline;         /* made at the first dispatch: most runs never meter (EXR, relative units) */
     VkDescriptorSet set;
+    const gpu_context *ctx;
 } meter_pass;
 
 /* For an HDR image (its view sampled; the set from the renderer's size pool). */
@@ -34,9 +35,9 @@ void meter_write_descriptor(const gpu_context *ctx, VkDescriptorSet set, const m
  * scale: the HDR image's units per cd/m2; all_pixels: a lit ground (every texel counts; else sky texels only);
  * ease: temporal adaptation, the fraction of the way from the last frame's EV100 to the metered one (0 or >= 1:
  * none, the metered EV100). */
-void meter_record_tiles(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t first_row,
+void meter_record_tiles(meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t first_row,
                         uint32_t rows, bool fisheye, int whole_row0);
-void meter_record_average(const meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t slot,
+void meter_record_average(meter_pass *m, VkCommandBuffer cmd, double scale, bool all_pixels, uint32_t slot,
                           double ease);
 /* The result of a slot, once the frame that wrote it is done (its fence waited); invalidates the mapping. */
 meter_result meter_read(const gpu_context *ctx, const meter_pass *m, uint32_t slot);
