@@ -17,21 +17,16 @@ trap 'rm -rf "$work"' EXIT
 fails=0 accepted=0 rejected=0 rendered=0
 # (a failing mutant is reproduced by: scene_mutate SCENE SEED > m.json)
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
-# FILE holds exactly one line (one newline, at its end) and it starts "vksky: ": what `wc -l` = 1 and `grep -q
-# '^vksky: '` said, in bash itself (this loop runs ~3000 times: two fewer processes each, issue 27 item 5).
-one_vksky_line() {
-    local c=
-    IFS= read -r -d '' c <"$1"
-    local body=${c%$'\n'}
-    [ "$body" != "$c" ] && [[ $body == "vksky: "* && $body != *$'\n'* ]]
-}
-# FILE holds exactly one line, whatever it says.
+# FILE holds exactly one line (one newline, at its end), left in $line; and that line starts "vksky: ". What `wc -l`
+# = 1 and `grep -q '^vksky: '` said, in bash itself (this loop runs ~3000 times: two fewer processes each, issue 27
+# item 5).
 one_line() {
     local c=
     IFS= read -r -d '' c <"$1"
-    local body=${c%$'\n'}
-    [ "$body" != "$c" ] && [[ $body != *$'\n'* ]]
+    line=${c%$'\n'}
+    [ "$line" != "$c" ] && [[ $line != *$'\n'* ]]
 }
+one_vksky_line() { one_line "$1" && [[ $line == "vksky: "* ]]; }
 # A --dump-scene of a scene with --quality auto lists the knobs of the measured table for the run's device kind, and
 # to know the kind each process made a Vulkan instance (the loader, lavapipe and its LLVM: ~35 ms of CPU, most of this
 # test's time over ~3000 dumps). The answer is the same for every dump that names no --device, so it is asked once

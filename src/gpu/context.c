@@ -157,7 +157,6 @@ static void attach_messenger(gpu_context *ctx)
         .pUserData = ctx,
     };
     VK_CHECK(vkCreateDebugUtilsMessengerEXT(ctx->instance, &info, NULL, &ctx->messenger));
-    ctx->validation = true;
 }
 
 static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool quiet)
@@ -228,7 +227,7 @@ static int create_instance(gpu_context *ctx, const gpu_context_desc *desc, bool 
         return -1;
     }
     volkLoadInstanceOnly(ctx->instance);
-    if (desc->validation) attach_messenger(ctx);
+    ctx->validation = desc->validation;   /* its messages: attach_messenger, by the context that keeps it */
     return 0;
 }
 
@@ -365,9 +364,6 @@ int gpu_device_type_for(int device_index, bool validation, VkPhysicalDeviceType 
         desc.validation = false;
         if (!validation || create_instance(&ctx, &desc, false) != 0) return -1;
     }
-    /* Its messenger would name this stack frame's context: the adopting context attaches its own. */
-    if (ctx.messenger) vkDestroyDebugUtilsMessengerEXT(ctx.instance, ctx.messenger, NULL);
-    ctx.messenger = VK_NULL_HANDLE;
     double made = now_ms();
     int picked = pick_device(&ctx, device_index, true);
     probe_instance_ms = made - start, probe_pick_ms = now_ms() - made;
@@ -409,12 +405,13 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
     double start = now_ms();
     if (parked && parked_validation == desc->validation && desc->instance_extension_count == 0) {
         ctx->instance = parked, ctx->debug_utils = parked_debug_utils, ctx->instance_reused = true;
+        ctx->validation = parked_validation;
         parked = VK_NULL_HANDLE;
-        if (desc->validation) attach_messenger(ctx);
     } else {
         release_parked();
         if (create_instance(ctx, desc, false) != 0) return -1;
     }
+    if (desc->validation) attach_messenger(ctx);
     double instance_done = now_ms();
     int picked = pick_device(ctx, desc->device_index, false);
     if (picked != 0) {
