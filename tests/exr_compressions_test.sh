@@ -7,10 +7,14 @@
 #    up to 19 % in a dark pixel beside bright ones here, 0.3 % on average) within their loss;
 #  - a banded equirect (VKSKY_TILE_ROWS: bands of 5 rows, a chunk split across bands): zip, zips and piz equal the
 #    uncompressed map, and --threads 1 and --threads 4 write the same bytes;
+#  - the composite's streamed writer (issue 28) too: seed 004's passes (gen_composite_scene) composited in bands of
+#    16 rows (PIZ rounds them up to its 32-row chunks); zip, zips, piz, rle and pxr24 (half channels: lossless) equal
+#    the uncompressed composite bit for bit, every layer;
 #  - every run exits 0 with the validation layer on and silent.
-#   exr_compressions_test.sh path/to/vksky
+#   exr_compressions_test.sh path/to/vksky path/to/gen_composite_scene
 set -u
-VKSKY=$(readlink -f "${1:?usage: exr_compressions_test.sh path/to/vksky}")
+VKSKY=$(readlink -f "${1:?usage: exr_compressions_test.sh path/to/vksky path/to/gen_composite_scene}")
+GEN=${2:?usage: exr_compressions_test.sh path/to/vksky path/to/gen_composite_scene}
 CHECK=$(dirname "$(readlink -f "$0")")/exr_compressions_check.py
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -61,6 +65,15 @@ for comp in zip zips piz; do
     done
     check eq_none.exr "t4/eq_$comp.exr" exact "$comp"
     cmp -s "$work/t1/eq_$comp.exr" "$work/t4/eq_$comp.exr" || fail "equirect $comp: --threads 1 and 4 differ"
+done
+
+# The composite: its six layers through io_exr_layers_stream (before, ZIP whatever --exr-compression said).
+mkdir -p "$work/cs" && "$GEN" "$work/cs" 64 72 >/dev/null || fail "gen_composite_scene"
+COMP=(--composite "$work/cs/render.exr" --sun-elevation 20 --sun-azimuth -60)
+run comp_none VKSKY_COMPOSITE_BAND_ROWS=16 -- "${COMP[@]}" --exr-compression none --render comp_none.exr
+for comp in zip zips piz rle pxr24; do
+    run "comp_$comp" VKSKY_COMPOSITE_BAND_ROWS=16 -- "${COMP[@]}" --exr-compression "$comp" --render "comp_$comp.exr"
+    check comp_none.exr "comp_$comp.exr" exact "$comp"
 done
 
 [ "$fails" = 0 ] && echo "exr_compressions: all checks passed"

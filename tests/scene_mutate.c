@@ -1,8 +1,12 @@
 /* scene_mutate IN.json SEED: print a mutated copy of a scene file (a helper of tests/scene_fuzz.sh). 1 to 4
  * mutations, chosen by SEED (same seed, same output): delete a byte range, insert a hostile token (broken JSON
  * punctuation, huge/tiny/non-finite numbers, wrong types, NUL and control bytes, profile and species snippets),
- * replace a number with one, duplicate or truncate a stretch. Exit 2 on bad arguments, 1 if IN is unreadable. */
+ * replace a number with one, duplicate or truncate a stretch.
+ * scene_mutate IN.json FIRST LAST DIR: the mutants of seeds FIRST..LAST, each the very bytes the first form prints,
+ * into DIR/m<SEED>.json (one process for a scene's hundreds of mutants: scene_fuzz.sh, issue 27 item 5).
+ * Exit 2 on bad arguments, 1 if IN is unreadable or a mutant cannot be written. */
 #include <stdint.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,21 +29,13 @@ static const char *const tokens[] = {
     "\x01", "\xff\xfe", "//", "/*", "\n", "\t", "\"preset\": \"ultra\",", "\"multiscatter_lut\": 1024,",
     "\"width\": 16384, \"height\": 16384,"};
 
-int main(int argc, char **argv)
+/* The mutant of seed `seed` of the scene in buf (n bytes), in place (buf holds twice the input's room); its length. */
+static size_t mutate(char *buf, size_t n, size_t room, unsigned long long seed)
 {
-    if (argc != 3) {
-        fprintf(stderr, "usage: scene_mutate IN.json SEED\n");
-        return 2;
-    }
-    FILE *f = fopen(argv[1], "rb");
-    if (!f) return 1;
-    static char buf[1 << 20];
-    size_t n = fread(buf, 1, sizeof buf / 2, f);
-    fclose(f);
-    rng = 0x9E3779B97F4A7C15ull ^ strtoull(argv[2], NULL, 10) * 0xBF58476D1CE4E5B9ull;
+    rng = 0x9E3779B97F4A7C15ull ^ seed * 0xBF58476D1CE4E5B9ull;
     for (int i = 0; i < 16; ++i) next();
     int mutations = 1 + (int)below(4);
-    for (int m = 0; m < mutations && n < sizeof buf / 2; ++m) {
+    for (int m = 0; m < mutations && n < room / 2; ++m) {
         size_t at = below(n + 1);
         switch (below(5)) {
         case 0: { /* delete */
@@ -80,6 +76,45 @@ int main(int argc, char **argv)
             break;
         }
     }
-    fwrite(buf, 1, n, stdout);
+    return n;
+}
+
+static int seed_arg(const char *s, unsigned long long *out)
+{
+    char *end;
+    errno = 0;
+    *out = strtoull(s, &end, 10);
+    return errno == 0 && end != s && *end == '\0';
+}
+
+int main(int argc, char **argv)
+{
+    unsigned long long first = 0, last = 0;
+    if (!(argc == 3 && seed_arg(argv[2], &first)) &&
+        !(argc == 5 && seed_arg(argv[2], &first) && seed_arg(argv[3], &last) && first <= last)) {
+        fprintf(stderr, "usage: scene_mutate IN.json SEED | scene_mutate IN.json FIRST LAST DIR\n");
+        return 2;
+    }
+    FILE *f = fopen(argv[1], "rb");
+    if (!f) return 1;
+    static char input[1 << 19], buf[1 << 20];
+    size_t in_n = fread(input, 1, sizeof input, f);
+    fclose(f);
+    if (argc == 3) {
+        memcpy(buf, input, in_n);
+        fwrite(buf, 1, mutate(buf, in_n, sizeof buf, first), stdout);
+        return 0;
+    }
+    for (unsigned long long seed = first; seed <= last; ++seed) {
+        memcpy(buf, input, in_n);
+        size_t n = mutate(buf, in_n, sizeof buf, seed);
+        char path[4096];
+        snprintf(path, sizeof path, "%s/m%llu.json", argv[4], seed);
+        FILE *out = fopen(path, "wb");
+        if (!out || fwrite(buf, 1, n, out) != n || fclose(out) != 0) {
+            fprintf(stderr, "scene_mutate: cannot write %s\n", path);
+            return 1;
+        }
+    }
     return 0;
 }

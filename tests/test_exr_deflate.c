@@ -11,7 +11,9 @@
  *  - the streamed writer (one pool over every band) fed bands of 5, 16 and 37 rows with 1 and 4 threads writes the
  *    same bytes each time and the same pixels;
  *  - a streamed write failing half-way (RLIMIT_FSIZE) with 4 threads fails with EFBIG and leaves no file (the pool
- *    stops, nothing hangs).
+ *    stops, nothing hangs);
+ *  - io_exr_compression_lines (the chunk height a banded writer rounds its bands to before the file exists) equals
+ *    what OpenEXRCore itself gives a part of each compression (exr_get_scanlines_per_chunk).
  * `test_exr_deflate bench FILE.exr [REPEATS]` times zlib (compress2, as OpenEXR 3.1) against libdeflate on the
  * file's ZIP chunks instead: a benchmark, not a test. */
 #ifndef _POSIX_C_SOURCE
@@ -348,6 +350,37 @@ static int bench(const char *file, int repeats)
     return 0;
 }
 
+static void check_chunk_lines(void)
+{
+    char path[600];
+    snprintf(path, sizeof path, "%s/lines.exr", dir);
+    for (int c = EXR_COMPRESSION_NONE; c < EXR_COMPRESSION_LAST_TYPE; ++c) {
+        exr_context_t ctxt = NULL;
+        exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+        int part = -1;
+        int32_t lines = -1;
+        exr_result_t rc = exr_start_write(&ctxt, path, EXR_WRITE_FILE_DIRECTLY, &init);
+        if (rc == EXR_ERR_SUCCESS) rc = exr_add_part(ctxt, "", EXR_STORAGE_SCANLINE, &part);
+        if (rc == EXR_ERR_SUCCESS) rc = exr_initialize_required_attr_simple(ctxt, part, 8, 8, (exr_compression_t)c);
+        if (rc == EXR_ERR_SUCCESS) rc = exr_add_channel(ctxt, part, "Y", EXR_PIXEL_HALF, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+        /* The chunk layout is known once the header is written (as the streamed writer asks it). */
+        if (rc == EXR_ERR_SUCCESS) rc = exr_write_header(ctxt);
+        if (rc == EXR_ERR_SUCCESS) rc = exr_get_scanlines_per_chunk(ctxt, part, &lines);
+        /* OpenEXR 3.1 can name DWAA/DWAB but not write them (0 lines): the writers refuse them there anyway. */
+        if (!io_exr_compression_writable(c)) {
+            if (ctxt) exr_finish(&ctxt);
+            remove(path);
+            continue;
+        }
+        CHECK(rc == EXR_ERR_SUCCESS, "compression %d: OpenEXRCore gives no chunk height (%d)", c, (int)rc);
+        CHECK(rc != EXR_ERR_SUCCESS || io_exr_compression_lines(c) == lines,
+              "compression %s: io_exr_compression_lines %d, OpenEXRCore %d", io_exr_compression_name(c),
+              io_exr_compression_lines(c), (int)lines);
+        if (ctxt) exr_finish(&ctxt);
+        remove(path);
+    }
+}
+
 int main(int argc, char **argv)
 {
     if (argc >= 3 && !strcmp(argv[1], "bench")) {
@@ -359,6 +392,7 @@ int main(int argc, char **argv)
     check_chunks();
     check_files();
     check_write_failure();
+    check_chunk_lines();
     char cmd[600];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);

@@ -70,6 +70,16 @@ const char *io_exr_compression_name(int compression)
     return "?";
 }
 
+int io_exr_compression_lines(int compression)
+{
+    switch (compression) {
+    case EXR_COMPRESSION_ZIP: case EXR_COMPRESSION_PXR24: return 16;
+    case EXR_COMPRESSION_PIZ: case EXR_COMPRESSION_B44: case EXR_COMPRESSION_B44A: case EXR_COMPRESSION_DWAA: return 32;
+    case EXR_COMPRESSION_DWAB: return 256;
+    default: return 1;
+    }
+}
+
 int io_exr_compression_writable(int compression)
 {
     int major = 0, minor = 0, patch = 0;

@@ -33,4 +33,8 @@ int io_exr_compression_parse(const char *name, int *zip_level);
 const char *io_exr_compression_name(int compression);
 /* Whether this OpenEXRCore can write it (3.1 reads DWAA/DWAB but cannot write them). */
 int io_exr_compression_writable(int compression);
+/* The scanlines in one chunk of a file with this compression (the OpenEXR file layout: none, rle, zips 1; zip, pxr24
+ * 16; piz, b44, b44a, dwaa 32; dwab 256), so that a writer in bands can make its bands whole chunks before it opens
+ * the file; 1 for an unknown value. */
+int io_exr_compression_lines(int compression);
 #endif

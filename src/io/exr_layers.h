@@ -1,4 +1,5 @@
-/* vksky image I/O: a multilayer EXR for compositing: one part, HALF channels, ZIP compression, the layers named in
+/* vksky image I/O: a multilayer EXR for compositing: one part, HALF channels, the compression of --exr-compression
+ * (encode_settings.h: ZIP by default), the layers named in
  * the layer.channel convention that Nuke, Blender and OpenImageIO read ("sky.R", "sky.G", ...). Atomic: written to
  * "<dir>/.<basename>.tmp.<pid>" and renamed over `path` only when complete; on failure no file is left at `path`.
  */
@@ -34,7 +35,8 @@ int io_write_exr_layers_meta(const char *path, int width, int height, const io_e
 /* The same file written in bands (issue 28: a composite of any height through a band-sized buffer). open writes the
    header (the layers' names and channel counts; their pixels are not read) and returns NULL + err on failure, nothing
    left behind. rows appends the next `rows` rows (`layers` as at open, in the same order, `pixels` pointing at this
-   band's first row); every call but the last must bring a multiple of rows_per_chunk rows. finish renames the file
+   band's first row); every call but the last must bring a multiple of rows_per_chunk rows (the compression's
+   io_exr_compression_lines, known before the file is opened). finish renames the file
    into place. On any failure (-1 + err) the stream is gone: nothing at `path`, no temporary. */
 typedef struct io_exr_band_layer {
     const char *name;     /* as io_exr_out_layer */

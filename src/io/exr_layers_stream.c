@@ -1,7 +1,7 @@
 /* vksky image I/O: the multilayer EXR writer in bands (exr_layers.h, io_exr_layers_stream_*): the header first, then
    the rows as they come, a chunk at a time, so that an image of any height passes through a band-sized buffer (the
-   composite of an 8K plate, issue 28). One part, HALF channels, ZIP; written to a temporary and renamed at the end
-   (atomic_file.h). */
+   composite of an 8K plate, issue 28). One part, HALF channels, the compression of --exr-compression (encode_settings.h;
+   ZIP by default); written to a temporary and renamed at the end (atomic_file.h). */
 #ifndef _POSIX_C_SOURCE
 #define _POSIX_C_SOURCE 200809L
 #endif
@@ -100,8 +100,9 @@ io_exr_layers_stream *io_exr_layers_stream_open(const char *path, int width, int
     if (rc == EXR_ERR_SUCCESS && long_names) stage = "enable long names", rc = exr_set_longname_support(s->ctxt, 1);
     if (rc == EXR_ERR_SUCCESS) stage = "add part", rc = exr_add_part(s->ctxt, "", EXR_STORAGE_SCANLINE, &s->part);
     if (rc == EXR_ERR_SUCCESS)
-        stage = "header", rc = exr_initialize_required_attr_simple(s->ctxt, s->part, width, height, EXR_COMPRESSION_ZIP);
-    /* --exr-compression zip:N's zlib level (encode_settings.h; the stream writes ZIP whatever the name). */
+        stage = "header", rc = exr_initialize_required_attr_simple(s->ctxt, s->part, width, height,
+                                                                   (exr_compression_t)io_encode_settings_get().exr_compression);
+    /* --exr-compression zip:N's zlib level (encode_settings.h). */
     if (rc == EXR_ERR_SUCCESS) stage = "compression", rc = io_exr_apply_compression_level(s->ctxt, s->part);
     if (rc == EXR_ERR_SUCCESS && meta) stage = "attributes", rc = io_exr_set_meta(s->ctxt, s->part, meta);
     for (int l = 0; l < layer_count && rc == EXR_ERR_SUCCESS; ++l)

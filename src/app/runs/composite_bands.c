@@ -1,6 +1,7 @@
 /* The composite in bands (composite_bands.h). */
 #include "app/runs/composite_bands.h"
 #include "app/runs/stop.h"
+#include "io/encode_settings.h"
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -20,7 +21,10 @@ int composite_band_rows(int width, int height)
      * up; 64 rows there cost what main's 2^20-pixel bands did (3.71 s). */
     int rows = env && atoi(env) > 0 ? atoi(env) : (1 << 18) / (width > 0 ? width : 1);
     if (!(env && atoi(env) > 0) && rows < 64) rows = 64;
-    rows = rows < 16 ? 16 : rows / 16 * 16;   /* whole chunks of the ZIP writer (16 rows) */
+    /* Whole chunks of the writer: 16 rows (ZIP's, and the bands' floor), or 32 for PIZ and B44 (all powers of 2). */
+    int chunk = io_exr_compression_lines(io_encode_settings_get().exr_compression);
+    if (chunk < 16) chunk = 16;
+    rows = rows < chunk ? chunk : rows / chunk * chunk;
     return rows >= height ? height : rows;
 }
 

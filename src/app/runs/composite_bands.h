@@ -12,7 +12,8 @@
 #include <vksky.h>
 
 /* Rows per band for a width x height composite: about 2^18 pixels (VKSKY_COMPOSITE_BAND_ROWS overrides, for
- * tests), a whole number of the writer's 16-row chunks, the whole image when it is smaller. */
+ * tests), a whole number of the writer's chunks (16 rows, 32 for PIZ and B44: --exr-compression), the whole image
+ * when it is smaller. */
 int composite_band_rows(int width, int height);
 
 typedef struct band_reader {
