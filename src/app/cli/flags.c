@@ -84,7 +84,7 @@ const flag flags_table[] = {
     {"--validate", ARG_NONE, 0, 0, "      Khronos validation + synchronization validation; any message fails the run (also VKSKY_VALIDATION=1)"},
     {"--trace-barriers", ARG_NONE, 0, 0, "print one line per barrier as the frame is recorded"},
     {"--trace-passes", ARG_NONE, 0, 0, "  list the passes the frame records"},
-    {"--timings", ARG_NONE, 0, 0, "       where the first image's time went (exec, options, probe, instance, device, pipelines, setup, LUTs, frame, readback, encode, write, teardown: they add up to the total), on stderr; a sequence's or banded render's stages"},
+    {"--timings", ARG_NONE, 0, 0, "       where the first image's time went (exec, options, probe, instance, device, pipelines, setup, LUTs, frame, readback, encode, write, teardown: they add up to the total), on stderr; a sequence's, banded render's or composite's stages"},
     {"--no-cache", ARG_NONE, 0, 0, "      no pipeline or LUT cache on disk (default: $XDG_CACHE_HOME/vksky or ~/.cache/vksky, per device and driver)"},
     {"--list-devices", ARG_NONE, 0, 0, "  list Vulkan devices and exit"},
     {"--device", ARG_INT, 0, 63, "N     use device N of --list-devices (default: discrete > integrated > CPU)"},

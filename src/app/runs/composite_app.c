@@ -13,6 +13,7 @@
 #include "app/runs/host_print.h"
 #include "app/runs/host_ring.h"
 #include "app/runs/spectral_host.h"
+#include "app/runs/stage_times.h"
 #include "app/runs/startup.h"
 #include "app/runs/stop.h"
 #include "app/scene/light.h"
@@ -49,6 +50,7 @@ typedef struct composite_gpu {
     vksky_renderer *r;
     host_commands h[2];           /* [1]: the second slot's, for a ring of bands (made by composite_run) */
     host_async async;
+    bool timings;                 /* --timings: the report after the teardown (startup.h) */
 } composite_gpu;
 
 static void gpu_release(composite_gpu *g)
@@ -64,7 +66,7 @@ static void gpu_release(composite_gpu *g)
 static int gpu_end(composite_gpu *g, int status)
 {
     gpu_release(g);
-    return host_device_close(g->dev, g->ctx, status, (host_device_end){0});
+    return host_device_close(g->dev, g->ctx, status, (host_device_end){.timings = g->timings});
 }
 
 /* The command line's scene (`render_scale_1`: with --render-scale=1 appended). 0, or 1 (the line printed). The
@@ -87,7 +89,7 @@ static int scene_of(const options *o, bool render_scale_1, vksky_scene **out)
 static int gpu_begin(const options *o, composite_gpu *g, vksky_scene *scene, uint32_t width, uint32_t height,
                      bool readback)
 {
-    *g = (composite_gpu){.scene = scene};
+    *g = (composite_gpu){.scene = scene, .timings = o->timings};
     uint32_t compute_index = 0;
     int rc = host_device_open(o, &g->dev, &g->ctx, &compute_index);
     if (rc != 0) {
@@ -208,12 +210,14 @@ typedef struct check_job {
     composite_fixups fix;
     size_t geometry, sky;
     int status;
+    double wall_ms, cpu_ms;   /* --timings */
 } check_job;
 
 static void *check_thread(void *arg)
 {
     check_job *job = arg;
     band_reader *r = job->reader;
+    stage_mark begun = stage_mark_now();
     for (int y0 = 0; y0 < r->height && job->status == 0; y0 += r->band_rows) {
         if ((job->status = band_reader_read(r, y0, &job->fix)) != 0) break;
         const composite_band *band = &r->band;
@@ -226,6 +230,8 @@ static void *check_thread(void *arg)
             else ++job->sky;
         }
     }
+    stage_mark done = stage_mark_now();
+    job->wall_ms = done.wall_ms - begun.wall_ms, job->cpu_ms = done.cpu_ms - begun.cpu_ms;
     return NULL;
 }
 
@@ -359,13 +365,16 @@ int composite_run(const options *o, const composite_options *co)
     composite_gpu g = {0};
     bool started = false;
     int gpu_status = 0;
+    stage_mark setup = stage_mark_now();
     if (altitude >= 0.0) {
         gpu_status = gpu_begin(o, &g, planet, 1, 1, false);
         started = gpu_status == 0;
     } else {
         vksky_scene_destroy(planet);
     }
+    composite_start_times start = {.setup_wall_ms = stage_mark_now().wall_ms - setup.wall_ms};
     if (threaded) pthread_join(checker, NULL);
+    start.check_wall_ms = job.wall_ms, start.check_cpu_ms = job.cpu_ms;
     composite_fixups fix = job.fix;
     size_t geometry = job.geometry, sky = job.sky;
     if ((status = job.status) != 0) goto done_checked;
@@ -459,12 +468,14 @@ int composite_run(const options *o, const composite_options *co)
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
+    stage_begin();
     if (out && (status = composite_bands_render(&reader, g.h, slots, g.r, c, frames_from_env(),
                                                 o->trace_barriers ? stdout : NULL, out)) == 0 &&
         io_exr_layers_stream_finish(out, err, sizeof err) != 0) {
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
+    if (status == 0 && o->timings) composite_timings_report(stderr, &reader, &start);
     vksky_composite_destroy(c);
     status = gpu_end(&g, status);
     started = false;

@@ -1,5 +1,6 @@
 /* The composite in bands (composite_bands.h). */
 #include "app/runs/composite_bands.h"
+#include "app/runs/stage_times.h"
 #include "app/runs/stop.h"
 #include "io/encode_settings.h"
 #include <math.h>
@@ -159,6 +160,7 @@ static int render_ring(band_reader *b, host_commands h[2], vksky_composite *c, F
         if (k < bands) {
             uint32_t s = (uint32_t)k % 2;
             int y0 = k * b->band_rows;
+            stage_mark t0 = stage_mark_now();   /* --timings: read, upload, record and submit */
             if ((rc = band_reader_read(b, y0, &ignored)) != 0) break;
             if (trace && k >= 2)
                 fprintf(trace, "sync composite.slot_free band=%d slot=%u (band %d's layers encoded)\n", k, s, k - 2);
@@ -169,11 +171,17 @@ static int render_ring(band_reader *b, host_commands h[2], vksky_composite *c, F
             core_rows[s] = b->band.core_rows;
             vksky_composite_frame f = {.slot = s, .first_row = y0};
             if ((rc = submit_frames(&h[s], NULL, c, &f, 0, 1, trace, NULL, false)) != 0) break;
+            stage_add_since(STAGE_PRODUCE, t0);
             submitted = k + 1;
         }
         if (k >= 1) {
             uint32_t s = (uint32_t)(k - 1) % 2;
-            if ((rc = band_done(&h[s], k - 1, s, trace, drop, &waited[s])) == 0) rc = stream_band(c, s, core_rows[s], out);
+            stage_mark t0 = stage_mark_now();
+            rc = band_done(&h[s], k - 1, s, trace, drop, &waited[s]);
+            stage_add_since(STAGE_GPU_WAIT, t0);
+            t0 = stage_mark_now();
+            if (rc == 0) rc = stream_band(c, s, core_rows[s], out);
+            stage_add_since(STAGE_WRITE, t0);
             if (rc == 0 && stop_requested()) rc = 1;   /* SIGINT/SIGTERM: no file at the output path */
         }
     }
@@ -188,6 +196,7 @@ int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_
     if (slots == 2) return render_ring(b, h, c, trace, out);
     composite_fixups ignored = {0};   /* counted by the first pass */
     for (int y0 = 0; y0 < b->height; y0 += b->band_rows) {
+        stage_mark t0 = stage_mark_now();   /* --timings: one band at a time, its GPU wait inside the submit */
         int rc = band_reader_read(b, y0, &ignored);
         if (rc) {
             io_exr_layers_stream_abort(out);
@@ -199,13 +208,28 @@ int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_
             io_exr_layers_stream_abort(out);
             return 1;
         }
+        stage_add_since(STAGE_PRODUCE, t0);
+        t0 = stage_mark_now();
         if (stream_band(c, 0, b->band.core_rows, out) != 0) return 1;
+        stage_add_since(STAGE_WRITE, t0);
         if (stop_requested()) {   /* SIGINT/SIGTERM: no file at the output path */
             io_exr_layers_stream_abort(out);
             return 1;
         }
     }
     return 0;
+}
+
+void composite_timings_report(FILE *out, const band_reader *b, const composite_start_times *t)
+{
+    fprintf(out, "vksky: timings of the composite's start (ms): inputs checked %.1f wall, %.1f CPU (a thread of its own, "
+                 "beside the device, renderer and pipelines: %.1f wall)\n", t->check_wall_ms, t->check_cpu_ms,
+            t->setup_wall_ms);
+    int bands = (b->height + b->band_rows - 1) / b->band_rows;
+    fprintf(out, "vksky: the composite's bands: produce = the inputs' rows read, fixed and uploaded, recorded and "
+                 "submitted; gpu wait = composite.band_done (the LUTs, on the first band, included); write = the layers "
+                 "streamed (compressed on the encode threads)\n");
+    stage_report(out, "composite", bands, "band", 1, io_encode_threads_all());
 }
 
 static int compare_double(const void *a, const void *b)

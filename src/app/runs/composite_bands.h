@@ -10,6 +10,7 @@
 #include "app/runs/host_ring.h"
 #include "io/exr_layers.h"
 #include <vksky.h>
+#include <stdio.h>
 
 /* Rows per band for a width x height composite: about 2^18 pixels (VKSKY_COMPOSITE_BAND_ROWS overrides, for
  * tests), a whole number of the writer's chunks (16 rows, 32 for PIZ and B44: --exr-compression), the whole image
@@ -54,6 +55,13 @@ int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_
 
 /* --bench N with --composite: per-pass GPU medians of N composite frames of slot 0's inputs after warm-up (the LUTs
  * are not in them: built once by the first frame), one line per pass like the sky's benchmark, on stdout. */
+/* --timings: the start (the check pass, timed on its thread; the device, renderer and pipelines made beside it) and the
+ * bands' stages (stage_times.h: read + upload + submit, the GPU waits, the stream's writes) since stage_begin. */
+typedef struct composite_start_times {
+    double check_wall_ms, check_cpu_ms, setup_wall_ms;
+} composite_start_times;
+void composite_timings_report(FILE *out, const band_reader *b, const composite_start_times *t);
+
 void composite_bench(host_commands *h, vksky_renderer *r, vksky_composite *c, bool volume, uint32_t width,
                      uint32_t rows, int frames, FILE *trace);
 
