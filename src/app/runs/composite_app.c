@@ -24,7 +24,6 @@
 #include "io/half_float.h"
 #include "io/png_io.h"
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -204,35 +203,20 @@ static int pick_volume(const options *o, const composite_options *co, bool orien
     return 0;
 }
 
-/* The check pass over the inputs (composite_run), on a thread of its own: every band read and fixed once, its counts. */
-typedef struct check_job {
-    band_reader *reader;
-    composite_fixups fix;
-    size_t geometry, sky;
-    int status;
-    double wall_ms, cpu_ms;   /* --timings */
-} check_job;
-
-static void *check_thread(void *arg)
+/* The notes of a composite that succeeded (its inputs' counts, band_reader: read once, as they were composited). */
+static void print_notes(const band_reader *r, bool oriented)
 {
-    check_job *job = arg;
-    band_reader *r = job->reader;
-    stage_mark begun = stage_mark_now();
-    for (int y0 = 0; y0 < r->height && job->status == 0; y0 += r->band_rows) {
-        if ((job->status = band_reader_read(r, y0, &job->fix)) != 0) break;
-        const composite_band *band = &r->band;
-        size_t core = (size_t)(band->core_row - band->first_row) * (size_t)r->width;
-        size_t end = core + (size_t)band->core_rows * (size_t)r->width;
-        for (size_t i = core; i < end; ++i) {
-            const float *p = r->position + 4 * i;
-            bool finite = isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
-            if (finite && r->beauty[4 * i + 3] > 0.0f) ++job->geometry;
-            else ++job->sky;
-        }
-    }
-    stage_mark done = stage_mark_now();
-    job->wall_ms = done.wall_ms - begun.wall_ms, job->cpu_ms = done.cpu_ms - begun.cpu_ms;
-    return NULL;
+    if (r->fix.overflowed)
+        fprintf(stderr, "vksky: --composite: note: %zu positions overflowed the half-float range (beyond 65504 world "
+                        "units) and have no atmosphere: write the Position pass as float (Blender: Output > Float "
+                        "(Full))\n", r->fix.overflowed);
+    if (r->fix.repaired || r->fix.unrepaired)
+        fprintf(stderr, "vksky: --composite: note: %zu edge pixels without a position took their nearest covered "
+                        "neighbour's%s\n", r->fix.repaired, r->fix.unrepaired ? "; some found none (composited without "
+                        "atmosphere)" : "");
+    if (!oriented && r->sky > 0)
+        fprintf(stderr, "vksky: --composite: the camera's orientation is unknown (no worldToCamera, no --yaw/--pitch): "
+                        "%zu pixels without geometry keep the beauty\n", r->sky);
 }
 
 /* The spectral composite's bands (composite_spectral.h) into out_path: the same stream, layers and header as the RGB
@@ -299,9 +283,7 @@ int composite_run(const options *o, const composite_options *co)
         goto done_info;
     }
     const io_exr_info *pinfo = co->position ? &pi : &bi;
-    const char *position_path = inputs.has_depth ? inputs.depth_path : inputs.position_path;
     int w = bi.width, h = bi.height;
-    size_t n = (size_t)w * h;
 
     /* The camera: --camera-position and --yaw/--pitch, else the EXR's worldToCamera (and worldToNDC). */
     composite_view v = view_from_options(o);
@@ -348,70 +330,30 @@ int composite_run(const options *o, const composite_options *co)
         goto done_info;
     }
     double altitude = vksky_composite_view_altitude(&v, planet);
-    /* The inputs in bands (app/runs/composite_bands.h), first read only to check and count them: a bad pixel pass
-     * fails before any output exists. The check runs on a thread of its own while the device, the renderer and the
-     * composite's pipeline are made (issue 28 item 6: the two were serial); a camera inside the planet starts no
-     * device. */
+    /* The inputs in bands (app/runs/composite_bands.h), read once: each band is checked as it is composited (an
+     * opaque film stops the run at the band that shows it, no geometry at all at the end: exit 2 with one line, the
+     * output's temporary removed, nothing at its path) and its counts kept for the notes (issue 28 item 6: a check
+     * pass of its own decoded the inputs twice). A camera inside the planet starts no device. */
+    if (altitude < 0.0) {
+        fprintf(stderr, "vksky: --composite: the camera (%g, %g, %g world units) is inside the planet (%.4g km below "
+                        "the ground); check --world-up, --world-unit, --ground-altitude\n",
+                v.camera[0], v.camera[1], v.camera[2], -altitude);
+        vksky_scene_destroy(planet);
+        status = 2;
+        goto done_info;
+    }
     int band_rows = composite_band_rows(w, h);
     band_reader reader;
     if ((status = band_reader_init(&reader, beauty_path, &inputs, &v, w, h, band_rows)) != 0) {
         vksky_scene_destroy(planet);
         goto done_info;
     }
-    check_job job = {.reader = &reader};
-    pthread_t checker;
-    bool threaded = pthread_create(&checker, NULL, check_thread, &job) == 0;
-    if (!threaded) check_thread(&job);
     composite_gpu g = {0};
     bool started = false;
-    int gpu_status = 0;
     stage_mark setup = stage_mark_now();
-    if (altitude >= 0.0) {
-        gpu_status = gpu_begin(o, &g, planet, 1, 1, false);
-        started = gpu_status == 0;
-    } else {
-        vksky_scene_destroy(planet);
-    }
+    if ((status = gpu_begin(o, &g, planet, 1, 1, false)) != 0) goto done_checked;   /* the device's line printed */
+    started = true;
     composite_start_times start = {.setup_wall_ms = stage_mark_now().wall_ms - setup.wall_ms};
-    if (threaded) pthread_join(checker, NULL);
-    start.check_wall_ms = job.wall_ms, start.check_cpu_ms = job.cpu_ms;
-    composite_fixups fix = job.fix;
-    size_t geometry = job.geometry, sky = job.sky;
-    if ((status = job.status) != 0) goto done_checked;
-    if (fix.opaque >= 16 && fix.opaque * 100 >= n) {
-        fprintf(stderr, "vksky: --composite: %s: the film is opaque: %zu pixels (%.0f %%) have alpha 1 and no "
-                        "position (a background, not geometry): render with a transparent film (Blender: Render "
-                        "Properties > Film > Transparent) so that the sky can go behind\n",
-                beauty_path, fix.opaque, 100.0 * (double)fix.opaque / (double)n);
-        status = 2;
-        goto done_checked;
-    }
-    if (geometry == 0) {
-        fprintf(stderr, "vksky: --composite: %s: the %s pass has no finite pixel with alpha > 0: nothing to "
-                        "apply the atmosphere to (is it the world-position pass?)\n", position_path,
-                inputs.has_depth ? "depth" : "position");
-        status = 2;
-        goto done_checked;
-    }
-    if (altitude < 0.0) {
-        fprintf(stderr, "vksky: --composite: the camera (%g, %g, %g world units) is inside the planet (%.4g km below "
-                        "the ground); check --world-up, --world-unit, --ground-altitude\n",
-                v.camera[0], v.camera[1], v.camera[2], -altitude);
-        status = 2;
-        goto done_checked;
-    }
-    if ((status = gpu_status) != 0) goto done_checked;   /* the device's own line was printed */
-    if (fix.overflowed)
-        fprintf(stderr, "vksky: --composite: note: %zu positions overflowed the half-float range (beyond 65504 world "
-                        "units) and have no atmosphere: write the Position pass as float (Blender: Output > Float "
-                        "(Full))\n", fix.overflowed);
-    if (fix.repaired || fix.unrepaired)
-        fprintf(stderr, "vksky: --composite: note: %zu edge pixels without a position took their nearest covered "
-                        "neighbour's%s\n", fix.repaired, fix.unrepaired ? "; some found none (composited without "
-                        "atmosphere)" : "");
-    if (!v.oriented && sky > 0)
-        fprintf(stderr, "vksky: --composite: the camera's orientation is unknown (no worldToCamera, no --yaw/--pitch): "
-                        "%zu pixels without geometry keep the beauty\n", sky);
 
     /* The header: how it was made, and the scene of its sky (`vksky --scene OUT.exr`). */
     exr_header hdr;
@@ -432,6 +374,7 @@ int composite_run(const options *o, const composite_options *co)
     cdesc.rows = (uint32_t)band_rows;
     if (o->spectral) {   /* --spectral N: a composite pass per group of three wavelengths (composite_spectral.h) */
         status = gpu_end(&g, spectral_bands(o, &g, &reader, &cdesc, &v, w, h, &hdr.meta, out_path));
+        if (status == 0) print_notes(&reader, v.oriented);
         started = false;
         goto done_header;
     }
@@ -449,12 +392,12 @@ int composite_run(const options *o, const composite_options *co)
     /* The segments' steps by length, the sky by tiles (docs/aerial_perspective.md). */
     if (vksky_composite_set_view(c, &v, (uint32_t)h, VKSKY_COMPOSITE_FAST, NULL) != VKSKY_SUCCESS) status = 1;
     if (status == 0 && o->bench_frames > 0) {   /* the first band (the whole image up to 2^18 pixels) */
-        composite_fixups ignored = {0};
-        if ((status = band_reader_read(&reader, 0, &ignored)) == 0) {
+        if ((status = band_reader_read(&reader, 0)) == 0) {
             band_reader_upload(&reader, vksky_composite_inputs(c, 0), band_rows);
             composite_bench(&g.h[0], g.r, c, cdesc.volume, (uint32_t)w, (uint32_t)band_rows, o->bench_frames,
                             o->trace_barriers ? stdout : NULL);
         }
+        reader.fix = (composite_fixups){0}, reader.geometry = reader.sky = 0;   /* counted again below */
     }
     static const char *const names[VKSKY_COMPOSITE_LAYERS] = {"", "sky", "sun_disk", "transmittance", "rayleigh",
                                                               "mie"};
@@ -475,6 +418,7 @@ int composite_run(const options *o, const composite_options *co)
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
+    if (status == 0) print_notes(&reader, v.oriented);
     if (status == 0 && o->timings) composite_timings_report(stderr, &reader, &start);
     vksky_composite_destroy(c);
     status = gpu_end(&g, status);

@@ -52,7 +52,7 @@ void band_reader_free(band_reader *b)
     b->beauty = b->position = NULL;
 }
 
-int band_reader_read(band_reader *b, int y0, composite_fixups *fix)
+int band_reader_read(band_reader *b, int y0)
 {
     int core_rows = b->height - y0 < b->band_rows ? b->height - y0 : b->band_rows;
     int first = y0 - COMPOSITE_BAND_MARGIN < 0 ? 0 : y0 - COMPOSITE_BAND_MARGIN;
@@ -62,7 +62,32 @@ int band_reader_read(band_reader *b, int y0, composite_fixups *fix)
     int rc = composite_read_band(b->beauty_path, b->in, b->width, first, last - first, b->beauty, b->position);
     if (rc) return rc;
     composite_fix_positions(b->beauty, b->position, b->in->has_depth ? b->position : NULL, &b->band, b->v,
-                            b->in->position_half, fix);
+                            b->in->position_half, &b->fix);
+    size_t core = (size_t)(y0 - first) * (size_t)b->width, end = core + (size_t)core_rows * (size_t)b->width;
+    for (size_t i = core; i < end; ++i) {
+        const float *p = b->position + 4 * i;
+        if (isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]) && b->beauty[4 * i + 3] > 0.0f) ++b->geometry;
+        else ++b->sky;
+    }
+    return 0;
+}
+
+int band_reader_verdict(const band_reader *b, bool whole)
+{
+    size_t n = (size_t)b->width * (size_t)b->height, opaque = b->fix.opaque;
+    if (opaque >= 16 && opaque * 100 >= n) {
+        fprintf(stderr, "vksky: --composite: %s: the film is opaque: %zu pixels (%.0f %%) have alpha 1 and no "
+                        "position (a background, not geometry): render with a transparent film (Blender: Render "
+                        "Properties > Film > Transparent) so that the sky can go behind\n",
+                b->beauty_path, opaque, 100.0 * (double)opaque / (double)n);
+        return 2;
+    }
+    if (whole && b->geometry == 0) {
+        fprintf(stderr, "vksky: --composite: %s: the %s pass has no finite pixel with alpha > 0: nothing to "
+                        "apply the atmosphere to (is it the world-position pass?)\n",
+                b->in->has_depth ? b->in->depth_path : b->in->position_path, b->in->has_depth ? "depth" : "position");
+        return 2;
+    }
     return 0;
 }
 
@@ -153,7 +178,6 @@ static int render_ring(band_reader *b, host_commands h[2], vksky_composite *c, F
                        io_exr_layers_stream *out)
 {
     const char *drop = getenv("VKSKY_DROP_BARRIER");
-    composite_fixups ignored = {0};   /* counted by the first pass */
     int bands = (b->height + b->band_rows - 1) / b->band_rows, core_rows[2] = {0, 0}, rc = 0, submitted = 0;
     bool waited[2] = {true, true};
     for (int k = 0; k <= bands && rc == 0; ++k) {
@@ -161,7 +185,7 @@ static int render_ring(band_reader *b, host_commands h[2], vksky_composite *c, F
             uint32_t s = (uint32_t)k % 2;
             int y0 = k * b->band_rows;
             stage_mark t0 = stage_mark_now();   /* --timings: read, upload, record and submit */
-            if ((rc = band_reader_read(b, y0, &ignored)) != 0) break;
+            if ((rc = band_reader_read(b, y0)) != 0 || (rc = band_reader_verdict(b, false)) != 0) break;
             if (trace && k >= 2)
                 fprintf(trace, "sync composite.slot_free band=%d slot=%u (band %d's layers encoded)\n", k, s, k - 2);
             /* Only where band_done was dropped: the command buffer must not be pending when it is reset (its fence is
@@ -186,6 +210,7 @@ static int render_ring(band_reader *b, host_commands h[2], vksky_composite *c, F
         }
     }
     if (submitted > 0) vkQueueWaitIdle(h[0].queue);   /* nothing of a failed run left in flight */
+    if (rc == 0) rc = band_reader_verdict(b, true);
     if (rc) io_exr_layers_stream_abort(out);
     return rc;
 }
@@ -194,10 +219,10 @@ int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_
                            int frames, FILE *trace, io_exr_layers_stream *out)
 {
     if (slots == 2) return render_ring(b, h, c, trace, out);
-    composite_fixups ignored = {0};   /* counted by the first pass */
     for (int y0 = 0; y0 < b->height; y0 += b->band_rows) {
         stage_mark t0 = stage_mark_now();   /* --timings: one band at a time, its GPU wait inside the submit */
-        int rc = band_reader_read(b, y0, &ignored);
+        int rc = band_reader_read(b, y0);
+        if (rc == 0) rc = band_reader_verdict(b, false);
         if (rc) {
             io_exr_layers_stream_abort(out);
             return rc;
@@ -217,17 +242,18 @@ int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_
             return 1;
         }
     }
-    return 0;
+    int rc = band_reader_verdict(b, true);   /* no geometry at all: known once every band was read */
+    if (rc) io_exr_layers_stream_abort(out);
+    return rc;
 }
 
 void composite_timings_report(FILE *out, const band_reader *b, const composite_start_times *t)
 {
-    fprintf(out, "vksky: timings of the composite's start (ms): inputs checked %.1f wall, %.1f CPU (a thread of its own, "
-                 "beside the device, renderer and pipelines: %.1f wall)\n", t->check_wall_ms, t->check_cpu_ms,
+    fprintf(out, "vksky: timings of the composite's start (ms): the device, renderer and pipelines %.1f wall\n",
             t->setup_wall_ms);
     int bands = (b->height + b->band_rows - 1) / b->band_rows;
-    fprintf(out, "vksky: the composite's bands: produce = the inputs' rows read, fixed and uploaded, recorded and "
-                 "submitted; gpu wait = composite.band_done (the LUTs, on the first band, included); write = the layers "
+    fprintf(out, "vksky: the composite's bands: produce = the inputs' rows read, fixed, checked and uploaded, recorded "
+                 "and submitted; gpu wait = composite.band_done (the LUTs, on the first band, included); write = the layers "
                  "streamed (compressed on the encode threads)\n");
     stage_report(out, "composite", bands, "band", 1, io_encode_threads_all());
 }

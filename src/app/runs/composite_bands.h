@@ -24,6 +24,10 @@ typedef struct band_reader {
     int width, height, band_rows;
     float *beauty, *position;   /* (band_rows + 2 margins) rows, RGBA */
     composite_band band;        /* the band last read */
+    /* Summed over the bands read (their core rows): the edge repairs and the film's checks, the pixels with and
+     * without geometry (a finite position and alpha > 0). The inputs are read once, as they are composited. */
+    composite_fixups fix;
+    size_t geometry, sky;
 } band_reader;
 
 /* 0, or 1 after one line on stderr (out of memory). */
@@ -31,9 +35,14 @@ int band_reader_init(band_reader *b, const char *beauty_path, const composite_in
                      int width, int height, int band_rows);
 void band_reader_free(band_reader *b);
 
-/* Reads and fixes the band whose core starts at row y0 (composite_fix_positions; its counts added to *fix). 0, 1
+/* Reads and fixes the band whose core starts at row y0 (composite_fix_positions; its counts added to b's). 0, 1
  * or 2 (one line on stderr). */
-int band_reader_read(band_reader *b, int y0, composite_fixups *fix);
+int band_reader_read(band_reader *b, int y0);
+
+/* The common mistakes, from the counts so far: an opaque film (most pixels alpha 1 with no position: decided as soon as
+ * the count reaches it, so a run stops at the band that shows it) and, once every band was read (`whole`), no geometry
+ * at all. 0, or 2 after one line on stderr; the caller aborts its output (nothing at the output path). */
+int band_reader_verdict(const band_reader *b, bool whole);
 
 /* The core rows of the band last read into `in` (vksky_composite_inputs: `rows` beauty rows, then `rows` position
  * rows; rows below a short last band: covered and without a position, so that nothing is marched for them). */
@@ -55,10 +64,10 @@ int composite_bands_render(band_reader *b, host_commands h[2], int slots, vksky_
 
 /* --bench N with --composite: per-pass GPU medians of N composite frames of slot 0's inputs after warm-up (the LUTs
  * are not in them: built once by the first frame), one line per pass like the sky's benchmark, on stdout. */
-/* --timings: the start (the check pass, timed on its thread; the device, renderer and pipelines made beside it) and the
- * bands' stages (stage_times.h: read + upload + submit, the GPU waits, the stream's writes) since stage_begin. */
+/* --timings: the start (the device, renderer and pipelines) and the bands' stages (stage_times.h: read, check and
+ * upload + submit, the GPU waits, the stream's writes) since stage_begin. */
 typedef struct composite_start_times {
-    double check_wall_ms, check_cpu_ms, setup_wall_ms;
+    double setup_wall_ms;
 } composite_start_times;
 void composite_timings_report(FILE *out, const band_reader *b, const composite_start_times *t);
 

@@ -165,9 +165,8 @@ int composite_spectral_bands(band_reader *b, host_commands *h, vksky_context *ct
     if (!sums) fprintf(stderr, "vksky: --composite: out of memory for a band of %dx%d pixels\n", b->width, b->band_rows);
     band_sum s = {.g = &g, .oriented = view->oriented};
     for (uint32_t L = 0; L < VKSKY_COMPOSITE_LAYERS && sums; ++L) s.layer[L] = sums + (size_t)L * band_pixels * 4;
-    composite_fixups ignored = {0};   /* counted by the check pass (composite_app.c) */
     for (int y0 = 0; y0 < b->height && rc == 0; y0 += b->band_rows) {
-        if ((rc = band_reader_read(b, y0, &ignored)) != 0) break;
+        if ((rc = band_reader_read(b, y0)) != 0 || (rc = band_reader_verdict(b, false)) != 0) break;
         const composite_band *band = &b->band;
         s.beauty = b->beauty + (size_t)(band->core_row - band->first_row) * (size_t)b->width * 4;
         if ((rc = sum_band(&g, h, y0, (size_t)band->core_rows * (size_t)b->width, fill_band, b, trace, &s)) != 0)
@@ -182,6 +181,7 @@ int composite_spectral_bands(band_reader *b, host_commands *h, vksky_context *ct
         }
         if (rc == 0 && stop_requested()) rc = 1;   /* SIGINT/SIGTERM: no file at the output path */
     }
+    if (rc == 0) rc = band_reader_verdict(b, true);
     if (rc) io_exr_layers_stream_abort(out);
     groups_destroy(&g);
     free(sums);
