@@ -355,6 +355,8 @@ static void check_chunk_lines(void)
     char path[600];
     snprintf(path, sizeof path, "%s/lines.exr", dir);
     for (int c = EXR_COMPRESSION_NONE; c < EXR_COMPRESSION_LAST_TYPE; ++c) {
+        /* OpenEXR 3.1 can name DWAA/DWAB but not write them (0 lines): the writers refuse them there anyway. */
+        if (!io_exr_compression_writable(c)) continue;
         exr_context_t ctxt = NULL;
         exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
         int part = -1;
@@ -366,12 +368,6 @@ static void check_chunk_lines(void)
         /* The chunk layout is known once the header is written (as the streamed writer asks it). */
         if (rc == EXR_ERR_SUCCESS) rc = exr_write_header(ctxt);
         if (rc == EXR_ERR_SUCCESS) rc = exr_get_scanlines_per_chunk(ctxt, part, &lines);
-        /* OpenEXR 3.1 can name DWAA/DWAB but not write them (0 lines): the writers refuse them there anyway. */
-        if (!io_exr_compression_writable(c)) {
-            if (ctxt) exr_finish(&ctxt);
-            remove(path);
-            continue;
-        }
         CHECK(rc == EXR_ERR_SUCCESS, "compression %d: OpenEXRCore gives no chunk height (%d)", c, (int)rc);
         CHECK(rc != EXR_ERR_SUCCESS || io_exr_compression_lines(c) == lines,
               "compression %s: io_exr_compression_lines %d, OpenEXRCore %d", io_exr_compression_name(c),
