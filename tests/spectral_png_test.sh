@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tests/spectral_png_test.sh VKSKY SPECTRAL_COMPARE TONEMAP_CHECK: spectral .png environment maps and banded .png
-# images (issue 32 item 5): the sum tone-mapped on the host as the .png still's is. Every render runs with --validate
+# images (issue 32 item 5): the sum tone-mapped on the host as the .png still's is, dithered as the GPU dithers. Every render runs with --validate
 # (a validation message fails the run); stderr holds nothing but the host meter's line. Small sizes, single scattering.
 #   1. A twilight equirect .png under --quality auto picks a spectral setting (its stdout line); at six sky directions
 #      (pixel centres at 5.6-50.6 degrees up, three azimuths) the PNG's pixel is within CIEDE2000 1 (auto's colour
@@ -11,8 +11,12 @@
 #      formulas; tonemap_png's bound without dither), and that EV100 within 0.005 of the log-average of the EXR's own
 #      pixels computed here in numpy over the sky's pixels (the default ground is black: docs/units.md's meter), each
 #      pixel's direction from the projection's published convention (docs/readme/envmap.md).
+#      2b. The dither of the host's tone map: the dithered PNG within the formula's dithered bound, within one level of
+#      the undithered PNG, the noise there (at least 20 % of the mid-range channels one level off), and its law the
+#      GPU's: where the RGB PNG of the same view and the spectral one both moved off their undithered selves, they moved
+#      the same way (the noise's sign at that pixel: the same hash of the same position), on at least 99 %.
 #   3. In bands (VKSKY_TILE_ROWS, a map and a perspective frame with the horizon in it): the banded PNG byte for byte the
-#      one-band PNG, auto-exposed (the meter's first pass over the bands) and at a given exposure.
+#      one-band PNG, auto-exposed (the meter's first pass over the bands) and at a given exposure, dithered.
 set -u
 VKSKY=${1:?usage: spectral_png_test.sh VKSKY SPECTRAL_COMPARE TONEMAP_CHECK}
 COMPARE=${2:?usage: spectral_png_test.sh VKSKY SPECTRAL_COMPARE TONEMAP_CHECK}
@@ -113,6 +117,45 @@ PY
 formula equirect --projection equirect --width 64
 formula cube --projection cubemap --width 16
 formula fisheye --projection fisheye --width 48
+
+# 2b. The dither: the host's tone map adds the GPU's (docs/spectral.md "The PNG"), dithered as an RGB PNG is. The same
+# sunset with and without --no-dither: the dithered PNG within two levels of the formula on the EXR (tonemap_check's
+# dithered bound: the noise's one level more, its mean within 0.05), within one level of the undithered PNG on every
+# channel (triangular noise of +-1 LSB moves a rounding by one level at most), and the noise there: at least 20 % of the
+# mid-range channels one level off the undithered PNG (before the sixteenth session the host's tone map had none). And
+# the law: a pixel's noise moves its rounding, when it does, in the noise's own direction; the RGB PNG (the GPU's
+# shader) and the spectral one (the host's C) of the same view draw it from the same hash of the same position, so
+# where both moved they moved alike (a wrong hash or seed: half the time).
+dithered() {
+    local args=(--width 96 --height 54 --pitch 6 --sun-elevation 3 --sun-azimuth 40 --no-sun-disc --validate)
+    "$VKSKY" "${args[@]}" --spectral 0 --no-dither --render "$work/rgbflat.png" >/dev/null 2>&1 &&
+        "$VKSKY" "${args[@]}" --spectral 0 --render "$work/rgbnoisy.png" >/dev/null 2>&1 || fail "dither: the RGB PNGs"
+    args+=(--spectral 8)
+    "$VKSKY" "${args[@]}" --no-dither --render "$work/flat.png" >/dev/null 2>"$work/err" || { fail "dither: $(cat "$work/err")"; return; }
+    "$VKSKY" "${args[@]}" --render "$work/noisy.exr" --render "$work/noisy.png" >/dev/null 2>"$work/err" ||
+        { fail "dither: $(cat "$work/err")"; return; }
+    clean "dither"
+    local e
+    e=$(metered "$work/err")
+    "$CHECK" "$work/noisy.exr" "$work/noisy.png" photometric "${e:-0}" aces dither || fail "dither: the PNG is not the formula's"
+    /usr/bin/python3 - "$work" <<'PY' || fail "dither: no +-1 LSB noise on the spectral PNG, or not the GPU's"
+import sys
+import numpy as np
+import OpenImageIO as oiio
+png = lambda name: np.asarray(oiio.ImageBuf(sys.argv[1] + "/" + name).get_pixels(oiio.UINT8)[..., :3], dtype=int)
+flat, noisy, rgb = png("flat.png"), png("noisy.png"), png("rgbnoisy.png") - png("rgbflat.png")
+mid = (flat >= 16) & (flat <= 239)
+d = noisy - flat
+share = (np.abs(d[mid]) == 1).mean()
+both = (d != 0) & (rgb != 0)
+alike = (np.sign(d[both]) == np.sign(rgb[both])).mean() if both.any() else 0.0
+print("dither: %.1f %% of %d mid-range channels one level off the undithered PNG, largest difference %d; moved as the "
+      "RGB PNG's (the GPU's dither) on %.2f %% of %d channels both moved" % (100 * share, mid.sum(), np.abs(d).max(),
+                                                                          100 * alike, both.sum()))
+sys.exit(not (np.abs(d).max() <= 1 and share >= 0.2 and mid.mean() >= 0.25 and both.sum() >= 200 and alike >= 0.99))
+PY
+}
+dithered
 
 # 3. Banded against one band, byte for byte.
 bands() {

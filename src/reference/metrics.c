@@ -3,6 +3,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 
 #define M_PI_ 3.14159265358979323846
@@ -186,9 +187,10 @@ double metrics_ciede2000_mean(const unsigned char *a_rgba8, const unsigned char 
 
 static double clamp01(double x) { return x > 0.0 ? (x < 1.0 ? x : 1.0) : 0.0; } /* NaN -> 0 */
 
-static unsigned char tonemap_channel(double c, double exposure, int op)
+/* The channel's sRGB-encoded value in [0, 1], before quantisation. */
+static double tonemap_channel(double c, double exposure, int op)
 {
-    if (!(c == c))
+    if (!(c == c) || c < 0.0) /* NaN, or a spectral sum's out-of-gamut negative: a display shows none (clipped) */
         c = 0.0;
     if (c > 65504.0)
         c = 65504.0;
@@ -201,20 +203,48 @@ static unsigned char tonemap_channel(double c, double exposure, int op)
         m = x;
     m = clamp01(m);
     double e = m > 0.0031308 ? 1.055 * pow(m, 1.0 / 2.4) - 0.055 : 12.92 * m;
-    return (unsigned char)floor(255.0 * clamp01(e) + 0.5);
+    return clamp01(e);
 }
 
-void metrics_tonemap_srgb8(const float *rgba, int w, int h, double exposure_ev, int op, unsigned char *out_rgba8)
+/* The GPU's dither (shaders/glsl/dither.glsl, issue 26), the same law: Jarzynski and Olano's pcg2d (JCGT 2020) of the
+ * pixel's position in the whole image, two uniforms on [0, 1) of its top 24 bits, their sum less 1: triangular noise
+ * on (-1, 1) LSB, added to the encoded value before quantisation, its amplitude shrunk near 0 and 1 to the distance
+ * from the end (no clipping bias). The shader adds it and decodes, the display format encodes again; here the encoded
+ * value is quantised directly: the same level up to the format's own rounding. */
+static double dither_triangular(int x, int y)
+{
+    uint32_t v[2] = {(uint32_t)x, (uint32_t)y};
+    for (int k = 0; k < 2; ++k) v[k] = v[k] * 1664525u + 1013904223u;
+    v[0] += v[1] * 1664525u, v[1] += v[0] * 1664525u;
+    v[0] ^= v[0] >> 16u, v[1] ^= v[1] >> 16u;
+    v[0] += v[1] * 1664525u, v[1] += v[0] * 1664525u;
+    v[0] ^= v[0] >> 16u, v[1] ^= v[1] >> 16u;
+    return (double)(v[0] >> 8u) / 16777216.0 + (double)(v[1] >> 8u) / 16777216.0 - 1.0;
+}
+
+void metrics_tonemap_srgb8_dithered(const float *rgba, int w, int h, double exposure_ev, int op, bool dither, int x0,
+                                    int y0, unsigned char *out_rgba8)
 {
     if (!rgba || !out_rgba8 || w <= 0 || h <= 0)
         return;
     const double exposure = exp2(exposure_ev);
-    const size_t n = (size_t)w * (size_t)h;
-    for (size_t i = 0; i < n; ++i) {
-        for (int c = 0; c < 3; ++c)
-            out_rgba8[4 * i + c] = tonemap_channel(rgba[4 * i + c], exposure, op);
-        out_rgba8[4 * i + 3] = 255;
-    }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            size_t i = (size_t)y * (size_t)w + (size_t)x;
+            double noise = dither ? dither_triangular(x0 + x, y0 + y) : 0.0;
+            for (int c = 0; c < 3; ++c) {
+                double e = tonemap_channel(rgba[4 * i + c], exposure, op);
+                double amplitude = fmin(e, 1.0 - e) * 255.0;
+                e = clamp01(e + noise * (amplitude < 1.0 ? amplitude : 1.0) / 255.0);
+                out_rgba8[4 * i + c] = (unsigned char)floor(255.0 * e + 0.5);
+            }
+            out_rgba8[4 * i + 3] = 255;
+        }
+}
+
+void metrics_tonemap_srgb8(const float *rgba, int w, int h, double exposure_ev, int op, unsigned char *out_rgba8)
+{
+    metrics_tonemap_srgb8_dithered(rgba, w, h, exposure_ev, op, false, 0, 0, out_rgba8);
 }
 
 /* ---------------------------------------------------------------------------------------------------------- */

@@ -8,6 +8,7 @@
 #define VKSKY_METRICS_H
 
 #include "reference/ref_atmosphere.h"
+#include <stdbool.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -49,8 +50,13 @@ double metrics_ciede2000_mean(const unsigned char *a_rgba8, const unsigned char 
  * x = colour * 2^exposure_ev, operator 0 clamp(x, 0, 1) / 1 Reinhard x / (1 + x) / 2 ACES fitted (Narkowicz:
  * x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14), clamped to [0, 1]), then the sRGB encode (12.92 x below
  * 0.0031308, else 1.055 x^(1/2.4) - 0.055), then 8-bit round (floor(255 v + 0.5), v clamped to [0, 1], as the
- * UNORM store does). Alpha is written as 255. NaN maps to 0. */
+ * UNORM store does). Alpha is written as 255. NaN and negatives (a spectral sum's out-of-gamut colour) map to 0. */
 void metrics_tonemap_srgb8(const float *rgba, int w, int h, double exposure_ev, int op, unsigned char *out_rgba8);
+/* The same with the GPU tone map's dither (shaders/glsl/dither.glsl's law) when `dither`: triangular noise of +-1 LSB
+ * seeded by each pixel's position in the whole image, the block's top-left pixel at (x0, y0) there (a band's first
+ * row; the GPU's TonemapPush.dither offset). */
+void metrics_tonemap_srgb8_dithered(const float *rgba, int w, int h, double exposure_ev, int op, bool dither, int x0,
+                                    int y0, unsigned char *out_rgba8);
 
 /* Sky mask: 1 where the view ray of pixel (x, y) (docs/model.md image convention, ref_pixel_dir) does NOT hit the
  * ground from the camera altitude (the inclusive ground test of docs/model.md, cancellation-free), else 0. */

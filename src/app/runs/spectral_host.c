@@ -467,8 +467,8 @@ static int draw_band(void *user, const host_view *v, frame_ring_pixels *out)
     if (sum_band(d, v)) return 1;
     /* Every row drawn, pad rows too (the writer skips them): the tone map is per pixel. */
     if (d->rgb)
-        spectral_render_tonemap_rows(&d->view, d->exposure, d->o->width, (int)(d->pixels / (size_t)d->o->width), d->rgb,
-                                     d->img.display);
+        spectral_render_tonemap_rows(&d->view, d->exposure, d->o->width, (int)(d->pixels / (size_t)d->o->width),
+                                     v->first_row, d->rgb, d->img.display);
     *out = (frame_ring_pixels){d->img.linear, d->img.display};
     return 0;
 }

@@ -78,7 +78,9 @@ bool spectral_render_four_wide(const options *o)
  * The same law as the GPU's (metrics_tonemap_srgb8: shaders/glsl/tonemap_ops.glsl's operators and sRGB encode) at
  * the view's exposure; auto exposure as the GPU's meter computes it (sky/meter.c: the log-average of the luminance
  * in cd/m2 floored at 1e-4, over the sky's pixels only when the ground is black; a fisheye's pixels outside its circle
- * not counted). No bloom (the spectral path has none) and no dither (the GPU's +-1 LSB triangular noise). */
+ * not counted); the GPU's dither (+-1 LSB triangular noise, its law: metrics_tonemap_srgb8_dithered). Bloom: what the
+ * groups' composites carry (three wavelengths to a pass: each group's HDR image plus its bloom, as an RGB frame's EXR;
+ * four to a pass: none). */
 void spectral_render_meter_rows(const sky_view *v, int w, int whole_h, int first_row, int rows, bool every_pixel,
                                 double bottom_radius, const float *rgb, spectral_meter *m)
 {
@@ -118,12 +120,13 @@ double spectral_render_exposure(const sky_view *v, const spectral_meter *m, int 
     return exposed.exposure_ev;
 }
 
-void spectral_render_tonemap_rows(const sky_view *v, double exposure_ev, int w, int rows, const float *rgb,
-                                  void *display)
+void spectral_render_tonemap_rows(const sky_view *v, double exposure_ev, int w, int rows, int first_row,
+                                  const float *rgb, void *display)
 {
-    /* The tone map's multiplier (sky/view_params.c): photometric 1 / (light_scale 1.2 2^EV100), else 2^EV. */
+    /* The tone map's multiplier (sky/view_params.c): photometric 1 / (light_scale 1.2 2^EV100), else 2^EV. The
+     * dither seeded by the whole image's pixel positions, as the GPU's (TonemapPush.dither: the band's offset). */
     double multiplier = v->ev100 ? 1.0 / (v->light_scale * 1.2 * exp2(exposure_ev)) : exp2(exposure_ev);
-    metrics_tonemap_srgb8(rgb, w, rows, log2(multiplier), v->tonemap, display);
+    metrics_tonemap_srgb8_dithered(rgb, w, rows, log2(multiplier), v->tonemap, !v->no_dither, 0, first_row, display);
 }
 
 void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius, bool quiet,
@@ -131,7 +134,7 @@ void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_p
 {
     spectral_meter m = {0};
     if (v->auto_exposure) spectral_render_meter_rows(v, w, h, 0, h, every_pixel, bottom_radius, rgb, &m);
-    spectral_render_tonemap_rows(v, spectral_render_exposure(v, &m, 1, quiet), w, h, rgb, display);
+    spectral_render_tonemap_rows(v, spectral_render_exposure(v, &m, 1, quiet), w, h, 0, rgb, display);
 }
 
 /* The scene classes of the run: a sequence's every frame (all of them, whatever --frame-range renders, so that a

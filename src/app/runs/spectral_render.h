@@ -54,9 +54,10 @@ void spectral_render_meter_rows(const sky_view *v, int w, int whole_h, int first
 /* The exposure to tone-map with: v's, or under v->auto_exposure the meter's (one stderr line unless quiet; bands: how
  * many the meter saw). */
 double spectral_render_exposure(const sky_view *v, const spectral_meter *m, int bands, bool quiet);
-/* rows x w pixels of rgb into display at exposure_ev (v's units and operator). */
-void spectral_render_tonemap_rows(const sky_view *v, double exposure_ev, int w, int rows, const float *rgb,
-                                  void *display);
+/* rows x w pixels of rgb into display at exposure_ev (v's units and operator), dithered as the GPU's tone map dithers
+ * (unless v->no_dither): the rows' first is row first_row of the whole image (a band's, pad rows included). */
+void spectral_render_tonemap_rows(const sky_view *v, double exposure_ev, int w, int rows, int first_row,
+                                  const float *rgb, void *display);
 /* A whole w x h image: metered (under v->auto_exposure), then tone-mapped. */
 void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius, bool quiet,
                                    const float *rgb, void *display);
