@@ -9,6 +9,7 @@
 #     one note at most, the same images, and the file rewritten good (the next run hits).
 #  3. An unwritable cache directory still renders (one "not saved" note); --no-cache neither reads nor writes.
 #  4. VKSKY_LUT_CACHE=ro: a hit uploads without touching the file, a miss computes and writes no LUT file.
+#  7. A spectral image: one file per wavelength group, all hit by a warm run; an animated medium stops at 16 files.
 set -u
 VKSKY=${1:?usage: lut_cache_test.sh VKSKY}
 export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
@@ -158,6 +159,39 @@ grep -q '^pass transmittance_lut$' api_cold.out || fail "API path, cold: the LUT
 grep -q '^pass lut_cache_upload$' api_warm.out && ! grep -q '^pass transmittance_lut$' api_warm.out ||
     fail "API path, warm: the LUTs were not uploaded from the cache"
 cmp -s api_cold/out.png api_warm/out.png || fail "API path: the warm PNG differs from the cold one"
+
+# 7. A spectral image's wavelength groups take turns on one renderer (app/runs/spectral_host.c): a cold run writes one
+#    file per group (24 wavelengths, a sky-only view: four to a pass, 6 groups; with the horizon in the frame three to
+#    a pass, 8), a warm run writes none and rewrites none (a group that missed would compute its LUTs and store them:
+#    a new or rewritten file), and its EXR equals the cold one's byte for byte. Before, a renderer wrote one file in
+#    its life: each warm start computed all but one more group's LUTs again.
+export XDG_CACHE_HOME="$work/spectral"
+spectral() {   # spectral NAME GROUPS [FLAGS...]
+    local name=$1 groups=$2; shift 2
+    mkdir -p "$name"_cold "$name"_warm
+    (cd "$name"_cold && "$VKSKY" "${ARGS[@]}" --spectral 24 --render out.exr "$@" >/dev/null 2>../"$name".err) ||
+        fail "spectral $name, cold: $(cat "$name".err)"
+    local n
+    n=$(ls "$XDG_CACHE_HOME"/vksky/luts-*.bin 2>/dev/null | wc -l)
+    [ "$n" -eq "$groups" ] || fail "spectral $name, cold: $n LUT cache files, expected one per group ($groups)"
+    touch -d '2000-01-01' "$XDG_CACHE_HOME"/vksky/luts-*.bin
+    (cd "$name"_warm && "$VKSKY" "${ARGS[@]}" --spectral 24 --render out.exr --timings "$@" >/dev/null \
+        2>../"$name"_warm.err) || fail "spectral $name, warm: $(cat "$name"_warm.err)"
+    [ "$(ls "$XDG_CACHE_HOME"/vksky/luts-*.bin | wc -l)" -eq "$groups" ] || fail "spectral $name, warm: a file added"
+    [ -z "$(find "$XDG_CACHE_HOME"/vksky -name 'luts-*.bin' -newermt '2000-01-02')" ] ||
+        fail "spectral $name, warm: a group missed the cache (its file rewritten)"
+    [ "$(state "$name"_warm)" = "hit: uploaded, not computed" ] || fail "spectral $name, warm: '$(state "$name"_warm)'"
+    cmp -s "$name"_cold/out.exr "$name"_warm/out.exr || fail "spectral $name: the warm EXR differs from the cold one"
+    rm -f "$XDG_CACHE_HOME"/vksky/luts-*.bin
+}
+spectral sky 6 --pitch 60 --fov 30
+spectral horizon 8
+# The budget (sky/lut_cache.h, SKY_LUT_CACHE_FILES_MAX): a medium animated over 20 frames (the serial loop, which
+# stores each frame's LUTs on a miss) writes 16 files, not one a frame.
+(VKSKY_READBACK_SLOTS=1 "$VKSKY" "${ARGS[@]}" --frame-count 20 --animate mie-g=0.70:0.89 --render "$work/m%02d.exr" \
+    >/dev/null 2>budget.err) || fail "animated medium: $(cat budget.err)"
+n=$(ls "$XDG_CACHE_HOME"/vksky/luts-*.bin 2>/dev/null | wc -l)
+[ "$n" -eq 16 ] || fail "an animated medium's 20 frames wrote $n LUT cache files, expected 16 (the budget)"
 
 [ $fails -eq 0 ] && echo "ok: LUT cache" || echo "$fails failure(s)"
 [ $fails -eq 0 ]

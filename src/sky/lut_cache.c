@@ -72,9 +72,11 @@ static void make_key(const sky_renderer *r, lut_cache_key *k)
 bool sky_lut_cache_fetch(sky_renderer *r)
 {
     const gpu_context *ctx = r->ctx;
-    /* One file written per renderer, for its first LUTs (the warm start): a medium animation computes every
-     * frame's LUTs and does not fill the directory with one file per frame. */
-    if (r->lut_cache == SKY_LUT_CACHE_STORED || r->lut_cache == SKY_LUT_CACHE_UNWRITABLE) return false;
+    /* At most SKY_LUT_CACHE_FILES_MAX files written per renderer, for the first media it meets (the warm start):
+     * every wavelength group of a spectral image, whose groups take turns on one renderer (app/runs/spectral_host.c),
+     * while a medium animation, whose every frame computes new LUTs, stops filling the directory after its first
+     * frames. Once the budget is spent (or the directory is unwritable) nothing more is looked up either. */
+    if (r->lut_cache_files >= SKY_LUT_CACHE_FILES_MAX || r->lut_cache == SKY_LUT_CACHE_UNWRITABLE) return false;
     r->lut_cache = SKY_LUT_CACHE_OFF;
     if (!ctx->cache_file) return false;   /* --no-cache, or no cache directory */
     /* VKSKY_LUT_CACHE=0: the test suite's setting (tests/CMakeLists.txt). Its tests count LUT passes and trace
@@ -111,4 +113,5 @@ void sky_lut_cache_put(sky_renderer *r, const void *payload, size_t size)
     make_key(r, &key);
     r->lut_cache = gpu_cache_blob_store(r->ctx, "luts", &key, sizeof key, payload, size) ? SKY_LUT_CACHE_STORED
                                                                                          : SKY_LUT_CACHE_UNWRITABLE;
+    if (r->lut_cache == SKY_LUT_CACHE_STORED) ++r->lut_cache_files;
 }

@@ -13,6 +13,10 @@
 #define VKSKY_SKY_LUT_CACHE_H
 #include "sky/renderer.h"
 
+/* The most LUT files one renderer writes: a spectral image's wavelength groups, which may all take turns on one
+ * renderer (48 wavelengths three to a pass: 16 groups). */
+#define SKY_LUT_CACHE_FILES_MAX 16
+
 /* Called when the LUTs are about to be computed: true if the cache holds them, now in r->lut_staging (host memory,
  * flushed) for frame_record_lut_cache_upload. False: compute them, and (with a cache directory) the renderer marks
  * them to be stored after the frame (r->lut_cache == SKY_LUT_CACHE_MISS). */

@@ -77,6 +77,7 @@ typedef struct sky_renderer {
     /* The LUT cache on disk (sky/lut_cache.h): what happened to the last LUTs made, and the upload's host copy. */
     enum { SKY_LUT_CACHE_OFF, SKY_LUT_CACHE_HIT, SKY_LUT_CACHE_MISS, SKY_LUT_CACHE_STORED, SKY_LUT_CACHE_UNWRITABLE }
         lut_cache;
+    int lut_cache_files;         /* LUT cache files this renderer wrote (at most SKY_LUT_CACHE_FILES_MAX) */
     gpu_buffer lut_staging;
 } sky_renderer;
 
