@@ -10,6 +10,7 @@
 #  3. An unwritable cache directory still renders (one "not saved" note); --no-cache neither reads nor writes.
 #  4. VKSKY_LUT_CACHE=ro: a hit uploads without touching the file, a miss computes and writes no LUT file.
 #  7. A spectral image: one file per wavelength group, all hit by a warm run; an animated medium stops at 16 files.
+#  8. The sun disc is no part of the key (the LUT passes never read it): one file for frames with and without it.
 set -u
 VKSKY=${1:?usage: lut_cache_test.sh VKSKY}
 export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
@@ -192,6 +193,20 @@ spectral horizon 8
     >/dev/null 2>budget.err) || fail "animated medium: $(cat budget.err)"
 n=$(ls "$XDG_CACHE_HOME"/vksky/luts-*.bin 2>/dev/null | wc -l)
 [ "$n" -eq 16 ] || fail "an animated medium's 20 frames wrote $n LUT cache files, expected 16 (the budget)"
+
+# 8. The sun disc is no part of the key: the LUTs of a frame without it, computed in a directory of their own, are the
+#    same file (name and bytes) as those of a frame with it, and a run without the disc hits the file of one with it.
+for d in disc nodisc; do
+    mkdir -p "$d" && (cd "$d" && XDG_CACHE_HOME="$work/key_$d" "$VKSKY" "${ARGS[@]}" --render out.exr \
+        $([ $d = nodisc ] && echo --no-sun-disc) >/dev/null 2>../"$d".err) || fail "key, $d: $(cat "$d".err)"
+done
+a=$(cd "$work/key_disc/vksky" && ls luts-*.bin) b=$(cd "$work/key_nodisc/vksky" && ls luts-*.bin)
+[ -n "$a" ] && [ "$a" = "$b" ] && cmp -s "$work/key_disc/vksky/$a" "$work/key_nodisc/vksky/$b" ||
+    fail "the LUT files with and without the sun disc differ: '$a' / '$b'"
+(cd nodisc && XDG_CACHE_HOME="$work/key_disc" "$VKSKY" "${ARGS[@]}" --render out.exr --no-sun-disc --timings \
+    >/dev/null 2>../nodisc_warm.err) || fail "key, without the disc, warm: $(cat nodisc_warm.err)"
+[ "$(state nodisc_warm)" = "hit: uploaded, not computed" ] ||
+    fail "a run without the sun disc missed the LUTs of one with it: '$(state nodisc_warm)'"
 
 [ $fails -eq 0 ] && echo "ok: LUT cache" || echo "$fails failure(s)"
 [ $fails -eq 0 ]

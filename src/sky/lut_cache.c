@@ -65,6 +65,10 @@ static void make_key(const sky_renderer *r, lut_cache_key *k)
     for (int i = 0, n = sky_lut_cache_images(r, imgs, names); i < n; ++i)
         k->widths[i] = imgs[i]->extent.width, k->heights[i] = imgs[i]->extent.height;
     k->variant = r->variant;
+    /* The sun disc is drawn by the sky and composite passes (sky_common.glsl: sun_disc, sky_radiance); the LUT passes'
+     * march (sky_march) never reads HAS_SUN_DISC, so a frame without the disc shares the LUTs of one with it (ctest
+     * lut_cache part 8: the two computed apart are the same bytes). */
+    k->variant.sun_disc = VK_FALSE;
     /* The current medium: at a fetch the LUTs are about to be made for it, at a store they hold it (checked there). */
     k->medium = sky_atmosphere_lut_hash(&r->atmosphere, r->variant.sun_visibility);
 }
