@@ -234,14 +234,20 @@ typedef struct psi_cache_slot {
 static psi_cache_slot g_psi_cache[PSI_CACHE_SLOTS];
 static unsigned long long g_psi_clock;
 
-const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps)
+void psi_key_atmosphere(const model_atmosphere *a, model_atmosphere *key)
 {
     /* Psi is per unit sun illuminance: the key leaves out E, and g where the first bounce is isotropic (the
      * lesson's model; the penumbra's uses the real phases, multiscatter.c). */
-    model_atmosphere a = *a_in;
-    if (a.sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE)
-        a.mie_g = 0.0;
-    a.sun_illuminance[0] = a.sun_illuminance[1] = a.sun_illuminance[2] = 0.0;
+    *key = *a;
+    if (key->sun_visibility == MODEL_SUN_VISIBILITY_LESSON_FADE)
+        key->mie_g = 0.0;
+    key->sun_illuminance[0] = key->sun_illuminance[1] = key->sun_illuminance[2] = 0.0;
+}
+
+const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int steps)
+{
+    model_atmosphere a;
+    psi_key_atmosphere(a_in, &a);
     psi_cache_slot *victim = &g_psi_cache[0];
     for (int i = 0; i < PSI_CACHE_SLOTS; ++i) {
         psi_cache_slot *s = &g_psi_cache[i];
@@ -250,7 +256,16 @@ const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int 
         if (!s->table || (victim->table && s->used < victim->used))
             victim = s;
     }
-    psi_table *t = psi_table_build(&a, sqrt_dirs, steps, 0);
+    /* VKSKY_PSI_CACHE=DIR (the test suite's): a table an earlier process stored, else built and stored (psi_disk.c). */
+    const char *dir = getenv("VKSKY_PSI_CACHE");
+    if (dir && !*dir)
+        dir = NULL;
+    psi_table *t = dir ? psi_disk_load(dir, &a, sqrt_dirs, steps, sizeof *t) : NULL;
+    if (!t) {
+        t = psi_table_build(&a, sqrt_dirs, steps, 0);
+        if (t && dir)
+            psi_disk_store(dir, &a, sqrt_dirs, steps, t, sizeof *t);
+    }
     if (!t)
         return NULL;
     free(victim->table);
@@ -260,4 +275,12 @@ const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int 
     victim->table = t;
     victim->used = ++g_psi_clock;
     return t;
+}
+
+void psi_cache_clear(void)
+{
+    for (int i = 0; i < PSI_CACHE_SLOTS; ++i) {
+        free(g_psi_cache[i].table);
+        g_psi_cache[i].table = NULL;
+    }
 }

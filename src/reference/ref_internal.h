@@ -262,6 +262,16 @@ const psi_table *psi_cache_get(const model_atmosphere *a_in, int sqrt_dirs, int 
  * (the sun table it reads is the cache's). */
 psi_table *psi_table_build(const model_atmosphere *a, int sqrt_dirs, int steps, int threads);
 size_t psi_table_bytes(void);
+/* Psi tables on disk for the test suite (psi_disk.c; psi_cache_get uses them when VKSKY_PSI_CACHE names a directory):
+ * the `bytes` of a table stored by an earlier process under key_atmosphere (psi_key_atmosphere's) and the counts, or
+ * NULL (none, or not a good file of this key); and a table stored. They know nothing of the table's layout. */
+void *psi_disk_load(const char *dir, const model_atmosphere *key_atmosphere, int sqrt_dirs, int steps, size_t bytes);
+void psi_disk_store(const char *dir, const model_atmosphere *key_atmosphere, int sqrt_dirs, int steps, const void *t,
+                    size_t bytes);
+/* The atmosphere as a table's key holds it (the bytes that change Psi: E left out, g where it does not matter). */
+void psi_key_atmosphere(const model_atmosphere *a, model_atmosphere *key);
+/* Forgets every cached table (tests: the next psi_cache_get loads or builds again). */
+void psi_cache_clear(void);
 
 /* Psi(h, mu_s) interpolated from the table (h clamped as ms_altitude does), and mom, the second bounce's moments
  * (all 0 for the lesson's model); ms_phase_factor turns them into the factors on the Psi term. */
