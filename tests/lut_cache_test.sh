@@ -11,6 +11,7 @@
 #  4. VKSKY_LUT_CACHE=ro: a hit uploads without touching the file, a miss computes and writes no LUT file.
 #  7. A spectral image: one file per wavelength group, all hit by a warm run; an animated medium stops at 16 files.
 #  8. The sun disc is no part of the key (the LUT passes never read it): one file for frames with and without it.
+#  9. A sequence through the readback ring stores its first frame's LUTs; a warm one hits them.
 set -u
 VKSKY=${1:?usage: lut_cache_test.sh VKSKY}
 export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
@@ -207,6 +208,22 @@ a=$(cd "$work/key_disc/vksky" && ls luts-*.bin) b=$(cd "$work/key_nodisc/vksky" 
     >/dev/null 2>../nodisc_warm.err) || fail "key, without the disc, warm: $(cat nodisc_warm.err)"
 [ "$(state nodisc_warm)" = "hit: uploaded, not computed" ] ||
     fail "a run without the sun disc missed the LUTs of one with it: '$(state nodisc_warm)'"
+
+# 9. A sequence through the readback ring (the default from two frames on) stores its first frame's LUTs as the serial
+#    loop does: a cold 3-frame sequence writes the file, a warm one rewrites nothing and writes the same frames.
+export XDG_CACHE_HOME="$work/ring"
+for run in cold warm; do
+    mkdir -p "ring_$run" && (cd "ring_$run" && "$VKSKY" "${ARGS[@]}" --frame-count 3 --animate sun-elevation=10:20 \
+        --render 'f%d.exr' >/dev/null 2>../ring_$run.err) || fail "ring sequence, $run: $(cat ring_$run.err)"
+    if [ $run = cold ]; then
+        [ "$(ls "$XDG_CACHE_HOME"/vksky/luts-*.bin 2>/dev/null | wc -l)" -eq 1 ] ||
+            fail "a ring sequence wrote no LUT cache file (or more than one)"
+        touch -d '2000-01-01' "$XDG_CACHE_HOME"/vksky/luts-*.bin
+    fi
+done
+[ -z "$(find "$XDG_CACHE_HOME"/vksky -name 'luts-*.bin' -newermt '2000-01-02')" ] ||
+    fail "the warm ring sequence missed its LUTs (the file rewritten)"
+for k in 0 1 2; do cmp -s "ring_cold/f$k.exr" "ring_warm/f$k.exr" || fail "ring sequence: frame $k differs warm"; done
 
 [ $fails -eq 0 ] && echo "ok: LUT cache" || echo "$fails failure(s)"
 [ $fails -eq 0 ]

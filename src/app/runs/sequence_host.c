@@ -202,7 +202,13 @@ static int render_ring(const options *base, vksky_context *ctx, vksky_scene *sce
         first = false;
         lut_computations += j->luts;
         host_view v = view_of(&j->f);
+        long seq = j->seq;   /* j belongs to the ring once submitted (a consumer frees it) */
         status = host_ring_submit(&ring, &v, j);
+        /* A LUT cache miss on the first frame: its LUTs into the cache for the next start, as the serial loop does
+         * (vksky_renderer_store_luts: a submission of its own after this frame's, waited for; nothing on a hit).
+         * Only the first frame's: a store waits for the queue, and an animated medium's later frames would each
+         * stall the ring. */
+        if (status == 0 && seq == 0 && vksky_renderer_store_luts(r) != VKSKY_SUCCESS) status = 1;
         stage_add_since(STAGE_PRODUCE, produce_start);
     }
     int consumed = host_ring_finish(&ring);
