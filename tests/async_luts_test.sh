@@ -107,7 +107,7 @@ grep -q 'SYNC-HAZARD-READ-AFTER-WRITE' "$work/drop.err" && grep -q 'InvalidImage
 # The window (under Xvfb when there is no DISPLAY; skipped without either): its first frame's LUTs on the compute
 # queue, the frame's submit waiting for them beside the acquire semaphore; validation clean, the screenshot equal to
 # the single-queue window's.
-if [ -n "${DISPLAY:-}" ] || command -v xvfb-run >/dev/null; then
+if [ -n "${DISPLAY:-}" ] || command -v Xvfb >/dev/null; then
     run=("$VKSKY"); [ -z "${DISPLAY:-}" ] && run=("$(dirname "$0")/xvfb_run.sh" 640x480x24 "$VKSKY")
     # A fixed exposure: the window's auto exposure eases toward the meter in wall-clock time (τ 0.5 s), so two runs
     # under load would differ by their frame times, not by where the LUTs were built.

@@ -12,7 +12,7 @@
 # Headless configs record two frames into one command buffer (VKSKY_FRAMES=2): sync validation checks within a
 # command buffer, so the second frame's first use of each image meets the first frame's last use, and the
 # write-after-read barriers that only matter from the second frame on are checked too. Window configs run the
-# GLFW window for two frames (under xvfb-run when there is no DISPLAY; skipped, exit 77, if neither).
+# GLFW window for two frames (under Xvfb (tests/xvfb_run.sh) when there is no DISPLAY; skipped, exit 77, if neither).
 #
 # Reported messages are sorted into RAW / WAR / WAW (SYNC-HAZARD-READ-AFTER-WRITE, -WRITE-AFTER-READ,
 # -WRITE-AFTER-WRITE), "layout" (the core checks' image-layout errors) or other:<message id>; the set must equal
@@ -71,7 +71,7 @@ if [ "$kind" = probe ]; then
 elif [ "$kind" = render ]; then
     env_vars+=(VKSKY_FRAMES=2)
 elif [ -z "${DISPLAY:-}" ]; then
-    command -v xvfb-run >/dev/null || { echo "SKIP: no DISPLAY and no xvfb-run for the window"; exit 77; }
+    command -v Xvfb >/dev/null || { echo "SKIP: no DISPLAY and no Xvfb for the window"; exit 77; }
     run=("$(dirname "$0")/xvfb_run.sh" 640x480x24 "$VKSKY")
 fi
 # shellcheck disable=SC2086  # ARGS are words

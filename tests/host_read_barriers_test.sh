@@ -27,7 +27,7 @@
 # own catch, VUID-VkBufferMemoryBarrier2-dstAccessMask-03905), each other one at its dst stage (ALL_COMMANDS), and
 # the check must reject every mutant. 21 validated runs of 16x16 frames (the windows' 64x64): ~12 s of CPU.
 # capture.to_host is recorded in the window's screenshot frame (VKSKY_TRACE_CAPTURE=1 traces it): under xvfb;
-# without a display and xvfb-run the test SKIPs (77).
+# without a display and Xvfb the test SKIPs (77).
 set -u
 VKSKY=${1:?usage: host_read_barriers_test.sh VKSKY LUT_PROBE}
 PROBE=${2:?usage: host_read_barriers_test.sh VKSKY LUT_PROBE}
@@ -39,7 +39,7 @@ fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
 export VKSKY_VALIDATION=1
 RENDER=(--width 16 --height 16 --quality lesson --units relative --validate --trace-barriers)
 window=1
-if [ -z "${DISPLAY:-}" ] && ! command -v xvfb-run >/dev/null; then window=0; fi
+if [ -z "${DISPLAY:-}" ] && ! command -v Xvfb >/dev/null; then window=0; fi
 
 # run KIND OUT: the configuration that records the barrier, its trace in OUT (status and stderr checked).
 run() {
@@ -126,5 +126,5 @@ for c in "${cases[@]}"; do
     checked=$((checked + 1))
 done
 [ $fails -eq 0 ] || { echo "host_read_barriers: $fails failure(s)"; exit 1; }
-[ $window -eq 1 ] || { echo "host_read_barriers: SKIP: capture.to_host needs a display or xvfb-run"; exit 77; }
+[ $window -eq 1 ] || { echo "host_read_barriers: SKIP: capture.to_host needs a display or Xvfb"; exit 77; }
 echo "host_read_barriers: ok ($checked barriers, every mutant rejected)"

@@ -9,7 +9,7 @@
 #  - the screenshot of its last frame is pixel-identical to `vksky --render` of the edited file with the same flags
 #    (the file's new field applied, the flag's value kept), and differs from the edited file without the flag (the
 #    file's g would have won) and from the old file with the flag (nothing reloaded).
-# Exit 77 (ctest: skipped) without xvfb-run or ImageMagick's compare.
+# Exit 77 (ctest: skipped) without Xvfb or ImageMagick's compare.
 set -u
 VKSKY=${1:?usage: window_reload_test.sh path/to/vksky}
 SELF=$(readlink -f "$0")
@@ -32,7 +32,7 @@ fi
 
 # shellcheck source=lib/x_setup.sh
 source "$(dirname "$SELF")/lib/x_setup.sh"
-x_setup window_reload_test xvfb-run compare
+x_setup window_reload_test Xvfb compare
 scene_src="$(dirname "$SELF")/../scenes/earth-clear.json"
 # The scene says the EV100 too (the flag keeps it in every case; the file's lesson exposure would be stops).
 sed 's/"exposure_ev": 0,/"exposure_ev100": 12,/' "$scene_src" >"$work/scene.json"

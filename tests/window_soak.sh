@@ -23,7 +23,7 @@
 #    resize exceeds it many times over; a leaked Vulkan object of any size is the validation layer's to report
 #    when the device is destroyed.
 # VKSKY_SOAK_FLAGS: more vksky flags (ctest window_soak_compute: another preset and the compute post chain).
-# Exit 77 (ctest: skipped) when xvfb-run or xdotool is missing.
+# Exit 77 (ctest: skipped) when Xvfb or xdotool is missing.
 # Usage: window_soak.sh path/to/vksky [SEED]
 set -u
 VKSKY=${1:?usage: window_soak.sh path/to/vksky [SEED]}
@@ -153,7 +153,7 @@ fi
 
 # shellcheck source=lib/x_setup.sh
 source "$(dirname "$SELF")/lib/x_setup.sh"
-x_setup window_soak xvfb-run xdotool
+x_setup window_soak Xvfb xdotool
 timeout 300 "$HERE/xvfb_run.sh" 1280x1024x24 "$SELF" "$VKSKY" "$SEED" --inside-xvfb "$work"
 f=$(cat "$work/fails" 2>/dev/null || echo 1)
 [ "$f" -eq 0 ] || fail "$f failure(s) inside Xvfb"

@@ -6,7 +6,7 @@
 #     (VKSKY_TEST_RESIZE=1 drives it from inside: no window manager is needed);
 #  3. real key events (xdotool, XTEST): holding Up raises the sun from -5 deg to > +10 deg, and the screenshot
 #     of that run is brighter than one of a run without keys.
-# Exit 77 (ctest: skipped) when xvfb-run, xdotool or ImageMagick's convert is missing.
+# Exit 77 (ctest: skipped) when Xvfb, xdotool or ImageMagick's convert is missing.
 set -u
 VKSKY=${1:?usage: window_test.sh path/to/vksky}
 SELF=$(readlink -f "$0")
@@ -58,8 +58,8 @@ fi
 
 # shellcheck source=lib/x_setup.sh
 source "$(dirname "$SELF")/lib/x_setup.sh"
-x_setup window_test xvfb-run xdotool convert
-# A fresh server per run; 24-bit depth (xvfb-run's default depth of 8 has no Vulkan surface formats).
+x_setup window_test Xvfb xdotool convert
+# A fresh server per run; 24-bit depth (Xvfb's default depth of 8 has no Vulkan surface formats).
 xvfb() { timeout 240 "$(dirname "$SELF")/xvfb_run.sh" 1280x1024x24 "$@"; }
 # expect_clean "what" rc stderr-file: exit 0 and not a word about validation on stderr.
 expect_clean() {

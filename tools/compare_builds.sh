@@ -3,7 +3,7 @@
 # EXRs by their pixels, bit for bit (OpenImageIO: their headers record the output path and the command line, which
 # differ between two runs), everything else byte for byte. A change that must not change behaviour (a refactor, a file split) passes only if every output is
 # identical: the default frame, each quality preset, each shipped scene, the window's screenshot (under Xvfb, when
-# xvfb-run is present; it adapts its exposure over wall-clock time, so two runs of one build may differ), the CPU reference and the path tracer (images and printed values), and the traces.
+# Xvfb is present; it adapts its exposure over wall-clock time, so two runs of one build may differ), the CPU reference and the path tracer (images and printed values), and the traces.
 #
 #   cmake -S . -B build-old ... (at the old commit); cmake -S . -B build ... (now)
 #   tools/compare_builds.sh build-old/vksky build/vksky
@@ -78,7 +78,7 @@ for tag in old new; do
 done
 
 # The window: a few frames and a screenshot (skipped without Xvfb).
-if command -v xvfb-run >/dev/null; then
+if command -v Xvfb >/dev/null; then
   for tag in old new; do
     bin=$OLD; [ $tag = new ] && bin=$NEW
     extra=""; [ $tag = new ] && extra=$NEW_ARGS
@@ -88,7 +88,7 @@ if command -v xvfb-run >/dev/null; then
     echo $? >"$work/$tag/window.status"
   done
 else
-  echo "compare_builds: no xvfb-run, window screenshot skipped"
+  echo "compare_builds: no Xvfb, window screenshot skipped"
 fi
 
 # Sequences, --bench and --timings (issue 25 item 1: through include/vksky.h since 25h): the frames' files, their

@@ -13,7 +13,7 @@
 # MOCK_ICD_JSON: the mock ICD's manifest (its build's icd/VkICD_mock_icd.json). LAYER_DIR: a directory holding
 # VkLayer_khronos_validation.json (as tools/newer_layer.sh takes it: Debian's 1.3.239 or a newer one built from source).
 #
-# It runs the window unchanged (under xvfb-run when there is no DISPLAY) with --validate, the layer's shader-access
+# It runs the window unchanged (under Xvfb (tests/xvfb_run.sh) when there is no DISPLAY) with --validate, the layer's shader-access
 # heuristic on, and VKSKY_TEST_RESIZE=1: the window resizes itself at presented frames 20, 40 and 60 (three swapchain
 # recreations with oldSwapchain, each retiring the old images' render-finished semaphores) and minimises at 80; then
 # --frames N (default 120) frames and the normal shutdown (the last swapchain's semaphores, the same path). Under gdb
@@ -26,7 +26,7 @@
 # and checks: every present was given a fence, fence_retire > 0 (the present fences, not vkDeviceWaitIdle alone,
 # retired semaphores), at least 3 recreations, and no validation message. Writes DIR (default build/present_fences):
 # window.out, window.err (vksky's), gdb.log, summary.txt. Exit 0 when every check holds, 1 when one fails, 2 on bad
-# arguments or a missing tool (gdb, xvfb-run).
+# arguments or a missing tool (gdb, Xvfb).
 #
 # Building the mock ICD (Vulkan-Tools at the layer's SDK tag; headers from Vulkan-Headers at the same tag, e.g.
 # /work/vvl/deps of docs/synchronization.md §14's recipe). Four patches, none touching what the layer checks, are
@@ -74,8 +74,8 @@ case $frames in '' | *[!0-9]*) echo "present_fences: --frames must be a whole nu
 command -v gdb >/dev/null || { echo "present_fences: needs gdb (Debian package gdb)" >&2; exit 2; }
 run=()
 if [ -z "${DISPLAY:-}" ]; then
-    command -v xvfb-run >/dev/null || { echo "present_fences: no DISPLAY and no xvfb-run (Debian package xvfb)" >&2; exit 2; }
-    run=(xvfb-run -a -s "-screen 0 640x480x24")
+    command -v Xvfb >/dev/null || { echo "present_fences: no DISPLAY and no Xvfb (Debian package xvfb)" >&2; exit 2; }
+    run=("$root/tests/xvfb_run.sh" 640x480x24)
 fi
 mkdir -p "$out/layer" || exit 2
 out=$(cd "$out" && pwd)

@@ -11,7 +11,7 @@
 #                                                   that drop-tests it, or a line names a barrier no frame records
 #
 # The frames traced are the configurations of tests/barrier_drops.txt ("config" lines); window ones run under
-# xvfb-run when there is no DISPLAY. Exit 77 (skipped) when a window frame cannot be traced at all.
+# Xvfb (tests/xvfb_run.sh) when there is no DISPLAY. Exit 77 (skipped) when a window frame cannot be traced at all.
 # bash, awk, sed, diff, cksum only (no Python on CI); graphviz only to render the PNG.
 set -euo pipefail
 # No LUT cache (sky/lut_cache.h): a warm cache would upload the LUTs instead of running their passes, and the
@@ -48,11 +48,11 @@ for id in $configs; do
     run=("$vksky")
     if [ "$kind" = probe ]; then read -r probe args <<<"$args"; run=("$(dirname "$vksky")/$probe"); fi
     if [ "$kind" = window ] && [ -z "${DISPLAY:-}" ]; then
-        if ! command -v xvfb-run >/dev/null; then
-            echo "sync_doc: SKIP: no DISPLAY and no xvfb-run to trace the window frame ($id)" >&2
+        if ! command -v Xvfb >/dev/null; then
+            echo "sync_doc: SKIP: no DISPLAY and no Xvfb to trace the window frame ($id)" >&2
             exit 77
         fi
-        run=(xvfb-run -a -s "-screen 0 640x480x24" "$vksky")
+        run=("$root/tests/xvfb_run.sh" 640x480x24 "$vksky")
     fi
     # shellcheck disable=SC2086  # ARGS are words
     if ! "${run[@]}" $args --trace-barriers >"$tmp/out.$id" 2>"$tmp/err.$id"; then

@@ -36,8 +36,6 @@
 #define TITLE_PERIOD_S 0.5
 #define STEADY_FROM 10          /* the summary's steady figures start at this presented frame */
 
-static const char NO_DISPLAY[] = "vksky: no display available (DISPLAY/WAYLAND_DISPLAY unset or unusable); use "
-                                 "--render FILE.exr|FILE.png for headless rendering";
 
 /* --- GLFW errors: kept, not printed (no-display runs must print exactly one line) ------------------------- */
 
@@ -407,10 +405,13 @@ static void run_loop(app *a)
 
 /* --- Setup and teardown ------------------------------------------------------------------------------------ */
 
-/* No X server / compositor (or one that refuses us): one line, exit 2, like any other unusable input. */
+/* No X server / compositor (or one that refuses us): one line, exit 2, like any other unusable input. GLFW's own
+ * reason goes in it: "unset" and "set but refused" (a server that went away, a full client table) are different
+ * faults to a user, and a test that meets this line under Xvfb needs to know which. */
 static int no_display(void)
 {
-    fprintf(stderr, "%s\n", NO_DISPLAY);
+    fprintf(stderr, "vksky: no display available (DISPLAY/WAYLAND_DISPLAY unset or unusable%s%s); use --render "
+            "FILE.exr|FILE.png for headless rendering\n", glfw_error[0] ? ": " : "", glfw_error);
     return 2;
 }
 
