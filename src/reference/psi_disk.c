@@ -9,6 +9,7 @@
  * are atomic (a temporary file, then rename), so processes running side by side read a whole file or none. The file
  * does not know which build wrote it: the suite empties the directory at the start of every run (the lut_cache_reset
  * fixture, tests/CMakeLists.txt), so a run only reads tables built by its own build. Not for users' directories. */
+#include "model/fnv1a.h"
 #include "reference/ref_internal.h"
 #include <stdint.h>
 #include <stdio.h>
@@ -25,13 +26,6 @@ typedef struct psi_disk_key {
     model_atmosphere atmo;       /* psi_key_atmosphere's: the bytes psi_cache_get compares */
 } psi_disk_key;
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t n)
-{
-    const unsigned char *p = data;
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
-}
-
 static void make_key(psi_disk_key *k, const model_atmosphere *key, int sqrt_dirs, int steps, size_t bytes)
 {
     memset(k, 0, sizeof *k);
@@ -46,7 +40,7 @@ static void make_key(psi_disk_key *k, const model_atmosphere *key, int sqrt_dirs
 static bool file_name(char *path, size_t size, const char *dir, const psi_disk_key *k)
 {
     int n = snprintf(path, size, "%s/psi-%016llx.bin", dir,
-                     (unsigned long long)fnv1a(1469598103934665603ull, k, sizeof *k));
+                     (unsigned long long)model_fnv1a(MODEL_FNV1A_OFFSET, k, sizeof *k));
     return n > 0 && (size_t)n < size;
 }
 
@@ -64,7 +58,7 @@ void *psi_disk_load(const char *dir, const model_atmosphere *key_atmosphere, int
     bool ok = t && fread(&stored, sizeof stored, 1, f) == 1 && fread(t, bytes, 1, f) == 1 &&
               fread(&sum, sizeof sum, 1, f) == 1 && fread(&extra, 1, 1, f) == 0 &&
               memcmp(&stored, &key, sizeof key) == 0 &&
-              sum == fnv1a(fnv1a(1469598103934665603ull, &stored, sizeof stored), t, bytes);
+              sum == model_fnv1a(model_fnv1a(MODEL_FNV1A_OFFSET, &stored, sizeof stored), t, bytes);
     fclose(f);
     if (!ok) {
         free(t);
@@ -82,7 +76,7 @@ void psi_disk_store(const char *dir, const model_atmosphere *key_atmosphere, int
     if (!file_name(path, sizeof path, dir, &key) ||
         snprintf(tmp, sizeof tmp, "%s.%ld.tmp", path, (long)getpid()) >= (int)sizeof tmp)
         return;
-    uint64_t sum = fnv1a(fnv1a(1469598103934665603ull, &key, sizeof key), t, bytes);
+    uint64_t sum = model_fnv1a(model_fnv1a(MODEL_FNV1A_OFFSET, &key, sizeof key), t, bytes);
     FILE *f = fopen(tmp, "wb");
     if (!f) return;   /* an unwritable directory: the table stays this process's */
     bool ok = fwrite(&key, sizeof key, 1, f) == 1 && fwrite(t, bytes, 1, f) == 1 && fwrite(&sum, sizeof sum, 1, f) == 1;

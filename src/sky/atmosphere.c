@@ -1,4 +1,5 @@
 #include "sky/atmosphere.h"
+#include "model/fnv1a.h"
 #include <stddef.h>
 #include <string.h>
 
@@ -119,13 +120,6 @@ void sky_atmosphere_pack(const model_atmosphere *a, double sun_angular_radius_ra
     }
 }
 
-static uint64_t fnv1a(uint64_t h, const void *data, size_t size)
-{
-    const unsigned char *bytes = data;
-    for (size_t i = 0; i < size; ++i) h = (h ^ bytes[i]) * 1099511628211ull;
-    return h;
-}
-
 uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p, int sun_visibility)
 {
     /* Everything but the sun's illuminance and limb (the LUTs are per unit illuminance) and, for the lesson's model
@@ -139,17 +133,17 @@ uint64_t sky_atmosphere_lut_hash(const AtmosphereParams *p, int sun_visibility)
                                  /* the ground-irradiance LUT marches the sky with the Mie phase */
                                  {p->ground.x + p->ground.y + p->ground.z > 0.0f || real_phase ? p->mie_absorption.w : 0.0f, 0, 0, 0},
                                  {p->sun.w, 0, 0, 0}};
-    uint64_t h = 1469598103934665603ull;
-    h = fnv1a(h, fields, sizeof fields);
-    h = fnv1a(h, p->extra_scattering, sizeof p->extra_scattering);
-    h = fnv1a(h, p->extra_absorption, sizeof p->extra_absorption);
-    h = fnv1a(h, p->profile_widths, sizeof p->profile_widths);
+    uint64_t h = MODEL_FNV1A_OFFSET;
+    h = model_fnv1a(h, fields, sizeof fields);
+    h = model_fnv1a(h, p->extra_scattering, sizeof p->extra_scattering);
+    h = model_fnv1a(h, p->extra_absorption, sizeof p->extra_absorption);
+    h = model_fnv1a(h, p->profile_widths, sizeof p->profile_widths);
     if (p->scalars4.w != 0.0f) {
         /* SPECTRAL4 (scalars4 set): the fourth wavelength's coefficients and albedo count, and g and the sun's size
          * from their new places (the extras' .w are hashed with the arrays above). */
         const float fourth[] = {p->rayleigh_scattering.w, p->mie_scattering.w, p->mie_absorption.w,
                                 p->ozone_absorption.w, p->ground.w, p->scalars4.x, p->scalars4.y};
-        h = fnv1a(h, fourth, sizeof fourth);
+        h = model_fnv1a(h, fourth, sizeof fourth);
     }
-    return fnv1a(h, p->profiles, sizeof p->profiles);
+    return model_fnv1a(h, p->profiles, sizeof p->profiles);
 }
