@@ -20,7 +20,12 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fails=0
 fail() { echo "FAIL: $*" >&2; fails=$((fails + 1)); }
-export VKSKY_VALIDATION=1 VKSKY_LUT_CACHE=0
+export VKSKY_VALIDATION=1
+# The LUT cache on in the test's own directory: ~40 renders of a few LUT settings, and the checks are about the
+# files' compression (tests/lib/own_lut_cache.sh).
+# shellcheck source=lib/own_lut_cache.sh
+source "$(dirname "$0")/lib/own_lut_cache.sh"
+own_lut_cache "$work"
 /usr/bin/python3 -c 'import OpenImageIO, numpy' 2>/dev/null ||
     { echo "FAIL: /usr/bin/python3 with OpenImageIO and numpy (python3-openimageio, python3-numpy) not found" >&2; exit 1; }
 

@@ -12,8 +12,10 @@
 #  7. A spectral image: one file per wavelength group, all hit by a warm run; an animated medium stops at 16 files.
 #  8. The sun disc is no part of the key (the LUT passes never read it): one file for frames with and without it.
 #  9. A sequence through the readback ring stores its first frame's LUTs; a warm one hits them.
+# 10. --composite and --aovs store their LUTs (RGB: one file; spectral: one per group); warm runs upload them.
 set -u
-VKSKY=${1:?usage: lut_cache_test.sh VKSKY}
+VKSKY=${1:?usage: lut_cache_test.sh VKSKY GEN_COMPOSITE_SCENE}
+GEN=${2:?usage: lut_cache_test.sh VKSKY GEN_COMPOSITE_SCENE}
 export VKSKY_VALIDATION=1   # every render under the validation layer; any message fails it
 unset VKSKY_LUT_CACHE       # the suite turns the LUT cache off (tests/CMakeLists.txt): this test is about it
 work=$(mktemp -d)
@@ -224,6 +226,36 @@ done
 [ -z "$(find "$XDG_CACHE_HOME"/vksky -name 'luts-*.bin' -newermt '2000-01-02')" ] ||
     fail "the warm ring sequence missed its LUTs (the file rewritten)"
 for k in 0 1 2; do cmp -s "ring_cold/f$k.exr" "ring_warm/f$k.exr" || fail "ring sequence: frame $k differs warm"; done
+
+# 10. --composite (app/runs/composite_app.c; spectral: composite_spectral.c) and --aovs store the LUTs their first
+#     band computed, as a still does (they stored none: every composite of a render sequence computed the same LUTs
+#     again; composite_spectral's --spectral 24 composite on lavapipe: 18.6 s cold, 1.2 s warm). Cold: the files
+#     (RGB one, --spectral 24 one per group: 8) and the LUT passes traced; warm: no file added or rewritten,
+#     lut_cache_upload traced and no LUT pass, and the same EXR byte for byte (the same names: the header records
+#     the command line).
+mkdir -p "$work/cs" && "$GEN" "$work/cs" 32 18 >/dev/null || fail "gen_composite_scene"
+composite() {   # composite NAME FILES FLAGS...
+    local name=$1 files=$2; shift 2
+    export XDG_CACHE_HOME="$work/composite_$name"
+    for run in cold warm; do
+        mkdir -p "${name}_$run" && (cd "${name}_$run" && "$VKSKY" --multiscatter-dirs 16 --sun-elevation 3 \
+            --render out.exr --trace-passes "$@" >../"${name}_$run".out 2>../"${name}_$run".err) ||
+            fail "$name, $run: $(head -c 300 "${name}_$run".err)"
+        local n
+        n=$(ls "$XDG_CACHE_HOME"/vksky/luts-*.bin 2>/dev/null | wc -l)
+        [ "$n" -eq "$files" ] || fail "$name, $run: $n LUT cache files, expected $files"
+        [ $run = cold ] && touch -d '2000-01-01' "$XDG_CACHE_HOME"/vksky/luts-*.bin
+    done
+    grep -q '^pass transmittance_lut$' "${name}_cold.out" || fail "$name, cold: no LUT pass traced"
+    ! grep -q '^pass \(transmittance\|multiscatter\)_lut$' "${name}_warm.out" &&
+        grep -q '^pass lut_cache_upload$' "${name}_warm.out" || fail "$name, warm: the LUTs computed, not uploaded"
+    [ -z "$(find "$XDG_CACHE_HOME"/vksky -name 'luts-*.bin' -newermt '2000-01-02')" ] ||
+        fail "$name, warm: a file rewritten (a miss)"
+    cmp -s "${name}_cold/out.exr" "${name}_warm/out.exr" || fail "$name: the warm EXR differs from the cold one"
+}
+composite rgb 1 --composite "$work/cs/render.exr" --spectral 0
+composite spectral 8 --composite "$work/cs/render.exr" --spectral 24
+composite aovs 8 --aovs --width 24 --height 12 --spectral 24
 
 [ $fails -eq 0 ] && echo "ok: LUT cache" || echo "$fails failure(s)"
 [ $fails -eq 0 ]

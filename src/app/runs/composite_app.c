@@ -418,6 +418,9 @@ int composite_run(const options *o, const composite_options *co)
         fprintf(stderr, "vksky: --render: %s\n", err);
         status = 1;
     }
+    /* The LUTs the first band computed into the LUT cache (the bands are done: nothing in flight), as a still's are:
+     * the next composite of the medium, a sequence's next frame, uploads them. Nothing on a hit or with no cache. */
+    if (status == 0 && vksky_renderer_store_luts(g.r) != VKSKY_SUCCESS) status = 1;
     if (status == 0) print_notes(&reader, v.oriented);
     if (status == 0 && o->timings) composite_timings_report(stderr, &reader, &start);
     vksky_composite_destroy(c);
@@ -502,6 +505,7 @@ int composite_aovs_run(const options *o, const composite_options *co)
         vksky_readback px;
         if (status == 0 && vksky_renderer_get_readback(g.r, &px) != VKSKY_SUCCESS) status = 1;
         if (status == 0) linear = px.linear_rgba16f, display = px.display_rgba8;
+        if (status == 0 && vksky_renderer_store_luts(g.r) != VKSKY_SUCCESS) status = 1;   /* as the bands' (above) */
         for (uint32_t k = 0; k < VKSKY_COMPOSITE_LAYERS; ++k) aov[k] = vksky_composite_layer(c, 0, k);
     }
     float *top = status ? NULL : malloc(n * 4 * sizeof(float));

@@ -36,6 +36,16 @@ static void groups_destroy(spectral_groups *g)
     g->count = 0;
 }
 
+/* Each group's LUTs into the LUT cache, once its frames are done: a miss computed them in the first band, and the
+ * next composite of the same medium (the frames of a render sequence, a test's second run) uploads them. Nothing on a
+ * hit or without a cache directory. */
+static int groups_store_luts(const spectral_groups *g)
+{
+    for (uint32_t k = 0; k < g->count; ++k)
+        if (vksky_renderer_store_luts(g->r[k]) != VKSKY_SUCCESS) return 1;
+    return 0;
+}
+
 /* One renderer (the LUTs of the group's medium, kept for every band) and one composite pass per group. */
 static int groups_create(spectral_groups *g, vksky_context *ctx, const vksky_scene *scene, int wavelengths,
                          const vksky_composite_desc *desc, const composite_view *view, uint32_t whole_height,
@@ -182,6 +192,7 @@ int composite_spectral_bands(band_reader *b, host_commands *h, vksky_context *ct
         if (rc == 0 && stop_requested()) rc = 1;   /* SIGINT/SIGTERM: no file at the output path */
     }
     if (rc == 0) rc = band_reader_verdict(b, true);
+    if (rc == 0) rc = groups_store_luts(&g);
     if (rc) io_exr_layers_stream_abort(out);
     groups_destroy(&g);
     free(sums);
@@ -215,6 +226,7 @@ int composite_spectral_aovs(host_commands *h, vksky_context *ctx, const vksky_sc
     band_sum s = {.g = &g, .oriented = view->oriented, .beauty = zero};
     for (uint32_t L = 0; L < VKSKY_COMPOSITE_LAYERS && sums; ++L) s.layer[L] = sums + (size_t)L * n * 4;
     if (rc == 0) rc = sum_band(&g, h, 0, n, fill_empty, &n, trace, &s);
+    if (rc == 0) rc = groups_store_luts(&g);
     groups_destroy(&g);
     free(zero);
     if (rc) free(sums);
