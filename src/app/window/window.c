@@ -36,7 +36,6 @@
 #define TITLE_PERIOD_S 0.5
 #define STEADY_FROM 10          /* the summary's steady figures start at this presented frame */
 
-
 /* --- GLFW errors: kept, not printed (no-display runs must print exactly one line) ------------------------- */
 
 static char glfw_error[256];
