@@ -4,6 +4,7 @@
 #define VKSKY_GPU_TEST_H
 #include "io/half_float.h"
 #include "reference/ref_atmosphere.h"
+#include "gpu/pipeline_cache.h"
 #include "sky/submit.h"
 #include <math.h>
 #include <stdio.h>
@@ -20,6 +21,15 @@ static inline void test_context(gpu_context *ctx)
     if (gpu_context_create(ctx, &desc) != 0) {
         fprintf(stderr, "FAIL: no Vulkan device with the validation layer\n");
         exit(1);
+    }
+    /* The suite's shared LUT cache (tests/CMakeLists.txt, VKSKY_SHARED_LUT_TESTS: VKSKY_LUT_CACHE=1): the directory
+     * vksky's own processes use, $XDG_CACHE_HOME/vksky, so that a medium's LUTs at one LUT setting (--quality
+     * ultra's for the Earth: ~25 s on lavapipe) are computed once per suite run, by whichever test meets them first,
+     * and uploaded byte for byte by the others (ctest lut_cache). Anything else (the binary run by hand): none. */
+    const char *share = getenv("VKSKY_LUT_CACHE"), *xdg = getenv("XDG_CACHE_HOME");
+    if (share && !strcmp(share, "1") && xdg && xdg[0] == '/') {
+        char dir[1024];
+        if (snprintf(dir, sizeof dir, "%s/vksky", xdg) < (int)sizeof dir) gpu_cache_dir_attach(ctx, dir);
     }
 }
 
