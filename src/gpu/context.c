@@ -528,6 +528,10 @@ int gpu_context_create_with(gpu_context *ctx, const gpu_context_desc *desc, gpu_
 
 void gpu_context_destroy(gpu_context *ctx)
 {
+    /* A cache directory still attached (gpu_cache_dir_attach without a detach or gpu_pipeline_cache_close, as the
+     * test harness's shared LUT cache): its record (pipeline_cache.c's, a plain allocation) goes with the context. */
+    free(ctx->cache_file);
+    ctx->cache_file = NULL;
     if (!ctx->owns_device) {
         gpu_context_release(ctx);   /* the host's device: only what vksky made on it (context_adopt.c) */
         return;
