@@ -73,7 +73,7 @@ static result run_case(gpu_context *ctx, const extreme_case *c)
     desc.width = N, desc.height = N, desc.readback = true, desc.display_format = VK_FORMAT_R8G8B8A8_SRGB;
     desc.lut = sky_lut_quality_default();
     if (c->converged) {
-        /* RGBA32F LUTs, a 64x64 (twilight: 128x128) multi-scattering LUT from 1024 directions x 64 steps,
+        /* RGBA32F LUTs, a 64x64 multi-scattering LUT from 1024 directions x 64 steps (twilight: ultra's, below),
          * 256 view steps. */
         desc.lut.lut_f32 = true;
         desc.lut.multiscatter_size = 64;
