@@ -629,7 +629,8 @@ typedef enum vksky_tonemap {
     VKSKY_TONEMAP_OPERATOR_ACES = 2
 } vksky_tonemap;
 /* This frame's tone map operator and bloom switch, instead of the scene's (the window's B key). Bloom on needs a
- * renderer created with desc.bloom (its chain allocated); off skips the chain's passes. No pipeline is rebuilt. */
+ * renderer created with desc.bloom (its chain allocated); off skips the chain's passes. No pipeline is rebuilt. A
+ * readback renderer takes it too (its composite then has no bloom: a spectral group's frame for the host's meter). */
 typedef struct vksky_frame_display {
     vksky_structure_type type;     /* VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY */
     const void *next;

@@ -17,6 +17,14 @@
 #      the same way (the noise's sign at that pixel: the same hash of the same position), on at least 99 %.
 #   3. In bands (VKSKY_TILE_ROWS, a map and a perspective frame with the horizon in it): the banded PNG byte for byte the
 #      one-band PNG, auto-exposed (the meter's first pass over the bands) and at a given exposure, dithered.
+#   4. Bloom, as an RGB frame has it: a perspective still with the sun in view, with and without the horizon. (a) The
+#      auto-exposed PNG is metered without bloom, as the GPU's meter reads the HDR image before bloom: its EV100 within
+#      0.002 EV (all sky) / 0.05 EV (the horizon's pixels: meter_test.sh's bounds) of the log-average over the sky's
+#      pixels of the same view's --no-bloom EXR, computed here in numpy (the pixel's elevation from the view's geometry,
+#      as meter_test.sh). Until this part, the host metered the groups' composites, bloom included: 0.4 EV darker than
+#      the RGB PNG at the default view. (b) The EXR carries bloom (as an RGB frame's: its total luminance over the
+#      --no-bloom EXR's within 10 % of the RGB pair's ratio, and at least 1 % over): an all-sky frame used to take four
+#      wavelengths a pass, whose build has no bloom.
 set -u
 VKSKY=${1:?usage: spectral_png_test.sh VKSKY SPECTRAL_COMPARE TONEMAP_CHECK}
 COMPARE=${2:?usage: spectral_png_test.sh VKSKY SPECTRAL_COMPARE TONEMAP_CHECK}
@@ -176,6 +184,46 @@ bands() {
 bands equirect-auto 5 --projection equirect --width 48 --spectral 8 --sun-elevation 2
 bands perspective-auto 7 --width 40 --height 24 --pitch 0 --fov 50 --spectral 4 --sun-elevation 1
 bands fisheye-ev 9 --projection fisheye --width 40 --spectral 8 --sun-elevation 2 --exposure 9
+
+# 4. Bloom: metered without it, drawn with it (the view: 64x36, fov 60, the sun 25 deg up straight ahead).
+bloom_view() {
+    local name=$1 pitch=$2
+    local v=(--width 64 --height 36 --fov 60 --pitch "$pitch" --altitude 0.001 --sun-elevation 25 --sun-azimuth 0
+             --render-scale 1 --validate)
+    for s in 16 0; do
+        "$VKSKY" "${v[@]}" --spectral $s --render "$work/$name.$s.exr" --render "$work/$name.$s.png" >"$work/out" \
+            2>"$work/err" || { fail "$name: $(cat "$work/err")"; return; }
+        [ $s = 16 ] && { clean "$name"; e=$(metered "$work/err"); }
+        "$VKSKY" "${v[@]}" --spectral $s --no-bloom --render "$work/$name.$s.bare.exr" >/dev/null 2>"$work/err" ||
+            { fail "$name --no-bloom: $(cat "$work/err")"; return; }
+    done
+    [ -n "$e" ] || { fail "$name: no host meter line"; return; }
+    /usr/bin/python3 - "$work/$name" "$e" "$pitch" <<'PY' || fail "$name: bloom or its meter is not the RGB frame's"
+import math, sys
+import numpy as np
+import OpenImageIO as oiio
+base, ev, pitch = sys.argv[1], float(sys.argv[2]), math.radians(float(sys.argv[3]))
+def lum(f):
+    p = np.asarray(oiio.ImageBuf(f).get_pixels(oiio.FLOAT), dtype=np.float64)
+    return 0.2126 * p[..., 0] + 0.7152 * p[..., 1] + 0.0722 * p[..., 2]
+y = lum(base + ".16.bare.exr")
+h, w = y.shape
+ty = math.tan(math.radians(60.0) / 2); tx = ty * w / h
+NX, NY = np.meshgrid((2.0 * (np.arange(w) + 0.5) / w - 1.0) * tx, (1.0 - 2.0 * (np.arange(h) + 0.5) / h) * ty)
+sin_e = (math.sin(pitch) + NY * math.cos(pitch)) / np.sqrt(1.0 + NX ** 2 + NY ** 2)
+R, alt = 6360.0, 0.001
+sky = sin_e >= -math.sqrt(alt * (2 * R + alt)) / (R + alt)
+ev_exr = math.log2(math.exp(np.mean(np.log(np.maximum(y[sky], 1e-4)))) * 100 / 12.5)
+tol = 0.002 if sky.all() else 0.05
+ratio = {s: lum(base + ".%d.exr" % s).sum() / lum(base + ".%d.bare.exr" % s).sum() for s in (16, 0)}
+print("%s: EV100 %.4f metered, %.4f from the --no-bloom EXR (tolerance %g); bloom adds %.2f %% (RGB: %.2f %%)"
+      % (base.rsplit("/", 1)[1], ev, ev_exr, tol, 100 * (ratio[16] - 1), 100 * (ratio[0] - 1)))
+ok = abs(ev - ev_exr) <= tol and ratio[16] >= 1.01 and abs(ratio[16] - 1 - (ratio[0] - 1)) <= 0.1 * (ratio[0] - 1)
+sys.exit(0 if ok else 1)
+PY
+}
+bloom_view bloom_sky 35
+bloom_view bloom_horizon 8
 
 [ $fails -eq 0 ] && echo "spectral_png: all checks passed"
 exit $((fails > 0))

@@ -271,7 +271,7 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
     const vksky_auto_exposure *metered = ext.exposure;
     const vksky_frame_band *band = ext.band;
     const vksky_readback_target *readback_target = ext.target;
-    chain = lib_window_check(renderer, &ext);   /* the window's values: DISPLAY into the host's image only */
+    chain = lib_window_check(renderer, &ext);   /* the window's values (a readback renderer: tone map, bloom) */
     if (chain != VKSKY_SUCCESS) return chain;
     vksky_context *c = renderer->ctx;
     sky_view v = renderer->o.view;
@@ -331,6 +331,7 @@ static vksky_result record_frame(vksky_renderer *renderer, VkCommandBuffer cmd, 
         /* The host's ring names the pair of readback buffers this frame's copies go to (slot 0 without one). */
         lib_readback_select(renderer, readback_target ? readback_target->slot : 0);
         /* vksky's own display and composite images, copied to its readback buffers: frame.color is not used. */
+        if (ext.display) v.tonemap = (int)ext.display->tonemap, v.bloom = ext.display->bloom;   /* checked above */
         frame_desc own = {.view = &v, .force_luts = frame->force_luts, .meter_slot = slot,
                           .follows_frame = readback_target && readback_target->follows_frame,
                           .meter_first_row = band ? band->meter_first_row : 0, .meter_rows = band ? band->meter_rows : 0};

@@ -21,9 +21,13 @@ vksky_result lib_window_check(const vksky_renderer *r, const lib_frame_ext *e)
 {
     bool any = e->display || e->place || e->timer || e->capture || e->swapchain;
     if (!any) return VKSKY_SUCCESS;
-    if (r->desc.output != VKSKY_OUTPUT_DISPLAY || r->readback)
-        return refuse(r, "vksky_frame_display, _place, _timer, _capture and _swapchain are for output DISPLAY into "
-                         "the host's image (no vksky_readback_config)");
+    if (r->desc.output != VKSKY_OUTPUT_DISPLAY)
+        return refuse(r, "vksky_frame_display, _place, _timer, _capture and _swapchain are for output DISPLAY");
+    /* A readback renderer takes this frame's tone map and bloom switch (the command line's spectral groups render a
+     * bloom-free frame for the host's meter: app/runs/spectral_host.c), not the window's other values. */
+    if (r->readback && (e->place || e->timer || e->capture || e->swapchain))
+        return refuse(r, "vksky_frame_place, _timer, _capture and _swapchain are for output DISPLAY into the host's "
+                         "image (no vksky_readback_config)");
     if (e->display && (unsigned)e->display->tonemap > VKSKY_TONEMAP_OPERATOR_ACES)
         return refuse(r, "vksky_frame_display: tonemap; accepted CLAMP, REINHARD or ACES");
     if (e->display && e->display->bloom && !r->desc.bloom)

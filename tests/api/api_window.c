@@ -223,6 +223,40 @@ int main(void)
         .target_format = FMT, .quality = "scene", .bloom = true, .units = VKSKY_UNITS_PHOTOMETRIC, .scene = scene});
     expect_refused(headless, &h, &capture, false, "a capture on a readback renderer");
 
+    /* 7. A readback renderer takes this frame's bloom switch (the command line's spectral groups render a bloom-free
+     * frame for the host's meter, app/runs/spectral_host.c): off, its composite is bit for bit a renderer's made
+     * without bloom; with the scene's (on), it is not. */
+    vksky_renderer *bare = host_renderer(c, &(vksky_renderer_desc){
+        .abi_version = VKSKY_ABI_VERSION, .next = &rb, .output = VKSKY_OUTPUT_DISPLAY, .width = W, .height = H,
+        .target_format = FMT, .quality = "scene", .bloom = false, .units = VKSKY_UNITS_PHOTOMETRIC, .scene = scene});
+    vksky_frame_view at = {.type = VKSKY_STRUCTURE_TYPE_FRAME_VIEW, .yaw_deg = 0, .pitch_deg = 5, .fov_deg = 75};
+    vksky_frame_display no_bloom = {.type = VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY, .next = &at,
+                                    .tonemap = VKSKY_TONEMAP_OPERATOR_ACES, .bloom = false};
+    size_t bytes = (size_t)W * H * 4 * sizeof(uint16_t);
+    uint16_t *linear[3];
+    vksky_renderer *order[3] = {headless, headless, bare};
+    const void *chains[3] = {&no_bloom, &at, &at};
+    for (int k = 0; k < 3; ++k) {
+        vksky_frame f = {.next = chains[k], .exposure = 12};
+        host_begin(&h);
+        HOST_CHECK(vksky_record(order[k], h.cmd, &f) == VKSKY_SUCCESS, "readback frame %d refused", k);
+        host_end_submit_wait(&h);
+        vksky_readback px = {0};
+        HOST_CHECK(vksky_renderer_get_readback(order[k], &px) == VKSKY_SUCCESS && px.linear_rgba16f, "readback %d", k);
+        linear[k] = malloc(bytes);
+        if (px.linear_rgba16f && linear[k]) memcpy(linear[k], px.linear_rgba16f, bytes);
+    }
+    size_t off_vs_bare = 0, on_vs_bare = 0;
+    for (size_t i = 0; i < (size_t)W * H; ++i)
+        off_vs_bare += memcmp(linear[0] + 4 * i, linear[2] + 4 * i, 8) != 0,
+            on_vs_bare += memcmp(linear[1] + 4 * i, linear[2] + 4 * i, 8) != 0;
+    printf("readback renderer, bloom off for a frame vs made without bloom: %zu pixels differ; the scene's bloom: %zu\n",
+           off_vs_bare, on_vs_bare);
+    HOST_CHECK(off_vs_bare == 0 && on_vs_bare > (size_t)W * H / 2, "bloom switch on a readback renderer: %zu, %zu",
+               off_vs_bare, on_vs_bare);
+    for (int k = 0; k < 3; ++k) free(linear[k]);
+    vksky_renderer_destroy(bare);
+
     vksky_renderer_destroy(headless);
     vksky_scene_destroy(scene);
     vksky_renderer_destroy(live);

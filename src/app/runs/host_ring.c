@@ -44,6 +44,12 @@ int host_record(vksky_renderer *r, VkCommandBuffer cmd, const host_view *v, uint
     vksky_auto_exposure metered = {.type = VKSKY_STRUCTURE_TYPE_AUTO_EXPOSURE, .next = head, .slot = slot};
     vksky_frame frame = {.next = v->auto_exposure ? (const void *)&metered : head, .exposure = v->exposure,
                          .force_luts = v->force_luts};
+    vksky_frame_display display;
+    if (v->display) {
+        display = *v->display;
+        display.next = frame.next;
+        frame.next = &display;
+    }
     vksky_frame_spectral_sum sum;
     if (v->spectral_sum) {   /* chained first */
         sum = *v->spectral_sum;

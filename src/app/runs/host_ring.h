@@ -41,6 +41,9 @@ typedef struct host_view {
     const vksky_image *target;
     /* A spectral group's frame: its composite added into the GPU's sum (ABI 4; its `next` is ignored), or NULL. */
     const vksky_frame_spectral_sum *spectral_sum;
+    /* This frame's tone map and bloom switch instead of the scene's (a spectral group's bloom-free frame, whose sum
+     * the host's auto exposure meters: app/runs/spectral_host.c), or NULL. */
+    const vksky_frame_display *display;
 } host_view;
 
 /* Records one frame of `v` into cmd (begun): its pixels into readback slot `slot` (or v->target), auto exposure's

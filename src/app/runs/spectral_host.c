@@ -47,12 +47,19 @@ typedef struct groups {
     /* The groups summed on the GPU (ABI 4: each group's frame adds into it, the last resolves; one readback a frame),
      * or NULL: each group read back and summed on the host (VKSKY_SPECTRAL_SUM=host, for the comparison tests). */
     vksky_spectral_sum *sum;
+    /* An auto-exposed PNG whose groups bloom: each group also renders a bloom-free frame, summed apart (on the GPU into
+     * meter_sum, or on the host), for the host's meter. The GPU's meter reads the HDR image before bloom; the groups'
+     * composites carry it (a 1080p afternoon frame's log-average luminance 34 % over the bloom-free one's: a PNG 0.4 EV
+     * darker than the RGB one of the same view). NULL without the GPU's sum. */
+    bool meter_frames;
+    vksky_spectral_sum *meter_sum;
 } groups;
 
 static void groups_destroy(groups *g)
 {
     for (uint32_t k = 0; k < g->count; ++k) vksky_renderer_destroy(g->r[k]), vksky_scene_destroy(g->scene[k]);
     vksky_spectral_sum_destroy(g->sum);
+    vksky_spectral_sum_destroy(g->meter_sum);
 }
 
 /* Frame scenes: the groups derived again from the scene as the frame's values left it (a medium may be animated), each
@@ -90,6 +97,10 @@ static int groups_create(groups *g, const options *o, vksky_context *ctx, const 
         return 1;
     }
     vksky_readback_config readback = {.type = VKSKY_STRUCTURE_TYPE_READBACK_CONFIG};
+    bool bloom = o->view.bloom && height == o->height;   /* bands: no bloom (tiles.c) */
+    /* A map's frame has no bloom (its composite is the HDR texel), nor has the four-wide build. */
+    g->meter_frames = bloom && g->per_pass == 3 && o->view.projection == VKSKY_PROJECTION_PERSPECTIVE && wants_png(o) &&
+                      light_auto_exposure_wanted(o);
     for (uint32_t k = 0; k < count; ++k) {
         if (vksky_scene_spectral_group(scene, (uint32_t)o->spectral, g->per_pass, k, &g->scene[k], g->weights[k],
                                        NULL) != VKSKY_SUCCESS)
@@ -99,14 +110,16 @@ static int groups_create(groups *g, const options *o, vksky_context *ctx, const 
         vksky_renderer_desc rd = {
             .abi_version = VKSKY_ABI_VERSION, .next = &readback, .output = VKSKY_OUTPUT_DISPLAY,
             .width = (uint32_t)o->width, .height = (uint32_t)height, .target_format = VK_FORMAT_R8G8B8A8_SRGB,
-            .quality = "scene", .bloom = o->view.bloom && height == o->height,   /* bands: no bloom (tiles.c) */
+            .quality = "scene", .bloom = bloom,
             .units = o->units == OPTIONS_UNITS_RELATIVE ? VKSKY_UNITS_RELATIVE : VKSKY_UNITS_PHOTOMETRIC,
             .scene = g->scene[k]};
         if (vksky_renderer_create(ctx, &rd, &g->r[k]) != VKSKY_SUCCESS) return 1;
     }
     const char *where = getenv("VKSKY_SPECTRAL_SUM");
-    if (!(where && !strcmp(where, "host")) &&
-        vksky_spectral_sum_create(ctx, (uint32_t)o->width, (uint32_t)height, &g->sum) != VKSKY_SUCCESS)
+    if (where && !strcmp(where, "host")) return 0;
+    if (vksky_spectral_sum_create(ctx, (uint32_t)o->width, (uint32_t)height, &g->sum) != VKSKY_SUCCESS ||
+        (g->meter_frames &&
+         vksky_spectral_sum_create(ctx, (uint32_t)o->width, (uint32_t)height, &g->meter_sum) != VKSKY_SUCCESS))
         return 1;
     return 0;
 }
@@ -129,6 +142,7 @@ typedef struct group_frames {
     vksky_renderer *const *rs;
     uint32_t first, n;
     const host_view *view;
+    vksky_spectral_sum *sum;   /* the sum these frames add into (g->sum or g->meter_sum; NULL: the host sums) */
 } group_frames;
 
 static int record_groups(void *user, VkCommandBuffer cmd, bool force_luts, bool follows_frame)
@@ -137,12 +151,12 @@ static int record_groups(void *user, VkCommandBuffer cmd, bool force_luts, bool 
     const group_frames *f = user;
     const groups *g = f->g;
     host_view v = *f->view;
-    vksky_frame_spectral_sum step = {.type = VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM, .sum = g->sum};
+    vksky_frame_spectral_sum step = {.type = VKSKY_STRUCTURE_TYPE_FRAME_SPECTRAL_SUM, .sum = f->sum};
     for (uint32_t k = 0; k < f->n; ++k) {
         uint32_t group = f->first + k;
         step.group = group, step.first = group == 0, step.last = group + 1 == g->count;
         memcpy(step.xyz_weights, g->weights[group], sizeof step.xyz_weights);
-        v.spectral_sum = g->sum ? &step : NULL;
+        v.spectral_sum = f->sum ? &step : NULL;
         if (host_record(f->rs[k], cmd, &v, 0) != 0) return 1;
     }
     return 0;
@@ -151,9 +165,9 @@ static int record_groups(void *user, VkCommandBuffer cmd, bool force_luts, bool 
 /* The frames of renderers rs[0 .. n-1] in one command buffer, one submission, one wait (with --async-luts: their
  * LUT passes first, in one submission on the compute queue: host_async.h). */
 static int render_list(const groups *g, vksky_renderer *const *rs, uint32_t first, uint32_t n, const options *o,
-                       const host_view *view, host_commands *h)
+                       const host_view *view, vksky_spectral_sum *sum, host_commands *h)
 {
-    group_frames frames = {g, rs, first, n, view};
+    group_frames frames = {g, rs, first, n, view, sum};
     host_submission s = {.luts = rs, .luts_count = n, .record = record_groups, .user = &frames,
                          .trace = o->trace_barriers ? stdout : NULL, .what = "the spectral frame"};
     if (host_commands_submit(h, &s, 0, 1)) return 1;
@@ -175,7 +189,7 @@ typedef struct sum_job {
     const uint16_t *alpha;                  /* the last group's readback (three to a pass: the alpha) */
     const float *resolved;                  /* or the GPU's sum, resolved: only converted (linear halves, rgb) */
     float *xyz, *rgb;
-    uint16_t *linear;
+    uint16_t *linear;                       /* or NULL (the meter's sum: its floats only) */
 } sum_job;
 
 static void sum_pixels(void *user, size_t part, size_t begin, size_t end)
@@ -188,10 +202,10 @@ static void sum_pixels(void *user, size_t part, size_t begin, size_t end)
             const float *px = j->resolved + 4 * i;
             for (int q = 0; q < 3; ++q) {
                 float v = px[q] < -65504.0f ? -65504.0f : px[q] > 65504.0f ? 65504.0f : px[q];
-                j->linear[4 * i + q] = io_float_to_half(v);
+                if (j->linear) j->linear[4 * i + q] = io_float_to_half(v);
                 if (j->rgb) j->rgb[4 * i + q] = px[q];
             }
-            j->linear[4 * i + 3] = io_float_to_half(px[3]);
+            if (j->linear) j->linear[4 * i + 3] = io_float_to_half(px[3]);
             if (j->rgb) j->rgb[4 * i + 3] = 1.0f;
         }
         return;
@@ -217,24 +231,24 @@ static void sum_pixels(void *user, size_t part, size_t begin, size_t end)
         vksky_spectral_xyz_to_rec709(in, rec);
         for (int q = 0; q < 3; ++q) {
             double v = rec[q] < -65504.0 ? -65504.0 : rec[q] > 65504.0 ? 65504.0 : rec[q];
-            j->linear[4 * i + q] = io_float_to_half((float)v);
+            if (j->linear) j->linear[4 * i + q] = io_float_to_half((float)v);
             if (j->rgb) j->rgb[4 * i + q] = (float)rec[q];
         }
-        j->linear[4 * i + 3] = g->per_pass == 4 ? io_float_to_half(1.0f) : j->alpha[4 * i + 3];
+        if (j->linear) j->linear[4 * i + 3] = g->per_pass == 4 ? io_float_to_half(1.0f) : j->alpha[4 * i + 3];
         if (j->rgb) j->rgb[4 * i + 3] = 1.0f;
     }
 }
 
 /* Groups first .. first + count - 1 (renderers rs[0 .. count-1]'s last frames) into the XYZ sum; with resolve, the
  * sum then into linear Rec.709 (and rgb for the PNG's tone map). */
-static int accumulate(const groups *g, uint32_t first, uint32_t count, vksky_renderer *const *rs, float *xyz,
-                      size_t pixels, bool resolve, spectral_image *out, float *rgb)
+static int accumulate(const groups *g, vksky_spectral_sum *sum, uint32_t first, uint32_t count,
+                      vksky_renderer *const *rs, float *xyz, size_t pixels, bool resolve, uint16_t *linear, float *rgb)
 {
     sum_job job = {.g = g, .first = first, .count = count, .resolve = resolve, .xyz = xyz, .rgb = rgb,
-                   .linear = out->linear};
-    if (g->sum) {   /* the GPU's sum: read back once, after the last group */
+                   .linear = linear};
+    if (sum) {   /* the GPU's sum: read back once, after the last group */
         if (!resolve) return 0;
-        if (vksky_spectral_sum_get(g->sum, &job.resolved) != VKSKY_SUCCESS) return 1;
+        if (vksky_spectral_sum_get(sum, &job.resolved) != VKSKY_SUCCESS) return 1;
         io_parts_run(pixels, 65536, sum_pixels, &job);
         return 0;
     }
@@ -266,42 +280,60 @@ static sky_view png_view(const options *o)
     return view;
 }
 
-/* A frame: every group rendered and summed into XYZ, then XYZ -> linear Rec.709 into out (and the PNG's tone map). */
+/* A frame: every group rendered and summed into XYZ, then XYZ -> linear Rec.709 into out (and the PNG's tone map).
+ * With g->meter_frames each group's bloom-free frame follows its own (the renderer's LUTs as they are: no LUT pass),
+ * summed apart into what the PNG's auto exposure meters. */
 static int groups_frame(groups *g, const options *o, host_commands *h, spectral_image *out)
 {
     *out = (spectral_image){0};
-    host_view v = whole_view(o);
+    host_view v = whole_view(o), bare = v;
+    vksky_frame_display no_bloom = {.type = VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY, .tonemap = (vksky_tonemap)o->view.tonemap,
+                                    .bloom = false};
+    bare.display = &no_bloom;
     size_t pixels = (size_t)o->width * o->height;
+    bool png = wants_png(o), meter = png && g->meter_frames;
     float *xyz = calloc(pixels * 3, sizeof *xyz);
+    float *meter_xyz = meter && !g->meter_sum ? calloc(pixels * 3, sizeof *meter_xyz) : NULL;
     out->linear = malloc(pixels * 4 * sizeof *out->linear);
-    bool png = wants_png(o);
     float *rgb = png ? malloc(pixels * 4 * sizeof *rgb) : NULL;
+    float *meter_rgb = meter ? malloc(pixels * 4 * sizeof *meter_rgb) : NULL;
     if (png) out->display = malloc(pixels * 4);
-    if (!xyz || !out->linear || (png && (!rgb || !out->display))) {
+    if (!xyz || !out->linear || (png && (!rgb || !out->display)) || (meter && (!meter_rgb || (!g->meter_sum && !meter_xyz)))) {
         fprintf(stderr, "vksky: --spectral: out of memory\n");
-        free(xyz), free(rgb);
+        free(xyz), free(rgb), free(meter_xyz), free(meter_rgb);
         return 1;
     }
     int status = 0;
     if (g->shared) {   /* one renderer: each group summed before the next one's frame overwrites its readback */
-        for (uint32_t k = 0; k < g->count && status == 0 && !stop_requested(); ++k)
-            status = vksky_renderer_set_scene(g->r[0], g->scene[k]) != VKSKY_SUCCESS || render_list(g, g->r, k, 1, o, &v, h) ||
-                     accumulate(g, k, 1, g->r, xyz, pixels, k + 1 == g->count, out, rgb);
+        for (uint32_t k = 0; k < g->count && status == 0 && !stop_requested(); ++k) {
+            bool last = k + 1 == g->count;
+            status = vksky_renderer_set_scene(g->r[0], g->scene[k]) != VKSKY_SUCCESS ||
+                     render_list(g, g->r, k, 1, o, &v, g->sum, h) ||
+                     accumulate(g, g->sum, k, 1, g->r, xyz, pixels, last, out->linear, rgb) ||
+                     (meter && (render_list(g, g->r, k, 1, o, &bare, g->meter_sum, h) ||
+                                accumulate(g, g->meter_sum, k, 1, g->r, meter_xyz, pixels, last, NULL, meter_rgb)));
+        }
     } else {
-        status = render_list(g, g->r, 0, g->count, o, &v, h) ||
-                 accumulate(g, 0, g->count, g->r, xyz, pixels, true, out, rgb);
+        status = render_list(g, g->r, 0, g->count, o, &v, g->sum, h) ||
+                 accumulate(g, g->sum, 0, g->count, g->r, xyz, pixels, true, out->linear, rgb) ||
+                 (meter && (render_list(g, g->r, 0, g->count, o, &bare, g->meter_sum, h) ||
+                            accumulate(g, g->meter_sum, 0, g->count, g->r, meter_xyz, pixels, true, NULL, meter_rgb)));
     }
+    free(xyz), free(meter_xyz);
     if (status != 0 || stop_requested()) {
-        free(xyz), free(rgb);
+        free(rgb), free(meter_rgb);
         return 1;
     }
-    free(xyz);
     if (png) {
         sky_view view = png_view(o);
-        spectral_render_tonemap_image(&view, o->width, o->height, lit_ground(g), o->atmosphere.bottom_radius, g->quiet,
-                                      rgb, out->display);
-        free(rgb);
+        spectral_meter m = {0};
+        if (view.auto_exposure)
+            spectral_render_meter_rows(&view, o->width, o->height, 0, o->height, lit_ground(g),
+                                       o->atmosphere.bottom_radius, meter ? meter_rgb : rgb, &m);
+        spectral_render_tonemap_rows(&view, spectral_render_exposure(&view, &m, 1, g->quiet), o->width, o->height, 0,
+                                     rgb, out->display);
     }
+    free(rgb), free(meter_rgb);
     return 0;
 }
 
@@ -439,7 +471,7 @@ int spectral_host_render(const options *o, vksky_context *ctx, const vksky_scene
  * band's size, each keeping its LUTs from band to band, every group of a band in one submission, the sum on the encode
  * threads into the band's linear image and, with a PNG, its floats tone-mapped on the host into the band's display
  * rows. An auto-exposed PNG is metered first: every band drawn once and its own rows metered in order (the whole
- * image's sum, as spectral_render_tonemap_image counts it), nothing written; then drawn again and written at that
+ * image's sum, as groups_frame counts it), nothing written; then drawn again and written at that
  * exposure (the RGB banded meter's two passes, tiles.c). Memory stays a band's: no whole image is kept. */
 typedef struct band_draw {
     const options *o;
@@ -457,8 +489,8 @@ typedef struct band_draw {
 static int sum_band(band_draw *d, const host_view *v)
 {
     memset(d->xyz, 0, d->pixels * 3 * sizeof *d->xyz);
-    return render_list(d->g, d->g->r, 0, d->g->count, d->o, v, d->h) ||
-           accumulate(d->g, 0, d->g->count, d->g->r, d->xyz, d->pixels, true, &d->img, d->rgb);
+    return render_list(d->g, d->g->r, 0, d->g->count, d->o, v, d->g->sum, d->h) ||
+           accumulate(d->g, d->g->sum, 0, d->g->count, d->g->r, d->xyz, d->pixels, true, d->img.linear, d->rgb);
 }
 
 static int draw_band(void *user, const host_view *v, frame_ring_pixels *out)

@@ -69,9 +69,10 @@ bool spectral_render_four_wide(const options *o)
     if (o->spectral <= 0 || (pack && !strcmp(pack, "3"))) return false;
     if (o->view.projection != VKSKY_PROJECTION_PERSPECTIVE) return false;   /* a map: the horizon is in it */
     if (pack && !strcmp(pack, "4")) return true;
-    /* The four-wide image has no horizon resolve (its alpha is a wavelength): a frame with the horizon in it keeps
-     * three to a pass, whose tone map anti-aliases the horizon per pixel (issue 26). */
-    return !horizon_in_view(o);
+    /* The four-wide image has no horizon resolve (its alpha is a wavelength) and no bloom (its composite is the sky
+     * texel): a frame with the horizon in it keeps three to a pass, whose tone map anti-aliases the horizon per pixel
+     * (issue 26), and so does a frame with bloom, whose groups' composites carry it as an RGB frame's does. */
+    return !o->view.bloom && !horizon_in_view(o);
 }
 
 /* The spectral sum's PNG: tone-mapped on the host, where the sum is (the GPU's tone map saw one group at a time).
@@ -79,8 +80,9 @@ bool spectral_render_four_wide(const options *o)
  * the view's exposure; auto exposure as the GPU's meter computes it (sky/meter.c: the log-average of the luminance
  * in cd/m2 floored at 1e-4, over the sky's pixels only when the ground is black; a fisheye's pixels outside its circle
  * not counted); the GPU's dither (+-1 LSB triangular noise, its law: metrics_tonemap_srgb8_dithered). Bloom: what the
- * groups' composites carry (three wavelengths to a pass: each group's HDR image plus its bloom, as an RGB frame's EXR;
- * four to a pass: none). */
+ * groups' composites carry (each group's HDR image plus its bloom, as an RGB frame's EXR: a frame with bloom is three
+ * to a pass); the meter reads the groups' bloom-free frames, as the GPU's meter reads the HDR image before bloom
+ * (app/runs/spectral_host.c). */
 void spectral_render_meter_rows(const sky_view *v, int w, int whole_h, int first_row, int rows, bool every_pixel,
                                 double bottom_radius, const float *rgb, spectral_meter *m)
 {
@@ -127,14 +129,6 @@ void spectral_render_tonemap_rows(const sky_view *v, double exposure_ev, int w, 
      * dither seeded by the whole image's pixel positions, as the GPU's (TonemapPush.dither: the band's offset). */
     double multiplier = v->ev100 ? 1.0 / (v->light_scale * 1.2 * exp2(exposure_ev)) : exp2(exposure_ev);
     metrics_tonemap_srgb8_dithered(rgb, w, rows, log2(multiplier), v->tonemap, !v->no_dither, 0, first_row, display);
-}
-
-void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius, bool quiet,
-                                   const float *rgb, void *display)
-{
-    spectral_meter m = {0};
-    if (v->auto_exposure) spectral_render_meter_rows(v, w, h, 0, h, every_pixel, bottom_radius, rgb, &m);
-    spectral_render_tonemap_rows(v, spectral_render_exposure(v, &m, 1, quiet), w, h, 0, rgb, display);
 }
 
 /* The scene classes of the run: a sequence's every frame (all of them, whatever --frame-range renders, so that a

@@ -58,8 +58,5 @@ double spectral_render_exposure(const sky_view *v, const spectral_meter *m, int 
  * (unless v->no_dither): the rows' first is row first_row of the whole image (a band's, pad rows included). */
 void spectral_render_tonemap_rows(const sky_view *v, double exposure_ev, int w, int rows, int first_row,
                                   const float *rgb, void *display);
-/* A whole w x h image: metered (under v->auto_exposure), then tone-mapped. */
-void spectral_render_tonemap_image(const sky_view *v, int w, int h, bool every_pixel, double bottom_radius, bool quiet,
-                                   const float *rgb, void *display);
 
 #endif
