@@ -98,8 +98,9 @@ count() { grep -c "^sync $2 " "$work/$1/stdout"; }
 # 6. Each wait left out. What goes wrong is undefined behaviour, so it may show in more than one way: a file that
 # differs from the serial run's, the validation layer's report (a command buffer freed or a fence reset while
 # pending: the producer reused a slot the GPU still works on), or the driver crashing on that freed command buffer
-# (lavapipe does), or hanging there: these runs are killed after 120 s (exit 137), a hang counted as going wrong, not
-# left to the test's own timeout (a loaded CI machine once ran this test past 600 s). Any of them is the hazard seen;
+# (lavapipe does), or hanging there: these runs are killed after 30 s (exit 137), a hang counted as going wrong, not
+# left to the test's own timeout (a loaded CI machine once ran this test past 600 s). A run that goes right takes
+# ~2 s alone (64x48, 5 frames); a hang killed at 120 s was most of this test's 129 s in a -j2 suite run. Any of them is the hazard seen;
 # a run that exits 0 with the serial run's files is not.
 # went_wrong NAME REFERENCE: the run NAME (exit status in $rc) went wrong.
 went_wrong() {
@@ -108,7 +109,7 @@ went_wrong() {
         return 0
     [ "$(files "$2")" != "$(files "$1")" ]
 }
-RUN_LIMIT=120
+RUN_LIMIT=30
 run drop_gpu VKSKY_DROP_BARRIER=ring.gpu_done -- "${SUN[@]}" --render f%02d.exr --render f%02d.png; rc=$?
 went_wrong drop_gpu serial || fail "ring.gpu_done dropped: nothing went wrong (exit $rc, the serial run's files)"
 run drop_slot VKSKY_DROP_BARRIER=ring.slot_free VKSKY_RING_DELAY_MS=300 -- "${SUN[@]}" --render f%02d.exr \
