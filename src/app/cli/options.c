@@ -444,7 +444,8 @@ static int resolve(options *o, unsigned quality_classes, bool report)
         unsigned classes = quality_classes ? quality_classes
                                            : quality_class_bit(o->view.altitude_km, o->view.sun_elevation_deg);
         if (automatic) {
-            q = quality_auto(classes, device_is_cpu(o), &measured);
+            o->quality_cpu_device = device_is_cpu(o);
+            q = quality_auto(classes, o->quality_cpu_device, &measured);
             o->quality = NULL;
             o->quality_auto = true;
             o->quality_classes = classes;

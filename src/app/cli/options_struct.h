@@ -55,6 +55,7 @@ typedef struct options {
     const char *quality;                        /* --quality preset name (NULL: none) */
     bool quality_auto;                          /* the knobs are --quality auto's choice (named or the default) */
     unsigned quality_classes;                   /* the scene classes that choice (or --max-error's) served */
+    bool quality_cpu_device;                    /* auto's tables were the CPU device's (lavapipe): its colour rule */
     /* Scene features (scene files and their flags). */
     const char *scene_path;                     /* --scene FILE.json (NULL: none) */
     bool scene_quality;                         /* the scene file has a quality section (no --quality auto then) */

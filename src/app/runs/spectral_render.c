@@ -6,6 +6,7 @@
 #include "app/runs/tiles.h"
 #include "app/runs/sequence_frames.h"
 #include "app/scene/light.h"
+#include "io/parts.h"
 #include "reference/metrics.h"
 #include <math.h>
 #include <stdlib.h>
@@ -122,13 +123,34 @@ double spectral_render_exposure(const sky_view *v, const spectral_meter *m, int 
     return exposed.exposure_ev;
 }
 
+typedef struct tonemap_job {
+    const sky_view *v;
+    double ev;   /* log2 of the multiplier */
+    int w, first_row;
+    const float *rgb;
+    unsigned char *display;
+} tonemap_job;
+
+static void tonemap_part(void *user, size_t part, size_t begin, size_t end)
+{
+    (void)part;
+    const tonemap_job *j = user;
+    size_t at = begin * (size_t)j->w;
+    metrics_tonemap_srgb8_dithered(j->rgb + 4 * at, j->w, (int)(end - begin), j->ev, j->v->tonemap, !j->v->no_dither, 0,
+                                   j->first_row + (int)begin, j->display + 4 * at);
+}
+
 void spectral_render_tonemap_rows(const sky_view *v, double exposure_ev, int w, int rows, int first_row,
                                   const float *rgb, void *display)
 {
     /* The tone map's multiplier (sky/view_params.c): photometric 1 / (light_scale 1.2 2^EV100), else 2^EV. The
-     * dither seeded by the whole image's pixel positions, as the GPU's (TonemapPush.dither: the band's offset). */
+     * dither seeded by the whole image's pixel positions, as the GPU's (TonemapPush.dither: the band's offset). Rows
+     * over the encode threads (--threads): every pixel's arithmetic is its own, so the bytes are the one loop's (a
+     * 1080p PNG's tone map was ~70 ms of one core on the H200 host). */
     double multiplier = v->ev100 ? 1.0 / (v->light_scale * 1.2 * exp2(exposure_ev)) : exp2(exposure_ev);
-    metrics_tonemap_srgb8_dithered(rgb, w, rows, log2(multiplier), v->tonemap, !v->no_dither, 0, first_row, display);
+    tonemap_job job = {v, log2(multiplier), w, first_row, rgb, display};
+    size_t min_rows = (size_t)(65536 / (w > 0 ? w : 1)) + 1;   /* parts of at least 64 Ki pixels */
+    io_parts_run((size_t)rows, min_rows, tonemap_part, &job);
 }
 
 /* The scene classes of the run: a sequence's every frame (all of them, whatever --frame-range renders, so that a
@@ -163,9 +185,10 @@ int spectral_auto(options *o, const char *impossible)
     double rgb = 0.0, measured;
     for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
         if (classes & (1u << c)) rgb = fmax(rgb, quality_color_error(0, c));
-    /* Noon and afternoon (RGB within 2.4) stay RGB: their colour is off by less than the keep threshold, and the
-     * fewest wavelengths within the budget there (8) would double the frame's cost for it. */
-    if (rgb <= SPECTRAL_AUTO_RGB_KEEP) return 0;
+    /* RGB kept where its colour is within the budget; on a CPU device also at noon and in the afternoon (RGB within
+     * 2.4, under SPECTRAL_AUTO_RGB_KEEP_CPU), where 8 or 16 wavelengths would cost a 1080p still 2-3x RGB's time. */
+    double keep = o->quality_cpu_device ? SPECTRAL_AUTO_RGB_KEEP_CPU : SPECTRAL_AUTO_BUDGET;
+    if (rgb <= keep) return 0;
     char names[96];
     quality_class_names(classes, names, sizeof names);
     /* A sequence keeps RGB under auto: a spectral frame is a pass per wavelength group. With the sum on the encode
@@ -185,8 +208,7 @@ int spectral_auto(options *o, const char *impossible)
                                                : spectral_render_unable(o);
     if (why) {   /* RGB kept where the spectral path cannot render: said, not silent */
         printf("vksky: --quality auto: RGB's colour on the '%s' scene is within CIEDE2000 %.2f of the spectrum's, "
-               "over %g, but this run stays RGB: the spectral path cannot render %s\n", names, rgb,
-               SPECTRAL_AUTO_RGB_KEEP, why);
+               "over %g, but this run stays RGB: the spectral path cannot render %s\n", names, rgb, keep, why);
         return 0;
     }
     int n = spectral_pick(SPECTRAL_AUTO_BUDGET, classes, &measured);
@@ -194,7 +216,7 @@ int spectral_auto(options *o, const char *impossible)
     o->spectral = n;
     printf("vksky: --quality auto: RGB's colour on the '%s' scene is within CIEDE2000 %.2f of the spectrum's, over %g: "
            "picked --spectral %d (measured worst CIEDE2000 %.2f, budget %g; --spectral 0 keeps RGB)\n",
-           names, rgb, SPECTRAL_AUTO_RGB_KEEP, n, measured, SPECTRAL_AUTO_BUDGET);
+           names, rgb, keep, n, measured, SPECTRAL_AUTO_BUDGET);
     return n;
 }
 

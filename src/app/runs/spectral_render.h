@@ -30,13 +30,16 @@ bool spectral_render_four_wide(const options *o);
 int spectral_pick(double max_de, unsigned classes, double *measured);
 
 /* --quality auto's colour (issue 32): where RGB's measured worst CIEDE2000 on the run's scene classes (a sequence:
- * every frame's, one choice for the run) is over SPECTRAL_AUTO_RGB_KEEP, the fewest wavelengths within the default
- * colour budget SPECTRAL_AUTO_BUDGET (spectral_pick), said on one stdout line. A run the spectral path cannot render
+ * every frame's, one choice for the run) is over the default colour budget SPECTRAL_AUTO_BUDGET, the fewest
+ * wavelengths within it (spectral_pick), said on one stdout line. On a CPU device (o->quality_cpu_device, the device
+ * kind auto's quality tables were chosen by) only where RGB is over SPECTRAL_AUTO_RGB_KEEP_CPU: there a spectral still
+ * costs 2-3x an RGB one (lavapipe, docs/spectral.md "Auto by the device's kind"), on a GPU well under a millisecond
+ * a group. A run the spectral path cannot render
  * (`impossible`: the caller's reason, e.g. a composite; spectral_render_unable's; --bench) keeps RGB and says why on
  * stdout; the window keeps RGB silently (interactive). Not with a colour choice of its own (--spectral,
  * --max-color-error). Sets o->spectral; returns it (0: RGB kept). */
 #define SPECTRAL_AUTO_BUDGET 1.0
-#define SPECTRAL_AUTO_RGB_KEEP 3.0
+#define SPECTRAL_AUTO_RGB_KEEP_CPU 3.0
 int spectral_auto(options *o, const char *impossible);
 
 /* The spectral sum's PNG (docs/spectral.md, "The PNG"): rgb (RGBA floats, linear Rec.709 in the HDR image's units)
