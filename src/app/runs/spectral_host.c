@@ -287,8 +287,8 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
 {
     *out = (spectral_image){0};
     host_view v = whole_view(o), bare = v;
-    vksky_frame_display no_bloom = {.type = VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY, .tonemap = (vksky_tonemap)o->view.tonemap,
-                                    .bloom = false};
+    vksky_frame_display no_bloom = {.type = VKSKY_STRUCTURE_TYPE_FRAME_DISPLAY,
+                                    .tonemap = (vksky_tonemap)o->view.tonemap, .bloom = false};
     bare.display = &no_bloom;
     size_t pixels = (size_t)o->width * o->height;
     bool png = wants_png(o), meter = png && g->meter_frames;
@@ -298,7 +298,8 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
     float *rgb = png ? malloc(pixels * 4 * sizeof *rgb) : NULL;
     float *meter_rgb = meter ? malloc(pixels * 4 * sizeof *meter_rgb) : NULL;
     if (png) out->display = malloc(pixels * 4);
-    if (!xyz || !out->linear || (png && (!rgb || !out->display)) || (meter && (!meter_rgb || (!g->meter_sum && !meter_xyz)))) {
+    if (!xyz || !out->linear || (png && (!rgb || !out->display)) ||
+        (meter && (!meter_rgb || (!g->meter_sum && !meter_xyz)))) {
         fprintf(stderr, "vksky: --spectral: out of memory\n");
         free(xyz), free(rgb), free(meter_xyz), free(meter_rgb);
         return 1;
