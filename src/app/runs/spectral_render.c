@@ -186,7 +186,7 @@ int spectral_auto(options *o, const char *impossible)
     for (int c = 0; c < QUALITY_SCENE_COUNT; ++c)
         if (classes & (1u << c)) rgb = fmax(rgb, quality_color_error(0, c));
     /* RGB kept where its colour is within the budget; on a CPU device also at noon and in the afternoon (RGB within
-     * 2.4, under SPECTRAL_AUTO_RGB_KEEP_CPU), where 8 or 16 wavelengths would cost a 1080p still 2-3x RGB's time. */
+     * 2.4, under SPECTRAL_AUTO_RGB_KEEP_CPU), where 8 or 16 wavelengths cost a 1080p still 2.0-3.4x RGB's time. */
     double keep = o->quality_cpu_device ? SPECTRAL_AUTO_RGB_KEEP_CPU : SPECTRAL_AUTO_BUDGET;
     if (rgb <= keep) return 0;
     char names[96];

@@ -33,10 +33,9 @@ int spectral_pick(double max_de, unsigned classes, double *measured);
  * every frame's, one choice for the run) is over the default colour budget SPECTRAL_AUTO_BUDGET, the fewest
  * wavelengths within it (spectral_pick), said on one stdout line. On a CPU device (o->quality_cpu_device, the device
  * kind auto's quality tables were chosen by) only where RGB is over SPECTRAL_AUTO_RGB_KEEP_CPU: there a spectral still
- * costs 2-3x an RGB one (lavapipe, docs/spectral.md "Auto by the device's kind"), on a GPU well under a millisecond
- * a group. A run the spectral path cannot render
- * (`impossible`: the caller's reason, e.g. a composite; spectral_render_unable's; --bench) keeps RGB and says why on
- * stdout; the window keeps RGB silently (interactive). Not with a colour choice of its own (--spectral,
+ * costs 2.0-3.4x an RGB one (lavapipe), on a GPU 1.03-1.11x (H200; docs/spectral.md "Auto by the device's kind").
+ * A run the spectral path cannot render (`impossible`: the caller's reason, e.g. a composite; spectral_render_unable's;
+ * --bench) keeps RGB and says why on stdout; the window keeps RGB silently (interactive). Not with a colour choice of its own (--spectral,
  * --max-color-error). Sets o->spectral; returns it (0: RGB kept). */
 #define SPECTRAL_AUTO_BUDGET 1.0
 #define SPECTRAL_AUTO_RGB_KEEP_CPU 3.0
