@@ -293,13 +293,16 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
     size_t pixels = (size_t)o->width * o->height;
     bool png = wants_png(o), meter = png && g->meter_frames;
     float *xyz = calloc(pixels * 3, sizeof *xyz);
-    float *meter_xyz = meter && !g->meter_sum ? calloc(pixels * 3, sizeof *meter_xyz) : NULL;
+    /* The meter's sum on the host (VKSKY_SPECTRAL_SUM=host) needs its own XYZ and Rec.709 floats; the GPU's resolved
+     * sum is already Rec.709 floats, metered where it is. */
+    bool host_meter = meter && !g->meter_sum;
+    float *meter_xyz = host_meter ? calloc(pixels * 3, sizeof *meter_xyz) : NULL;
     out->linear = malloc(pixels * 4 * sizeof *out->linear);
     float *rgb = png ? malloc(pixels * 4 * sizeof *rgb) : NULL;
-    float *meter_rgb = meter ? malloc(pixels * 4 * sizeof *meter_rgb) : NULL;
+    float *meter_rgb = host_meter ? malloc(pixels * 4 * sizeof *meter_rgb) : NULL;
     if (png) out->display = malloc(pixels * 4);
     if (!xyz || !out->linear || (png && (!rgb || !out->display)) ||
-        (meter && (!meter_rgb || (!g->meter_sum && !meter_xyz)))) {
+        (host_meter && (!meter_rgb || !meter_xyz))) {
         fprintf(stderr, "vksky: --spectral: out of memory\n");
         free(xyz), free(rgb), free(meter_xyz), free(meter_rgb);
         return 1;
@@ -312,13 +315,15 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
                      render_list(g, g->r, k, 1, o, &v, g->sum, h) ||
                      accumulate(g, g->sum, k, 1, g->r, xyz, pixels, last, out->linear, rgb) ||
                      (meter && (render_list(g, g->r, k, 1, o, &bare, g->meter_sum, h) ||
-                                accumulate(g, g->meter_sum, k, 1, g->r, meter_xyz, pixels, last, NULL, meter_rgb)));
+                                (host_meter &&
+                                 accumulate(g, NULL, k, 1, g->r, meter_xyz, pixels, last, NULL, meter_rgb))));
         }
     } else {
         status = render_list(g, g->r, 0, g->count, o, &v, g->sum, h) ||
                  accumulate(g, g->sum, 0, g->count, g->r, xyz, pixels, true, out->linear, rgb) ||
                  (meter && (render_list(g, g->r, 0, g->count, o, &bare, g->meter_sum, h) ||
-                            accumulate(g, g->meter_sum, 0, g->count, g->r, meter_xyz, pixels, true, NULL, meter_rgb)));
+                            (host_meter &&
+                             accumulate(g, NULL, 0, g->count, g->r, meter_xyz, pixels, true, NULL, meter_rgb))));
     }
     free(xyz), free(meter_xyz);
     if (status != 0 || stop_requested()) {
@@ -328,9 +333,14 @@ static int groups_frame(groups *g, const options *o, host_commands *h, spectral_
     if (png) {
         sky_view view = png_view(o);
         spectral_meter m = {0};
+        const float *metered = meter_rgb ? meter_rgb : rgb;   /* the bloom-free sum, or the image's (no bloom) */
+        if (meter && g->meter_sum && vksky_spectral_sum_get(g->meter_sum, &metered) != VKSKY_SUCCESS) {
+            free(rgb);
+            return 1;
+        }
         if (view.auto_exposure)
             spectral_render_meter_rows(&view, o->width, o->height, 0, o->height, lit_ground(g),
-                                       o->atmosphere.bottom_radius, meter ? meter_rgb : rgb, &m);
+                                       o->atmosphere.bottom_radius, metered, &m);
         spectral_render_tonemap_rows(&view, spectral_render_exposure(&view, &m, 1, g->quiet), o->width, o->height, 0,
                                      rgb, out->display);
     }
