@@ -76,7 +76,7 @@ g=(--width 12 --height 7 "${noon[@]}")
 VKSKY_QUALITY_TABLE=cpu "$VKSKY" "${g[@]}" --validate --render "$work/noon.exr" >"$work/noon" 2>"$work/err" &&
     [ ! -s "$work/err" ] || fail "noon auto: $(cat "$work/err")"
 [ ! -s "$work/noon" ] || fail "noon auto printed: $(cat "$work/noon")"
-VKSKY_QUALITY_TABLE=cpu "$VKSKY" "${g[@]}" --spectral 0 --render "$work/noon0.exr" || fail "noon --spectral 0"
+VKSKY_QUALITY_TABLE=cpu "$VKSKY" "${g[@]}" --spectral 0 --validate --render "$work/noon0.exr" || fail "noon --spectral 0"
 "$PIXELS" same "$work/noon.exr" "$work/noon0.exr" || fail "noon auto differs from --spectral 0 (RGB)"
 
 [ $fails -eq 0 ] && echo "spectral4: all checks passed"
