@@ -29,8 +29,9 @@ same() {   # same ARGS...: one render split and one whole-frame full, the files 
         mkdir -p "$work/$n/$mode"
         local split=1
         [ $mode = full ] && split=0
-        (cd "$work/$n/$mode" && VKSKY_TILE_ROWS=$ROWS VKSKY_TONEMAP_SPLIT=$split "$VKSKY" --validate --quiet --post-pass fragment \
-            --spectral 0 --render m.exr --render m.png "$@" 2>err) || fail "$* ($mode): exit $? ($(cat "$work/$n/$mode/err"))"
+        (cd "$work/$n/$mode" && VKSKY_TILE_ROWS=$ROWS VKSKY_TONEMAP_SPLIT=$split "$VKSKY" --validate --quiet \
+            --post-pass fragment --spectral 0 --render m.exr --render m.png "$@" 2>err) ||
+            fail "$* ($mode): exit $? ($(cat "$work/$n/$mode/err"))"
         [ ! -s "$work/$n/$mode/err" ] || fail "$* ($mode): stderr: $(cat "$work/$n/$mode/err")"
     done
     for f in m.exr m.png; do

@@ -35,8 +35,8 @@ int spectral_pick(double max_de, unsigned classes, double *measured);
  * kind auto's quality tables were chosen by) only where RGB is over SPECTRAL_AUTO_RGB_KEEP_CPU: there a spectral still
  * costs 2.0-3.4x an RGB one (lavapipe), on a GPU 1.03-1.11x (H200; docs/spectral.md "Auto by the device's kind").
  * A run the spectral path cannot render (`impossible`: the caller's reason, e.g. a composite; spectral_render_unable's;
- * --bench) keeps RGB and says why on stdout; the window keeps RGB silently (interactive). Not with a colour choice of its own (--spectral,
- * --max-color-error). Sets o->spectral; returns it (0: RGB kept). */
+ * --bench) keeps RGB and says why on stdout; the window keeps RGB silently (interactive). Not with a colour choice of
+ * its own (--spectral, --max-color-error). Sets o->spectral; returns it (0: RGB kept). */
 #define SPECTRAL_AUTO_BUDGET 1.0
 #define SPECTRAL_AUTO_RGB_KEEP_CPU 3.0
 int spectral_auto(options *o, const char *impossible);
